@@ -1,0 +1,78 @@
+/* pointnpr — io.h: reading and writing point clouds.
+ *
+ * PLY  (io/ply.c): ascii, binary_little_endian, binary_big_endian; any property order and
+ *      scalar type; float or double coordinates; vertex element required, face element kept,
+ *      other elements skipped. Recognised vertex properties: x y z, nx ny nz,
+ *      red green blue (uchar or ushort; also r g b / diffuse_red ...), label/segment (kept as
+ *      labels); every other vertex property is kept as an extra property.
+ * LAS  (io/las.c): versions 1.0-1.4, uncompressed, point formats 0-3 and 6-8; world =
+ *      X*scale + offset; 16-bit RGB reduced to 8 bit (values that never exceed 255 are taken
+ *      as 8-bit); intensity and classification kept as extra properties.
+ * OBJ/OFF vertices (io/mesh_openmesh.cpp) through OpenMesh.
+ *
+ * Errors are precise: pnpr_error says which file, which line or byte offset, what was expected. */
+#ifndef POINTNPR_IO_H
+#define POINTNPR_IO_H
+
+#include "cloud.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum pnpr_file_format {
+    PNPR_FORMAT_AUTO = 0, /* from the extension (and magic bytes for reading) */
+    PNPR_FORMAT_PLY,
+    PNPR_FORMAT_LAS,
+    PNPR_FORMAT_OBJ,
+    PNPR_FORMAT_OFF,
+    PNPR_FORMAT_COUNT_
+} pnpr_file_format;
+
+typedef enum pnpr_ply_encoding {
+    PNPR_PLY_BINARY_LE = 0, /* default */
+    PNPR_PLY_ASCII,
+    PNPR_PLY_BINARY_BE
+} pnpr_ply_encoding;
+
+typedef struct pnpr_read_options {
+    pnpr_file_format format; /* 0 = auto */
+    pnpr_progress progress;
+} pnpr_read_options;
+
+typedef struct pnpr_write_options {
+    pnpr_file_format format;     /* 0 = auto from extension; only PLY is written for now */
+    pnpr_ply_encoding encoding;  /* 0 = binary little endian */
+    /* Coordinates are written in the source type: double when cloud->src_xyz or
+     * src_coord_type == FLOAT64, float otherwise. force_double writes doubles always. */
+    int force_double;
+    const char *comment;         /* optional "comment" line, may be NULL */
+    pnpr_progress progress;
+} pnpr_write_options;
+
+/* Reads any supported file into `cloud` (which must be empty or zeroed; it is freed first). */
+pnpr_status pnpr_read_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                           pnpr_error *err);
+
+pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_options *opts,
+                                 pnpr_cloud *cloud, pnpr_error *err);
+pnpr_status pnpr_read_las_memory(const void *data, size_t size, const pnpr_read_options *opts,
+                                 pnpr_cloud *cloud, pnpr_error *err);
+/* OBJ/OFF through OpenMesh (vertices, vertex colours and normals when present, faces). */
+pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_options *opts,
+                                pnpr_cloud *cloud, pnpr_error *err);
+
+pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud,
+                            const pnpr_write_options *opts, pnpr_error *err);
+
+/* Writes PLY to a caller-provided sink (fn returns 0 on success). */
+typedef int (*pnpr_write_fn)(void *user, const void *data, size_t size);
+pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
+                                  const pnpr_write_options *opts, pnpr_error *err);
+
+pnpr_file_format pnpr_format_from_path(const char *path);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

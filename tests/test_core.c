@@ -1,0 +1,79 @@
+/* Status strings, property management, append/merge of clouds, origin handling. */
+#include "testutil.h"
+#include <math.h>
+#include <string.h>
+
+static void test_status_strings(void)
+{
+    for (int s = 0; s < PNPR_STATUS_COUNT_; s++) {
+        const char *t = pnpr_status_string((pnpr_status)s);
+        CHECK(t && t[0]);
+        CHECK(strcmp(t, "unknown status") != 0);
+    }
+    CHECK(strcmp(pnpr_status_string((pnpr_status)999), "unknown status") == 0);
+    CHECK(strcmp(pnpr_status_string(PNPR_ERR_TRUNCATED), "file is truncated") == 0);
+}
+
+static void test_zero_cloud_is_valid(void)
+{
+    pnpr_cloud c = {0};
+    float lo[3], hi[3];
+    CHECK(pnpr_cloud_bounds(&c, lo, hi) == 0);
+    pnpr_cloud_free(&c);
+    pnpr_cloud_free(NULL);
+    CHECK(c.count == 0 && c.xyz == NULL);
+}
+
+static void test_properties(void)
+{
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_cloud_alloc(&c, 4), PNPR_OK);
+    pnpr_property *p = NULL;
+    CHECK_STATUS(pnpr_cloud_add_property(&c, "intensity", PNPR_TYPE_UINT16, &p), PNPR_OK);
+    CHECK(p && p->type == PNPR_TYPE_UINT16);
+    pnpr_type_set(p->type, p->data, 3, 70000.0); /* saturates */
+    CHECK(pnpr_type_get(p->type, p->data, 3) == 65535.0);
+    pnpr_type_set(PNPR_TYPE_INT8, p->data, 0, NAN); /* NaN -> 0 for integers */
+    CHECK(((int8_t *)p->data)[0] == 0);
+    CHECK_STATUS(pnpr_cloud_add_property(&c, "", PNPR_TYPE_UINT8, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_cloud_add_property(&c, "x", PNPR_TYPE_NONE, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK(pnpr_cloud_find_property(&c, "intensity") != NULL);
+    CHECK_STATUS(pnpr_cloud_remove_property(&c, "intensity"), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_remove_property(&c, "intensity"), PNPR_ERR_NOT_FOUND);
+    pnpr_cloud_free(&c);
+}
+
+/* Two tiles ~5e6 away from the origin merge with exact world coordinates and offsets that
+ * are precise to well below a millimetre. */
+static void test_append_georeferenced(void)
+{
+    pnpr_cloud a = {0}, b = {0}, m = {0};
+    const double oa[3] = {5e6 + 0.123, 4e6, 250.0}, ob[3] = {5e6 + 20.456, 4e6 + 5.0, 251.0};
+    CHECK_STATUS(pnpr_test_plane(&a, 10, 10, 0.01, oa), PNPR_OK);
+    CHECK_STATUS(pnpr_test_plane(&b, 5, 5, 0.01, ob), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(&b, "intensity", PNPR_TYPE_UINT16, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_append(&m, &a), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_append(&m, &b), PNPR_OK);
+    CHECK(m.count == 125);
+    CHECK(m.src_xyz != NULL);
+    double w[3];
+    pnpr_cloud_world(&m, 100, w);
+    CHECK(w[0] == ob[0] && w[1] == ob[1] && w[2] == ob[2]);
+    for (size_t i = 0; i < m.count; i++)
+        for (int k = 0; k < 3; k++) {
+            double rel = m.origin[k] + (double)m.xyz[3 * i + k];
+            CHECK_NEAR(rel, m.src_xyz[3 * i + k], 1e-5);
+        }
+    pnpr_property *p = pnpr_cloud_find_property(&m, "intensity");
+    CHECK(p && p->type == PNPR_TYPE_UINT16);
+    pnpr_cloud_free(&a); pnpr_cloud_free(&b); pnpr_cloud_free(&m);
+}
+
+int main(void)
+{
+    test_status_strings();
+    test_zero_cloud_is_valid();
+    test_properties();
+    test_append_georeferenced();
+    return pnpr_test_finish("test_core");
+}
