@@ -1,10 +1,48 @@
-/* pointnpr command-line tool (placeholder until the subcommands land). */
-#include <pointnpr/core.h>
+/* pointnpr command-line tool: dispatches to the subcommands in cmd_*.c. */
+#include "cli.h"
+
 #include <stdio.h>
+#include <string.h>
+
+int cli_progress_stderr(void *user, const char *stage, double fraction)
+{
+    (void)user;
+    int pct = (int)(fraction * 100.0 + 0.5);
+    fprintf(stderr, "\r%-24s %3d%%%s", stage, pct, pct >= 100 ? "\n" : "");
+    fflush(stderr);
+    return 0;
+}
+
+void cli_report_error(const char *cmd, pnpr_status st, const pnpr_error *err)
+{
+    if (err && err->message[0])
+        fprintf(stderr, "pointnpr %s: %s (%s)\n", cmd, err->message, pnpr_status_string(st));
+    else
+        fprintf(stderr, "pointnpr %s: %s\n", cmd, pnpr_status_string(st));
+}
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "pointnpr %s - non-photorealistic rendering of point clouds\n"
+            "usage: pointnpr <command> [options]\n"
+            "  info IN                      describe a point cloud file\n"
+            "  convert IN... -o OUT.ply     convert/merge PLY, LAS, OBJ, OFF inputs into one PLY\n"
+            "  features IN -o OUT.ply       normals, feature degree, classification, dithering\n"
+            "run 'pointnpr <command> --help' for the options of a command\n",
+            PNPR_VERSION_STRING);
+}
 
 int main(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    printf("pointnpr %s\n", PNPR_VERSION_STRING);
-    return 0;
+    if (argc < 2) { usage(stderr); return 2; }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) { usage(stdout); return 0; }
+    if (!strcmp(cmd, "--version")) { printf("pointnpr %s\n", PNPR_VERSION_STRING); return 0; }
+    if (!strcmp(cmd, "info")) return cli_info(argc - 1, argv + 1);
+    if (!strcmp(cmd, "convert")) return cli_convert(argc - 1, argv + 1);
+    if (!strcmp(cmd, "features")) return cli_features(argc - 1, argv + 1);
+    fprintf(stderr, "pointnpr: unknown command '%s'\n", cmd);
+    usage(stderr);
+    return 2;
 }
