@@ -1,0 +1,322 @@
+/* kd-tree with kNN and radius queries (see include/pointnpr/knn.h).
+ *
+ * Layout: nodes in an array, built top-down; the left child of node i is i+1, the right child is
+ * stored explicitly. Leaves hold a contiguous range of the reordered point array, so a leaf scan
+ * touches consecutive memory. Queries keep a bounded max-heap of the k best candidates and
+ * descend into the nearer child first, skipping the far child when the splitting plane is
+ * farther than the current k-th distance. */
+#include <pointnpr/knn.h>
+
+#include "../core/internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define LEAF_SIZE 12
+#define MAX_DEPTH 64
+
+typedef struct node {
+    float split;      /* leaves: unused */
+    uint32_t right;   /* index of right child; 0 for a leaf */
+    uint32_t begin, end; /* point range [begin, end) */
+    uint8_t axis;
+} node;
+
+struct pnpr_kdtree {
+    size_t count;
+    float *pts;      /* 3*count, in tree order */
+    uint32_t *index; /* original index of each tree-order point */
+    node *nodes;
+    size_t node_count, node_cap;
+};
+
+static int finite3(const float *p)
+{
+    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+}
+
+static void swap_pt(pnpr_kdtree *t, size_t a, size_t b)
+{
+    float tmp[3];
+    memcpy(tmp, t->pts + 3 * a, sizeof tmp);
+    memcpy(t->pts + 3 * a, t->pts + 3 * b, sizeof tmp);
+    memcpy(t->pts + 3 * b, tmp, sizeof tmp);
+    uint32_t ti = t->index[a]; t->index[a] = t->index[b]; t->index[b] = ti;
+}
+
+/* Quickselect: afterwards the point at position k has the k-th smallest coordinate on `axis`
+ * within [lo, hi), smaller-or-equal ones before it, greater-or-equal after. Median-of-three
+ * pivots; ranges of equal values are handled by the three-way partition. */
+static void select_kth(pnpr_kdtree *t, size_t lo, size_t hi, size_t k, int axis)
+{
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        float a = t->pts[3 * lo + axis], b = t->pts[3 * mid + axis], c = t->pts[3 * (hi - 1) + axis];
+        float pivot = a < b ? (b < c ? b : (a < c ? c : a)) : (a < c ? a : (b < c ? c : b));
+        /* three-way partition: [lo,lt) < pivot, [lt,gt) == pivot, [gt,hi) > pivot */
+        size_t lt = lo, i = lo, gt = hi;
+        while (i < gt) {
+            float v = t->pts[3 * i + axis];
+            if (v < pivot) swap_pt(t, lt++, i++);
+            else if (v > pivot) swap_pt(t, i, --gt);
+            else i++;
+        }
+        if (k < lt) hi = lt;
+        else if (k >= gt) lo = gt;
+        else return;
+    }
+}
+
+static pnpr_status push_node(pnpr_kdtree *t, uint32_t *r_id)
+{
+    if (t->node_count == t->node_cap) {
+        size_t cap = t->node_cap ? 2 * t->node_cap : 64;
+        node *n = realloc(t->nodes, cap * sizeof *n);
+        if (!n) return PNPR_ERR_OUT_OF_MEMORY;
+        t->nodes = n;
+        t->node_cap = cap;
+    }
+    memset(&t->nodes[t->node_count], 0, sizeof(node));
+    *r_id = (uint32_t)t->node_count++;
+    return PNPR_OK;
+}
+
+static pnpr_status build_rec(pnpr_kdtree *t, size_t begin, size_t end, int depth)
+{
+    uint32_t id;
+    pnpr_status st = push_node(t, &id);
+    if (st != PNPR_OK) return st;
+    t->nodes[id].begin = (uint32_t)begin;
+    t->nodes[id].end = (uint32_t)end;
+    if (end - begin <= LEAF_SIZE || depth >= MAX_DEPTH) return PNPR_OK;
+
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = begin; i < end; i++)
+        for (int a = 0; a < 3; a++) {
+            float v = t->pts[3 * i + a];
+            if (v < lo[a]) lo[a] = v;
+            if (v > hi[a]) hi[a] = v;
+        }
+    int axis = 0;
+    for (int a = 1; a < 3; a++)
+        if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+    size_t mid = begin + (end - begin) / 2;
+    /* Coincident points are still split (by position in the array) so that leaves stay small
+     * and a cloud of exact duplicates is not one huge leaf. */
+    if (hi[axis] > lo[axis]) select_kth(t, begin, end, mid, axis);
+    t->nodes[id].axis = (uint8_t)axis;
+    t->nodes[id].split = t->pts[3 * mid + axis];
+    if ((st = build_rec(t, begin, mid, depth + 1)) != PNPR_OK) return st;
+    t->nodes[id].right = (uint32_t)t->node_count;
+    return build_rec(t, mid, end, depth + 1);
+}
+
+pnpr_status pnpr_kdtree_build(const float *xyz, size_t count, size_t stride_bytes,
+                              pnpr_kdtree **r_tree)
+{
+    if (!r_tree) return PNPR_ERR_INVALID_ARGUMENT;
+    *r_tree = NULL;
+    if ((count && !xyz) || count >= PNPR_INDEX_NONE) return PNPR_ERR_INVALID_ARGUMENT;
+    if (stride_bytes == 0) stride_bytes = 3 * sizeof(float);
+    pnpr_kdtree *t = calloc(1, sizeof *t);
+    if (!t) return PNPR_ERR_OUT_OF_MEMORY;
+    t->pts = malloc((count ? count : 1) * 3 * sizeof(float));
+    t->index = malloc((count ? count : 1) * sizeof(uint32_t));
+    if (!t->pts || !t->index) { pnpr_kdtree_free(t); return PNPR_ERR_OUT_OF_MEMORY; }
+    size_t n = 0;
+    for (size_t i = 0; i < count; i++) {
+        const float *p = (const float *)((const char *)xyz + i * stride_bytes);
+        if (!finite3(p)) continue;
+        memcpy(t->pts + 3 * n, p, 3 * sizeof(float));
+        t->index[n++] = (uint32_t)i;
+    }
+    t->count = n;
+    pnpr_status st = build_rec(t, 0, n, 0);
+    if (st != PNPR_OK) { pnpr_kdtree_free(t); return st; }
+    *r_tree = t;
+    return PNPR_OK;
+}
+
+void pnpr_kdtree_free(pnpr_kdtree *t)
+{
+    if (!t) return;
+    free(t->pts);
+    free(t->index);
+    free(t->nodes);
+    free(t);
+}
+
+size_t pnpr_kdtree_size(const pnpr_kdtree *t)
+{
+    return t ? t->count : 0;
+}
+
+/* Bounded max-heap of (dist2, idx); the root is the worst kept candidate. Order: by distance,
+ * then by index, so that results are deterministic. */
+typedef struct heap {
+    float *d;
+    uint32_t *i;
+    size_t n, k;
+} heap;
+
+static int worse(float da, uint32_t ia, float db, uint32_t ib)
+{
+    return da > db || (da == db && ia > ib);
+}
+
+static void heap_offer(heap *h, float d, uint32_t idx)
+{
+    if (h->n < h->k) {
+        size_t c = h->n++;
+        while (c > 0) {
+            size_t p = (c - 1) / 2;
+            if (!worse(d, idx, h->d[p], h->i[p])) break;
+            h->d[c] = h->d[p]; h->i[c] = h->i[p];
+            c = p;
+        }
+        h->d[c] = d; h->i[c] = idx;
+        return;
+    }
+    if (!worse(h->d[0], h->i[0], d, idx)) return;
+    size_t c = 0;
+    for (;;) {
+        size_t l = 2 * c + 1, r = l + 1, m = c;
+        float md = d; uint32_t mi = idx;
+        if (l < h->n && worse(h->d[l], h->i[l], md, mi)) { m = l; md = h->d[l]; mi = h->i[l]; }
+        if (r < h->n && worse(h->d[r], h->i[r], md, mi)) { m = r; }
+        if (m == c) break;
+        h->d[c] = h->d[m]; h->i[c] = h->i[m];
+        c = m;
+    }
+    h->d[c] = d; h->i[c] = idx;
+}
+
+static float heap_bound(const heap *h)
+{
+    return h->n < h->k ? INFINITY : h->d[0];
+}
+
+static void knn_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], heap *h)
+{
+    const node *nd = &t->nodes[id];
+    if (nd->right == 0) {
+        for (uint32_t p = nd->begin; p < nd->end; p++) {
+            const float *x = t->pts + 3 * p;
+            float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
+            float d = dx * dx + dy * dy + dz * dz;
+            if (h->n < h->k || d < h->d[0]) heap_offer(h, d, t->index[p]);
+        }
+        return;
+    }
+    float diff = q[nd->axis] - nd->split;
+    uint32_t near_c = diff < 0 ? id + 1 : nd->right, far_c = diff < 0 ? nd->right : id + 1;
+    knn_rec(t, near_c, q, h);
+    /* strict: a far point at exactly the bound cannot improve the set (keeps clusters of exact
+     * duplicates from visiting the whole tree) */
+    if (diff * diff < heap_bound(h)) knn_rec(t, far_c, q, h);
+}
+
+/* Sorts the heap contents ascending (heap sort in place: pop the worst to the end). */
+static void heap_sort(heap *h)
+{
+    size_t n = h->n;
+    while (h->n > 1) {
+        float d = h->d[0]; uint32_t i = h->i[0];
+        size_t last = --h->n;
+        float ld = h->d[last]; uint32_t li = h->i[last];
+        /* sift the last element down from the root */
+        size_t c = 0;
+        for (;;) {
+            size_t l = 2 * c + 1, r = l + 1, m = c;
+            float md = ld; uint32_t mi = li;
+            if (l < h->n && worse(h->d[l], h->i[l], md, mi)) { m = l; md = h->d[l]; mi = h->i[l]; }
+            if (r < h->n && worse(h->d[r], h->i[r], md, mi)) { m = r; }
+            if (m == c) break;
+            h->d[c] = h->d[m]; h->i[c] = h->i[m];
+            c = m;
+        }
+        h->d[c] = ld; h->i[c] = li;
+        h->d[last] = d; h->i[last] = i;
+    }
+    h->n = n;
+}
+
+size_t pnpr_kdtree_knn(const pnpr_kdtree *t, const float q[3], size_t k, uint32_t *r_idx,
+                       float *r_dist2)
+{
+    if (!r_idx || k == 0) return 0;
+    for (size_t j = 0; j < k; j++) {
+        r_idx[j] = PNPR_INDEX_NONE;
+        if (r_dist2) r_dist2[j] = INFINITY;
+    }
+    if (!t || t->count == 0 || !q || !finite3(q)) return 0;
+    size_t kk = k < t->count ? k : t->count;
+    /* r_idx doubles as the heap's index storage; distances need their own buffer. */
+    float stack_d[64];
+    float *d = r_dist2 ? r_dist2 : (kk <= 64 ? stack_d : malloc(kk * sizeof(float)));
+    if (!d) return 0;
+    heap h = {d, r_idx, 0, kk};
+    knn_rec(t, 0, q, &h);
+    heap_sort(&h);
+    if (!r_dist2 && d != stack_d) free(d);
+    return h.n;
+}
+
+static size_t radius_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], float r2,
+                         uint32_t *r_idx, size_t cap, size_t found)
+{
+    const node *nd = &t->nodes[id];
+    if (nd->right == 0) {
+        for (uint32_t p = nd->begin; p < nd->end; p++) {
+            const float *x = t->pts + 3 * p;
+            float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
+            if (dx * dx + dy * dy + dz * dz <= r2) {
+                if (found < cap) r_idx[found] = t->index[p];
+                found++;
+            }
+        }
+        return found;
+    }
+    float diff = q[nd->axis] - nd->split;
+    if (diff <= 0 || diff * diff <= r2) found = radius_rec(t, id + 1, q, r2, r_idx, cap, found);
+    if (diff >= 0 || diff * diff <= r2) found = radius_rec(t, nd->right, q, r2, r_idx, cap, found);
+    return found;
+}
+
+size_t pnpr_kdtree_radius(const pnpr_kdtree *t, const float q[3], float radius,
+                          uint32_t *r_idx, size_t cap)
+{
+    if (!t || t->count == 0 || !q || !finite3(q) || !(radius >= 0) || !isfinite(radius)) return 0;
+    if (!r_idx) cap = 0;
+    return radius_rec(t, 0, q, radius * radius, r_idx, cap, 0);
+}
+
+typedef struct knn_job {
+    const pnpr_kdtree *tree;
+    const char *xyz;
+    size_t stride, k;
+    uint32_t *idx;
+    float *dist2;
+} knn_job;
+
+static void knn_range(void *ctx, size_t begin, size_t end)
+{
+    knn_job *j = ctx;
+    for (size_t i = begin; i < end; i++)
+        pnpr_kdtree_knn(j->tree, (const float *)(j->xyz + i * j->stride), j->k, j->idx + i * j->k,
+                        j->dist2 ? j->dist2 + i * j->k : NULL);
+}
+
+pnpr_status pnpr_knn_all(const pnpr_kdtree *tree, const float *query_xyz, size_t query_count,
+                         size_t query_stride_bytes, size_t k, const pnpr_knn_options *opts,
+                         uint32_t *r_idx, float *r_dist2)
+{
+    if (!tree || (query_count && (!query_xyz || !r_idx)) || k == 0) return PNPR_ERR_INVALID_ARGUMENT;
+    if (query_count && k > SIZE_MAX / sizeof(float) / query_count) return PNPR_ERR_INVALID_ARGUMENT;
+    static const pnpr_knn_options defaults;
+    if (!opts) opts = &defaults;
+    knn_job j = {tree, (const char *)query_xyz, query_stride_bytes ? query_stride_bytes : 3 * sizeof(float),
+                 k, r_idx, r_dist2};
+    return pnpr_parallel_for(query_count, 4096, opts->threads, knn_range, &j, &opts->progress, "knn");
+}

@@ -1,0 +1,54 @@
+/* pointnpr — knn.h: kd-tree over float points, k-nearest-neighbour and radius queries.
+ *
+ * The tree is opaque and immutable once built, so any number of threads may query it.
+ * Points with a NaN/Inf coordinate are left out of the tree (never returned as neighbours).
+ * Build is O(n log n) (median splits by quickselect on the widest axis, leaves of <= 12 points);
+ * the tree keeps a reordered copy of the points (12 bytes/point) plus their indices (4 bytes). */
+#ifndef POINTNPR_KNN_H
+#define POINTNPR_KNN_H
+
+#include "core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PNPR_INDEX_NONE 0xFFFFFFFFu /* "no neighbour" in index outputs */
+
+typedef struct pnpr_kdtree pnpr_kdtree;
+
+/* xyz: point i at (const char *)xyz + i*stride_bytes (stride 0 = 3 floats, tightly packed).
+ * count must be < 2^32 - 1. An empty or all-invalid input gives a valid empty tree. */
+pnpr_status pnpr_kdtree_build(const float *xyz, size_t count, size_t stride_bytes,
+                              pnpr_kdtree **r_tree);
+void pnpr_kdtree_free(pnpr_kdtree *tree);
+size_t pnpr_kdtree_size(const pnpr_kdtree *tree); /* number of (valid) points in the tree */
+
+/* The k nearest points to q, nearest first (equal distances in a deterministic order). Writes
+ * min(k, size) entries to r_idx (and squared distances to r_dist2 when not NULL), fills the
+ * rest of the k entries with PNPR_INDEX_NONE / INFINITY, and returns the number found.
+ * A query point with NaN/Inf finds nothing (returns 0). */
+size_t pnpr_kdtree_knn(const pnpr_kdtree *tree, const float q[3], size_t k, uint32_t *r_idx,
+                       float *r_dist2);
+
+/* All points within `radius` of q (distance <= radius), in no particular order. Writes at most
+ * `cap` indices and returns the total number of points in range (may exceed cap). */
+size_t pnpr_kdtree_radius(const pnpr_kdtree *tree, const float q[3], float radius,
+                          uint32_t *r_idx, size_t cap);
+
+typedef struct pnpr_knn_options {
+    int threads;           /* 0 = all cores */
+    pnpr_progress progress; /* stage name "knn" */
+} pnpr_knn_options;
+
+/* kNN of many query points in parallel: row i of r_idx (k entries, and of r_dist2 when not
+ * NULL) holds the neighbours of query point i as pnpr_kdtree_knn returns them. When the
+ * queries are the tree's own points, each point is its own first neighbour. */
+pnpr_status pnpr_knn_all(const pnpr_kdtree *tree, const float *query_xyz, size_t query_count,
+                         size_t query_stride_bytes, size_t k, const pnpr_knn_options *opts,
+                         uint32_t *r_idx, float *r_dist2);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
