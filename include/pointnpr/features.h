@@ -1,0 +1,135 @@
+/* pointnpr — features.h: the PointWorks feature analysis of a point cloud (Xu, Gossett & Chen,
+ * "Abstraction and Depiction of Sparsely Scanned Outdoor Environments", sections 3-4.2).
+ *
+ * Stages (each a function below, each one .c file in filters/):
+ *   knn            k nearest neighbours of every point (kd-tree)
+ *   normals        PCA plane fit per neighbourhood -> unit normal + plane-fit error
+ *   orient         consistent normal orientation (viewpoint, else propagation)
+ *   feature degree edge filter over the fit error (its variation) + colour gradient, in [0,1]
+ *   classify       feature points by threshold; directional / non-directional by a 3D line fit
+ *                  over neighbouring feature points (confidence + direction)
+ *   dither         dithering points: non-feature points chosen by Ostromoukhov's variable-
+ *                  coefficient error diffusion along a space-filling order
+ * docs/features.md documents every choice the paper leaves open.
+ *
+ * Arrays are caller-owned: per-point outputs have `count` entries (3*count for vectors). */
+#ifndef POINTNPR_FEATURES_H
+#define POINTNPR_FEATURES_H
+
+#include "cloud.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* feature_class values (as written to PLY) */
+enum {
+    PNPR_CLASS_NONE = 0,
+    PNPR_CLASS_NONDIRECTIONAL = 1,
+    PNPR_CLASS_DIRECTIONAL = 2,
+    PNPR_CLASS_DITHER = 3
+};
+
+typedef struct pnpr_features_options {
+    uint32_t k;              /* neighbourhood size; 0 = 16. Clamped to the number of valid points. */
+    float threshold;         /* feature-degree threshold for feature points; 0 = automatic */
+    float weight_geometry;   /* weights of the two terms; both 0 = 0.5 / 0.5. */
+    float weight_color;      /*   they are normalised to sum 1; colourless clouds use geometry only */
+    float direction_confidence; /* min line-fit confidence of a directional point; 0 = 0.6 */
+    float dither_scale;      /* multiplies the tone before dithering (density); 0 = 1 */
+    int has_viewpoint;       /* orient normals towards `viewpoint` (world coordinates) */
+    double viewpoint[3];
+    int recompute_normals;   /* recompute even when the cloud carries normals */
+    int threads;             /* 0 = all cores */
+    pnpr_progress progress;
+} pnpr_features_options;
+
+/* Per-stage timings and run counters filled by pnpr_compute_features (for benchmarks and for
+ * tests that prove skipped stages did not run). */
+typedef enum pnpr_stage {
+    PNPR_STAGE_KDTREE = 0,
+    PNPR_STAGE_KNN,
+    PNPR_STAGE_NORMALS,
+    PNPR_STAGE_ORIENT,
+    PNPR_STAGE_FEATURE_DEGREE,
+    PNPR_STAGE_CLASSIFY,
+    PNPR_STAGE_DITHER,
+    PNPR_STAGE_COUNT_
+} pnpr_stage;
+
+const char *pnpr_stage_name(pnpr_stage stage);
+
+typedef struct pnpr_features_stats {
+    double seconds[PNPR_STAGE_COUNT_];
+    uint32_t runs[PNPR_STAGE_COUNT_];
+    uint32_t k_used;          /* effective k */
+    float threshold_used;     /* effective feature threshold */
+    size_t valid_points;      /* points with finite coordinates */
+    size_t feature_points, directional_points, dither_points;
+} pnpr_features_stats;
+
+/* ---- the whole pipeline on a cloud ---------------------------------------------------------
+ * Computes normals (kept from the input unless opts->recompute_normals; stored in
+ * cloud->normal) and adds the extra properties feature_degree (float), feature_class (uchar),
+ * feature_confidence (float), feature_dir_x/y/z (float), replacing existing ones of that name.
+ * Points with NaN/Inf coordinates get normal (0,0,0), degree 0, class 0, confidence 0.
+ * stats may be NULL. */
+pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options *opts,
+                                  pnpr_features_stats *r_stats);
+
+/* ---- the stages, for hosts that keep their own arrays -------------------------------------- */
+
+/* Symmetric 3x3 eigen-decomposition (cyclic Jacobi in double, scale-normalised): eigenvalues
+ * ascending in r_values, unit eigenvectors in the rows of r_vectors (r_vectors[i] belongs to
+ * r_values[i]), right-handed. Non-finite input gives values 0 and the identity. */
+void pnpr_eigen_sym3(const double a[3][3], double r_values[3], double r_vectors[3][3]);
+
+/* Normals and plane-fit error from kNN rows (k entries per point, PNPR_INDEX_NONE = missing).
+ * Covariance accumulated in double around the neighbourhood centroid. fit error =
+ * lambda_min / (lambda_0 + lambda_1 + lambda_2) in [0, 1/3] (scale-invariant "surface
+ * variation"). Fewer than 3 distinct neighbours: normal (0,0,0), error 0 (see docs). */
+pnpr_status pnpr_estimate_normals(const float *xyz, size_t count, const uint32_t *knn, size_t k,
+                                  int threads, float *r_normals, float *r_fit_error);
+
+/* Orients normals consistently: towards `viewpoint` (offset coordinates, i.e. world minus the
+ * cloud origin) when not NULL; else by propagation over the kNN graph from the highest point of
+ * each connected component (that seed pointing +z), visiting the most parallel neighbours first. */
+pnpr_status pnpr_orient_normals(const float *xyz, size_t count, const uint32_t *knn, size_t k,
+                                const double *viewpoint, float *normals);
+
+/* Feature degree in [0,1] = w_g * G + w_c * C (weights normalised), see docs/features.md:
+ *   G = min(1, max(0, e_i - mean_{j in N(i)} e_j) / 0.05): positive part of the discrete
+ *       Laplacian of the fit error e (an edge filter whose response peaks on the crest of the
+ *       error ridge that a crease produces; uniform error, as on a sphere, gives 0);
+ *   C = min(1, |grad c| * r_i / 0.5): least-squares gradient of the RGB colour (0..1 per
+ *       channel) in the tangent plane, times the neighbourhood radius r_i = colour change across
+ *       the neighbourhood. rgb may be NULL (then C = 0 and w_g = 1). */
+pnpr_status pnpr_feature_degree(const float *xyz, const uint8_t *rgb, const float *normals,
+                                const float *fit_error, size_t count, const uint32_t *knn,
+                                size_t k, float weight_geometry, float weight_color, int threads,
+                                float *r_degree);
+
+/* Automatic feature threshold from the degree histogram (see docs/features.md). */
+float pnpr_auto_threshold(const float *degree, size_t count);
+
+/* Feature points (degree >= threshold) get class NONDIRECTIONAL or DIRECTIONAL from a
+ * least-squares 3D line fit over their k nearest feature points: confidence =
+ * 1 - 1.5 * (mu_0 + mu_1) / (mu_0 + mu_1 + mu_2) in [0,1] (mu = covariance eigenvalues);
+ * direction = principal eigenvector. Non-feature points get class NONE, confidence 0, dir 0.
+ * r_dir may be NULL. */
+pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t count, size_t k,
+                                   float threshold, float min_confidence, int threads,
+                                   uint8_t *r_class, float *r_confidence, float *r_dir);
+
+/* Dithering points among the points of class NONE: Ostromoukhov's variable-coefficient error
+ * diffusion over the kNN graph, in Morton (Z-order) sequence. tone: per point darkness in
+ * [0,1] (NULL = derived from rgb, else from normals lit from +z). Sets class DITHER on the
+ * chosen points; returns their number in r_chosen (may be NULL). */
+pnpr_status pnpr_dither(const float *xyz, const uint8_t *rgb, const float *normals,
+                        const float *tone, size_t count, const uint32_t *knn, size_t k,
+                        float tone_scale, uint8_t *io_class, size_t *r_chosen);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
