@@ -9,7 +9,14 @@ int cli_info(int argc, char **argv);
 int cli_convert(int argc, char **argv);
 int cli_features(int argc, char **argv);
 
-/* Progress on stderr: "\r<stage> 42%" lines, newline at 100%; never cancels. user unused. */
+/* Progress on stderr; never cancels. user: a cli_progress_state (zeroed before first use).
+ * On a terminal: one updating "\r<stage> 42%" line per stage; otherwise (logs, CI) one line
+ * when a stage ends. */
+typedef struct cli_progress_state {
+    char stage[64];
+    int last_pct;
+    int tty;      /* 0 unknown, 1 yes, 2 no */
+} cli_progress_state;
 int cli_progress_stderr(void *user, const char *stage, double fraction);
 /* Prints "pointnpr <cmd>: <message>" for a failed status (with pnpr_error detail when set). */
 void cli_report_error(const char *cmd, pnpr_status st, const pnpr_error *err);

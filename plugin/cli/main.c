@@ -3,12 +3,25 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 int cli_progress_stderr(void *user, const char *stage, double fraction)
 {
-    (void)user;
-    int pct = (int)(fraction * 100.0 + 0.5);
-    fprintf(stderr, "\r%-24s %3d%%%s", stage, pct, pct >= 100 ? "\n" : "");
+    cli_progress_state local = {{0}, 0, 0}, *ps = user ? user : &local;
+    if (ps->tty == 0) ps->tty = isatty(fileno(stderr)) ? 1 : 2;
+    int pct = (int)(fraction * 100.0);
+    int same = strncmp(ps->stage, stage, sizeof ps->stage - 1) == 0;
+    if (same && pct == ps->last_pct) return 0;
+    if (!same) {
+        snprintf(ps->stage, sizeof ps->stage, "%s", stage);
+        ps->last_pct = -1;
+    }
+    if (same && ps->last_pct >= 100) return 0; /* already reported complete */
+    ps->last_pct = pct;
+    if (ps->tty == 1)
+        fprintf(stderr, "\r%-20s %3d%%%s", stage, pct, pct >= 100 ? "\n" : "");
+    else if (pct >= 100)
+        fprintf(stderr, "%-20s done\n", stage);
     fflush(stderr);
     return 0;
 }
