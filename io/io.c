@@ -1,0 +1,146 @@
+/* File-level I/O: picks the format (explicit option, extension, then magic bytes) and hands
+ * over to the format readers/writers. Only PLY is written. */
+#include <pointnpr/io.h>
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* Format entry points that take a path (defined in io/ply.c and io/las.c; not public API). */
+extern pnpr_status pnpr_read_ply_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                                      pnpr_error *err);
+extern pnpr_status pnpr_write_ply_file(const char *path, const pnpr_cloud *cloud,
+                                       const pnpr_write_options *opts, pnpr_error *err);
+extern pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                                      pnpr_error *err);
+
+static char io_lower(char c)
+{
+    return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c;
+}
+
+/* Case-insensitive comparison of the extension (without dot) with `ext` (lower case). */
+static int io_ext_is(const char *dot_ext, const char *ext)
+{
+    while (*dot_ext && *ext && io_lower(*dot_ext) == *ext) { dot_ext++; ext++; }
+    return *dot_ext == '\0' && *ext == '\0';
+}
+
+pnpr_file_format pnpr_format_from_path(const char *path)
+{
+    if (!path) return PNPR_FORMAT_AUTO;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base) return PNPR_FORMAT_AUTO; /* no extension, or a hidden file like ".ply" */
+    dot++;
+    if (io_ext_is(dot, "ply")) return PNPR_FORMAT_PLY;
+    if (io_ext_is(dot, "las")) return PNPR_FORMAT_LAS;
+    if (io_ext_is(dot, "obj")) return PNPR_FORMAT_OBJ;
+    if (io_ext_is(dot, "off")) return PNPR_FORMAT_OFF;
+    return PNPR_FORMAT_AUTO;
+}
+
+/* Magic bytes: "ply\n" / "ply\r\n", "LASF", or an OFF keyword ([ST][C][N][4][n]OFF followed by
+ * white space or the end). OBJ has no magic. */
+static pnpr_file_format io_sniff(const unsigned char *b, size_t n)
+{
+    if ((n >= 4 && memcmp(b, "ply\n", 4) == 0) || (n >= 5 && memcmp(b, "ply\r\n", 5) == 0))
+        return PNPR_FORMAT_PLY;
+    if (n >= 4 && memcmp(b, "LASF", 4) == 0)
+        return PNPR_FORMAT_LAS;
+    size_t i = 0;
+    static const char prefix[] = "STCN4n";
+    for (size_t k = 0; k < sizeof prefix - 1 && i < n; k++)
+        if (b[i] == (unsigned char)prefix[k]) i++;
+    if (n >= i + 3 && memcmp(b + i, "OFF", 3) == 0 &&
+        (n == i + 3 || b[i + 3] == ' ' || b[i + 3] == '\t' || b[i + 3] == '\n' || b[i + 3] == '\r'))
+        return PNPR_FORMAT_OFF;
+    return PNPR_FORMAT_AUTO;
+}
+
+static pnpr_status io_check_input(const char *path, pnpr_error *err)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, strerror(errno));
+    if (S_ISDIR(sb.st_mode))
+        return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, strerror(EISDIR));
+    return PNPR_OK;
+}
+
+static pnpr_status io_sniff_file(const char *path, pnpr_file_format *r_format, pnpr_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, strerror(errno));
+    unsigned char head[16];
+    size_t n = fread(head, 1, sizeof head, f);
+    int failed = ferror(f);
+    int saved = errno;
+    fclose(f);
+    if (failed)
+        return pnpr_error_set(err, PNPR_ERR_IO, "%s: read error: %s", path, strerror(saved));
+    *r_format = io_sniff(head, n);
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_read_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                           pnpr_error *err)
+{
+    if (err) { err->message[0] = '\0'; err->offset = -1; err->line = 0; }
+    if (!cloud)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "pnpr_read_file: cloud is NULL");
+    pnpr_cloud_free(cloud);
+    if (!path)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "pnpr_read_file: path is NULL");
+    pnpr_read_options o;
+    memset(&o, 0, sizeof o);
+    if (opts) o = *opts;
+    if ((int)o.format < 0 || o.format >= PNPR_FORMAT_COUNT_)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: invalid read format %d", path, (int)o.format);
+    pnpr_status st = io_check_input(path, err);
+    if (st != PNPR_OK) return st;
+    if (o.format == PNPR_FORMAT_AUTO) o.format = pnpr_format_from_path(path);
+    if (o.format == PNPR_FORMAT_AUTO && (st = io_sniff_file(path, &o.format, err)) != PNPR_OK)
+        return st;
+    switch (o.format) {
+    case PNPR_FORMAT_PLY: st = pnpr_read_ply_file(path, &o, cloud, err); break;
+    case PNPR_FORMAT_LAS: st = pnpr_read_las_file(path, &o, cloud, err); break;
+    case PNPR_FORMAT_OBJ:
+    case PNPR_FORMAT_OFF: st = pnpr_read_mesh_file(path, &o, cloud, err); break;
+    default:
+        st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
+                            "%s: cannot tell the file format (expected .ply, .las, .obj or .off)", path);
+        break;
+    }
+    if (st != PNPR_OK) pnpr_cloud_free(cloud);
+    return st;
+}
+
+pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud, const pnpr_write_options *opts,
+                            pnpr_error *err)
+{
+    if (err) { err->message[0] = '\0'; err->offset = -1; err->line = 0; }
+    if (!path || !cloud)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "pnpr_write_file: NULL argument");
+    pnpr_write_options o;
+    memset(&o, 0, sizeof o);
+    if (opts) o = *opts;
+    if ((int)o.format < 0 || o.format >= PNPR_FORMAT_COUNT_)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: invalid write format %d", path, (int)o.format);
+    if (o.format == PNPR_FORMAT_AUTO) o.format = pnpr_format_from_path(path);
+    switch (o.format) {
+    case PNPR_FORMAT_PLY:
+        return pnpr_write_ply_file(path, cloud, &o, err);
+    case PNPR_FORMAT_LAS:
+    case PNPR_FORMAT_OBJ:
+    case PNPR_FORMAT_OFF:
+        return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: writing %s is not supported (only PLY is written)",
+                              path, o.format == PNPR_FORMAT_LAS ? "LAS" : o.format == PNPR_FORMAT_OBJ ? "OBJ" : "OFF");
+    default:
+        return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
+                              "%s: cannot tell the output format from the name (use a .ply extension)", path);
+    }
+}
