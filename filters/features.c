@@ -116,7 +116,7 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     if (!knn) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     if (stage_begin(&r, PNPR_STAGE_KNN)) { st = PNPR_ERR_CANCELLED; goto done; }
     pnpr_knn_options ko = {opts->threads, opts->progress};
-    st = stage_end(&r, pnpr_knn_all(tree, cloud->xyz, n, 0, k, &ko, knn, NULL));
+    st = stage_end(&r, pnpr_knn_self(tree, n, k, &ko, knn, NULL));
     pnpr_kdtree_free(tree);
     tree = NULL;
     if (st != PNPR_OK) goto done;

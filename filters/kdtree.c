@@ -197,7 +197,11 @@ static float heap_bound(const heap *h)
     return h->n < h->k ? INFINITY : h->d[0];
 }
 
-static void knn_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], heap *h)
+/* Descends near child first; `rd` is the squared distance from q to the node's cell, kept
+ * incrementally per axis (Arya & Mount): the far child's cell distance replaces this axis'
+ * offset with the distance to the splitting plane, so pruning uses the whole box, not just the
+ * last plane. */
+static void knn_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], heap *h, float rd, float off[3])
 {
     const node *nd = &t->nodes[id];
     if (nd->right == 0) {
@@ -209,12 +213,19 @@ static void knn_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], heap *h
         }
         return;
     }
-    float diff = q[nd->axis] - nd->split;
+    const int axis = nd->axis;
+    float diff = q[axis] - nd->split;
     uint32_t near_c = diff < 0 ? id + 1 : nd->right, far_c = diff < 0 ? nd->right : id + 1;
-    knn_rec(t, near_c, q, h);
+    knn_rec(t, near_c, q, h, rd, off);
+    float old = off[axis];
+    float rd_far = rd - old * old + diff * diff;
     /* strict: a far point at exactly the bound cannot improve the set (keeps clusters of exact
      * duplicates from visiting the whole tree) */
-    if (diff * diff < heap_bound(h)) knn_rec(t, far_c, q, h);
+    if (rd_far < heap_bound(h)) {
+        off[axis] = diff;
+        knn_rec(t, far_c, q, h, rd_far, off);
+        off[axis] = old;
+    }
 }
 
 /* Sorts the heap contents ascending (heap sort in place: pop the worst to the end). */
@@ -257,7 +268,8 @@ size_t pnpr_kdtree_knn(const pnpr_kdtree *t, const float q[3], size_t k, uint32_
     float *d = r_dist2 ? r_dist2 : (kk <= 64 ? stack_d : malloc(kk * sizeof(float)));
     if (!d) return 0;
     heap h = {d, r_idx, 0, kk};
-    knn_rec(t, 0, q, &h);
+    float off[3] = {0, 0, 0};
+    knn_rec(t, 0, q, &h, 0.0f, off);
     heap_sort(&h);
     if (!r_dist2 && d != stack_d) free(d);
     return h.n;
@@ -290,6 +302,50 @@ size_t pnpr_kdtree_radius(const pnpr_kdtree *t, const float q[3], float radius,
     if (!t || t->count == 0 || !q || !finite3(q) || !(radius >= 0) || !isfinite(radius)) return 0;
     if (!r_idx) cap = 0;
     return radius_rec(t, 0, q, radius * radius, r_idx, cap, 0);
+}
+
+typedef struct self_job {
+    const pnpr_kdtree *tree;
+    size_t k;
+    uint32_t *idx;
+    float *dist2;
+} self_job;
+
+static void self_range(void *ctx, size_t begin, size_t end)
+{
+    self_job *j = ctx;
+    for (size_t p = begin; p < end; p++) {
+        size_t i = j->tree->index[p];
+        pnpr_kdtree_knn(j->tree, j->tree->pts + 3 * p, j->k, j->idx + i * j->k, j->dist2 ? j->dist2 + i * j->k : NULL);
+    }
+}
+
+/* Rows of points left out of the tree (NaN/Inf) are "none". */
+static void fill_none(uint32_t *idx, float *dist2, size_t k)
+{
+    for (size_t r = 0; r < k; r++) {
+        idx[r] = PNPR_INDEX_NONE;
+        if (dist2) dist2[r] = INFINITY;
+    }
+}
+
+pnpr_status pnpr_knn_self(const pnpr_kdtree *tree, size_t count, size_t k, const pnpr_knn_options *opts,
+                          uint32_t *r_idx, float *r_dist2)
+{
+    if (!tree || (count && !r_idx) || k == 0 || count < tree->count) return PNPR_ERR_INVALID_ARGUMENT;
+    if (count && k > SIZE_MAX / sizeof(float) / count) return PNPR_ERR_INVALID_ARGUMENT;
+    static const pnpr_knn_options defaults;
+    if (!opts) opts = &defaults;
+    if (tree->count < count) { /* some points were left out: mark their rows first */
+        uint8_t *in = calloc(count, 1);
+        if (!in) return PNPR_ERR_OUT_OF_MEMORY;
+        for (size_t p = 0; p < tree->count; p++) in[tree->index[p]] = 1;
+        for (size_t i = 0; i < count; i++)
+            if (!in[i]) fill_none(r_idx + i * k, r_dist2 ? r_dist2 + i * k : NULL, k);
+        free(in);
+    }
+    self_job j = {tree, k, r_idx, r_dist2};
+    return pnpr_parallel_for(tree->count, 4096, opts->threads, self_range, &j, &opts->progress, "knn");
 }
 
 typedef struct knn_job {

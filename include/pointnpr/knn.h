@@ -48,6 +48,12 @@ pnpr_status pnpr_knn_all(const pnpr_kdtree *tree, const float *query_xyz, size_t
                          size_t query_stride_bytes, size_t k, const pnpr_knn_options *opts,
                          uint32_t *r_idx, float *r_dist2);
 
+/* kNN of the tree's own points (the xyz array it was built from, `count` points including the
+ * ones left out): row i belongs to point i. Faster than pnpr_knn_all on the same points because
+ * queries run in tree order (memory locality). Rows of left-out points are all "none". */
+pnpr_status pnpr_knn_self(const pnpr_kdtree *tree, size_t count, size_t k,
+                          const pnpr_knn_options *opts, uint32_t *r_idx, float *r_dist2);
+
 #ifdef __cplusplus
 }
 #endif
