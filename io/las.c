@@ -16,11 +16,14 @@
  *    (src_coord_type = FLOAT64) and, through pnpr_cloud_set_world, to the float offsets from an
  *    origin at the bounding-box centre.
  *  - RGB (formats 2, 3, 7, 8). LAS stores 16-bit channels, but many writers put 8-bit values in
- *    them unscaled. Rule: when the maximum over all points of all three channels is <= 255 the
- *    values are taken as 8-bit and kept as they are; otherwise every channel is reduced to
- *    8 bit with (v*255 + 32767) / 65535 (rounded to nearest). A genuinely 16-bit file whose
- *    colours are all very dark (<= 255 of 65535) is therefore read as 8-bit: that is the price
- *    of the rule, and it matches what viewers commonly do.
+ *    them unscaled. Rule, decided over all points and all three channels of the file:
+ *      1. maximum <= 255: the values are 8-bit already and are kept as they are;
+ *      2. otherwise, if every value is a multiple of 256 (low byte 0 everywhere): 8-bit colours
+ *         stored as the LAS specification asks (c * 256), restored exactly as v >> 8;
+ *      3. otherwise: genuine 16-bit, reduced with (v*255 + 32767) / 65535 (rounded to nearest).
+ *    Rule 2 matters: rule 3 would map c * 256 to c - 1 for every c >= 129 (255 -> 254).
+ *    A genuinely 16-bit file whose colours are all very dark (<= 255 of 65535) is read as
+ *    8-bit by rule 1: that is the price of the rule, and it matches what viewers commonly do.
  *  - Extra properties "intensity" (ushort) and "classification" (uchar). For formats 0-5 in
  *    LAS >= 1.1 the classification byte also carries the synthetic/key-point/withheld flags in
  *    its top 3 bits; only the class (low 5 bits) is kept. LAS 1.0 and formats 6-10 store the
@@ -265,6 +268,7 @@ static pnpr_status las_read_points(const unsigned char *d, const las_header *h, 
     uint8_t *cls = klass->data;
     const uint8_t class_mask = (lay.legacy && h->minor >= 1) ? 0x1Fu : 0xFFu;
     uint16_t rgb_max = 0;
+    unsigned rgb_low_bits = 0; /* OR of all low bytes: 0 when every value is a multiple of 256 */
 
     if (pnpr_progress_report(progress, "read las", 0.0))
         return las_fail(err, PNPR_ERR_CANCELLED, -1, "cancelled");
@@ -284,15 +288,17 @@ static pnpr_status las_read_points(const unsigned char *d, const las_header *h, 
             for (int c = 0; c < 3; c++) {
                 uint16_t v = rd_u16(rec + lay.rgb + 2 * c);
                 if (v > rgb_max) rgb_max = v;
+                rgb_low_bits |= v & 0xFFu;
             }
         }
     }
     if (lay.rgb >= 0) {
+        const int mode = rgb_max <= 255 ? 1 : rgb_low_bits == 0 ? 2 : 3; /* rules 1-3 above */
         rec = d + h->data_offset;
         for (size_t i = 0; i < n; i++, rec += h->record_length)
             for (int c = 0; c < 3; c++) {
                 uint16_t v = rd_u16(rec + lay.rgb + 2 * c);
-                cloud->rgb[3 * i + c] = rgb_max <= 255 ? (uint8_t)v : las_rgb8(v);
+                cloud->rgb[3 * i + c] = mode == 1 ? (uint8_t)v : mode == 2 ? (uint8_t)(v >> 8) : las_rgb8(v);
             }
     }
     cloud->src_coord_type = PNPR_TYPE_FLOAT64;

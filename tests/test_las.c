@@ -256,6 +256,27 @@ static void test_rgb_8bit_in_16(void)
         CHECK(c.rgb[7] == 1);  /* 256 -> 1 */
     }
     pnpr_cloud_free(&c);
+
+    /* 8-bit colours stored as the LAS specification asks (c * 256): restored exactly */
+    test_pt spec[3] = {
+        {1, 2, 3, 10, 1, {255 * 256, 0, 17 * 256}},
+        {4, 5, 6, 20, 2, {129 * 256, 200 * 256, 1 * 256}},
+        {7, 8, 9, 30, 3, {0, 128 * 256, 254 * 256}},
+    };
+    s = spec_default(4, 7, spec, 3);
+    CHECK(read_spec(&s, &c, &err, &st));
+    CHECK_STATUS(st, PNPR_OK);
+    CHECK(c.rgb != NULL && c.count == 3);
+    if (c.rgb && c.count == 3)
+        for (int k = 0; k < 9; k++)
+            CHECK_MSG(c.rgb[k] == spec[k / 3].rgb[k % 3] >> 8, "c*256 colour %d = %u", k, c.rgb[k]);
+    /* one value that is not a multiple of 256 makes it genuine 16-bit (rounded) */
+    spec[1].rgb[1] = 200 * 256 + 1;
+    CHECK(read_spec(&s, &c, &err, &st));
+    CHECK_STATUS(st, PNPR_OK);
+    check_points("16-bit colours, not all multiples of 256", &s, &c, 16);
+    if (c.rgb && c.count == 3) CHECK(c.rgb[0] == 254); /* 65280 -> 254 by rounding */
+    pnpr_cloud_free(&c);
 }
 
 static void test_counts(void)
