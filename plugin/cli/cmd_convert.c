@@ -1,9 +1,278 @@
-/* pointnpr convert (placeholder until it lands) */
+/* pointnpr convert IN... -o OUT.ply: reads every input (PLY, LAS, OBJ, OFF; a directory stands
+ * for the supported files in it, sorted by name), merges them into one cloud and writes PLY.
+ * Nothing is written unless every input was read: the output goes to a temporary file next to
+ * OUT that is renamed over OUT only when it is complete. */
 #include "cli.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: pointnpr convert IN... -o OUT.ply [options]\n"
+            "  Reads every input (.ply, .las, .obj, .off; a directory stands for all such files\n"
+            "  in it, sorted by name), merges them into one cloud and writes it as PLY.\n"
+            "  Nothing is written if any input cannot be read.\n"
+            "options:\n"
+            "  -o, --output OUT.ply  output file (required)\n"
+            "  --binary              binary little endian PLY (default)\n"
+            "  --ascii               ascii PLY\n"
+            "  --big-endian          binary big endian PLY\n"
+            "  --quiet               no progress on stderr\n");
+}
+
+/* A growable list of owned strings. */
+typedef struct path_list {
+    char **items;
+    size_t count, cap;
+} path_list;
+
+static int list_push(path_list *l, const char *s)
+{
+    if (l->count == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 16;
+        if (cap > SIZE_MAX / sizeof *l->items) return 0;
+        char **grown = realloc(l->items, cap * sizeof *grown);
+        if (!grown) return 0;
+        l->items = grown;
+        l->cap = cap;
+    }
+    size_t n = strlen(s) + 1;
+    char *copy = malloc(n);
+    if (!copy) return 0;
+    memcpy(copy, s, n);
+    l->items[l->count++] = copy;
+    return 1;
+}
+
+static void list_free(path_list *l)
+{
+    for (size_t i = 0; i < l->count; i++) free(l->items[i]);
+    free(l->items);
+    memset(l, 0, sizeof *l);
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* Appends the supported files of directory `dir` (sorted by name); 0 and a message on failure. */
+static int expand_dir(const char *dir, path_list *out)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        fprintf(stderr, "pointnpr convert: %s: %s\n", dir, strerror(errno));
+        return 0;
+    }
+    path_list names = {0};
+    int ok = 1;
+    struct dirent *e;
+    while (ok && (e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.') continue; /* hidden files, "." and ".." */
+        if (pnpr_format_from_path(e->d_name) == PNPR_FORMAT_AUTO) continue;
+        ok = list_push(&names, e->d_name);
+    }
+    closedir(d);
+    if (!ok) {
+        fprintf(stderr, "pointnpr convert: %s: out of memory listing the directory\n", dir);
+        list_free(&names);
+        return 0;
+    }
+    if (names.count == 0) {
+        fprintf(stderr, "pointnpr convert: %s: no .ply, .las, .obj or .off files in this directory\n", dir);
+        list_free(&names);
+        return 0;
+    }
+    qsort(names.items, names.count, sizeof *names.items, cmp_str);
+    size_t dl = strlen(dir);
+    int slash = dl > 0 && dir[dl - 1] == '/';
+    for (size_t i = 0; ok && i < names.count; i++) {
+        size_t n = dl + 1 + strlen(names.items[i]) + 1;
+        char *full = malloc(n);
+        if (!full) { ok = 0; break; }
+        snprintf(full, n, "%s%s%s", dir, slash ? "" : "/", names.items[i]);
+        struct stat sb;
+        /* skip sub-directories and other non-files that happen to carry a known extension */
+        if (stat(full, &sb) == 0 && !S_ISDIR(sb.st_mode)) ok = list_push(out, full);
+        free(full);
+    }
+    list_free(&names);
+    if (!ok) fprintf(stderr, "pointnpr convert: out of memory\n");
+    return ok;
+}
+
+/* Whether the directory that will hold `out` exists and is writable (message if not). */
+static int output_dir_writable(const char *out)
+{
+    const char *slash = strrchr(out, '/');
+    size_t n = slash ? (size_t)(slash - out) : 1;
+    char *dir = malloc(n + 1);
+    if (!dir) { fprintf(stderr, "pointnpr convert: out of memory\n"); return 0; }
+    if (!slash) memcpy(dir, ".", 2);
+    else if (n == 0) memcpy(dir, "/", 2);
+    else { memcpy(dir, out, n); dir[n] = '\0'; }
+    int ok = access(dir, W_OK | X_OK) == 0;
+    if (!ok) fprintf(stderr, "pointnpr convert: %s: cannot write the output into %s: %s\n", out, dir, strerror(errno));
+    free(dir);
+    return ok;
+}
+
+/* Writes `cloud` to a temporary file next to `out`, then renames it to `out`. */
+static pnpr_status write_atomically(const char *out, const pnpr_cloud *cloud, const pnpr_write_options *wo,
+                                    pnpr_error *err)
+{
+    size_t n = strlen(out) + 64;
+    char *tmp = malloc(n);
+    if (!tmp) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "out of memory");
+    int fd = -1;
+    for (int attempt = 0; attempt < 100 && fd < 0; attempt++) {
+        snprintf(tmp, n, "%s.partial-%ld-%d", out, (long)getpid(), attempt);
+        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666); /* mode 0666 & ~umask, like any new file */
+        if (fd < 0 && errno != EEXIST) break;
+    }
+    if (fd < 0) {
+        pnpr_status st = pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot create a temporary file next to it: %s", out,
+                                        strerror(errno));
+        free(tmp);
+        return st;
+    }
+    close(fd);
+    pnpr_write_options o = *wo;
+    o.format = PNPR_FORMAT_PLY; /* the temporary name has no .ply extension */
+    pnpr_status st = pnpr_write_file(tmp, cloud, &o, err);
+    if (st == PNPR_OK && rename(tmp, out) != 0)
+        st = pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot rename the finished temporary file to it: %s", out,
+                            strerror(errno));
+    if (st != PNPR_OK) remove(tmp);
+    free(tmp);
+    return st;
+}
+
 int cli_convert(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    fprintf(stderr, "pointnpr convert: not implemented yet\n");
-    return 1;
+    const char *out = NULL;
+    pnpr_write_options wo = {0};
+    int encoding_set = 0, quiet = 0;
+    path_list args = {0};
+    int rc = 0;
+    for (int i = 1; i < argc && rc == 0; i++) {
+        const char *a = argv[i];
+        pnpr_ply_encoding enc = PNPR_PLY_BINARY_LE;
+        int is_enc = 1;
+        if (!strcmp(a, "--ascii")) enc = PNPR_PLY_ASCII;
+        else if (!strcmp(a, "--binary")) enc = PNPR_PLY_BINARY_LE;
+        else if (!strcmp(a, "--big-endian")) enc = PNPR_PLY_BINARY_BE;
+        else is_enc = 0;
+        if (is_enc) {
+            if (encoding_set && wo.encoding != enc) {
+                fprintf(stderr, "pointnpr convert: give only one of --ascii, --binary, --big-endian\n");
+                rc = 2;
+            }
+            wo.encoding = enc;
+            encoding_set = 1;
+        } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            list_free(&args);
+            return 0;
+        } else if (!strcmp(a, "--quiet")) {
+            quiet = 1;
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            if (i + 1 >= argc) { fprintf(stderr, "pointnpr convert: %s needs a file name\n", a); rc = 2; }
+            else if (out) { fprintf(stderr, "pointnpr convert: more than one output given\n"); rc = 2; }
+            else out = argv[++i];
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "pointnpr convert: unknown option: %s\n", a);
+            rc = 2;
+        } else if (!list_push(&args, a)) {
+            fprintf(stderr, "pointnpr convert: out of memory\n");
+            rc = 1;
+        }
+    }
+    if (rc == 0 && (args.count == 0 || !out)) {
+        fprintf(stderr, "pointnpr convert: %s\n", args.count == 0 ? "no input given" : "no output given (-o OUT.ply)");
+        rc = 2;
+    }
+    if (rc == 0) {
+        pnpr_file_format of = pnpr_format_from_path(out);
+        if (of != PNPR_FORMAT_AUTO && of != PNPR_FORMAT_PLY) {
+            fprintf(stderr, "pointnpr convert: %s: only PLY output is supported (use a .ply name)\n", out);
+            rc = 2;
+        }
+    }
+    if (rc == 2) usage(stderr);
+    if (rc != 0) { list_free(&args); return rc; }
+
+    /* fail early (before reading what may be many inputs) when the output cannot be created */
+    if (!output_dir_writable(out)) { list_free(&args); return 1; }
+
+    /* inputs: files as given, directories expanded */
+    path_list inputs = {0};
+    for (size_t i = 0; i < args.count && rc == 0; i++) {
+        struct stat sb;
+        if (stat(args.items[i], &sb) == 0 && S_ISDIR(sb.st_mode)) {
+            if (!expand_dir(args.items[i], &inputs)) rc = 1;
+        } else if (!list_push(&inputs, args.items[i])) {
+            fprintf(stderr, "pointnpr convert: out of memory\n");
+            rc = 1;
+        }
+    }
+    list_free(&args);
+    if (rc != 0) { list_free(&inputs); return rc; }
+
+    pnpr_cloud merged = {0}, one = {0};
+    pnpr_error err = {0};
+    const size_t n = inputs.count;
+    for (size_t i = 0; i < n; i++) {
+        const char *path = inputs.items[i];
+        cli_progress_state ps = {{0}, 0, 0}; /* fresh per input: every file reports its stages */
+        pnpr_read_options ro = {0};
+        ro.progress.fn = quiet ? NULL : cli_progress_stderr;
+        ro.progress.user = &ps;
+        pnpr_status st = pnpr_read_file(path, &ro, n == 1 ? &merged : &one, &err);
+        if (st != PNPR_OK) {
+            if (!strstr(err.message, path))
+                fprintf(stderr, "pointnpr convert: %s: %s (%s)\n", path, err.message[0] ? err.message : "read failed",
+                        pnpr_status_string(st));
+            else
+                cli_report_error("convert", st, &err);
+            fprintf(stderr, "pointnpr convert: input %zu/%zu (%s) could not be read; nothing written\n", i + 1, n, path);
+            rc = 1;
+            break;
+        }
+        if (n > 1) {
+            if (!quiet) fprintf(stderr, "read %zu/%zu: %s (%zu points)\n", i + 1, n, path, one.count);
+            st = pnpr_cloud_append(&merged, &one);
+            pnpr_cloud_free(&one);
+            if (st != PNPR_OK) {
+                fprintf(stderr, "pointnpr convert: cannot merge %s: %s\n", path, pnpr_status_string(st));
+                rc = 1;
+                break;
+            }
+        }
+    }
+    if (rc == 0) {
+        cli_progress_state ps = {{0}, 0, 0};
+        wo.progress.fn = quiet ? NULL : cli_progress_stderr;
+        wo.progress.user = &ps;
+        wo.comment = "pointnpr convert";
+        pnpr_status st = write_atomically(out, &merged, &wo, &err);
+        if (st != PNPR_OK) {
+            cli_report_error("convert", st, &err);
+            rc = 1;
+        } else if (!quiet) {
+            fprintf(stderr, "wrote %s: %zu points\n", out, merged.count);
+        }
+    }
+    pnpr_cloud_free(&one);
+    pnpr_cloud_free(&merged);
+    list_free(&inputs);
+    return rc;
 }
