@@ -277,8 +277,9 @@ static pnpr_status las_read_points(const unsigned char *d, const las_header *h, 
         if (i && i % LAS_PROGRESS_STEP == 0 && pnpr_progress_report(progress, "read las", (double)i / (double)n))
             return las_fail(err, PNPR_ERR_CANCELLED, -1, "cancelled");
         for (int a = 0; a < 3; a++) {
-            /* two statements so that no compiler fuses them into one fma: the result is the
-             * correctly rounded X*scale, then correctly rounded + offset, on every platform */
+            /* two statements: C allows fusing into an fma only within one expression (clang's
+             * default; GCC in ISO mode never fuses), so the result is the rounded X*scale, then
+             * the rounded sum, on every platform — the value tests and other tools compute */
             double scaled = (double)rd_i32(rec + 4 * a) * h->scale[a];
             cloud->src_xyz[3 * i + a] = scaled + h->offset[a];
         }
