@@ -3,6 +3,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <unistd.h>
 
 const char *pnpr_status_string(pnpr_status status)
@@ -52,4 +53,9 @@ int pnpr_default_threads(void)
     if (n < 1) return 1;
     if (n > 256) return 256;
     return (int)n;
+}
+
+void pnpr_free(void *p)
+{
+    free(p);
 }

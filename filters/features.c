@@ -40,14 +40,47 @@ static pnpr_status stage_end(run *r, pnpr_status st)
     return st;
 }
 
-static pnpr_status add_float(pnpr_cloud *c, const char *name, float **r)
+/* In-place permutation of n elements of `size` bytes. forward: the element at position p moves to
+ * perm[p] (tree order -> input order); else the element at perm[p] moves to p (input order ->
+ * tree order). perm is a bijection on [0,n); `seen` is n bits of scratch. */
+static void permute(void *data, size_t size, size_t n, const uint32_t *perm, int forward, uint8_t *seen)
 {
-    pnpr_property *p;
-    pnpr_status st = pnpr_cloud_add_property(c, name, PNPR_TYPE_FLOAT32, &p);
-    *r = st == PNPR_OK ? p->data : NULL;
-    return st;
+    if (!data || n == 0) return;
+    char *a = data, carry[16], tmp[16];
+    memset(seen, 0, (n + 7) / 8);
+    for (size_t s = 0; s < n; s++) {
+        if (seen[s >> 3] & (1u << (s & 7))) continue;
+        if (forward) {
+            memcpy(carry, a + s * size, size);
+            size_t p = s;
+            do {
+                size_t q = perm[p];
+                memcpy(tmp, a + q * size, size);
+                memcpy(a + q * size, carry, size);
+                memcpy(carry, tmp, size);
+                seen[q >> 3] |= (uint8_t)(1u << (q & 7));
+                p = q;
+            } while (p != s);
+        } else {
+            memcpy(tmp, a + s * size, size);
+            size_t p = s;
+            for (;;) {
+                size_t q = perm[p];
+                seen[p >> 3] |= (uint8_t)(1u << (p & 7));
+                if (q == s) { memcpy(a + p * size, tmp, size); break; }
+                memcpy(a + p * size, a + q * size, size);
+                p = q;
+            }
+        }
+    }
 }
 
+/* The pipeline works in kd-tree order: the tree's reordered copy of the points is spatially
+ * coherent, so the neighbour gathers of every stage hit the cache (on a 1M-point cloud in random
+ * order this more than halves the time of the normal, orientation and feature-degree stages).
+ * The cloud's own arrays (colours, normals, outputs) are permuted in place into tree order and
+ * back at the end, which costs 4 bytes/point (the permutation) instead of copies. Points with
+ * NaN/Inf coordinates sit after the valid ones and get zero outputs. */
 pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options *opts,
                                   pnpr_features_stats *r_stats)
 {
@@ -68,24 +101,16 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     run r = {r_stats, &opts->progress, 0, 0};
 
     /* outputs (allocated first: a cloud that cannot hold them fails before the work) */
+    static const char *const fnames[5] = {"feature_degree", "feature_confidence", "feature_dir_x",
+                                          "feature_dir_y", "feature_dir_z"};
     pnpr_status st;
-    float *degree, *conf, *dx, *dy, *dz;
-    pnpr_property *cls_prop;
-    if ((st = add_float(cloud, "feature_degree", &degree)) != PNPR_OK ||
-        (st = pnpr_cloud_add_property(cloud, "feature_class", PNPR_TYPE_UINT8, &cls_prop)) != PNPR_OK ||
-        (st = add_float(cloud, "feature_confidence", &conf)) != PNPR_OK ||
-        (st = add_float(cloud, "feature_dir_x", &dx)) != PNPR_OK ||
-        (st = add_float(cloud, "feature_dir_y", &dy)) != PNPR_OK ||
-        (st = add_float(cloud, "feature_dir_z", &dz)) != PNPR_OK)
-        return st;
-    /* add_property may move the props array: look the arrays up again */
-    degree = pnpr_cloud_find_property(cloud, "feature_degree")->data;
+    for (int f = 0; f < 5; f++)
+        if ((st = pnpr_cloud_add_property(cloud, fnames[f], PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK) return st;
+    if ((st = pnpr_cloud_add_property(cloud, "feature_class", PNPR_TYPE_UINT8, NULL)) != PNPR_OK) return st;
+    float *out[5]; /* degree, confidence, dir x, y, z — looked up after all adds (props may move) */
+    for (int f = 0; f < 5; f++) out[f] = pnpr_cloud_find_property(cloud, fnames[f])->data;
+    float *degree = out[0], *conf = out[1];
     uint8_t *cls = pnpr_cloud_find_property(cloud, "feature_class")->data;
-    conf = pnpr_cloud_find_property(cloud, "feature_confidence")->data;
-    dx = pnpr_cloud_find_property(cloud, "feature_dir_x")->data;
-    dy = pnpr_cloud_find_property(cloud, "feature_dir_y")->data;
-    dz = pnpr_cloud_find_property(cloud, "feature_dir_z")->data;
-    (void)cls_prop;
     int keep_normals = cloud->normal && !opts->recompute_normals;
     if ((st = pnpr_cloud_alloc_normals(cloud)) != PNPR_OK) return st;
 
@@ -105,60 +130,75 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     }
 
     pnpr_kdtree *tree = NULL;
-    uint32_t *knn = NULL;
-    float *fit = NULL, *normals_tmp = NULL, *dir = NULL;
+    uint32_t *knn = NULL, *perm = NULL, *tree_index = NULL;
+    float *xyz = NULL, *fit = NULL, *dir = NULL;
+    uint8_t *seen = NULL;
+    int permuted = 0;
+    const size_t m = valid;
 
     if (stage_begin(&r, PNPR_STAGE_KDTREE)) return PNPR_ERR_CANCELLED;
-    st = stage_end(&r, pnpr_kdtree_build(cloud->xyz, n, 0, &tree));
+    st = stage_end(&r, pnpr_kdtree_build_threads(cloud->xyz, n, 0, opts->threads, &tree));
     if (st != PNPR_OK) goto done;
 
-    knn = malloc(n * k * sizeof *knn);
+    knn = malloc(m * k * sizeof *knn);
     if (!knn) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     if (stage_begin(&r, PNPR_STAGE_KNN)) { st = PNPR_ERR_CANCELLED; goto done; }
-    pnpr_knn_options ko = {opts->threads, opts->progress};
-    st = stage_end(&r, pnpr_knn_self(tree, n, k, &ko, knn, NULL));
-    pnpr_kdtree_free(tree);
+    pnpr_knn_options ko = {opts->threads, opts->progress, 1};
+    st = stage_end(&r, pnpr_knn_self(tree, m, k, &ko, knn, NULL));
+    if (st != PNPR_OK) goto done;
+    st = pnpr_kdtree_detach(tree, &xyz, &tree_index);
     tree = NULL;
     if (st != PNPR_OK) goto done;
 
+    /* full permutation: tree positions first, then the invalid points in input order */
+    perm = malloc(n * sizeof *perm);
+    seen = malloc((n + 7) / 8);
+    if (!perm || !seen) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    memcpy(perm, tree_index, m * sizeof *perm);
+    pnpr_free(tree_index);
+    tree_index = NULL;
+    if (m < n) {
+        size_t q = m;
+        for (size_t i = 0; i < n; i++) {
+            const float *p = cloud->xyz + 3 * i;
+            if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))) perm[q++] = (uint32_t)i;
+        }
+    }
+    permute(cloud->rgb, 3, n, perm, 0, seen);
+    if (keep_normals) permute(cloud->normal, 3 * sizeof(float), n, perm, 0, seen);
+    permuted = 1;
+
     /* PCA always runs: its fit error drives the feature degree even when normals are kept */
-    fit = malloc(n * sizeof *fit);
-    normals_tmp = keep_normals ? malloc(3 * n * sizeof *normals_tmp) : NULL;
-    if (!fit || (keep_normals && !normals_tmp)) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    fit = malloc(m * sizeof *fit);
+    if (!fit) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     if (stage_begin(&r, PNPR_STAGE_NORMALS)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_estimate_normals(cloud->xyz, n, knn, k, opts->threads,
-                                             keep_normals ? normals_tmp : cloud->normal, fit));
-    free(normals_tmp);
-    normals_tmp = NULL;
+    st = stage_end(&r, pnpr_estimate_normals(xyz, m, knn, k, opts->threads, keep_normals ? NULL : cloud->normal, fit));
     if (st != PNPR_OK) goto done;
 
     if (!keep_normals) {
         if (stage_begin(&r, PNPR_STAGE_ORIENT)) { st = PNPR_ERR_CANCELLED; goto done; }
         double vp[3];
         for (int a = 0; a < 3; a++) vp[a] = opts->viewpoint[a] - cloud->origin[a];
-        st = stage_end(&r, pnpr_orient_normals(cloud->xyz, n, knn, k, opts->has_viewpoint ? vp : NULL,
-                                               cloud->normal));
+        st = stage_end(&r, pnpr_orient_normals(xyz, m, knn, k, opts->has_viewpoint ? vp : NULL, cloud->normal));
         if (st != PNPR_OK) goto done;
     }
 
     if (stage_begin(&r, PNPR_STAGE_FEATURE_DEGREE)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_feature_degree(cloud->xyz, cloud->rgb, cloud->normal, fit, n, knn, k,
-                                           opts->weight_geometry, opts->weight_color, opts->threads,
-                                           degree));
+    st = stage_end(&r, pnpr_feature_degree(xyz, cloud->rgb, cloud->normal, fit, m, knn, k, opts->weight_geometry,
+                                           opts->weight_color, opts->threads, degree));
     free(fit);
     fit = NULL;
     if (st != PNPR_OK) goto done;
 
-    float threshold = opts->threshold > 0 ? opts->threshold : pnpr_auto_threshold(degree, n);
+    float threshold = opts->threshold > 0 ? opts->threshold : pnpr_auto_threshold(degree, m);
     r_stats->threshold_used = threshold;
-    dir = malloc(3 * n * sizeof *dir);
+    dir = malloc(3 * m * sizeof *dir);
     if (!dir) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     if (stage_begin(&r, PNPR_STAGE_CLASSIFY)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_classify_features(cloud->xyz, degree, n, 2 * k, threshold, min_conf,
-                                              opts->threads, cls, conf, dir));
+    st = stage_end(&r, pnpr_classify_features(xyz, degree, m, 2 * k, threshold, min_conf, opts->threads, cls, conf, dir));
     if (st != PNPR_OK) goto done;
-    for (size_t i = 0; i < n; i++) {
-        dx[i] = dir[3 * i]; dy[i] = dir[3 * i + 1]; dz[i] = dir[3 * i + 2];
+    for (size_t i = 0; i < m; i++) {
+        out[2][i] = dir[3 * i]; out[3][i] = dir[3 * i + 1]; out[4][i] = dir[3 * i + 2];
         r_stats->feature_points += cls[i] != PNPR_CLASS_NONE;
         r_stats->directional_points += cls[i] == PNPR_CLASS_DIRECTIONAL;
     }
@@ -166,13 +206,23 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     dir = NULL;
 
     if (stage_begin(&r, PNPR_STAGE_DITHER)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_dither(cloud->xyz, cloud->rgb, cloud->normal, NULL, n, knn, k,
-                                   opts->dither_scale, cls, &r_stats->dither_points));
+    st = stage_end(&r, pnpr_dither(xyz, cloud->rgb, cloud->normal, NULL, m, knn, k, opts->dither_scale, cls,
+                                   &r_stats->dither_points));
 done:
+    if (permuted) {
+        /* back to input order: inputs always, outputs (meaningful only on success) too */
+        permute(cloud->rgb, 3, n, perm, 1, seen);
+        permute(cloud->normal, 3 * sizeof(float), n, perm, 1, seen);
+        for (int f = 0; f < 5; f++) permute(out[f], sizeof(float), n, perm, 1, seen);
+        permute(cls, 1, n, perm, 1, seen);
+    }
     pnpr_kdtree_free(tree);
+    pnpr_free(xyz);
+    pnpr_free(tree_index);
     free(knn);
     free(fit);
-    free(normals_tmp);
     free(dir);
+    free(perm);
+    free(seen);
     return st;
 }

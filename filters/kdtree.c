@@ -14,7 +14,6 @@
 #include <string.h>
 
 #define LEAF_SIZE 12
-#define MAX_DEPTH 64
 
 typedef struct node {
     float split;      /* leaves: unused */
@@ -28,7 +27,7 @@ struct pnpr_kdtree {
     float *pts;      /* 3*count, in tree order */
     uint32_t *index; /* original index of each tree-order point */
     node *nodes;
-    size_t node_count, node_cap;
+    size_t node_count;
 };
 
 static int finite3(const float *p)
@@ -68,28 +67,47 @@ static void select_kth(pnpr_kdtree *t, size_t lo, size_t hi, size_t k, int axis)
     }
 }
 
-static pnpr_status push_node(pnpr_kdtree *t, uint32_t *r_id)
+/* Every range of more than LEAF_SIZE points is split at its median position, so the tree's
+ * shape depends on the point count alone: leaves(m) = leaves(m/2) + leaves(m - m/2). The two
+ * halves of m differ by at most one, so carrying the pair (leaves(m), leaves(m+1)) down the
+ * halvings costs O(log m). A full binary tree has 2 * leaves - 1 nodes. */
+static void leaves_pair(size_t m, size_t *r_lm, size_t *r_lm1)
 {
-    if (t->node_count == t->node_cap) {
-        size_t cap = t->node_cap ? 2 * t->node_cap : 64;
-        node *n = realloc(t->nodes, cap * sizeof *n);
-        if (!n) return PNPR_ERR_OUT_OF_MEMORY;
-        t->nodes = n;
-        t->node_cap = cap;
+    if (m + 1 <= LEAF_SIZE) { *r_lm = 1; *r_lm1 = 1; return; }
+    if (m <= LEAF_SIZE) { /* m fits, m+1 splits into two leaves */
+        *r_lm = 1; *r_lm1 = 2; return;
     }
-    memset(&t->nodes[t->node_count], 0, sizeof(node));
-    *r_id = (uint32_t)t->node_count++;
-    return PNPR_OK;
+    size_t a = m / 2, la, la1;
+    leaves_pair(a, &la, &la1);
+    if (m % 2 == 0) { *r_lm = 2 * la; *r_lm1 = la + la1; } /* m = (a,a),   m+1 = (a,a+1) */
+    else { *r_lm = la + la1; *r_lm1 = 2 * la1; }            /* m = (a,a+1), m+1 = (a+1,a+1) */
 }
 
-static pnpr_status build_rec(pnpr_kdtree *t, size_t begin, size_t end, int depth)
+static size_t subtree_nodes(size_t m)
 {
-    uint32_t id;
-    pnpr_status st = push_node(t, &id);
-    if (st != PNPR_OK) return st;
-    t->nodes[id].begin = (uint32_t)begin;
-    t->nodes[id].end = (uint32_t)end;
-    if (end - begin <= LEAF_SIZE || depth >= MAX_DEPTH) return PNPR_OK;
+    size_t l, l1;
+    leaves_pair(m, &l, &l1);
+    return 2 * l - 1;
+}
+
+/* Builds the subtree of points [begin, end) into node `id` and the ids after it (preorder:
+ * left child id+1, right child id+1+nodes(left)). Subtrees below `par_depth` are queued in
+ * `tasks` instead, when tasks is not NULL. */
+typedef struct build_task { size_t begin, end; uint32_t id; } build_task;
+
+static void build_rec(pnpr_kdtree *t, size_t begin, size_t end, uint32_t id, int depth,
+                      int par_depth, build_task *tasks, size_t *ntasks)
+{
+    if (tasks && depth == par_depth) {
+        tasks[*ntasks].begin = begin; tasks[*ntasks].end = end; tasks[*ntasks].id = id;
+        (*ntasks)++;
+        return;
+    }
+    node *nd = &t->nodes[id];
+    memset(nd, 0, sizeof *nd);
+    nd->begin = (uint32_t)begin;
+    nd->end = (uint32_t)end;
+    if (end - begin <= LEAF_SIZE) return;
 
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = begin; i < end; i++)
@@ -105,15 +123,31 @@ static pnpr_status build_rec(pnpr_kdtree *t, size_t begin, size_t end, int depth
     /* Coincident points are still split (by position in the array) so that leaves stay small
      * and a cloud of exact duplicates is not one huge leaf. */
     if (hi[axis] > lo[axis]) select_kth(t, begin, end, mid, axis);
-    t->nodes[id].axis = (uint8_t)axis;
-    t->nodes[id].split = t->pts[3 * mid + axis];
-    if ((st = build_rec(t, begin, mid, depth + 1)) != PNPR_OK) return st;
-    t->nodes[id].right = (uint32_t)t->node_count;
-    return build_rec(t, mid, end, depth + 1);
+    nd->axis = (uint8_t)axis;
+    nd->split = t->pts[3 * mid + axis];
+    nd->right = (uint32_t)(id + 1 + subtree_nodes(mid - begin));
+    uint32_t right = nd->right;
+    build_rec(t, begin, mid, id + 1, depth + 1, par_depth, tasks, ntasks);
+    build_rec(t, mid, end, right, depth + 1, par_depth, tasks, ntasks);
+}
+
+typedef struct build_job { pnpr_kdtree *t; const build_task *tasks; } build_job;
+
+static void build_range(void *ctx, size_t begin, size_t end)
+{
+    build_job *j = ctx;
+    for (size_t i = begin; i < end; i++)
+        build_rec(j->t, j->tasks[i].begin, j->tasks[i].end, j->tasks[i].id, 0, -1, NULL, NULL);
 }
 
 pnpr_status pnpr_kdtree_build(const float *xyz, size_t count, size_t stride_bytes,
                               pnpr_kdtree **r_tree)
+{
+    return pnpr_kdtree_build_threads(xyz, count, stride_bytes, 0, r_tree);
+}
+
+pnpr_status pnpr_kdtree_build_threads(const float *xyz, size_t count, size_t stride_bytes,
+                                      int threads, pnpr_kdtree **r_tree)
 {
     if (!r_tree) return PNPR_ERR_INVALID_ARGUMENT;
     *r_tree = NULL;
@@ -132,9 +166,29 @@ pnpr_status pnpr_kdtree_build(const float *xyz, size_t count, size_t stride_byte
         t->index[n++] = (uint32_t)i;
     }
     t->count = n;
-    pnpr_status st = build_rec(t, 0, n, 0);
+    t->node_count = subtree_nodes(n);
+    t->nodes = malloc(t->node_count * sizeof *t->nodes);
+    if (!t->nodes) { pnpr_kdtree_free(t); return PNPR_ERR_OUT_OF_MEMORY; }
+    /* the top 4 levels sequentially, then up to 16 subtrees in parallel */
+    enum { PAR_DEPTH = 4 };
+    build_task tasks[1 << PAR_DEPTH];
+    size_t ntasks = 0;
+    build_rec(t, 0, n, 0, 0, PAR_DEPTH, tasks, &ntasks);
+    build_job j = {t, tasks};
+    pnpr_status st = pnpr_parallel_for(ntasks, 1, threads, build_range, &j, NULL, "kd-tree");
     if (st != PNPR_OK) { pnpr_kdtree_free(t); return st; }
     *r_tree = t;
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_kdtree_detach(pnpr_kdtree *t, float **r_points, uint32_t **r_indices)
+{
+    if (!t || !r_points || !r_indices) return PNPR_ERR_INVALID_ARGUMENT;
+    *r_points = t->pts;
+    *r_indices = t->index;
+    t->pts = NULL;
+    t->index = NULL;
+    pnpr_kdtree_free(t);
     return PNPR_OK;
 }
 
@@ -158,6 +212,7 @@ typedef struct heap {
     float *d;
     uint32_t *i;
     size_t n, k;
+    const uint32_t *map; /* tree position -> reported id; NULL = report tree positions */
 } heap;
 
 static int worse(float da, uint32_t ia, float db, uint32_t ib)
@@ -209,7 +264,7 @@ static void knn_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], heap *h
             const float *x = t->pts + 3 * p;
             float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
             float d = dx * dx + dy * dy + dz * dz;
-            if (h->n < h->k || d < h->d[0]) heap_offer(h, d, t->index[p]);
+            if (h->n < h->k || d < h->d[0]) heap_offer(h, d, h->map ? h->map[p] : p);
         }
         return;
     }
@@ -253,8 +308,8 @@ static void heap_sort(heap *h)
     h->n = n;
 }
 
-size_t pnpr_kdtree_knn(const pnpr_kdtree *t, const float q[3], size_t k, uint32_t *r_idx,
-                       float *r_dist2)
+static size_t knn_query(const pnpr_kdtree *t, const float q[3], size_t k, uint32_t *r_idx,
+                        float *r_dist2, int tree_order)
 {
     if (!r_idx || k == 0) return 0;
     for (size_t j = 0; j < k; j++) {
@@ -267,12 +322,18 @@ size_t pnpr_kdtree_knn(const pnpr_kdtree *t, const float q[3], size_t k, uint32_
     float stack_d[64];
     float *d = r_dist2 ? r_dist2 : (kk <= 64 ? stack_d : malloc(kk * sizeof(float)));
     if (!d) return 0;
-    heap h = {d, r_idx, 0, kk};
+    heap h = {d, r_idx, 0, kk, tree_order ? NULL : t->index};
     float off[3] = {0, 0, 0};
     knn_rec(t, 0, q, &h, 0.0f, off);
     heap_sort(&h);
     if (!r_dist2 && d != stack_d) free(d);
     return h.n;
+}
+
+size_t pnpr_kdtree_knn(const pnpr_kdtree *t, const float q[3], size_t k, uint32_t *r_idx,
+                       float *r_dist2)
+{
+    return knn_query(t, q, k, r_idx, r_dist2, 0);
 }
 
 static size_t radius_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], float r2,
@@ -309,14 +370,16 @@ typedef struct self_job {
     size_t k;
     uint32_t *idx;
     float *dist2;
+    int tree_order;
 } self_job;
 
 static void self_range(void *ctx, size_t begin, size_t end)
 {
     self_job *j = ctx;
     for (size_t p = begin; p < end; p++) {
-        size_t i = j->tree->index[p];
-        pnpr_kdtree_knn(j->tree, j->tree->pts + 3 * p, j->k, j->idx + i * j->k, j->dist2 ? j->dist2 + i * j->k : NULL);
+        size_t row = j->tree_order ? p : j->tree->index[p];
+        knn_query(j->tree, j->tree->pts + 3 * p, j->k, j->idx + row * j->k, j->dist2 ? j->dist2 + row * j->k : NULL,
+                  j->tree_order);
     }
 }
 
@@ -336,6 +399,7 @@ pnpr_status pnpr_knn_self(const pnpr_kdtree *tree, size_t count, size_t k, const
     if (count && k > SIZE_MAX / sizeof(float) / count) return PNPR_ERR_INVALID_ARGUMENT;
     static const pnpr_knn_options defaults;
     if (!opts) opts = &defaults;
+    if (opts->tree_order) count = tree->count;
     if (tree->count < count) { /* some points were left out: mark their rows first */
         uint8_t *in = calloc(count, 1);
         if (!in) return PNPR_ERR_OUT_OF_MEMORY;
@@ -344,7 +408,7 @@ pnpr_status pnpr_knn_self(const pnpr_kdtree *tree, size_t count, size_t k, const
             if (!in[i]) fill_none(r_idx + i * k, r_dist2 ? r_dist2 + i * k : NULL, k);
         free(in);
     }
-    self_job j = {tree, k, r_idx, r_dist2};
+    self_job j = {tree, k, r_idx, r_dist2, opts->tree_order};
     return pnpr_parallel_for(tree->count, 4096, opts->threads, self_range, &j, &opts->progress, "knn");
 }
 

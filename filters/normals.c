@@ -35,7 +35,7 @@ static void normals_range(void *ctx, size_t begin, size_t end)
             c[0] += p[0]; c[1] += p[1]; c[2] += p[2];
             m++;
         }
-        float *n = j->normals + 3 * i;
+        float nbuf[3], *n = j->normals ? j->normals + 3 * i : nbuf;
         n[0] = n[1] = n[2] = 0.0f;
         if (j->err) j->err[i] = 0.0f;
         if (m < 3) continue;
@@ -64,7 +64,7 @@ static void normals_range(void *ctx, size_t begin, size_t end)
 pnpr_status pnpr_estimate_normals(const float *xyz, size_t count, const uint32_t *knn, size_t k,
                                   int threads, float *r_normals, float *r_fit_error)
 {
-    if (count && (!xyz || !knn || !r_normals || k == 0)) return PNPR_ERR_INVALID_ARGUMENT;
+    if (count && (!xyz || !knn || (!r_normals && !r_fit_error) || k == 0)) return PNPR_ERR_INVALID_ARGUMENT;
     normals_job j = {xyz, knn, k, r_normals, r_fit_error};
     return pnpr_parallel_for(count, 2048, threads, normals_range, &j, NULL, "normals");
 }

@@ -68,6 +68,9 @@ typedef struct pnpr_progress {
 /* Returns non-zero when the caller asked to cancel. Safe with progress == NULL. */
 int pnpr_progress_report(const pnpr_progress *progress, const char *stage, double fraction);
 
+/* Releases memory the library handed over to the caller (e.g. pnpr_kdtree_detach). NULL ok. */
+void pnpr_free(void *p);
+
 /* Number of worker threads to use when an option says 0 (= all cores). At least 1. */
 int pnpr_default_threads(void);
 

@@ -87,7 +87,8 @@ void pnpr_eigen_sym3(const double a[3][3], double r_values[3], double r_vectors[
 /* Normals and plane-fit error from kNN rows (k entries per point, PNPR_INDEX_NONE = missing).
  * Covariance accumulated in double around the neighbourhood centroid. fit error =
  * lambda_min / (lambda_0 + lambda_1 + lambda_2) in [0, 1/3] (scale-invariant "surface
- * variation"). Fewer than 3 distinct neighbours: normal (0,0,0), error 0 (see docs). */
+ * variation"). Fewer than 3 distinct neighbours: normal (0,0,0), error 0 (see docs).
+ * Either output may be NULL (not both). */
 pnpr_status pnpr_estimate_normals(const float *xyz, size_t count, const uint32_t *knn, size_t k,
                                   int threads, float *r_normals, float *r_fit_error);
 

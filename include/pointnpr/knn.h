@@ -21,7 +21,16 @@ typedef struct pnpr_kdtree pnpr_kdtree;
  * count must be < 2^32 - 1. An empty or all-invalid input gives a valid empty tree. */
 pnpr_status pnpr_kdtree_build(const float *xyz, size_t count, size_t stride_bytes,
                               pnpr_kdtree **r_tree);
+/* Same, with the number of build threads (0 = all cores; the top levels are split sequentially,
+ * then up to 16 subtrees are built in parallel). The tree does not depend on `threads`. */
+pnpr_status pnpr_kdtree_build_threads(const float *xyz, size_t count, size_t stride_bytes,
+                                      int threads, pnpr_kdtree **r_tree);
 void pnpr_kdtree_free(pnpr_kdtree *tree);
+
+/* Frees the tree but hands over its arrays, for pipelines that work in tree order (spatially
+ * coherent, so neighbour gathers hit the cache): r_points = the valid points in tree order
+ * (3 * size floats), r_indices = the original index of each. Release both with pnpr_free. */
+pnpr_status pnpr_kdtree_detach(pnpr_kdtree *tree, float **r_points, uint32_t **r_indices);
 size_t pnpr_kdtree_size(const pnpr_kdtree *tree); /* number of (valid) points in the tree */
 
 /* The k nearest points to q, nearest first (equal distances in a deterministic order). Writes
@@ -39,6 +48,8 @@ size_t pnpr_kdtree_radius(const pnpr_kdtree *tree, const float q[3], float radiu
 typedef struct pnpr_knn_options {
     int threads;           /* 0 = all cores */
     pnpr_progress progress; /* stage name "knn" */
+    int tree_order;        /* pnpr_knn_self only: rows and neighbour ids are tree positions
+                            * (0 .. size-1, see pnpr_kdtree_detach) instead of input indices */
 } pnpr_knn_options;
 
 /* kNN of many query points in parallel: row i of r_idx (k entries, and of r_dist2 when not

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# make bench: the feature pipeline on 1M generated points vs Open3D's normal estimation on the
+# same cloud, in the same run. Writes build/bench/features.md (the table for docs/benchmarks.md).
+#   bash bench/run.sh BUILD_DIR [POINTS] [K]
+set -euo pipefail
+build=${1:-build}
+points=${2:-1000000}
+k=${3:-16}
+out=$build/bench
+mkdir -p "$out"
+cloud=$out/scene_${points}.ply
+
+echo "== pointnpr features pipeline, $points points, k=$k" >&2
+"$build/bench/bench_features" --points "$points" --k "$k" --write "$cloud" > "$out/ours.txt"
+cat "$out/ours.txt" >&2
+
+echo "== end to end: pointnpr features (read PLY, compute, write PLY), peak memory" >&2
+/usr/bin/time -v "$build/pointnpr" features "$cloud" -o "$out/scene_features.ply" --quiet --k "$k" 2> "$out/time.txt"
+wall=$(grep "Elapsed (wall clock)" "$out/time.txt" | awk '{print $NF}')
+rss=$(grep "Maximum resident set size" "$out/time.txt" | awk '{print $NF}')
+
+echo "== Open3D estimate_normals on the same file" >&2
+/usr/bin/python3 bench/open3d_normals.py "$cloud" "$k" 3 > "$out/open3d.txt"
+cat "$out/open3d.txt" >&2
+
+ours=$(grep BENCH_TOTAL_SECONDS "$out/ours.txt" | awk '{print $2}')
+bpp=$(grep BENCH_BYTES_PER_POINT "$out/ours.txt" | awk '{print $2}')
+o3d=$(grep OPEN3D_NORMALS_SECONDS "$out/open3d.txt" | awk '{print $2}')
+o3dv=$(grep OPEN3D_VERSION "$out/open3d.txt" | awk '{print $2}')
+ratio=$(awk -v a="$o3d" -v b="$ours" 'BEGIN { printf "%.2f", a / b }')
+e2e_bpp=$(awk -v r="$rss" -v n="$points" 'BEGIN { printf "%.0f", r * 1024 / n }')
+{
+  echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(date -u +%Y-%m-%d)"
+  echo
+  sed -n '/^| stage/,/^$/p' "$out/ours.txt"
+  echo "| comparison | value |"
+  echo "|---|---|"
+  echo "| our whole features pipeline (7 stages, in memory) | $ours s |"
+  echo "| Open3D $o3dv estimate_normals (KNN $k) alone, best of 3 | $o3d s |"
+  echo "| speed-up (Open3D normals / our whole pipeline) | **${ratio}x** |"
+  echo "| peak memory, pipeline in memory (cloud + pipeline) | $bpp bytes/point |"
+  echo "| \`pointnpr features\` end to end (read + compute + write PLY): wall | $wall |"
+  echo "| \`pointnpr features\` end to end: peak RSS | $((rss / 1024)) MB = $e2e_bpp bytes/point |"
+} > "$out/features.md"
+cat "$out/features.md"
