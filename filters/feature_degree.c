@@ -13,7 +13,7 @@
  *    which is 0 wherever e is uniform — the paper's sphere example: high error, no feature.
  *  Colour C: least-squares fit of a linear colour field c(p) = c0 + g.(p - centroid) in the
  *    tangent plane (normal known; otherwise the PCA plane), per RGB channel with values in
- *    [0,1]; |g| = sqrt(sum over channels |g_c|^2). |g| * r_i (r_i = mean neighbour distance) is
+ *    [0,1]; |g| = sqrt(sum over channels |g_c|^2). |g| * r_i (r_i = RMS neighbour distance) is
  *    the colour change across the neighbourhood and is scale-free: C_i = clamp(|g| r_i /
  *    COLOR_SCALE, 0, 1).
  *  degree = (w_g G + w_c C) / (w_g + w_c), in [0,1]. Without colours C is absent and the degree is
@@ -93,7 +93,7 @@ static double color_term(const degree_job *j, size_t i, const uint32_t *row)
             b_v[ch] += dv * dc;
         }
         double e[3] = {p[0] - pi[0], p[1] - pi[1], p[2] - pi[2]};
-        rsum += sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        rsum += e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
     }
     double det = s_uu * s_vv - s_uv * s_uv;
     /* a (nearly) collinear neighbourhood has no 2D gradient */
@@ -104,8 +104,8 @@ static double color_term(const degree_job *j, size_t i, const uint32_t *row)
         double gv = (s_uu * b_v[ch] - s_uv * b_u[ch]) / det;
         g2 += gu * gu + gv * gv;
     }
-    double r_mean = rsum / (double)(m > 1 ? m - 1 : 1);
-    return clamp01(sqrt(g2) * r_mean / COLOR_SCALE);
+    double r_rms = sqrt(rsum / (double)(m > 1 ? m - 1 : 1)); /* the point itself adds 0 */
+    return clamp01(sqrt(g2) * r_rms / COLOR_SCALE);
 }
 
 static void degree_range(void *ctx, size_t begin, size_t end)

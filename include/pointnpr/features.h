@@ -103,7 +103,7 @@ pnpr_status pnpr_orient_normals(const float *xyz, size_t count, const uint32_t *
  *       Laplacian of the fit error e (an edge filter whose response peaks on the crest of the
  *       error ridge that a crease produces; uniform error, as on a sphere, gives 0);
  *   C = min(1, |grad c| * r_i / 0.5): least-squares gradient of the RGB colour (0..1 per
- *       channel) in the tangent plane, times the neighbourhood radius r_i = colour change across
+ *       channel) in the tangent plane, times the RMS neighbour distance r_i = colour change across
  *       the neighbourhood. rgb may be NULL (then C = 0 and w_g = 1). */
 pnpr_status pnpr_feature_degree(const float *xyz, const uint8_t *rgb, const float *normals,
                                 const float *fit_error, size_t count, const uint32_t *knn,
