@@ -68,7 +68,7 @@ typedef struct classify_job {
     size_t k;
     float min_conf;
     uint8_t *cls;
-    float *conf, *dir;
+    float *conf, *dir[3];
 } classify_job;
 
 /* Robust direction: among candidate lines through the point itself (towards its farther
@@ -130,7 +130,7 @@ static void classify_range(void *ctx, size_t begin, size_t end)
         uint32_t i = j->fid[f];
         j->cls[i] = PNPR_CLASS_NONDIRECTIONAL;
         j->conf[i] = 0.0f;
-        if (j->dir) j->dir[3 * (size_t)i] = j->dir[3 * (size_t)i + 1] = j->dir[3 * (size_t)i + 2] = 0.0f;
+        for (int a = 0; a < 3; a++) if (j->dir[a]) j->dir[a][i] = 0.0f;
         if (got < 3) continue;
         /* inlier tolerance: a quarter of the median neighbour distance */
         double tol = 0.25 * sqrt((double)dist2[got / 2]);
@@ -151,19 +151,19 @@ static void classify_range(void *ctx, size_t begin, size_t end)
         conf = conf < 0 ? 0 : (conf > 1 ? 1 : conf);
         j->conf[i] = (float)conf;
         if (conf >= j->min_conf) j->cls[i] = PNPR_CLASS_DIRECTIONAL;
-        if (j->dir) {
-            int big = 0;
-            for (int a = 1; a < 3; a++) if (fabs(d[a]) > fabs(d[big])) big = a;
-            double s = d[big] < 0 ? -1.0 : 1.0;
-            for (int a = 0; a < 3; a++) j->dir[3 * (size_t)i + a] = (float)(s * d[a]);
-        }
+        int big = 0;
+        for (int a = 1; a < 3; a++) if (fabs(d[a]) > fabs(d[big])) big = a;
+        double s = d[big] < 0 ? -1.0 : 1.0;
+        for (int a = 0; a < 3; a++) if (j->dir[a]) j->dir[a][i] = (float)(s * d[a]);
     }
 }
 
 pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t count, size_t k,
                                    float threshold, float min_confidence, int threads,
-                                   uint8_t *r_class, float *r_confidence, float *r_dir)
+                                   uint8_t *r_class, float *r_confidence, float *r_dir_x,
+                                   float *r_dir_y, float *r_dir_z)
 {
+    float *dirs[3] = {r_dir_x, r_dir_y, r_dir_z};
     if (count && (!xyz || !degree || !r_class || !r_confidence)) return PNPR_ERR_INVALID_ARGUMENT;
     if (!isfinite(threshold) || !isfinite(min_confidence)) return PNPR_ERR_INVALID_ARGUMENT;
     if (k == 0) k = 16;
@@ -172,7 +172,7 @@ pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t
     for (size_t i = 0; i < count; i++) {
         r_class[i] = PNPR_CLASS_NONE;
         r_confidence[i] = 0.0f;
-        if (r_dir) r_dir[3 * i] = r_dir[3 * i + 1] = r_dir[3 * i + 2] = 0.0f;
+        for (int a = 0; a < 3; a++) if (dirs[a]) dirs[a][i] = 0.0f;
         nf += is_feature(xyz + 3 * i, degree[i], threshold);
     }
     if (nf == 0) return PNPR_OK;
@@ -191,7 +191,7 @@ pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t
         st = pnpr_kdtree_build(fxyz, nf, 0, &tree);
     }
     if (st == PNPR_OK) {
-        classify_job j = {fxyz, fid, tree, k, min_confidence, r_class, r_confidence, r_dir};
+        classify_job j = {fxyz, fid, tree, k, min_confidence, r_class, r_confidence, {r_dir_x, r_dir_y, r_dir_z}};
         st = pnpr_parallel_for(nf, 1024, threads, classify_range, &j, NULL, "classify");
     }
     pnpr_kdtree_free(tree);

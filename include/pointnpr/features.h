@@ -9,7 +9,7 @@
  *   classify       feature points by threshold; directional / non-directional by a 3D line fit
  *                  over neighbouring feature points (confidence + direction)
  *   dither         dithering points: non-feature points chosen by Ostromoukhov's variable-
- *                  coefficient error diffusion along a space-filling order
+ *                  coefficient error diffusion along the kd-tree's space-filling order
  * docs/features.md documents every choice the paper leaves open.
  *
  * Arrays are caller-owned: per-point outputs have `count` entries (3*count for vectors). */
@@ -116,14 +116,16 @@ float pnpr_auto_threshold(const float *degree, size_t count);
 /* Feature points (degree >= threshold) get class NONDIRECTIONAL or DIRECTIONAL from a
  * least-squares 3D line fit over their k nearest feature points: confidence =
  * 1 - 1.5 * (mu_0 + mu_1) / (mu_0 + mu_1 + mu_2) in [0,1] (mu = covariance eigenvalues);
- * direction = principal eigenvector. Non-feature points get class NONE, confidence 0, dir 0.
- * r_dir may be NULL. */
+ * direction = principal eigenvector (components in r_dir_x/y/z, each may be NULL).
+ * Non-feature points get class NONE, confidence 0, direction 0. */
 pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t count, size_t k,
                                    float threshold, float min_confidence, int threads,
-                                   uint8_t *r_class, float *r_confidence, float *r_dir);
+                                   uint8_t *r_class, float *r_confidence, float *r_dir_x,
+                                   float *r_dir_y, float *r_dir_z);
 
 /* Dithering points among the points of class NONE: Ostromoukhov's variable-coefficient error
- * diffusion over the kNN graph, in Morton (Z-order) sequence. tone: per point darkness in
+ * diffusion over the kNN graph, scanning the points in array order — pass them in a spatially
+ * coherent order (kd-tree order, as pnpr_compute_features does, or a Morton order). tone: per point darkness in
  * [0,1] (NULL = derived from rgb, else from normals lit from +z). Sets class DITHER on the
  * chosen points; returns their number in r_chosen (may be NULL). */
 pnpr_status pnpr_dither(const float *xyz, const uint8_t *rgb, const float *normals,
