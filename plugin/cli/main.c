@@ -42,6 +42,7 @@ static void usage(FILE *f)
             "  info IN                      describe a point cloud file\n"
             "  convert IN... -o OUT.ply     convert/merge PLY, LAS, OBJ, OFF inputs into one PLY\n"
             "  features IN -o OUT.ply       normals, feature degree, classification, dithering\n"
+            "  render IN -o OUT.png         stylised image (sketchy, stipple, painterly, cartoon, points)\n"
             "run 'pointnpr <command> --help' for the options of a command\n",
             PNPR_VERSION_STRING);
 }
@@ -55,6 +56,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "info")) return cli_info(argc - 1, argv + 1);
     if (!strcmp(cmd, "convert")) return cli_convert(argc - 1, argv + 1);
     if (!strcmp(cmd, "features")) return cli_features(argc - 1, argv + 1);
+    if (!strcmp(cmd, "render")) return cli_render(argc - 1, argv + 1);
     fprintf(stderr, "pointnpr: unknown command '%s'\n", cmd);
     usage(stderr);
     return 2;
