@@ -3,8 +3,9 @@
  * READING (pnpr_read_ply_memory, pnpr_read_ply_file)
  *  - Formats: "ascii 1.0", "binary_little_endian 1.0", "binary_big_endian 1.0".
  *  - Header: "comment" and "obj_info" lines are ignored; LF or CRLF line ends; blank lines are
- *    tolerated. Scalar types: char/int8 uchar/uint8 short/int16 ushort/uint16 int/int32
- *    uint/uint32 float/float32 double/float64; lists need an integer count type.
+ *    tolerated; at most 65536 elements and 4096 properties per element. Scalar types:
+ *    char/int8 uchar/uint8 short/int16 ushort/uint16 int/int32 uint/uint32 float/float32
+ *    double/float64; lists need an integer count type.
  *  - Elements may come in any order. "vertex" is required; "face" is read (see below); every
  *    other element (edge, material, ...) is skipped, lists included, in all three encodings.
  *  - Vertex properties, any order and any scalar type:
@@ -93,6 +94,7 @@ pnpr_status pnpr_write_ply_file(const char *path, const pnpr_cloud *cloud,
 #endif
 
 #define PLY_MAX_PROPS 4096        /* properties per element */
+#define PLY_MAX_ELEMS 65536       /* elements per header */
 #define PLY_NAME_SHOW 64          /* longest name quoted in a message */
 #define PLY_TOKEN_MAX 256         /* longest ascii number token */
 
@@ -287,7 +289,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
 {
     size_t pos = 0;
     long line = 0;
-    int have_end = 0;
+    int have_end = 0, seen_vertex = 0, seen_face = 0;
 
     if (size < 3 || memcmp(data, "ply", 3) != 0 || (size > 3 && data[3] != '\n' && !is_blank(data[3])))
         return fail_at(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic");
@@ -344,10 +346,12 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: element '%.*s' has a negative/invalid count '%.*s'", line,
                                show_len(tok[1]), tok[1].s, show_len(tok[2]), tok[2].s);
-            for (size_t i = 0; i < h->nelems; i++)
-                if (str_eq(h->elems[i].name, tok[1]) && (str_is(tok[1], "vertex") || str_is(tok[1], "face")))
-                    return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
-                                   "line %ld: second '%.*s' element", line, show_len(tok[1]), tok[1].s);
+            if ((str_is(tok[1], "vertex") && seen_vertex++) || (str_is(tok[1], "face") && seen_face++))
+                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                               "line %ld: second '%.*s' element", line, show_len(tok[1]), tok[1].s);
+            if (h->nelems >= PLY_MAX_ELEMS)
+                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                               "line %ld: more than %d elements in the header", line, PLY_MAX_ELEMS);
             if (h->nelems == h->cap) {
                 size_t cap = h->cap ? 2 * h->cap : 4;
                 ply_elem *grown = realloc(h->elems, cap * sizeof *grown);
