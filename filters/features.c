@@ -82,8 +82,8 @@ static void restore_in_place(void *data, size_t size, size_t n, uint32_t *perm)
 /* The pipeline works in kd-tree order: the tree's reordered copy of the points is spatially
  * coherent, so the neighbour gathers of every stage hit the cache (on a 1M-point cloud in random
  * order this more than halves the time of the normal, orientation and feature-degree stages).
- * The cloud's own arrays (colours, normals, outputs) are permuted into tree order and back at the
- * end through one scratch buffer, instead of keeping tree-order copies of them all. Points with
+ * The cloud's own arrays (coordinates, colours, normals, outputs) are permuted into tree order and
+ * back at the end through one scratch buffer, instead of keeping tree-order copies of them all. Points with
  * NaN/Inf coordinates sit after the valid ones and get zero outputs. */
 pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options *opts,
                                   pnpr_features_stats *r_stats)
@@ -170,6 +170,18 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
             if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))) perm[q++] = (uint32_t)i;
         }
     }
+    /* the cloud's own coordinates take the tree order (the tree's copy is released: 12 bytes/point
+     * less for the rest of the run); left-out points follow in input order */
+    if (m < n) {
+        float *bad = malloc((n - m) * 3 * sizeof(float));
+        if (!bad) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+        for (size_t q = m; q < n; q++) memcpy(bad + 3 * (q - m), cloud->xyz + 3 * (size_t)perm[q], 3 * sizeof(float));
+        memcpy(cloud->xyz + 3 * m, bad, (n - m) * 3 * sizeof(float));
+        free(bad);
+    }
+    memcpy(cloud->xyz, xyz, m * 3 * sizeof(float));
+    pnpr_free(xyz);
+    xyz = cloud->xyz;
     permute(cloud->rgb, 3, n, perm, 0, scratch);
     if (keep_normals) permute(cloud->normal, 3 * sizeof(float), n, perm, 0, scratch);
     permuted = 1;
@@ -183,6 +195,16 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     st = stage_end(&r, pnpr_estimate_normals(xyz, m, knn, k, opts->threads, keep_normals ? NULL : cloud->normal, fit));
     if (st != PNPR_OK) goto done;
 
+    /* the feature degree only needs the tangent plane (the normal's sign does not matter), so it
+     * runs before the orientation and the fit errors are gone before the orientation's queue
+     * is built */
+    if (stage_begin(&r, PNPR_STAGE_FEATURE_DEGREE)) { st = PNPR_ERR_CANCELLED; goto done; }
+    st = stage_end(&r, pnpr_feature_degree(xyz, cloud->rgb, cloud->normal, fit, m, knn, k, opts->weight_geometry,
+                                           opts->weight_color, opts->threads, degree));
+    free(fit);
+    fit = NULL;
+    if (st != PNPR_OK) goto done;
+
     if (!keep_normals) {
         if (stage_begin(&r, PNPR_STAGE_ORIENT)) { st = PNPR_ERR_CANCELLED; goto done; }
         double vp[3];
@@ -190,13 +212,6 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
         st = stage_end(&r, pnpr_orient_normals(xyz, m, knn, k, opts->has_viewpoint ? vp : NULL, cloud->normal));
         if (st != PNPR_OK) goto done;
     }
-
-    if (stage_begin(&r, PNPR_STAGE_FEATURE_DEGREE)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_feature_degree(xyz, cloud->rgb, cloud->normal, fit, m, knn, k, opts->weight_geometry,
-                                           opts->weight_color, opts->threads, degree));
-    free(fit);
-    fit = NULL;
-    if (st != PNPR_OK) goto done;
 
     float threshold = opts->threshold > 0 ? opts->threshold : pnpr_auto_threshold(degree, m);
     r_stats->threshold_used = threshold;
@@ -217,19 +232,21 @@ done:
     if (permuted && !(scratch = malloc(n * 3 * sizeof(float)))) {
         /* no memory for the way back: restore the inputs in place (slow but allocation-free) */
         st = PNPR_ERR_OUT_OF_MEMORY;
+        restore_in_place(cloud->xyz, 3 * sizeof(float), n, perm);
         restore_in_place(cloud->rgb, 3, n, perm);
         restore_in_place(cloud->normal, 3 * sizeof(float), n, perm);
         permuted = 0;
     }
     if (permuted) {
         /* back to input order: inputs always, outputs (meaningful only on success) too */
+        permute(cloud->xyz, 3 * sizeof(float), n, perm, 1, scratch);
         permute(cloud->rgb, 3, n, perm, 1, scratch);
         permute(cloud->normal, 3 * sizeof(float), n, perm, 1, scratch);
         for (int f = 0; f < 5; f++) permute(out[f], sizeof(float), n, perm, 1, scratch);
         permute(cls, 1, n, perm, 1, scratch);
     }
     pnpr_kdtree_free(tree);
-    pnpr_free(xyz);
+    if (xyz != cloud->xyz) pnpr_free(xyz);
     pnpr_free(tree_index);
     free(perm);
     free(scratch);
