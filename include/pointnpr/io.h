@@ -1,7 +1,8 @@
 /* pointnpr — io.h: reading and writing point clouds.
  *
  * PLY  (io/ply.c): ascii, binary_little_endian, binary_big_endian; any property order and
- *      scalar type; float or double coordinates; vertex element required, face element kept,
+ *      scalar type; float or double coordinates (int/uint coordinates are kept exactly, as
+ *      FLOAT64); vertex element required, face element kept,
  *      other elements skipped. Recognised vertex properties: x y z, nx ny nz,
  *      red green blue (uchar or ushort; also r g b / diffuse_red ...), label/segment (kept as
  *      labels); every other vertex property is kept as an extra property.
@@ -44,7 +45,8 @@ typedef struct pnpr_write_options {
     pnpr_file_format format;     /* 0 = auto from extension; only PLY is written for now */
     pnpr_ply_encoding encoding;  /* 0 = binary little endian */
     /* Coordinates are written in the source type: double when cloud->src_xyz or
-     * src_coord_type == FLOAT64, float otherwise. force_double writes doubles always. */
+     * src_coord_type == FLOAT64, float otherwise (but double when src_coord_type is NONE and
+     * origin + offset is not exactly a float). force_double writes doubles always. */
     int force_double;
     const char *comment;         /* optional "comment" line, may be NULL */
     pnpr_progress progress;
