@@ -10,8 +10,24 @@ out=$build/bench
 mkdir -p "$out"
 cloud=$out/scene_${points}.ply
 
-echo "== pointnpr features pipeline, $points points, k=$k" >&2
-"$build/bench/bench_features" --points "$points" --k "$k" --write "$cloud" > "$out/ours.txt"
+# Ours and Open3D alternate, 3 rounds each, and the medians are compared: on a shared 2-core
+# machine a background process slows OpenMP (Open3D) far more than our threads, so a single
+# pair of runs can be misleading either way.
+rounds=3
+: > "$out/ours_all.txt"; : > "$out/open3d_all.txt"
+for r in $(seq 1 $rounds); do
+  echo "== round $r/$rounds: pointnpr features pipeline, $points points, k=$k" >&2
+  if [ "$r" -eq 1 ]; then
+    "$build/bench/bench_features" --points "$points" --k "$k" --write "$cloud" > "$out/ours.txt"
+  else
+    "$build/bench/bench_features" --points "$points" --k "$k" > "$out/ours.txt"
+  fi
+  grep BENCH_TOTAL_SECONDS "$out/ours.txt" | awk '{print $2}' >> "$out/ours_all.txt"
+  echo "== round $r/$rounds: Open3D estimate_normals on the same file" >&2
+  /usr/bin/python3 bench/open3d_normals.py "$cloud" "$k" 1 > "$out/open3d.txt"
+  grep OPEN3D_NORMALS_SECONDS "$out/open3d.txt" | awk '{print $2}' >> "$out/open3d_all.txt"
+done
+median() { sort -g "$1" | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 cat "$out/ours.txt" >&2
 
 echo "== end to end: pointnpr features (read PLY, compute, write PLY), peak memory" >&2
@@ -19,24 +35,22 @@ echo "== end to end: pointnpr features (read PLY, compute, write PLY), peak memo
 wall=$(grep "Elapsed (wall clock)" "$out/time.txt" | awk '{print $NF}')
 rss=$(grep "Maximum resident set size" "$out/time.txt" | awk '{print $NF}')
 
-echo "== Open3D estimate_normals on the same file" >&2
-/usr/bin/python3 bench/open3d_normals.py "$cloud" "$k" 3 > "$out/open3d.txt"
-cat "$out/open3d.txt" >&2
-
-ours=$(grep BENCH_TOTAL_SECONDS "$out/ours.txt" | awk '{print $2}')
+ours=$(median "$out/ours_all.txt")
 bpp=$(grep BENCH_BYTES_PER_POINT "$out/ours.txt" | awk '{print $2}')
-o3d=$(grep OPEN3D_NORMALS_SECONDS "$out/open3d.txt" | awk '{print $2}')
+o3d=$(median "$out/open3d_all.txt")
 o3dv=$(grep OPEN3D_VERSION "$out/open3d.txt" | awk '{print $2}')
 ratio=$(awk -v a="$o3d" -v b="$ours" 'BEGIN { printf "%.2f", a / b }')
 e2e_bpp=$(awk -v r="$rss" -v n="$points" 'BEGIN { printf "%.0f", r * 1024 / n }')
 {
   echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(date -u +%Y-%m-%d)"
   echo
+  echo "Stage times of the last round:"
+  echo
   sed -n '/^| stage/,/^$/p' "$out/ours.txt"
   echo "| comparison | value |"
   echo "|---|---|"
-  echo "| our whole features pipeline (7 stages, in memory) | $ours s |"
-  echo "| Open3D $o3dv estimate_normals (KNN $k) alone, best of 3 | $o3d s |"
+  echo "| our whole features pipeline (7 stages, in memory), median of $rounds | $ours s ($(paste -sd' ' "$out/ours_all.txt")) |"
+  echo "| Open3D $o3dv estimate_normals (KNN $k) alone, median of $rounds | $o3d s ($(paste -sd' ' "$out/open3d_all.txt")) |"
   echo "| speed-up (Open3D normals / our whole pipeline) | **${ratio}x** |"
   echo "| peak memory, pipeline in memory (cloud + pipeline) | $bpp bytes/point |"
   echo "| \`pointnpr features\` end to end (read + compute + write PLY): wall | $wall |"
