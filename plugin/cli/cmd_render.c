@@ -1,9 +1,220 @@
-/* pointnpr render (placeholder until the renderer lands). */
+/* pointnpr render IN -o OUT.png: a stylised image of a point cloud, rendered headless
+ * (EGL surfaceless, OpenGL 3.3 core) by the PointWorks renderer (render/, docs/rendering.md). */
 #include "cli.h"
+
 #include <stdio.h>
+
+#ifndef PNPR_HAVE_RENDER
 int cli_render(int argc, char **argv)
 {
     (void)argc; (void)argv;
-    fprintf(stderr, "pointnpr render: not available yet in this build\n");
+    fprintf(stderr, "pointnpr render: this build has no renderer (libepoxy and libpng were not found)\n");
     return 1;
 }
+#else
+
+#include <pointnpr/features.h>
+#include <pointnpr/render.h>
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: pointnpr render IN -o OUT.png [options]\n"
+            "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG.\n"
+            "options:\n"
+            "  --style S            points | sketchy (default points)\n"
+            "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
+            "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n"
+            "  --stroke-texture T   directional stroke texture 0, 1 or 2 (default 0)\n"
+            "  --size WxH           image size in pixels (default 1024x768)\n"
+            "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z\n"
+            "                       look-at camera in world coordinates (default: fit the cloud;\n"
+            "                       up defaults to 0,0,1)\n"
+            "  --fov DEG            vertical field of view (default 45)\n"
+            "  --budget N           at most N points per frame (default: all)\n"
+            "  --density D          at most D points per covered screen pixel (default: no limit)\n"
+            "  --seed S             continuous resolution queue seed (default 0)\n"
+            "  --point-scale F      disk radius multiplier (default 1)\n"
+            "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
+            "  --alpha              transparent background, PNG with alpha\n"
+            "  --quiet              no progress on stderr\n"
+            "  Styles that need features (sketchy) compute them when IN lacks them.\n");
+}
+
+static int parse_num(const char *s, double lo, double hi, double *r)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) return 0;
+    *r = v;
+    return 1;
+}
+
+static int parse_list(const char *s, int n, double *r)
+{
+    const char *p = s;
+    for (int i = 0; i < n; i++) {
+        char *end;
+        errno = 0;
+        r[i] = strtod(p, &end);
+        if (errno || end == p || !isfinite(r[i])) return 0;
+        if (i + 1 < n) { if (*end != ',') return 0; p = end + 1; }
+        else if (*end) return 0;
+    }
+    return 1;
+}
+
+int cli_render(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL;
+    pnpr_draw_options dopt;
+    memset(&dopt, 0, sizeof dopt);
+    pnpr_upload_options uopt;
+    memset(&uopt, 0, sizeof uopt);
+    int width = 1024, height = 768, quiet = 0, alpha = 0;
+    int have_eye = 0, have_target = 0, have_up = 0;
+    double eye[3], target[3], up[3] = {0, 0, 1}, fov = 45;
+    double bg[3] = {255, 255, 255};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        double x;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
+        else if (!strcmp(a, "--quiet")) quiet = 1;
+        else if (!strcmp(a, "--alpha")) alpha = 1;
+        else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
+        else if (v && !strcmp(a, "--style")) {
+            pnpr_style s;
+            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points or sketchy, got '%s'\n", v); return 2; }
+            dopt.style = s; i++;
+        } else if (v && !strcmp(a, "--sketch")) {
+            if (!strcmp(v, "a")) dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
+            else if (!strcmp(v, "b")) dopt.sketch_variant = PNPR_SKETCH_NONDIRECTIONAL;
+            else if (!strcmp(v, "c")) dopt.sketch_variant = PNPR_SKETCH_ALL;
+            else { fprintf(stderr, "pointnpr render: --sketch wants a, b or c, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--stroke-texture")) {
+            if (!parse_num(v, 0, 2, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --stroke-texture wants 0, 1 or 2, got '%s'\n", v); return 2; }
+            dopt.stroke_texture = (int)x; i++;
+        } else if (v && !strcmp(a, "--size")) {
+            int w = 0, h = 0, n = 0;
+            if (sscanf(v, "%dx%d%n", &w, &h, &n) != 2 || v[n] || w < 1 || h < 1 || w > 16384 || h > 16384) {
+                fprintf(stderr, "pointnpr render: --size wants WxH with 1..16384 each, got '%s'\n", v); return 2;
+            }
+            width = w; height = h; i++;
+        } else if (v && !strcmp(a, "--eye")) {
+            if (!parse_list(v, 3, eye)) { fprintf(stderr, "pointnpr render: --eye wants X,Y,Z, got '%s'\n", v); return 2; }
+            have_eye = 1; i++;
+        } else if (v && !strcmp(a, "--target")) {
+            if (!parse_list(v, 3, target)) { fprintf(stderr, "pointnpr render: --target wants X,Y,Z, got '%s'\n", v); return 2; }
+            have_target = 1; i++;
+        } else if (v && !strcmp(a, "--up")) {
+            if (!parse_list(v, 3, up)) { fprintf(stderr, "pointnpr render: --up wants X,Y,Z, got '%s'\n", v); return 2; }
+            have_up = 1; i++;
+        } else if (v && !strcmp(a, "--fov")) {
+            if (!parse_num(v, 1e-3, 179, &fov)) { fprintf(stderr, "pointnpr render: --fov wants degrees in (0,179], got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--budget")) {
+            if (!parse_num(v, 1, 4e9, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --budget wants a positive integer, got '%s'\n", v); return 2; }
+            dopt.budget = (size_t)x; i++;
+        } else if (v && !strcmp(a, "--density")) {
+            if (!parse_num(v, 1e-9, 1e9, &x)) { fprintf(stderr, "pointnpr render: --density wants a positive number, got '%s'\n", v); return 2; }
+            dopt.density = (float)x; i++;
+        } else if (v && !strcmp(a, "--seed")) {
+            char *end;
+            errno = 0;
+            unsigned long long s = strtoull(v, &end, 10);
+            if (errno || end == v || *end || v[0] == '-') { fprintf(stderr, "pointnpr render: --seed wants a non-negative integer, got '%s'\n", v); return 2; }
+            uopt.seed = s; i++;
+        } else if (v && !strcmp(a, "--point-scale")) {
+            if (!parse_num(v, 1e-3, 1e3, &x)) { fprintf(stderr, "pointnpr render: --point-scale wants a positive number, got '%s'\n", v); return 2; }
+            dopt.point_scale = (float)x; i++;
+        } else if (v && !strcmp(a, "--background")) {
+            if (!parse_list(v, 3, bg) || bg[0] < 0 || bg[0] > 255 || bg[1] < 0 || bg[1] > 255 || bg[2] < 0 || bg[2] > 255) {
+                fprintf(stderr, "pointnpr render: --background wants R,G,B in 0..255, got '%s'\n", v); return 2;
+            }
+            i++;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "pointnpr render: unknown option or missing value: %s\n", a);
+            usage(stderr);
+            return 2;
+        } else if (!in) in = a;
+        else { fprintf(stderr, "pointnpr render: more than one input given ('%s')\n", a); return 2; }
+    }
+    if (!in || !out) { usage(stderr); return 2; }
+    if (have_eye != have_target || (have_up && !have_eye)) {
+        fprintf(stderr, "pointnpr render: --eye and --target go together (--up and --fov need them too, or only --fov)\n");
+        return 2;
+    }
+    for (int c = 0; c < 3; c++) dopt.background[c] = (float)(bg[c] / 255.0);
+    dopt.background[3] = alpha ? 0.0f : 1.0f;
+
+    cli_progress_state ps = {{0}, 0, 0};
+    pnpr_progress prog = {quiet ? NULL : cli_progress_stderr, &ps};
+    pnpr_read_options ro = {0};
+    ro.progress = prog;
+    pnpr_cloud cloud = {0};
+    pnpr_error err = {0};
+    pnpr_gl_context *ctx = NULL;
+    pnpr_renderer *ren = NULL;
+    uint8_t *pixels = NULL;
+    int rc = 1;
+    pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
+    if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+
+    if (pnpr_style_needs_features(dopt.style) &&
+        (!pnpr_cloud_find_property(&cloud, "feature_class") || !pnpr_cloud_find_property(&cloud, "feature_dir_x") ||
+         !pnpr_cloud_find_property(&cloud, "feature_dir_y") || !pnpr_cloud_find_property(&cloud, "feature_dir_z"))) {
+        if (!quiet) fprintf(stderr, "%s has no features: computing them (pointnpr features saves them)\n", in);
+        pnpr_features_options fo = {0};
+        fo.progress = prog;
+        st = pnpr_compute_features(&cloud, &fo, NULL);
+        if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: features: %s\n", in, pnpr_status_string(st)); goto done; }
+    }
+
+    st = pnpr_gl_context_create(&ctx, &err);
+    if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+    st = pnpr_renderer_create(NULL, &ren, &err);
+    if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+    st = pnpr_renderer_set_cloud(ren, &cloud, &uopt, &err);
+    if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+
+    pnpr_camera cam, *camp = NULL;
+    if (have_eye) {
+        memset(&cam, 0, sizeof cam);
+        memcpy(cam.eye, eye, sizeof eye);
+        memcpy(cam.target, target, sizeof target);
+        memcpy(cam.up, up, sizeof up);
+        cam.fov_y_deg = (float)fov;
+        camp = &cam;
+    } else if (cloud.count > 0 && pnpr_camera_fit(&cloud, NULL, (float)fov, (float)width / (float)height, &cam) == PNPR_OK) {
+        camp = &cam;
+    }
+    pnpr_target tgt = {0, 0, 0, width, height, 1};
+    pnpr_render_stats stats;
+    st = pnpr_renderer_draw(ren, camp, &dopt, &tgt, &stats, &err);
+    if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+    pixels = malloc((size_t)width * (size_t)height * 4);
+    if (!pixels) { cli_report_error("render", PNPR_ERR_OUT_OF_MEMORY, NULL); goto done; }
+    st = pnpr_renderer_read_frame(ren, pixels, alpha);
+    if (st == PNPR_OK) st = pnpr_write_png(out, pixels, width, height, alpha, &err);
+    if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+    if (!quiet)
+        fprintf(stderr, "%s: %zu of %zu points drawn, %zu strokes, style %s, %dx%d -> %s\n", in,
+                stats.points_drawn, stats.points_total, stats.strokes_drawn, pnpr_style_name(dopt.style),
+                width, height, out);
+    rc = 0;
+done:
+    free(pixels);
+    pnpr_renderer_destroy(ren);
+    pnpr_gl_context_destroy(ctx);
+    pnpr_cloud_free(&cloud);
+    return rc;
+}
+#endif

@@ -43,6 +43,8 @@ static void usage(FILE *f)
             "  convert IN... -o OUT.ply     convert/merge PLY, LAS, OBJ, OFF inputs into one PLY\n"
             "  features IN -o OUT.ply       normals, feature degree, classification, dithering\n"
             "  render IN -o OUT.png         stylised image (sketchy, stipple, painterly, cartoon, points)\n"
+            "  lines IN -o OUT.obj          profile lines (polylines; OBJ, PLY or SVG)\n"
+            "  segment IN -o OUT.ply        segments (jseg, components, rgbgrow, labels)\n"
             "run 'pointnpr <command> --help' for the options of a command\n",
             PNPR_VERSION_STRING);
 }
@@ -57,6 +59,8 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "convert")) return cli_convert(argc - 1, argv + 1);
     if (!strcmp(cmd, "features")) return cli_features(argc - 1, argv + 1);
     if (!strcmp(cmd, "render")) return cli_render(argc - 1, argv + 1);
+    if (!strcmp(cmd, "lines")) return cli_lines(argc - 1, argv + 1);
+    if (!strcmp(cmd, "segment")) return cli_segment(argc - 1, argv + 1);
     fprintf(stderr, "pointnpr: unknown command '%s'\n", cmd);
     usage(stderr);
     return 2;
