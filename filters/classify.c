@@ -10,9 +10,9 @@
  * non-directional, confidence 0, direction (0,0,0). Directions are sign-normalised (largest
  * component positive) so that results do not depend on the solver's sign choice.
  *
- * The automatic threshold: Otsu's split of the degree histogram over the points with a degree
- * above a noise floor (0.05), never below 0.15: featureless clouds (a sphere, a plane) keep
- * no feature points, and clouds with features split where the histogram separates. */
+ * The automatic threshold: the triangle method on the degree histogram (see
+ * pnpr_auto_threshold), clamped to [0.2, 0.5]: featureless clouds (a sphere, a plane) keep no
+ * feature points, and scans with features split at the knee of the histogram. */
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
 
@@ -22,38 +22,43 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define AUTO_FLOOR 0.05
-#define AUTO_MIN 0.15
-#define HIST 256
+#define AUTO_MIN 0.2
+#define AUTO_MAX 0.5
 
 float pnpr_auto_threshold(const float *degree, size_t count)
 {
-    double hist[HIST] = {0};
-    double total = 0;
+    /* Triangle method (Zack et al. 1977) on a 100-bin histogram: the line from the histogram's
+     * peak to its last non-empty bin; the threshold is the bin farthest below that line (the
+     * knee where the many non-feature points give way to the tail of features). Suited to a
+     * histogram with a dominant peak near 0 and a long tail, which is what feature degrees of
+     * scans look like; Otsu's two-class split is pulled towards the big class there. */
+    enum { NB = 100 };
+    double hist[NB] = {0};
+    size_t total = 0;
     for (size_t i = 0; i < count; i++) {
         float d = degree[i];
-        if (!(d >= AUTO_FLOOR)) continue;
-        int b = (int)(d * (HIST - 1) + 0.5);
-        if (b > HIST - 1) b = HIST - 1;
-        hist[b] += 1;
-        total += 1;
+        if (!(d >= 0) || d > 1) continue;
+        int b = (int)(d * NB);
+        hist[b < NB ? b : NB - 1] += 1;
+        total++;
     }
     if (total < 2) return (float)AUTO_MIN;
-    double sum_all = 0;
-    for (int b = 0; b < HIST; b++) sum_all += b * hist[b];
-    double w0 = 0, sum0 = 0, best = -1;
-    int best_b = 0;
-    for (int b = 0; b < HIST - 1; b++) {
-        w0 += hist[b];
-        sum0 += b * hist[b];
-        double w1 = total - w0;
-        if (w0 == 0 || w1 == 0) continue;
-        double m0 = sum0 / w0, m1 = (sum_all - sum0) / w1;
-        double between = w0 * w1 * (m0 - m1) * (m0 - m1);
-        if (between > best) { best = between; best_b = b; }
+    int peak = 0, last = 0;
+    for (int b = 0; b < NB; b++) {
+        if (hist[b] > hist[peak]) peak = b;
+        if (hist[b] > 0) last = b;
     }
-    double t = (best_b + 0.5) / (HIST - 1);
-    return (float)(t > AUTO_MIN ? t : AUTO_MIN);
+    if (last <= peak + 1) return (float)AUTO_MIN; /* no tail: no features */
+    double x0 = peak, y0 = hist[peak], x1 = last, y1 = hist[last];
+    double nx = y1 - y0, ny = x0 - x1, nl = sqrt(nx * nx + ny * ny);
+    int best = peak + 1;
+    double best_d = -1;
+    for (int b = peak + 1; b <= last; b++) {
+        double dd = fabs(nx * (b - x0) + ny * (hist[b] - y0)) / nl;
+        if (dd > best_d) { best_d = dd; best = b; }
+    }
+    double t = (best + 1.0) / NB;
+    return (float)(t < AUTO_MIN ? AUTO_MIN : (t > AUTO_MAX ? AUTO_MAX : t));
 }
 
 static int is_feature(const float *p, float degree, float threshold)
@@ -75,9 +80,10 @@ typedef struct classify_job {
  * neighbours), the one with most neighbours within `tol` of it; then the least-squares line
  * (PCA) over those inliers. Near corners and junctions this keeps the points of the other
  * branches from tilting the direction. Returns the number of inliers (0 = no line). */
-static int is_inlier(const float *p, const float *pi, const double d[3], double tol)
+/* Whether p lies within tol of the line through `a` along unit direction d. */
+static int is_inlier(const float *p, const double a[3], const double d[3], double tol)
 {
-    double e[3] = {p[0] - pi[0], p[1] - pi[1], p[2] - pi[2]};
+    double e[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
     double t = e[0] * d[0] + e[1] * d[1] + e[2] * d[2];
     return e[0] * e[0] + e[1] * e[1] + e[2] * e[2] - t * t <= tol * tol;
 }
@@ -86,6 +92,7 @@ static size_t robust_line(const float *fxyz, const uint32_t *idx, size_t got, co
                           double tol, double r_c[3], double r_dir[3])
 {
     double best_dir[3] = {0, 0, 0};
+    const double pid[3] = {pi[0], pi[1], pi[2]};
     size_t best = 0;
     for (size_t cand = got / 4; cand < got; cand += 2) {
         const float *q = fxyz + 3 * (size_t)idx[cand];
@@ -94,29 +101,42 @@ static size_t robust_line(const float *fxyz, const uint32_t *idx, size_t got, co
         if (!(l > 0)) continue;
         d[0] /= l; d[1] /= l; d[2] /= l;
         size_t in = 0;
-        for (size_t r = 0; r < got; r++) in += is_inlier(fxyz + 3 * (size_t)idx[r], pi, d, tol);
+        for (size_t r = 0; r < got; r++) in += is_inlier(fxyz + 3 * (size_t)idx[r], pid, d, tol);
         if (in > best) { best = in; memcpy(best_dir, d, sizeof d); }
     }
     if (best < 3) return 0;
-    double c[3] = {0, 0, 0}, cov[3][3] = {{0}};
-    for (size_t r = 0; r < got; r++) {
-        const float *p = fxyz + 3 * (size_t)idx[r];
-        if (is_inlier(p, pi, best_dir, tol)) for (int a = 0; a < 3; a++) c[a] += p[a];
+    /* least-squares line of the inliers, refined twice with the inliers of the fitted line itself
+     * (a candidate through the point is slightly tilted inside a feature band several points
+     * wide; its refit converges to the band's axis) */
+    double c[3], d[3] = {best_dir[0], best_dir[1], best_dir[2]}, ac[3] = {pi[0], pi[1], pi[2]};
+    size_t in = 0;
+    for (int pass = 0; pass < 3; pass++) {
+        double cov[3][3] = {{0}}, s[3] = {0, 0, 0};
+        in = 0;
+        for (size_t r = 0; r < got; r++) {
+            const float *p = fxyz + 3 * (size_t)idx[r];
+            if (!is_inlier(p, ac, d, tol)) continue;
+            for (int a = 0; a < 3; a++) s[a] += p[a];
+            in++;
+        }
+        if (in < 3) return 0;
+        for (int a = 0; a < 3; a++) c[a] = s[a] / (double)in;
+        for (size_t r = 0; r < got; r++) {
+            const float *p = fxyz + 3 * (size_t)idx[r];
+            if (!is_inlier(p, ac, d, tol)) continue;
+            double f[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+            for (int x = 0; x < 3; x++)
+                for (int y = 0; y < 3; y++) cov[x][y] += f[x] * f[y];
+        }
+        double w[3], v[3][3];
+        pnpr_eigen_sym3(cov, w, v);
+        if (!(w[2] > 0)) return 0;
+        memcpy(d, v[2], sizeof d);
+        memcpy(ac, c, sizeof ac);
     }
-    for (int a = 0; a < 3; a++) c[a] /= (double)best;
-    for (size_t r = 0; r < got; r++) {
-        const float *p = fxyz + 3 * (size_t)idx[r];
-        if (!is_inlier(p, pi, best_dir, tol)) continue;
-        double e[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-        for (int x = 0; x < 3; x++)
-            for (int y = 0; y < 3; y++) cov[x][y] += e[x] * e[y];
-    }
-    double w[3], v[3][3];
-    pnpr_eigen_sym3(cov, w, v);
-    if (!(w[2] > 0)) return 0;
     memcpy(r_c, c, sizeof c);
-    memcpy(r_dir, v[2], sizeof v[2]);
-    return best;
+    memcpy(r_dir, d, sizeof d);
+    return in;
 }
 
 static void classify_range(void *ctx, size_t begin, size_t end)

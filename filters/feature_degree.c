@@ -25,12 +25,14 @@
 #include "../core/internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 
-#define GEO_SCALE 0.05   /* Laplacian of surface variation that counts as a full feature */
+#define GEO_SCALE 0.02   /* Laplacian of the smoothed surface variation that counts as a full feature */
 #define COLOR_SCALE 0.5  /* RGB change (0..sqrt 3) across a neighbourhood that counts as full */
 
 typedef struct degree_job {
-    const float *xyz, *normals, *err;
+    const float *xyz, *normals, *err, *raw_err;
+    float *smooth_out;
     const uint8_t *rgb;
     const uint32_t *knn;
     size_t k;
@@ -108,6 +110,23 @@ static double color_term(const degree_job *j, size_t i, const uint32_t *row)
     return clamp01(sqrt(g2) * r_rms / COLOR_SCALE);
 }
 
+/* Box filter of the fit error over each neighbourhood (the point included). */
+static void smooth_range(void *ctx, size_t begin, size_t end)
+{
+    const degree_job *j = ctx;
+    for (size_t i = begin; i < end; i++) {
+        const uint32_t *row = j->knn + i * j->k;
+        double sum = 0;
+        size_t m = 0;
+        for (size_t r = 0; r < j->k; r++) {
+            if (row[r] == PNPR_INDEX_NONE) continue;
+            sum += j->raw_err[row[r]];
+            m++;
+        }
+        j->smooth_out[i] = m ? (float)(sum / (double)m) : j->raw_err[i];
+    }
+}
+
 static void degree_range(void *ctx, size_t begin, size_t end)
 {
     const degree_job *j = ctx;
@@ -138,6 +157,11 @@ pnpr_status pnpr_feature_degree(const float *xyz, const uint8_t *rgb, const floa
     if (!rgb) wc = 0;
     if (wg + wc == 0) wg = 1; /* colour-only weights on a colourless cloud: geometry decides */
     double s = wg + wc;
-    degree_job j = {xyz, normals, fit_error, rgb, knn, k, wg / s, wc / s, r_degree};
-    return pnpr_parallel_for(count, 2048, threads, degree_range, &j, NULL, "feature degree");
+    float *smooth = malloc((count ? count : 1) * sizeof *smooth);
+    if (!smooth) return PNPR_ERR_OUT_OF_MEMORY;
+    degree_job j = {xyz, normals, smooth, fit_error, smooth, rgb, knn, k, wg / s, wc / s, r_degree};
+    pnpr_status st = pnpr_parallel_for(count, 2048, threads, smooth_range, &j, NULL, "feature degree");
+    if (st == PNPR_OK) st = pnpr_parallel_for(count, 2048, threads, degree_range, &j, NULL, "feature degree");
+    free(smooth);
+    return st;
 }

@@ -99,9 +99,10 @@ pnpr_status pnpr_orient_normals(const float *xyz, size_t count, const uint32_t *
                                 const double *viewpoint, float *normals);
 
 /* Feature degree in [0,1] = w_g * G + w_c * C (weights normalised), see docs/features.md:
- *   G = min(1, max(0, e_i - mean_{j in N(i)} e_j) / 0.05): positive part of the discrete
- *       Laplacian of the fit error e (an edge filter whose response peaks on the crest of the
- *       error ridge that a crease produces; uniform error, as on a sphere, gives 0);
+ *   G = min(1, max(0, s_i - mean_{j in N(i)} s_j) / 0.02), s = e averaged over each
+ *       neighbourhood: positive part of the Laplacian of the smoothed fit error e (an edge
+ *       filter whose response peaks on the crest of the error ridge that a crease produces;
+ *       uniform error, as on a sphere, gives 0);
  *   C = min(1, |grad c| * r_i / 0.5): least-squares gradient of the RGB colour (0..1 per
  *       channel) in the tangent plane, times the RMS neighbour distance r_i = colour change across
  *       the neighbourhood. rgb may be NULL (then C = 0 and w_g = 1). */
