@@ -1,0 +1,181 @@
+/* pointnpr — render.h: the PointWorks renderer (Xu, Gossett & Chen, sections 4.3-5.1) for an
+ * OpenGL 3.3 core context, plus a headless EGL context and PNG output for the CLI and tests.
+ * Library target `pointnpr_render` (links libepoxy and libpng; the core `pointnpr` stays GL-free).
+ *
+ * Model:
+ *   - A pnpr_renderer is created in the caller's *current* GL 3.3+ core context and owns its GL
+ *     objects (programs, buffers, VAOs, textures, its framebuffer). Call every function with that
+ *     context current. No global state: two renderers in two contexts are independent.
+ *   - pnpr_renderer_set_cloud uploads a cloud: per-point disk radius from the local point spacing,
+ *     classes/directions from the feature properties (when present) and the continuous
+ *     resolution queue order (a seeded random permutation per group, computed once).
+ *   - pnpr_renderer_draw renders one frame into the renderer's own framebuffer (two passes: an
+ *     opaque depth-only visibility mask, then the styled primitives depth-tested against it with
+ *     blending and no depth writes) and composites it into the target framebuffer. Every piece of
+ *     host GL state it touches is saved before and restored after (docs/rendering.md lists it).
+ * docs/rendering.md documents every choice the paper leaves open. */
+#ifndef POINTNPR_RENDER_H
+#define POINTNPR_RENDER_H
+
+#include "cloud.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- continuous resolution queue (pure CPU, no GL) ------------------------------------------ */
+
+/* The queue order: a permutation of 0..count-1 grouped by `group` (group g's points come before
+ * group g+1's; groups are 0..group_count-1, points with group >= group_count go last, in
+ * their own group) and randomly shuffled inside each group with a generator seeded by `seed`
+ * (same inputs, same order, on every machine). group may be NULL (one group).
+ * r_group_start (optional, group_count + 2 entries) receives where each group starts, the
+ * "other" group last, then count. */
+pnpr_status pnpr_crq_order(size_t count, const uint8_t *group, uint32_t group_count,
+                           uint64_t seed, uint32_t *r_order, size_t *r_group_start);
+
+/* How many points of each group a frame draws: `total` points shared among the groups in
+ * proportion to their sizes (floor, then the largest remainders, ties to the lower group), so
+ * that the counts sum to min(total, sum of sizes) exactly. */
+void pnpr_crq_split(const size_t *group_size, size_t group_count, size_t total, size_t *r_draw);
+
+/* ---- camera --------------------------------------------------------------------------------- */
+
+typedef struct pnpr_camera {
+    double eye[3], target[3], up[3]; /* look-at in world coordinates (double) */
+    float fov_y_deg;                 /* vertical field of view; 0 = 45 */
+    float near_plane, far_plane;     /* 0 = automatic from the cloud's bounds */
+} pnpr_camera;
+
+/* A camera that frames the cloud's finite bounding box from `dir` (world direction from the
+ * target towards the eye; NULL = the default view (0, -1, 0.5), i.e. from the front, slightly
+ * above, z up), with the vertical fov (0 = 45) and the image aspect width/height (0 = 1).
+ * PNPR_ERR_EMPTY when the cloud has no finite point. */
+pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float fov_y_deg,
+                            float aspect, pnpr_camera *r_camera);
+
+/* ---- renderer ------------------------------------------------------------------------------- */
+
+typedef struct pnpr_renderer pnpr_renderer;
+
+typedef enum pnpr_style {
+    PNPR_STYLE_POINTS = 0, /* plain round splats in the point colour (baseline, single pass) */
+    PNPR_STYLE_SKETCHY,    /* PointWorks sketch: strokes along feature directions + hatches */
+    PNPR_STYLE_COUNT_
+} pnpr_style;
+
+/* The sketchy variants of the paper's figure 9. */
+typedef enum pnpr_sketch_variant {
+    PNPR_SKETCH_ALL = 0,            /* (c) directional strokes + non-directional + dithering hatches */
+    PNPR_SKETCH_DIRECTIONAL,        /* (a) directional strokes only */
+    PNPR_SKETCH_NONDIRECTIONAL,     /* (b) directional strokes + non-directional hatches */
+    PNPR_SKETCH_COUNT_
+} pnpr_sketch_variant;
+
+typedef enum pnpr_composite {
+    PNPR_COMPOSITE_REPLACE = 0, /* the target's pixels in the viewport become the frame's */
+    PNPR_COMPOSITE_OVER,        /* the frame (premultiplied alpha) over the target's pixels */
+    PNPR_COMPOSITE_COUNT_
+} pnpr_composite;
+
+typedef struct pnpr_renderer_options {
+    int reserved; /* nothing yet; zero */
+} pnpr_renderer_options;
+
+typedef struct pnpr_upload_options {
+    uint32_t spacing_k; /* disk radius of point i = distance to its spacing_k-th nearest other
+                         * point (0 = 4), capped at 4x the median; see docs/rendering.md */
+    uint64_t seed;      /* continuous resolution queue seed (0 is a valid seed) */
+    int ignore_features; /* treat the cloud as if it had no feature properties */
+    int threads;        /* kNN threads; 0 = all cores */
+} pnpr_upload_options;
+
+/* Per-frame options; zero = documented default. Colours are linear 0..1 RGBA. */
+typedef struct pnpr_draw_options {
+    pnpr_style style;
+    pnpr_sketch_variant sketch_variant;
+    float background[4];   /* clear colour of the frame (zero = transparent black) */
+    size_t budget;         /* at most this many points per frame (0 = no limit) */
+    float density;         /* at most density * (screen pixels covered by the cloud's projected
+                            * bounding box) points per frame (0 = no limit) */
+    float point_scale;     /* multiplies the disk radii (0 = 1) */
+    float mask_scale;      /* visibility-mask disks = point_scale * mask_scale * radius (0 = 1.5) */
+    float stroke_length;   /* directional stroke length in disk radii (0 = 6); hatches are half */
+    float stroke_width;    /* stroke width in pixels (0 = 2) */
+    int stroke_texture;    /* 0, 1, 2: the three directional stroke textures (paper fig. 5 a-c) */
+    float ink[4];          /* stroke colour (zero = opaque near-black 0.08,0.08,0.1,1) */
+    int ink_from_points;   /* strokes take the point colour instead of `ink` */
+    pnpr_composite composite;
+} pnpr_draw_options;
+
+/* Where the frame goes: framebuffer object `framebuffer` (0 = the default framebuffer) and the
+ * rectangle (x, y, width, height) in its pixels. The frame is rendered at width x height.
+ * offscreen != 0: render into the renderer's own framebuffer only (no composite; headless
+ * snapshots read it back with pnpr_renderer_read_frame); framebuffer, x and y are then unused. */
+typedef struct pnpr_target {
+    uint32_t framebuffer;
+    int x, y, width, height;
+    int offscreen;
+} pnpr_target;
+
+typedef struct pnpr_render_stats {
+    size_t points_total;   /* points uploaded (finite ones) */
+    size_t points_drawn;   /* queue prefix drawn this frame (pass 2 and the mask alike) */
+    size_t strokes_drawn;  /* sketchy: primitives of pass 2 */
+    double coverage_px;    /* screen pixels covered by the projected bounding box */
+} pnpr_render_stats;
+
+/* Needs a current GL 3.3+ core context (else PNPR_ERR_UNSUPPORTED with the reason in err).
+ * opts may be NULL. */
+pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_renderer **r_renderer,
+                                 pnpr_error *err);
+/* Deletes the GL objects (its context must be current) and frees the renderer. NULL ok. */
+void pnpr_renderer_destroy(pnpr_renderer *renderer);
+
+/* Uploads a cloud (replacing the previous one). Points with NaN/Inf coordinates are dropped.
+ * An empty (or all-NaN) cloud is valid: frames then show only the background.
+ * Features are taken from feature_class (+ feature_dir_x/y/z) when present. */
+pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *renderer, const pnpr_cloud *cloud,
+                                    const pnpr_upload_options *opts, pnpr_error *err);
+
+/* Renders one frame. camera NULL = pnpr_camera_fit of the uploaded cloud for the target's
+ * aspect. PNPR_ERR_NOT_FOUND when the style needs features the cloud does not carry;
+ * PNPR_ERR_INVALID_ARGUMENT for a zero/negative size or bad option; PNPR_ERR_NUMERIC for a
+ * non-finite or degenerate camera. stats may be NULL. */
+pnpr_status pnpr_renderer_draw(pnpr_renderer *renderer, const pnpr_camera *camera,
+                               const pnpr_draw_options *opts, const pnpr_target *target,
+                               pnpr_render_stats *r_stats, pnpr_error *err);
+
+/* Copies the last frame (width*height*4 bytes, RGBA8, top row first). unpremultiply: colours of
+ * partly transparent pixels divided by alpha (for PNGs with alpha). */
+pnpr_status pnpr_renderer_read_frame(pnpr_renderer *renderer, uint8_t *r_rgba, int unpremultiply);
+/* Size of the last frame (0 x 0 before the first draw). */
+void pnpr_renderer_frame_size(const pnpr_renderer *renderer, int *r_width, int *r_height);
+
+/* Whether the uploaded cloud carries the feature properties (class and direction). */
+int pnpr_renderer_has_features(const pnpr_renderer *renderer);
+
+const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy"; "" if invalid */
+pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
+int pnpr_style_needs_features(pnpr_style style);
+
+/* ---- headless context and PNG (CLI, tests, snapshots) --------------------------------------- */
+
+typedef struct pnpr_gl_context pnpr_gl_context;
+
+/* An OpenGL 3.3+ core context without window system (EGL, EGL_MESA_platform_surfaceless), made
+ * current on the calling thread. It has no default framebuffer: render into a pnpr_renderer (whose
+ * frame is read back) or an FBO. PNPR_ERR_UNSUPPORTED with the reason when libEGL, the platform
+ * or GL 3.3 is not available. */
+pnpr_status pnpr_gl_context_create(pnpr_gl_context **r_context, pnpr_error *err);
+pnpr_status pnpr_gl_context_make_current(pnpr_gl_context *context);
+void pnpr_gl_context_destroy(pnpr_gl_context *context); /* releases it if current; NULL ok */
+
+/* Writes RGBA8 pixels (top row first) as an 8-bit PNG, RGB or RGBA (alpha != 0). */
+pnpr_status pnpr_write_png(const char *path, const uint8_t *rgba, int width, int height,
+                           int alpha, pnpr_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,160 @@
+/* Camera: auto-fit and the look-at / perspective matrices (in double, relative to the cloud's
+ * origin, then converted to float). */
+#include "render_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+static const double PNPR_PI = 3.14159265358979323846;
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void cross3(const double a[3], const double b[3], double r[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+static double normalize3(double v[3])
+{
+    double l = sqrt(dot3(v, v));
+    if (l > 0 && isfinite(l)) { v[0] /= l; v[1] /= l; v[2] /= l; }
+    return l;
+}
+
+pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float fov_y_deg,
+                            float aspect, pnpr_camera *r_camera)
+{
+    if (!cloud || !r_camera) return PNPR_ERR_INVALID_ARGUMENT;
+    float bmin[3], bmax[3];
+    if (pnpr_cloud_bounds(cloud, bmin, bmax) == 0) return PNPR_ERR_EMPTY;
+    if (!(fov_y_deg > 0 && fov_y_deg < 179)) fov_y_deg = 45;
+    if (!(aspect > 0) || !isfinite(aspect)) aspect = 1;
+    double d[3] = {0, -1, 0.5};
+    if (dir) { d[0] = dir[0]; d[1] = dir[1]; d[2] = dir[2]; }
+    if (!(normalize3(d) > 0)) { d[0] = 0; d[1] = -1; d[2] = 0.5; normalize3(d); }
+    double c[3];
+    for (int a = 0; a < 3; a++) c[a] = 0.5 * ((double)bmin[a] + (double)bmax[a]);
+    /* camera basis: right s, up u, towards the eye d */
+    double up0[3] = {0, 0, 1};
+    if (fabs(d[2]) > 0.999) { up0[0] = 0; up0[1] = 1; up0[2] = 0; }
+    double s[3], u[3], f[3] = {-d[0], -d[1], -d[2]};
+    cross3(f, up0, s);
+    normalize3(s);
+    cross3(s, f, u);
+    /* the nearest distance (along d, from the box centre) at which all 8 corners are inside
+     * the frustum: corner at (x, y) across and z towards the eye needs
+     * dist >= z + |x| / tan(half_x) and dist >= z + |y| / tan(half_y) */
+    double tan_y = tan(0.5 * fov_y_deg * PNPR_PI / 180.0), tan_x = tan_y * aspect;
+    double dist = 0, extent = 0;
+    for (int k = 0; k < 8; k++) {
+        double p[3] = {((k & 1) ? bmax[0] : bmin[0]) - c[0], ((k & 2) ? bmax[1] : bmin[1]) - c[1],
+                       ((k & 4) ? bmax[2] : bmin[2]) - c[2]};
+        double x = fabs(dot3(p, s)), y = fabs(dot3(p, u)), z = dot3(p, d);
+        double need = z + (x / tan_x > y / tan_y ? x / tan_x : y / tan_y);
+        if (need > dist) dist = need;
+        double e = sqrt(dot3(p, p));
+        if (e > extent) extent = e;
+    }
+    if (!(extent > 0)) { extent = 1; dist = 1 / tan_y; } /* a single point */
+    dist *= 1.04; /* a small margin */
+    if (dist < extent * 1.01) dist = extent * 1.01; /* keep the eye outside the box */
+    memset(r_camera, 0, sizeof *r_camera);
+    for (int a = 0; a < 3; a++) {
+        r_camera->target[a] = cloud->origin[a] + c[a];
+        r_camera->eye[a] = r_camera->target[a] + d[a] * dist;
+    }
+    memcpy(r_camera->up, up0, sizeof up0);
+    r_camera->fov_y_deg = fov_y_deg;
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_frame_camera_make(const pnpr_camera *cam, const double origin[3],
+                                   const float bmin[3], const float bmax[3], int have_box,
+                                   int width, int height, pnpr_frame_camera *r, pnpr_error *err)
+{
+    double eye[3], f[3], up[3];
+    for (int a = 0; a < 3; a++) {
+        if (!isfinite(cam->eye[a]) || !isfinite(cam->target[a]) || !isfinite(cam->up[a]))
+            return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera: eye, target and up must be finite");
+        eye[a] = cam->eye[a] - origin[a]; /* in double: origins may be ~1e6 */
+        f[a] = (cam->target[a] - origin[a]) - eye[a];
+        up[a] = cam->up[a];
+    }
+    if (!(normalize3(f) > 0))
+        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera: eye and target are the same point");
+    double s[3], u[3];
+    cross3(f, up, s);
+    if (!(normalize3(s) > 1e-12))
+        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera: up is zero or parallel to the view direction");
+    cross3(s, f, u);
+    float fov = cam->fov_y_deg;
+    if (fov == 0) fov = 45;
+    if (!(fov > 0 && fov < 179))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "camera: fov %g is not in (0, 179) degrees", (double)fov);
+    double view[16] = {
+        s[0], u[0], -f[0], 0,
+        s[1], u[1], -f[1], 0,
+        s[2], u[2], -f[2], 0,
+        -dot3(s, eye), -dot3(u, eye), dot3(f, eye), 1};
+    double n = cam->near_plane, fa = cam->far_plane;
+    if (!(n > 0) || !(fa > n)) {
+        /* automatic: the depth range of the box corners along the view direction */
+        double dmin = INFINITY, dmax = -INFINITY;
+        if (have_box) {
+            for (int k = 0; k < 8; k++) {
+                double p[3] = {(k & 1) ? bmax[0] : bmin[0], (k & 2) ? bmax[1] : bmin[1],
+                               (k & 4) ? bmax[2] : bmin[2]};
+                double d = (p[0] - eye[0]) * f[0] + (p[1] - eye[1]) * f[1] + (p[2] - eye[2]) * f[2];
+                if (d < dmin) dmin = d;
+                if (d > dmax) dmax = d;
+            }
+        }
+        if (!(dmax > 0)) { dmin = 0.1; dmax = 1; } /* nothing in front: any valid range */
+        double far_auto = dmax * 1.05 + 1e-6;
+        double near_auto = dmin * 0.95;
+        if (near_auto < far_auto * 1e-4) near_auto = far_auto * 1e-4;
+        if (!(n > 0)) n = near_auto;
+        if (!(fa > n)) fa = far_auto > n ? far_auto : n * 1e4;
+    }
+    double t = 1.0 / tan(0.5 * fov * PNPR_PI / 180.0);
+    double aspect = (double)width / (double)height;
+    double proj[16] = {0};
+    proj[0] = t / aspect;
+    proj[5] = t;
+    proj[10] = -(fa + n) / (fa - n);
+    proj[11] = -1;
+    proj[14] = -2 * fa * n / (fa - n);
+    for (int i = 0; i < 16; i++) { r->view[i] = (float)view[i]; r->proj[i] = (float)proj[i]; }
+    r->pixels_per_unit = (float)(t * height * 0.5);
+    r->near_plane = n;
+    r->far_plane = fa;
+    return PNPR_OK;
+}
+
+double pnpr_box_coverage(const pnpr_frame_camera *fc, const float bmin[3], const float bmax[3],
+                         int width, int height)
+{
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (int k = 0; k < 8; k++) {
+        double p[4] = {(k & 1) ? bmax[0] : bmin[0], (k & 2) ? bmax[1] : bmin[1],
+                       (k & 4) ? bmax[2] : bmin[2], 1};
+        double e[4] = {0}, c[4] = {0};
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) e[i] += (double)fc->view[j * 4 + i] * p[j];
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) c[i] += (double)fc->proj[j * 4 + i] * e[j];
+        if (!(c[3] > 1e-9)) return (double)width * height; /* behind the eye: assume all */
+        double x = (c[0] / c[3] * 0.5 + 0.5) * width, y = (c[1] / c[3] * 0.5 + 0.5) * height;
+        if (x < x0) x0 = x;
+        if (x > x1) x1 = x;
+        if (y < y0) y0 = y;
+        if (y > y1) y1 = y;
+    }
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > width) x1 = width;
+    if (y1 > height) y1 = height;
+    if (!(x1 > x0) || !(y1 > y0)) return 0;
+    double a = (x1 - x0) * (y1 - y0);
+    return a < 1 ? 1 : a;
+}

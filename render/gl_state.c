@@ -1,0 +1,120 @@
+#include "gl_state.h"
+
+const GLenum pnpr_gl_state_enables[PNPR_GL_STATE_ENABLES] = {
+    GL_SCISSOR_TEST, GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_STENCIL_TEST,
+    GL_PROGRAM_POINT_SIZE, GL_FRAMEBUFFER_SRGB, GL_POLYGON_OFFSET_FILL,
+    GL_SAMPLE_ALPHA_TO_COVERAGE, GL_SAMPLE_COVERAGE, GL_COLOR_LOGIC_OP, GL_DEPTH_CLAMP,
+    GL_RASTERIZER_DISCARD, GL_MULTISAMPLE};
+
+void pnpr_gl_state_save(pnpr_gl_state *s)
+{
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_fbo);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_fbo);
+    glGetIntegerv(GL_RENDERBUFFER_BINDING, &s->renderbuffer);
+    glGetIntegerv(GL_VIEWPORT, s->viewport);
+    for (int i = 0; i < PNPR_GL_STATE_ENABLES; i++) s->enabled[i] = glIsEnabled(pnpr_gl_state_enables[i]);
+    glGetIntegerv(GL_DEPTH_FUNC, &s->depth_func);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &s->depth_mask);
+    glGetBooleanv(GL_COLOR_WRITEMASK, s->color_mask);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &s->blend_src_rgb);
+    glGetIntegerv(GL_BLEND_DST_RGB, &s->blend_dst_rgb);
+    glGetIntegerv(GL_BLEND_SRC_ALPHA, &s->blend_src_alpha);
+    glGetIntegerv(GL_BLEND_DST_ALPHA, &s->blend_dst_alpha);
+    glGetIntegerv(GL_BLEND_EQUATION_RGB, &s->blend_eq_rgb);
+    glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &s->blend_eq_alpha);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, s->clear_color);
+    glGetFloatv(GL_DEPTH_CLEAR_VALUE, &s->clear_depth);
+    GLint pm[4] = {GL_FILL, GL_FILL, GL_FILL, GL_FILL};
+    glGetIntegerv(GL_POLYGON_MODE, pm);
+    s->polygon_mode[0] = pm[0];
+    s->polygon_mode[1] = pm[1];
+    glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
+    glActiveTexture(GL_TEXTURE0);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->tex_2d);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &s->tex_2d_array);
+    glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler);
+    glGetIntegerv(GL_PACK_ALIGNMENT, &s->pack[0]);
+    glGetIntegerv(GL_PACK_ROW_LENGTH, &s->pack[1]);
+    glGetIntegerv(GL_PACK_SKIP_PIXELS, &s->pack[2]);
+    glGetIntegerv(GL_PACK_SKIP_ROWS, &s->pack[3]);
+    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &s->pack[4]);
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &s->unpack[0]);
+    glGetIntegerv(GL_UNPACK_ROW_LENGTH, &s->unpack[1]);
+    glGetIntegerv(GL_UNPACK_SKIP_PIXELS, &s->unpack[2]);
+    glGetIntegerv(GL_UNPACK_SKIP_ROWS, &s->unpack[3]);
+    glGetIntegerv(GL_UNPACK_SKIP_IMAGES, &s->unpack[4]);
+    glGetIntegerv(GL_UNPACK_IMAGE_HEIGHT, &s->unpack[5]);
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &s->unpack[6]);
+    glActiveTexture((GLenum)s->active_texture);
+}
+
+void pnpr_gl_state_neutral(void)
+{
+    for (int i = 0; i < PNPR_GL_STATE_ENABLES; i++) {
+        GLenum cap = pnpr_gl_state_enables[i];
+        if (cap == GL_PROGRAM_POINT_SIZE) glEnable(cap);
+        else glDisable(cap);
+    }
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBlendEquation(GL_FUNC_ADD);
+    glActiveTexture(GL_TEXTURE0);
+    glBindSampler(0, 0);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+    glPixelStorei(GL_UNPACK_SKIP_IMAGES, 0);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
+}
+
+void pnpr_gl_state_restore(const pnpr_gl_state *s)
+{
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fbo);
+    glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)s->renderbuffer);
+    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    for (int i = 0; i < PNPR_GL_STATE_ENABLES; i++) {
+        if (s->enabled[i]) glEnable(pnpr_gl_state_enables[i]);
+        else glDisable(pnpr_gl_state_enables[i]);
+    }
+    glDepthFunc((GLenum)s->depth_func);
+    glDepthMask(s->depth_mask);
+    glColorMask(s->color_mask[0], s->color_mask[1], s->color_mask[2], s->color_mask[3]);
+    glBlendFuncSeparate((GLenum)s->blend_src_rgb, (GLenum)s->blend_dst_rgb,
+                        (GLenum)s->blend_src_alpha, (GLenum)s->blend_dst_alpha);
+    glBlendEquationSeparate((GLenum)s->blend_eq_rgb, (GLenum)s->blend_eq_alpha);
+    glClearColor(s->clear_color[0], s->clear_color[1], s->clear_color[2], s->clear_color[3]);
+    glClearDepth(s->clear_depth);
+    /* core profiles have one polygon mode for both faces */
+    glPolygonMode(GL_FRONT_AND_BACK, (GLenum)s->polygon_mode[0]);
+    glUseProgram((GLuint)s->program);
+    glBindVertexArray((GLuint)s->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)s->tex_2d);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)s->tex_2d_array);
+    glBindSampler(0, (GLuint)s->sampler);
+    glActiveTexture((GLenum)s->active_texture);
+    glPixelStorei(GL_PACK_ALIGNMENT, s->pack[0]);
+    glPixelStorei(GL_PACK_ROW_LENGTH, s->pack[1]);
+    glPixelStorei(GL_PACK_SKIP_PIXELS, s->pack[2]);
+    glPixelStorei(GL_PACK_SKIP_ROWS, s->pack[3]);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)s->pack[4]);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, s->unpack[0]);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, s->unpack[1]);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, s->unpack[2]);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, s->unpack[3]);
+    glPixelStorei(GL_UNPACK_SKIP_IMAGES, s->unpack[4]);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, s->unpack[5]);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, (GLuint)s->unpack[6]);
+}

@@ -1,0 +1,37 @@
+/* Host GL state that the renderer touches: saved on entry to every renderer call that issues GL
+ * commands, restored on exit (docs/rendering.md lists it). */
+#ifndef PNPR_GL_STATE_H
+#define PNPR_GL_STATE_H
+
+#include <epoxy/gl.h>
+
+enum { PNPR_GL_STATE_ENABLES = 14 };
+
+typedef struct pnpr_gl_state {
+    GLint draw_fbo, read_fbo, renderbuffer;
+    GLint viewport[4];
+    GLboolean enabled[PNPR_GL_STATE_ENABLES];
+    GLint depth_func;
+    GLboolean depth_mask;
+    GLboolean color_mask[4];
+    GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha;
+    GLint blend_eq_rgb, blend_eq_alpha;
+    GLfloat clear_color[4];
+    GLfloat clear_depth;
+    GLint polygon_mode[2];
+    GLint program, vao, array_buffer;
+    GLint active_texture, tex_2d, tex_2d_array, sampler;
+    GLint pack[5];   /* alignment, row length, skip pixels, skip rows, pixel pack buffer */
+    GLint unpack[7]; /* alignment, row length, skip pixels, skip rows, skip images, image height, buffer */
+} pnpr_gl_state;
+
+/* The capabilities saved (and set to a known value while the renderer works). */
+extern const GLenum pnpr_gl_state_enables[PNPR_GL_STATE_ENABLES];
+
+void pnpr_gl_state_save(pnpr_gl_state *s);
+void pnpr_gl_state_restore(const pnpr_gl_state *s);
+/* Known state for the renderer's own work: no scissor/stencil/cull/etc., fill mode, texture
+ * unit 0 without sampler object, client-memory pixel transfers with alignment 1. */
+void pnpr_gl_state_neutral(void);
+
+#endif

@@ -1,0 +1,26 @@
+/* Internal helpers shared by the renderer sources (not installed). */
+#ifndef PNPR_RENDER_INTERNAL_H
+#define PNPR_RENDER_INTERNAL_H
+
+#include <pointnpr/render.h>
+
+/* Column-major 4x4 matrices (OpenGL layout): m[col * 4 + row]. */
+typedef struct pnpr_frame_camera {
+    float view[16], proj[16];
+    float pixels_per_unit; /* proj[1][1] * height / 2 */
+    double near_plane, far_plane;
+} pnpr_frame_camera;
+
+/* View and projection for `cam` relative to `origin` (eye - origin computed in double), with
+ * automatic near/far from the box [bmin, bmax] (offset coordinates) when the camera leaves
+ * them at 0. PNPR_ERR_NUMERIC for non-finite or degenerate cameras. */
+pnpr_status pnpr_frame_camera_make(const pnpr_camera *cam, const double origin[3],
+                                   const float bmin[3], const float bmax[3], int have_box,
+                                   int width, int height, pnpr_frame_camera *r, pnpr_error *err);
+
+/* Screen pixels covered by the projected box (clipped to the viewport); the whole viewport
+ * when a corner is behind the eye. */
+double pnpr_box_coverage(const pnpr_frame_camera *fc, const float bmin[3], const float bmax[3],
+                         int width, int height);
+
+#endif

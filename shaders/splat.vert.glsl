@@ -1,0 +1,29 @@
+#version 330 core
+// Round splats as GL points: pass 1 (visibility mask, depth only) and the `points` style.
+// Point size is perspective-correct: the disk's world diameter projected at the point's depth.
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in float a_radius;
+layout(location = 2) in vec4 a_color;
+
+uniform mat4 u_view;
+uniform mat4 u_proj;
+uniform float u_pixels_per_unit; // proj[1][1] * viewport height / 2: pixels per world unit at w = 1
+uniform float u_radius_scale;    // multiplies a_radius
+uniform float u_depth_push;      // eye-space push away from the viewer, in radii (mask pass)
+uniform float u_max_size;        // implementation's largest point size
+
+out vec4 v_color;
+
+void main()
+{
+    float r = a_radius * u_radius_scale;
+    vec4 eye = u_view * vec4(a_pos, 1.0);
+    vec4 clip = u_proj * eye;
+    float size = 2.0 * r * u_pixels_per_unit / max(clip.w, 1e-6);
+    gl_PointSize = clamp(size, 1.0, u_max_size);
+    eye.z -= u_depth_push * r; // the camera looks down -z
+    vec4 pushed = u_proj * eye;
+    // keep the disk's screen position, take the pushed depth
+    gl_Position = vec4(clip.xy / clip.w * pushed.w, pushed.z, pushed.w);
+    v_color = a_color;
+}

@@ -1,0 +1,19 @@
+#version 330 core
+in vec2 v_uv;
+in vec4 v_color;
+out vec4 o_color;
+
+uniform sampler2DArray u_strokes; // alpha of the stroke textures in .r, one layer each
+uniform float u_layer;
+uniform vec4 u_ink;               // rgba; used unless u_ink_from_points
+uniform int u_ink_from_points;
+
+void main()
+{
+    float a = texture(u_strokes, vec3(v_uv, u_layer)).r;
+    vec4 c = u_ink_from_points != 0 ? vec4(v_color.rgb, u_ink.a) : u_ink;
+    a *= c.a;
+    if (a <= 0.0)
+        discard;
+    o_color = vec4(c.rgb * a, a); // premultiplied; blended with (1, 1 - src alpha)
+}

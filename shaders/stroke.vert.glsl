@@ -1,0 +1,46 @@
+#version 330 core
+// Pass 2 of the sketchy style: one textured quad per point (instanced, 4 vertices as a strip).
+// u_mode 0: directional stroke along the point's feature direction projected to the screen;
+// u_mode 1: hatch in the constant screen direction of 45 degrees.
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in float a_radius;
+layout(location = 2) in vec4 a_color;
+layout(location = 3) in vec3 a_dir;
+
+uniform mat4 u_view;
+uniform mat4 u_proj;
+uniform vec2 u_viewport;          // frame size in pixels
+uniform float u_pixels_per_unit;  // proj[1][1] * viewport height / 2
+uniform float u_length;           // stroke length in disk radii
+uniform float u_width;            // stroke width in pixels
+uniform float u_radius_scale;
+uniform int u_mode;
+
+out vec2 v_uv;
+out vec4 v_color;
+
+void main()
+{
+    int corner = gl_VertexID & 3;
+    vec2 q = vec2((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0);
+    vec4 clip = u_proj * (u_view * vec4(a_pos, 1.0));
+    float w = max(clip.w, 1e-6);
+    vec2 axis = vec2(0.70710678, 0.70710678);
+    if (u_mode == 0) {
+        vec4 clip2 = u_proj * (u_view * vec4(a_pos + a_dir * a_radius, 1.0));
+        if (clip2.w > 1e-6) {
+            vec2 s = (clip2.xy / clip2.w - clip.xy / w) * u_viewport;
+            float len = length(s);
+            if (len > 1e-4)
+                axis = s / len;
+        }
+    }
+    float r = a_radius * u_radius_scale;
+    float half_len = max(0.5 * u_length * r * u_pixels_per_unit / w, 1.5);
+    float half_wid = 0.5 * u_width;
+    vec2 side = vec2(-axis.y, axis.x);
+    vec2 off_px = axis * (q.x * half_len) + side * (q.y * half_wid);
+    gl_Position = clip + vec4(off_px * 2.0 / u_viewport * clip.w, 0.0, 0.0);
+    v_uv = q * 0.5 + 0.5;
+    v_color = a_color;
+}

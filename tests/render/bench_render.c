@@ -1,0 +1,109 @@
+/* Renderer benchmark: ms/frame of each style against `points` on the same cloud and camera, in
+ * one run, headless (EGL surfaceless). Never run by ctest (timings are reported, not asserted).
+ *   bench_render [IN.ply] [--size WxH] [--frames N]
+ * Without IN: a generated 1M-point noisy cube with computed features. */
+#include "testutil.h"
+
+#include <pointnpr/features.h>
+#include <pointnpr/io.h>
+#include <pointnpr/render.h>
+
+#include <epoxy/gl.h>
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+int main(int argc, char **argv)
+{
+    const char *in = NULL;
+    int w = 1024, h = 768, frames = 7;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--size") && i + 1 < argc) { if (sscanf(argv[++i], "%dx%d", &w, &h) != 2) return 2; }
+        else if (!strcmp(argv[i], "--frames") && i + 1 < argc) frames = atoi(argv[++i]);
+        else in = argv[i];
+    }
+    if (frames < 1 || frames > 1000 || w < 1 || h < 1) return 2;
+    pnpr_cloud cloud = {0};
+    pnpr_error err = {0};
+    double t0 = now();
+    if (in) {
+        if (pnpr_read_file(in, NULL, &cloud, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
+    } else {
+        /* 6 faces of (1/h)^2 points: h = 1/408 gives 1,000,000 points (+ shared edges) */
+        static const double off[3] = {0, 0, 0};
+        if (pnpr_test_cube(&cloud, 1.0, 1.0 / 408, 0.0004, off, 11) != PNPR_OK) return 1;
+        pnpr_cloud_alloc_rgb(&cloud);
+        memset(cloud.rgb, 170, cloud.count * 3);
+    }
+    double t_read = now() - t0;
+    t0 = now();
+    if (!pnpr_cloud_find_property(&cloud, "feature_class")) {
+        pnpr_features_options fo = {0};
+        if (pnpr_compute_features(&cloud, &fo, NULL) != PNPR_OK) { fprintf(stderr, "features failed\n"); return 1; }
+    }
+    double t_feat = now() - t0;
+
+    pnpr_gl_context *ctx = NULL;
+    if (pnpr_gl_context_create(&ctx, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
+    pnpr_renderer *r = NULL;
+    if (pnpr_renderer_create(NULL, &r, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
+    t0 = now();
+    if (pnpr_renderer_set_cloud(r, &cloud, NULL, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
+    double t_upload = now() - t0;
+    static const double dir[3] = {1, -1.6, 1.1};
+    pnpr_camera cam;
+    pnpr_camera_fit(&cloud, dir, 45, (float)w / h, &cam);
+
+    const char *renderer_name = (const char *)glGetString(GL_RENDERER);
+    printf("cloud: %s, %zu points; %dx%d; %s; median of %d frames (after 1 warm-up)\n",
+           in ? in : "generated noisy cube", cloud.count, w, h, renderer_name ? renderer_name : "?", frames);
+    printf("read %.2f s, features %.2f s, upload (kNN spacing + queue) %.2f s\n", t_read, t_feat, t_upload);
+    printf("| style | points drawn | strokes | ms/frame | x points |\n|---|---:|---:|---:|---:|\n");
+    struct { const char *name; pnpr_style style; pnpr_sketch_variant v; } runs[] = {
+        {"points", PNPR_STYLE_POINTS, PNPR_SKETCH_ALL},
+        {"sketchy (a) directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL},
+        {"sketchy (b) + non-directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_NONDIRECTIONAL},
+        {"sketchy (c) + dithering", PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL},
+    };
+    double base = 0;
+    double *ms = malloc(sizeof(double) * (size_t)frames);
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+        pnpr_draw_options o;
+        memset(&o, 0, sizeof o);
+        o.style = runs[k].style;
+        o.sketch_variant = runs[k].v;
+        o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+        pnpr_target t = {0, 0, 0, w, h, 1};
+        pnpr_render_stats st;
+        for (int f = -1; f < frames; f++) {
+            glFinish();
+            double s = now();
+            if (pnpr_renderer_draw(r, &cam, &o, &t, &st, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
+            glFinish();
+            if (f >= 0) ms[f] = (now() - s) * 1e3;
+        }
+        qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
+        double med = ms[frames / 2];
+        if (k == 0) base = med;
+        printf("| %s | %zu | %zu | %.1f | %.2f |\n", runs[k].name, st.points_drawn, st.strokes_drawn, med, med / base);
+    }
+    free(ms);
+    pnpr_renderer_destroy(r);
+    pnpr_gl_context_destroy(ctx);
+    pnpr_cloud_free(&cloud);
+    return 0;
+}

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# pointnpr render end to end: PNG output (size, RGB / RGBA), the camera and budget options,
+# features computed on the fly for sketchy, exit codes for usage and runtime errors.
+#   bash cli_render.sh /path/to/pointnpr SCRATCH_DIR        (exit 77: no headless GL here)
+set -uo pipefail
+bin=$1
+dir=$2/cli_render
+rm -rf "$dir"; mkdir -p "$dir"
+fail=0
+check() { if ! eval "$1"; then echo "FAILED: $2" >&2; fail=1; fi; }
+# PNG header: width, height (big endian at bytes 16..23), colour type at byte 25 (2 RGB, 6 RGBA)
+png_w() { od -An -tu1 -j16 -N4 "$1" | awk '{print $1*16777216+$2*65536+$3*256+$4}'; }
+png_h() { od -An -tu1 -j20 -N4 "$1" | awk '{print $1*16777216+$2*65536+$3*256+$4}'; }
+png_type() { od -An -tu1 -j25 -N1 "$1" | tr -d ' '; }
+
+# a sampled cube (spacing 0.05) at a georeferenced offset, coloured
+awk 'BEGIN {
+  m = 20; h = 0.05; n = 0
+  for (i = 0; i <= m; i++) for (j = 0; j <= m; j++) for (k = 0; k <= m; k++) {
+    if (i > 0 && i < m && j > 0 && j < m && k > 0 && k < m) continue
+    line[n++] = sprintf("%.17g %.17g %.17g %d %d %d", 5123456.789 + i * h, 4012345.678 + j * h, 250.125 + k * h, 200, 100 + i * 5, 50)
+  }
+  print "ply"; print "format ascii 1.0"; print "element vertex " n
+  print "property double x"; print "property double y"; print "property double z"
+  print "property uchar red"; print "property uchar green"; print "property uchar blue"
+  print "end_header"
+  for (q = 0; q < n; q++) print line[q]
+}' > "$dir/cube.ply"
+
+"$bin" render "$dir/cube.ply" -o "$dir/points.png" --size 200x150 2> "$dir/log.txt"
+rc=$?
+if [ $rc -ne 0 ] && grep -q "headless OpenGL" "$dir/log.txt"; then
+  echo "cli_render: skipped: $(cat "$dir/log.txt")" >&2
+  exit 77
+fi
+check '[ $rc -eq 0 ]' "points render exits 0 ($(cat "$dir/log.txt"))"
+check '[ "$(head -c 8 "$dir/points.png" | od -An -tx1 | tr -d " ")" = "89504e470d0a1a0a" ]' "PNG signature"
+check '[ "$(png_w "$dir/points.png")" -eq 200 ] && [ "$(png_h "$dir/points.png")" -eq 150 ]' "PNG is 200x150"
+check '[ "$(png_type "$dir/points.png")" -eq 2 ]' "PNG is RGB without --alpha"
+check 'grep -q "points drawn" "$dir/log.txt"' "summary on stderr"
+
+# sketchy on a cloud without features: computed on the fly
+"$bin" render "$dir/cube.ply" -o "$dir/sketchy.png" --style sketchy --sketch b --size 160x120 --alpha 2> "$dir/log2.txt"
+check '[ $? -eq 0 ]' "sketchy render exits 0 ($(cat "$dir/log2.txt"))"
+check 'grep -q "computing them" "$dir/log2.txt"' "features computed for sketchy"
+check '[ "$(png_type "$dir/sketchy.png")" -eq 6 ]' "PNG is RGBA with --alpha"
+
+# explicit camera in world coordinates, budget, seed: deterministic
+for k in 1 2; do
+  "$bin" render "$dir/cube.ply" -o "$dir/cam$k.png" --size 120x90 --quiet --eye 5123459,4012342,252 \
+    --target 5123457.289,4012346.178,250.625 --up 0,0,1 --fov 50 --budget 2000 --seed 7 --background 0,0,64
+  check '[ $? -eq 0 ]' "camera render $k exits 0"
+done
+check 'cmp -s "$dir/cam1.png" "$dir/cam2.png"' "same input and seed give identical PNGs"
+
+# usage errors: 2
+for args in "" "$dir/cube.ply" "$dir/cube.ply -o $dir/x.png --style oil" "$dir/cube.ply -o $dir/x.png --size 0x10" \
+            "$dir/cube.ply -o $dir/x.png --eye 1,2,3" "$dir/cube.ply -o $dir/x.png --background 300,0,0" \
+            "$dir/cube.ply -o $dir/x.png --budget -5" "$dir/cube.ply -o $dir/x.png --sketch d" "$dir/cube.ply -o $dir/x.png --bogus"; do
+  "$bin" render $args > /dev/null 2>&1
+  rc=$?
+  check '[ $rc -eq 2 ]' "usage error exits 2: render $args (got $rc)"
+done
+# runtime errors: 1 with a message
+"$bin" render "$dir/missing.ply" -o "$dir/x.png" 2> "$dir/err.txt"
+check '[ $? -eq 1 ] && grep -q "pointnpr render:" "$dir/err.txt"' "missing input exits 1 with a message"
+"$bin" render "$dir/cube.ply" -o "$dir/no-such-dir/x.png" --quiet 2> "$dir/err2.txt"
+check '[ $? -eq 1 ] && grep -q "cannot write PNG" "$dir/err2.txt"' "unwritable output exits 1 with a message"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --quiet --eye 1,1,1 --target 1,1,1 2> "$dir/err3.txt"
+check '[ $? -eq 1 ] && grep -q "same point" "$dir/err3.txt"' "degenerate camera exits 1 with a message"
+# an empty cloud gives a background-only image
+printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n' > "$dir/empty.ply"
+"$bin" render "$dir/empty.ply" -o "$dir/empty.png" --size 32x32 --quiet --style sketchy
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/empty.png")" -eq 32 ]' "empty cloud renders the background"
+"$bin" render --help | grep -q "usage: pointnpr render"
+check '[ $? -eq 0 ]' "--help"
+exit $fail
