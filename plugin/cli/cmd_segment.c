@@ -1,9 +1,211 @@
-/* pointnpr segment (placeholder until it lands). */
+/* pointnpr segment IN -o OUT.ply: segments (3D JSEG, connected components, colour region growing,
+ * or labels imported from a property), optionally a level of the region hierarchy. */
 #include "cli.h"
+
+#include <pointnpr/segment.h>
+
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: pointnpr segment IN -o OUT.ply [--method jseg|components|rgbgrow|labels] [options]\n"
+            "  Writes every input property, in input order, plus per point `segment` (uint, 0..S-1)\n"
+            "  and seg_red/seg_green/seg_blue (uchar, the segment's mean colour; only when the input\n"
+            "  has colours). Points with non-finite coordinates share the last segment.\n"
+            "methods:\n"
+            "  jseg        3D JSEG colour segmentation (default; needs colours)\n"
+            "  components  connected components at a distance (--radius)\n"
+            "  rgbgrow     colour region growing (needs colours)\n"
+            "  labels      segments from a per-point property (--property, default 'segment')\n"
+            "options:\n"
+            "  --segments N     cut the region hierarchy (HSI colour, size rule) at N segments\n"
+            "  --threshold T    cut the region hierarchy where the HSI colour distance exceeds T\n"
+            "  --radius R       jseg: J neighbourhood radius; components/rgbgrow: neighbour distance\n"
+            "                   (default: 3 x the median point spacing)\n"
+            "  --min-size M     smaller segments merge into a neighbour\n"
+            "  --k N            neighbourhood size (jseg 24, rgbgrow 16)\n"
+            "  --classes C      jseg: colour classes of the quantiser (16)\n"
+            "  --property NAME  labels: the property to read\n"
+            "  --threads N, --ascii, --quiet\n");
+}
+
+static int parse_num(const char *s, double lo, double hi, double *r)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) return 0;
+    *r = v;
+    return 1;
+}
+
+static int is_int(double x) { return x == floor(x); }
+
 int cli_segment(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    fprintf(stderr, "pointnpr segment: not available yet in this build\n");
-    return 1;
+    const char *in = NULL, *out = NULL, *method = "jseg", *property = NULL;
+    double segments = 0, threshold = 0, radius = 0, min_size = 0, k = 0, classes = 0, threads = 0;
+    pnpr_write_options wo = {0};
+    int quiet = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
+        else if (!strcmp(a, "--quiet")) quiet = 1;
+        else if (!strcmp(a, "--ascii")) wo.encoding = PNPR_PLY_ASCII;
+        else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
+        else if (v && !strcmp(a, "--method")) {
+            if (strcmp(v, "jseg") && strcmp(v, "components") && strcmp(v, "rgbgrow") && strcmp(v, "labels")) {
+                fprintf(stderr, "pointnpr segment: --method wants jseg, components, rgbgrow or labels, got '%s'\n", v);
+                return 2;
+            }
+            method = v; i++;
+        } else if (v && !strcmp(a, "--property")) { property = v; i++; }
+        else if (v && !strcmp(a, "--segments")) {
+            if (!parse_num(v, 1, 4294967294.0, &segments) || !is_int(segments)) { fprintf(stderr, "pointnpr segment: --segments wants an integer >= 1, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--threshold")) {
+            if (!parse_num(v, 1e-9, 1e9, &threshold)) { fprintf(stderr, "pointnpr segment: --threshold wants a positive number, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--radius")) {
+            if (!parse_num(v, 1e-30, 1e30, &radius)) { fprintf(stderr, "pointnpr segment: --radius wants a positive number, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--min-size")) {
+            if (!parse_num(v, 1, 4294967295.0, &min_size) || !is_int(min_size)) { fprintf(stderr, "pointnpr segment: --min-size wants an integer >= 1, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--k")) {
+            if (!parse_num(v, 2, 256, &k) || !is_int(k)) { fprintf(stderr, "pointnpr segment: --k wants an integer in 2..256, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--classes")) {
+            if (!parse_num(v, 1, 255, &classes) || !is_int(classes)) { fprintf(stderr, "pointnpr segment: --classes wants an integer in 1..255, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--threads")) {
+            if (!parse_num(v, 1, 1024, &threads) || !is_int(threads)) { fprintf(stderr, "pointnpr segment: --threads wants an integer >= 1, got '%s'\n", v); return 2; }
+            i++;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "pointnpr segment: unknown option or missing value: %s\n", a);
+            usage(stderr);
+            return 2;
+        } else if (!in) in = a;
+        else { fprintf(stderr, "pointnpr segment: more than one input given ('%s')\n", a); return 2; }
+    }
+    if (!in || !out) { usage(stderr); return 2; }
+    if (segments > 0 && threshold > 0) { fprintf(stderr, "pointnpr segment: give --segments or --threshold, not both\n"); return 2; }
+    if (property && strcmp(method, "labels")) { fprintf(stderr, "pointnpr segment: --property needs --method labels\n"); return 2; }
+
+    cli_progress_state ps = {{0}, 0, 0};
+    pnpr_progress prog = {quiet ? NULL : cli_progress_stderr, &ps};
+    pnpr_read_options ro = {0};
+    ro.progress = prog;
+    wo.progress = prog;
+    pnpr_cloud cloud = {0};
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
+    if (st != PNPR_OK) { cli_report_error("segment", st, &err); return 1; }
+    int rc = 1;
+    uint32_t *labels = NULL, *knn = NULL;
+    pnpr_segment_merge *merges = NULL;
+    float *mean = NULL;
+    pnpr_kdtree *tree = NULL;
+    if (cloud.count && !cloud.rgb && (!strcmp(method, "jseg") || !strcmp(method, "rgbgrow"))) {
+        fprintf(stderr, "pointnpr segment: %s has no colours: --method %s needs them (use components or labels)\n", in, method);
+        goto done;
+    }
+    if (cloud.count && !cloud.rgb && (segments > 0 || threshold > 0)) {
+        fprintf(stderr, "pointnpr segment: %s has no colours: the region hierarchy (--segments/--threshold) needs them\n", in);
+        goto done;
+    }
+    labels = malloc((cloud.count ? cloud.count : 1) * sizeof *labels);
+    if (!labels) { st = PNPR_ERR_OUT_OF_MEMORY; goto fail; }
+    pnpr_segment_info info = {0};
+    if (!strcmp(method, "jseg")) {
+        pnpr_jseg_options o = {0};
+        o.k = (uint32_t)k; o.classes = (uint32_t)classes; o.radius = (float)radius;
+        o.min_size = (uint32_t)min_size; o.threads = (int)threads; o.progress = prog;
+        st = pnpr_segment_jseg(cloud.xyz, cloud.rgb, cloud.count, &o, labels, &info);
+    } else if (!strcmp(method, "components")) {
+        pnpr_components_options o = {0};
+        o.distance = (float)radius; o.min_size = (uint32_t)min_size; o.threads = (int)threads; o.progress = prog;
+        st = pnpr_segment_components(cloud.xyz, cloud.count, &o, labels, &info);
+    } else if (!strcmp(method, "rgbgrow")) {
+        pnpr_rgbgrow_options o = {0};
+        o.k = (uint32_t)k; o.distance = (float)radius; o.min_size = (uint32_t)min_size;
+        o.threads = (int)threads; o.progress = prog;
+        st = pnpr_segment_rgbgrow(cloud.xyz, cloud.rgb, cloud.count, &o, labels, &info);
+    } else {
+        const char *name = property ? property : "segment";
+        pnpr_property *p = pnpr_cloud_find_property(&cloud, name);
+        if (p) st = pnpr_segment_from_values(p->type, p->data, cloud.count, labels, &info.segment_count);
+        else if (cloud.label && (!strcmp(name, "segment") || !strcmp(name, "label")))
+            st = pnpr_segment_from_values(PNPR_TYPE_UINT32, cloud.label, cloud.count, labels, &info.segment_count);
+        else {
+            fprintf(stderr, "pointnpr segment: %s has no per-point property '%s'\n", in, name);
+            goto done;
+        }
+        info.invalid_segment = PNPR_LABEL_NONE;
+    }
+    if (st != PNPR_OK) goto fail;
+    uint32_t S = info.segment_count;
+    if ((segments > 0 || threshold > 0) && S > 1) {
+        /* the region hierarchy over the invalid-free segments (the invalid segment stays apart) */
+        uint32_t hs = info.invalid_segment != PNPR_LABEL_NONE ? S - 1 : S;
+        size_t kk = cloud.count > 10 ? 10 : cloud.count;
+        knn = malloc(cloud.count * kk * sizeof *knn);
+        merges = malloc((hs > 1 ? hs - 1 : 1) * sizeof *merges);
+        if (!knn || !merges) { st = PNPR_ERR_OUT_OF_MEMORY; goto fail; }
+        if ((st = pnpr_kdtree_build_threads(cloud.xyz, cloud.count, 0, (int)threads, &tree)) != PNPR_OK) goto fail;
+        pnpr_knn_options ko = {(int)threads, prog, 0};
+        if ((st = pnpr_knn_self(tree, cloud.count, kk, &ko, knn, NULL)) != PNPR_OK) goto fail;
+        pnpr_region_graph g = {knn, kk, kk};
+        pnpr_hierarchy_options ho = {0};
+        ho.progress = prog;
+        uint32_t nm = 0;
+        if ((st = pnpr_segment_hierarchy(cloud.rgb, cloud.count, &g, labels, hs, &ho, merges, &nm)) != PNPR_OK) goto fail;
+        uint32_t target = segments > 0 ? (uint32_t)segments : 0;
+        if (target && info.invalid_segment != PNPR_LABEL_NONE) target = target > 1 ? target - 1 : 1;
+        if ((st = pnpr_segment_hierarchy_cut(labels, cloud.count, hs, merges, nm, target, (float)threshold, labels, &S)) != PNPR_OK)
+            goto fail;
+        if (!quiet) fprintf(stderr, "hierarchy: %u regions, %u merges, cut at %u segments\n", hs, nm, S);
+    }
+    if (!quiet)
+        fprintf(stderr, "points %zu, method %s, %u segments%s\n", cloud.count, method, S,
+                info.invalid_segment != PNPR_LABEL_NONE ? " (the last one: points with non-finite coordinates)" : "");
+    if (!strcmp(method, "jseg") && !quiet)
+        fprintf(stderr, "  colour classes %u, mean J %.4f, seed regions %u, grown regions %u, %.3f s\n",
+                info.classes, info.mean_j, info.seed_regions, info.grown_regions, info.seconds);
+
+    if ((st = pnpr_cloud_alloc_labels(&cloud)) != PNPR_OK) goto fail;
+    if (cloud.count) memcpy(cloud.label, labels, cloud.count * sizeof *labels);
+    if (cloud.rgb) {
+        mean = malloc(3 * (size_t)(S ? S : 1) * sizeof *mean);
+        if (!mean) { st = PNPR_ERR_OUT_OF_MEMORY; goto fail; }
+        if ((st = pnpr_segment_mean_colors(cloud.rgb, labels, cloud.count, S, mean, NULL)) != PNPR_OK) goto fail;
+        static const char *names[3] = {"seg_red", "seg_green", "seg_blue"};
+        for (int c = 0; c < 3; c++) {
+            pnpr_property *p = NULL;
+            if ((st = pnpr_cloud_add_property(&cloud, names[c], PNPR_TYPE_UINT8, &p)) != PNPR_OK) goto fail;
+            uint8_t *d = p->data;
+            for (size_t i = 0; i < cloud.count; i++) d[i] = (uint8_t)(mean[3 * (size_t)labels[i] + c] + 0.5f);
+        }
+    }
+    char comment[256];
+    snprintf(comment, sizeof comment, "pointnpr segment method=%s segments=%u", method, S);
+    wo.comment = comment;
+    st = pnpr_write_file(out, &cloud, &wo, &err);
+    if (st != PNPR_OK) { cli_report_error("segment", st, &err); goto done; }
+    if (!quiet) fprintf(stderr, "wrote %s\n", out);
+    rc = 0;
+    goto done;
+fail:
+    fprintf(stderr, "pointnpr segment: %s: %s\n", in, pnpr_status_string(st));
+done:
+    pnpr_kdtree_free(tree);
+    free(labels); free(knn); free(merges); free(mean);
+    pnpr_cloud_free(&cloud);
+    return rc;
 }

@@ -1,0 +1,131 @@
+/* Connected components at a distance threshold (the "CC" segment source of Wegen et al.):
+ * points closer than `distance` (<=) are connected; components are the classes of the
+ * transitive closure (union-find over kd-tree radius queries, sequential, deterministic).
+ *
+ * Choices: distance 0 = 3 x the median nearest-neighbour distance, measured on a stride sample of
+ * at most 10000 points (coincident neighbours skipped; a cloud of coincident points gets
+ * distance 0, which connects exactly the coincident points). Components smaller than min_size
+ * are not dropped (every point keeps a label): each of their points joins the component of its
+ * nearest point in a kept component; when no component is large enough, all are kept. */
+#include <pointnpr/segment.h>
+#include <pointnpr/knn.h>
+
+#include "../core/internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NN_SAMPLE 10000
+
+static int finite3(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return x < y ? -1 : x > y;
+}
+
+static uint32_t uf_find(uint32_t *parent, uint32_t x)
+{
+    while (parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; }
+    return x;
+}
+
+float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, size_t count)
+{
+    size_t step = count / NN_SAMPLE + 1, m = 0;
+    float *d = malloc((count / step + 1) * sizeof *d);
+    if (!d) return 0;
+    for (size_t i = 0; i < count; i += step) {
+        if (!finite3(xyz + 3 * i)) continue;
+        uint32_t idx[8];
+        float dist2[8];
+        size_t n = pnpr_kdtree_knn(tree, xyz + 3 * i, 8, idx, dist2);
+        for (size_t r = 0; r < n; r++)
+            if (dist2[r] > 0) { d[m++] = sqrtf(dist2[r]); break; }
+    }
+    float med = 0;
+    if (m) { qsort(d, m, sizeof *d, cmp_float); med = d[m / 2]; }
+    free(d);
+    return med;
+}
+
+pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_components_options *opts,
+                                    uint32_t *r_labels, pnpr_segment_info *r_info)
+{
+    double t0 = pnpr_now();
+    if (r_info) { memset(r_info, 0, sizeof *r_info); r_info->invalid_segment = PNPR_LABEL_NONE; }
+    if (!count) return PNPR_OK;
+    if (!xyz || !r_labels || count >= 0x7FFFFFFFu) return PNPR_ERR_INVALID_ARGUMENT;
+    pnpr_components_options o = opts ? *opts : (pnpr_components_options){0};
+    if (!(o.distance >= 0) || isinf(o.distance)) return PNPR_ERR_INVALID_ARGUMENT;
+    pnpr_kdtree *tree = NULL, *kept_tree = NULL;
+    uint32_t *parent = NULL, *buf = NULL, *size = NULL, *kept = NULL;
+    float *kept_xyz = NULL;
+    pnpr_status st = pnpr_kdtree_build_threads(xyz, count, 0, o.threads, &tree);
+    if (st != PNPR_OK) return st;
+    float dist = o.distance > 0 ? o.distance : 3.0f * pnpr_segment_median_spacing(tree, xyz, count);
+    size_t cap = 256;
+    parent = malloc(count * sizeof *parent);
+    buf = malloc(cap * sizeof *buf);
+    size = calloc(count, sizeof *size);
+    if (!parent || !buf || !size) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    for (size_t i = 0; i < count; i++) parent[i] = (uint32_t)i;
+    for (size_t i = 0; i < count; i++) {
+        if (!finite3(xyz + 3 * i)) continue;
+        size_t n = pnpr_kdtree_radius(tree, xyz + 3 * i, dist, buf, cap);
+        if (n > cap) {
+            uint32_t *p = realloc(buf, n * sizeof *p);
+            if (!p) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+            buf = p; cap = n;
+            n = pnpr_kdtree_radius(tree, xyz + 3 * i, dist, buf, cap);
+        }
+        for (size_t r = 0; r < n; r++) {
+            uint32_t a = uf_find(parent, (uint32_t)i), b = uf_find(parent, buf[r]);
+            if (a != b) parent[a < b ? b : a] = a < b ? a : b;
+        }
+        if ((i & 0x3FFF) == 0 && pnpr_progress_report(&o.progress, "components", (double)i / (double)count)) {
+            st = PNPR_ERR_CANCELLED;
+            goto done;
+        }
+    }
+    size_t nkept = 0;
+    for (size_t i = 0; i < count; i++) {
+        r_labels[i] = uf_find(parent, (uint32_t)i);
+        if (finite3(xyz + 3 * i)) size[r_labels[i]]++;
+    }
+    if (o.min_size > 1) {
+        for (size_t i = 0; i < count; i++)
+            if (finite3(xyz + 3 * i) && size[r_labels[i]] >= o.min_size) nkept++;
+        size_t nvalid = 0;
+        for (size_t i = 0; i < count; i++) nvalid += (size_t)finite3(xyz + 3 * i);
+        if (nkept && nkept < nvalid) {
+            kept = malloc(nkept * sizeof *kept);
+            kept_xyz = malloc(3 * nkept * sizeof *kept_xyz);
+            if (!kept || !kept_xyz) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+            size_t m = 0;
+            for (size_t i = 0; i < count; i++)
+                if (finite3(xyz + 3 * i) && size[r_labels[i]] >= o.min_size) {
+                    kept[m] = (uint32_t)i;
+                    memcpy(kept_xyz + 3 * m, xyz + 3 * i, 3 * sizeof(float));
+                    m++;
+                }
+            if ((st = pnpr_kdtree_build_threads(kept_xyz, nkept, 0, o.threads, &kept_tree)) != PNPR_OK) goto done;
+            for (size_t i = 0; i < count; i++) {
+                if (!finite3(xyz + 3 * i) || size[r_labels[i]] >= o.min_size) continue;
+                uint32_t nn;
+                if (pnpr_kdtree_knn(kept_tree, xyz + 3 * i, 1, &nn, NULL) == 1)
+                    r_labels[i] = r_labels[kept[nn]];
+            }
+        }
+    }
+    pnpr_progress_report(&o.progress, "components", 1.0);
+    st = pnpr_segment_finish(xyz, count, r_labels, r_info);
+done:
+    pnpr_kdtree_free(tree);
+    pnpr_kdtree_free(kept_tree);
+    free(parent); free(buf); free(size); free(kept); free(kept_xyz);
+    if (r_info) r_info->seconds = pnpr_now() - t0;
+    return st;
+}
