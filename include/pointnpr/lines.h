@@ -1,0 +1,74 @@
+/* pointnpr — lines.h: profile lines (PointWorks section 5.2, "Profile Lines").
+ *
+ * From the directional feature points: a graph connecting each point to the directional points
+ * in its neighbourhood; every point shifted towards its neighbours across the feature (noise
+ * reduction); points closer than a tolerance merged; a minimum spanning forest whose edge weight
+ * combines 3D distance and the agreement of the edge with the points' feature directions; short
+ * spurs pruned; the forest split into chains between leaves and junctions; chain ends that point
+ * at a common corner joined there; each chain fitted with a least-squares cubic B-spline,
+ * smoothed once more and sampled adaptively into a polyline. docs/lines.md documents every
+ * formula and parameter. */
+#ifndef POINTNPR_LINES_H
+#define POINTNPR_LINES_H
+
+#include "cloud.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pnpr_lines_options {
+    float spacing;          /* sample spacing h (world units); 0 = median nearest-neighbour
+                             * distance among the directional points */
+    float connect_radius;   /* graph neighbourhood radius; 0 = 3 h */
+    float merge_tol;        /* points closer than this are merged; 0 = h */
+    int shift_iterations;   /* noise-reducing shifts; 0 = 4, negative = none */
+    float direction_weight; /* beta in the edge weight (see docs); 0 = 4 */
+    float min_length;       /* spurs and isolated chains shorter than this are dropped; 0 = 5 h */
+    float sample_tol;       /* max chord deviation of the output polylines; 0 = 0.05 h */
+    int no_corners;         /* 1 = do not join chain ends at corners */
+    pnpr_progress progress;
+} pnpr_lines_options;
+
+/* Polylines as float offsets from a double origin (like pnpr_cloud). Polyline i has vertices
+ * offset[i] .. offset[i+1]-1; closed[i] != 0 when its last vertex connects back to its first
+ * (the first vertex is not repeated). Allocated by the library: release with pnpr_lines_free. */
+typedef struct pnpr_polylines {
+    size_t count;
+    size_t *offset;   /* count + 1 */
+    float *xyz;       /* 3 * offset[count] */
+    uint8_t *closed;  /* count */
+    double origin[3];
+} pnpr_polylines;
+
+void pnpr_lines_free(pnpr_polylines *lines); /* leaves it zeroed; NULL ok */
+
+typedef struct pnpr_lines_stats {
+    size_t directional_points, merged_nodes, graph_edges, forest_edges, chains, corners;
+    float spacing_used;
+    double total_length;
+    double seconds_graph, seconds_mst, seconds_fit;
+} pnpr_lines_stats;
+
+/* Profile lines of a cloud that carries the feature properties of pnpr_compute_features
+ * (feature_class, feature_dir_x/y/z); PNPR_ERR_NOT_FOUND when they are missing. No directional
+ * points: PNPR_OK with zero lines. stats may be NULL. */
+pnpr_status pnpr_profile_lines(const pnpr_cloud *cloud, const pnpr_lines_options *opts,
+                               pnpr_polylines *r_lines, pnpr_lines_stats *r_stats);
+
+/* The same from m directional points given directly: positions (offsets from `origin`) and unit
+ * directions, 3 floats each. */
+pnpr_status pnpr_profile_lines_points(const float *xyz, const float *dir, size_t m,
+                                      const double origin[3], const pnpr_lines_options *opts,
+                                      pnpr_polylines *r_lines, pnpr_lines_stats *r_stats);
+
+/* Writers (world coordinates, %.17g-exact): OBJ with one `l` statement per polyline (closed
+ * ones repeat their first vertex index), PLY with a vertex and an `edge` element. Written to
+ * path + ".tmp" and renamed. */
+pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *lines, pnpr_error *err);
+pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *lines, pnpr_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
