@@ -442,3 +442,32 @@ pnpr_status pnpr_knn_all(const pnpr_kdtree *tree, const float *query_xyz, size_t
                  k, r_idx, r_dist2};
     return pnpr_parallel_for(query_count, 4096, opts->threads, knn_range, &j, &opts->progress, "knn");
 }
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return x < y ? -1 : (x > y ? 1 : 0);
+}
+
+float pnpr_kdtree_median_spacing(const pnpr_kdtree *t, size_t max_samples)
+{
+    if (!t || t->count < 2) return 0;
+    if (max_samples == 0) max_samples = 20000;
+    size_t step = t->count > max_samples ? t->count / max_samples : 1, ns = 0;
+    float *d = malloc((t->count / step + 1) * sizeof *d);
+    if (!d) return 0;
+    for (size_t p = 0; p < t->count; p += step) {
+        uint32_t idx[8];
+        float d2[8];
+        size_t got = knn_query(t, t->pts + 3 * p, 8, idx, d2, 1);
+        for (size_t r = 0; r < got; r++)
+            if (d2[r] > 0) { d[ns++] = sqrtf(d2[r]); break; }
+    }
+    float h = 0;
+    if (ns) {
+        qsort(d, ns, sizeof *d, cmp_float);
+        h = d[ns / 2];
+    }
+    free(d);
+    return h;
+}

@@ -69,34 +69,6 @@ static double dist3(const float *a, const float *b)
     return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : (x > y ? 1 : 0);
-}
-
-/* Median distance to the nearest distinct point over a sample; 0 when there is none. */
-static float estimate_spacing(const pnpr_kdtree *tree, const float *p, size_t m)
-{
-    size_t step = m > 20000 ? m / 20000 : 1, ns = 0;
-    float *d = malloc((m / step + 1) * sizeof *d);
-    if (!d) return 0;
-    for (size_t i = 0; i < m; i += step) {
-        uint32_t idx[8];
-        float d2[8];
-        size_t got = pnpr_kdtree_knn(tree, p + 3 * i, 8, idx, d2);
-        for (size_t r = 0; r < got; r++)
-            if (d2[r] > 0) { d[ns++] = sqrtf(d2[r]); break; }
-    }
-    float h = 0;
-    if (ns) {
-        qsort(d, ns, sizeof *d, cmp_float);
-        h = d[ns / 2];
-    }
-    free(d);
-    return h;
-}
-
 typedef struct edge { float w; uint32_t a, b; } edge;
 
 static int cmp_edge(const void *x, const void *y)
@@ -182,7 +154,7 @@ pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, 
     double t0 = pnpr_now();
 
     if ((st = pnpr_kdtree_build(pos, n, 0, &tree)) != PNPR_OK) goto done;
-    double h = opts->spacing > 0 ? opts->spacing : estimate_spacing(tree, pos, n);
+    double h = opts->spacing > 0 ? opts->spacing : pnpr_kdtree_median_spacing(tree, 0);
     if (!(h > 0)) goto done; /* all points coincide: no line */
     r_stats->spacing_used = (float)h;
     const double R = opts->connect_radius > 0 ? opts->connect_radius : 3 * h;

@@ -33,6 +33,11 @@ void pnpr_kdtree_free(pnpr_kdtree *tree);
 pnpr_status pnpr_kdtree_detach(pnpr_kdtree *tree, float **r_points, uint32_t **r_indices);
 size_t pnpr_kdtree_size(const pnpr_kdtree *tree); /* number of (valid) points in the tree */
 
+/* Median distance from a point to its nearest distinct point (the sample spacing), over a
+ * deterministic sample of at most max_samples tree points (0 = 20 000); 0 when the tree has
+ * fewer than 2 distinct points. */
+float pnpr_kdtree_median_spacing(const pnpr_kdtree *tree, size_t max_samples);
+
 /* The k nearest points to q, nearest first (equal distances in a deterministic order). Writes
  * min(k, size) entries to r_idx (and squared distances to r_dist2 when not NULL), fills the
  * rest of the k entries with PNPR_INDEX_NONE / INFINITY, and returns the number found.

@@ -18,6 +18,7 @@
 #define POINTNPR_RENDER_H
 
 #include "cloud.h"
+#include "lines.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -53,6 +54,31 @@ typedef struct pnpr_camera {
  * PNPR_ERR_EMPTY when the cloud has no finite point. */
 pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float fov_y_deg,
                             float aspect, pnpr_camera *r_camera);
+
+/* ---- SVG line drawings ---------------------------------------------------------------------- */
+
+/* Profile lines (include/pointnpr/lines.h) as an SVG drawing through a camera. Hidden parts are
+ * removed with a depth test against the occluder cloud (usually the scan the lines came from):
+ * its points are splatted as disks of `point_radius` into a CPU depth buffer at the drawing's
+ * resolution, and a stretch of line is drawn where it lies no deeper than the buffer plus
+ * `depth_tolerance` (lines sit on the surface they were found on). */
+typedef struct pnpr_svg_options {
+    int width, height;      /* drawing size in px; 0 = 1024 x 768 */
+    float stroke_width;     /* px; 0 = 1.5 */
+    float taper;            /* 0..1: fraction of each stroke's length over which its two ends
+                             * narrow to a point (drawn as filled outlines); 0 = plain strokes */
+    const pnpr_cloud *occluders; /* NULL = nothing is hidden */
+    float point_radius;     /* world units; 0 = the occluders' median nearest-neighbour distance */
+    float depth_tolerance;  /* world units; 0 = 3 point radii */
+    uint8_t stroke_rgb[3];  /* stroke colour; all 0 = black */
+    uint8_t background_rgb[3]; int background; /* background != 0: fill the page with it */
+} pnpr_svg_options;
+
+/* camera NULL = pnpr_camera_fit of the occluders (or of the lines when there are none).
+ * Written to path + ".tmp" and renamed. */
+pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
+                                 const pnpr_camera *camera, const pnpr_svg_options *opts,
+                                 pnpr_error *err);
 
 /* ---- renderer ------------------------------------------------------------------------------- */
 

@@ -21,6 +21,24 @@ typedef struct cli_progress_state {
     int tty;      /* 0 unknown, 1 yes, 2 no */
 } cli_progress_state;
 int cli_progress_stderr(void *user, const char *stage, double fraction);
+/* Parsing helpers (cli_args.c): a finite number in [lo,hi]; n comma-separated finite numbers. */
+int cli_parse_number(const char *s, double lo, double hi, double *r);
+int cli_parse_list(const char *s, int n, double *r);
+
+/* The view options shared by render and lines: --eye X,Y,Z --target X,Y,Z --up X,Y,Z (look-at,
+ * world coordinates), --fov DEG, --size WxH. */
+typedef struct cli_view {
+    int have_eye, have_target, have_up;
+    double eye[3], target[3], up[3], fov;
+    int width, height;
+} cli_view;
+void cli_view_init(cli_view *v, int width, int height);
+/* argv[*i] is a view option: parses it (advancing *i past its value) and returns 1; not a view
+ * option (or no value follows): 0; a bad value: prints why and returns -1. */
+int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i);
+/* --eye and --target given together (and --up only with them); prints why and returns 0 if not. */
+int cli_view_check(const cli_view *v, const char *cmd);
+
 /* Prints "pointnpr <cmd>: <message>" for a failed status (with pnpr_error detail when set). */
 void cli_report_error(const char *cmd, pnpr_status st, const pnpr_error *err);
 

@@ -29,32 +29,6 @@ static void usage(FILE *f)
             "  --quiet              no progress on stderr\n");
 }
 
-/* Parses a float in [lo,hi]; returns 0 on failure. */
-static int parse_float(const char *s, double lo, double hi, double *r)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) return 0;
-    *r = v;
-    return 1;
-}
-
-/* Parses n comma-separated finite numbers. */
-static int parse_list(const char *s, int n, double *r)
-{
-    const char *p = s;
-    for (int i = 0; i < n; i++) {
-        char *end;
-        errno = 0;
-        r[i] = strtod(p, &end);
-        if (errno || end == p || !isfinite(r[i])) return 0;
-        if (i + 1 < n) { if (*end != ',') return 0; p = end + 1; }
-        else if (*end) return 0;
-    }
-    return 1;
-}
-
 int cli_features(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
@@ -71,28 +45,28 @@ int cli_features(int argc, char **argv)
         else if (!strcmp(a, "--recompute-normals")) fo.recompute_normals = 1;
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
         else if (v && !strcmp(a, "--k")) {
-            if (!parse_float(v, 1, 1024, &x) || x != floor(x)) { fprintf(stderr, "pointnpr features: --k wants an integer in 1..1024, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, 1024, &x) || x != floor(x)) { fprintf(stderr, "pointnpr features: --k wants an integer in 1..1024, got '%s'\n", v); return 2; }
             fo.k = (uint32_t)x; i++;
         } else if (v && !strcmp(a, "--threshold")) {
-            if (!parse_float(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr features: --threshold wants a number in (0,1], got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr features: --threshold wants a number in (0,1], got '%s'\n", v); return 2; }
             fo.threshold = (float)x; i++;
         } else if (v && !strcmp(a, "--weights")) {
-            if (!parse_list(v, 2, xs) || xs[0] < 0 || xs[1] < 0 || xs[0] + xs[1] <= 0) {
+            if (!cli_parse_list(v, 2, xs) || xs[0] < 0 || xs[1] < 0 || xs[0] + xs[1] <= 0) {
                 fprintf(stderr, "pointnpr features: --weights wants G,C (two non-negative numbers, not both 0), got '%s'\n", v);
                 return 2;
             }
             fo.weight_geometry = (float)xs[0]; fo.weight_color = (float)xs[1]; i++;
         } else if (v && !strcmp(a, "--confidence")) {
-            if (!parse_float(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr features: --confidence wants a number in (0,1], got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr features: --confidence wants a number in (0,1], got '%s'\n", v); return 2; }
             fo.direction_confidence = (float)x; i++;
         } else if (v && !strcmp(a, "--dither-scale")) {
-            if (!parse_float(v, 1e-6, 1e6, &x)) { fprintf(stderr, "pointnpr features: --dither-scale wants a positive number, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1e-6, 1e6, &x)) { fprintf(stderr, "pointnpr features: --dither-scale wants a positive number, got '%s'\n", v); return 2; }
             fo.dither_scale = (float)x; i++;
         } else if (v && !strcmp(a, "--viewpoint")) {
-            if (!parse_list(v, 3, fo.viewpoint)) { fprintf(stderr, "pointnpr features: --viewpoint wants X,Y,Z, got '%s'\n", v); return 2; }
+            if (!cli_parse_list(v, 3, fo.viewpoint)) { fprintf(stderr, "pointnpr features: --viewpoint wants X,Y,Z, got '%s'\n", v); return 2; }
             fo.has_viewpoint = 1; i++;
         } else if (v && !strcmp(a, "--threads")) {
-            if (!parse_float(v, 1, 1024, &x) || x != floor(x)) { fprintf(stderr, "pointnpr features: --threads wants an integer >= 1, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, 1024, &x) || x != floor(x)) { fprintf(stderr, "pointnpr features: --threads wants an integer >= 1, got '%s'\n", v); return 2; }
             fo.threads = (int)x; i++;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "pointnpr features: unknown option or missing value: %s\n", a);

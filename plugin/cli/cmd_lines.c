@@ -30,16 +30,6 @@ static void usage(FILE *f)
             "  --quiet              no progress on stderr\n");
 }
 
-static int parse_pos(const char *s, double *r)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (errno || end == s || *end || !isfinite(v) || v <= 0) return 0;
-    *r = v;
-    return 1;
-}
-
 static int ends_with(const char *s, const char *suffix)
 {
     size_t n = strlen(s), m = strlen(suffix);
@@ -62,7 +52,7 @@ int cli_lines(int argc, char **argv)
         else if (v && (!strcmp(a, "--spacing") || !strcmp(a, "--radius") || !strcmp(a, "--merge-tol") ||
                        !strcmp(a, "--min-length") || !strcmp(a, "--direction-weight") || !strcmp(a, "--k") ||
                        !strcmp(a, "--threshold"))) {
-            if (!parse_pos(v, &x)) { fprintf(stderr, "pointnpr lines: %s wants a positive number, got '%s'\n", a, v); return 2; }
+            if (!cli_parse_number(v, 1e-30, 1e30, &x)) { fprintf(stderr, "pointnpr lines: %s wants a positive number, got '%s'\n", a, v); return 2; }
             if (!strcmp(a, "--spacing")) lo.spacing = (float)x;
             else if (!strcmp(a, "--radius")) lo.connect_radius = (float)x;
             else if (!strcmp(a, "--merge-tol")) lo.merge_tol = (float)x;

@@ -46,30 +46,6 @@ static void usage(FILE *f)
             "  Styles that need features (sketchy) compute them when IN lacks them.\n");
 }
 
-static int parse_num(const char *s, double lo, double hi, double *r)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) return 0;
-    *r = v;
-    return 1;
-}
-
-static int parse_list(const char *s, int n, double *r)
-{
-    const char *p = s;
-    for (int i = 0; i < n; i++) {
-        char *end;
-        errno = 0;
-        r[i] = strtod(p, &end);
-        if (errno || end == p || !isfinite(r[i])) return 0;
-        if (i + 1 < n) { if (*end != ',') return 0; p = end + 1; }
-        else if (*end) return 0;
-    }
-    return 1;
-}
-
 int cli_render(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
@@ -77,14 +53,17 @@ int cli_render(int argc, char **argv)
     memset(&dopt, 0, sizeof dopt);
     pnpr_upload_options uopt;
     memset(&uopt, 0, sizeof uopt);
-    int width = 1024, height = 768, quiet = 0, alpha = 0;
-    int have_eye = 0, have_target = 0, have_up = 0;
-    double eye[3], target[3], up[3] = {0, 0, 1}, fov = 45;
+    int quiet = 0, alpha = 0;
+    cli_view view;
+    cli_view_init(&view, 1024, 768);
     double bg[3] = {255, 255, 255};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         double x;
+        int vo = cli_view_option(&view, "render", argc, argv, &i);
+        if (vo < 0) return 2;
+        if (vo > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--alpha")) alpha = 1;
@@ -100,31 +79,13 @@ int cli_render(int argc, char **argv)
             else { fprintf(stderr, "pointnpr render: --sketch wants a, b or c, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--stroke-texture")) {
-            if (!parse_num(v, 0, 2, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --stroke-texture wants 0, 1 or 2, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 0, 2, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --stroke-texture wants 0, 1 or 2, got '%s'\n", v); return 2; }
             dopt.stroke_texture = (int)x; i++;
-        } else if (v && !strcmp(a, "--size")) {
-            int w = 0, h = 0, n = 0;
-            if (sscanf(v, "%dx%d%n", &w, &h, &n) != 2 || v[n] || w < 1 || h < 1 || w > 16384 || h > 16384) {
-                fprintf(stderr, "pointnpr render: --size wants WxH with 1..16384 each, got '%s'\n", v); return 2;
-            }
-            width = w; height = h; i++;
-        } else if (v && !strcmp(a, "--eye")) {
-            if (!parse_list(v, 3, eye)) { fprintf(stderr, "pointnpr render: --eye wants X,Y,Z, got '%s'\n", v); return 2; }
-            have_eye = 1; i++;
-        } else if (v && !strcmp(a, "--target")) {
-            if (!parse_list(v, 3, target)) { fprintf(stderr, "pointnpr render: --target wants X,Y,Z, got '%s'\n", v); return 2; }
-            have_target = 1; i++;
-        } else if (v && !strcmp(a, "--up")) {
-            if (!parse_list(v, 3, up)) { fprintf(stderr, "pointnpr render: --up wants X,Y,Z, got '%s'\n", v); return 2; }
-            have_up = 1; i++;
-        } else if (v && !strcmp(a, "--fov")) {
-            if (!parse_num(v, 1e-3, 179, &fov)) { fprintf(stderr, "pointnpr render: --fov wants degrees in (0,179], got '%s'\n", v); return 2; }
-            i++;
         } else if (v && !strcmp(a, "--budget")) {
-            if (!parse_num(v, 1, 4e9, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --budget wants a positive integer, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, 4e9, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --budget wants a positive integer, got '%s'\n", v); return 2; }
             dopt.budget = (size_t)x; i++;
         } else if (v && !strcmp(a, "--density")) {
-            if (!parse_num(v, 1e-9, 1e9, &x)) { fprintf(stderr, "pointnpr render: --density wants a positive number, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1e-9, 1e9, &x)) { fprintf(stderr, "pointnpr render: --density wants a positive number, got '%s'\n", v); return 2; }
             dopt.density = (float)x; i++;
         } else if (v && !strcmp(a, "--seed")) {
             char *end;
@@ -133,10 +94,10 @@ int cli_render(int argc, char **argv)
             if (errno || end == v || *end || v[0] == '-') { fprintf(stderr, "pointnpr render: --seed wants a non-negative integer, got '%s'\n", v); return 2; }
             uopt.seed = s; i++;
         } else if (v && !strcmp(a, "--point-scale")) {
-            if (!parse_num(v, 1e-3, 1e3, &x)) { fprintf(stderr, "pointnpr render: --point-scale wants a positive number, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1e-3, 1e3, &x)) { fprintf(stderr, "pointnpr render: --point-scale wants a positive number, got '%s'\n", v); return 2; }
             dopt.point_scale = (float)x; i++;
         } else if (v && !strcmp(a, "--background")) {
-            if (!parse_list(v, 3, bg) || bg[0] < 0 || bg[0] > 255 || bg[1] < 0 || bg[1] > 255 || bg[2] < 0 || bg[2] > 255) {
+            if (!cli_parse_list(v, 3, bg) || bg[0] < 0 || bg[0] > 255 || bg[1] < 0 || bg[1] > 255 || bg[2] < 0 || bg[2] > 255) {
                 fprintf(stderr, "pointnpr render: --background wants R,G,B in 0..255, got '%s'\n", v); return 2;
             }
             i++;
@@ -148,10 +109,8 @@ int cli_render(int argc, char **argv)
         else { fprintf(stderr, "pointnpr render: more than one input given ('%s')\n", a); return 2; }
     }
     if (!in || !out) { usage(stderr); return 2; }
-    if (have_eye != have_target || (have_up && !have_eye)) {
-        fprintf(stderr, "pointnpr render: --eye and --target go together (--up and --fov need them too, or only --fov)\n");
-        return 2;
-    }
+    if (!cli_view_check(&view, "render")) return 2;
+    const int width = view.width, height = view.height;
     for (int c = 0; c < 3; c++) dopt.background[c] = (float)(bg[c] / 255.0);
     dopt.background[3] = alpha ? 0.0f : 1.0f;
 
@@ -186,14 +145,14 @@ int cli_render(int argc, char **argv)
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
 
     pnpr_camera cam, *camp = NULL;
-    if (have_eye) {
+    if (view.have_eye) {
         memset(&cam, 0, sizeof cam);
-        memcpy(cam.eye, eye, sizeof eye);
-        memcpy(cam.target, target, sizeof target);
-        memcpy(cam.up, up, sizeof up);
-        cam.fov_y_deg = (float)fov;
+        memcpy(cam.eye, view.eye, sizeof cam.eye);
+        memcpy(cam.target, view.target, sizeof cam.target);
+        memcpy(cam.up, view.up, sizeof cam.up);
+        cam.fov_y_deg = (float)view.fov;
         camp = &cam;
-    } else if (cloud.count > 0 && pnpr_camera_fit(&cloud, NULL, (float)fov, (float)width / (float)height, &cam) == PNPR_OK) {
+    } else if (cloud.count > 0 && pnpr_camera_fit(&cloud, NULL, (float)view.fov, (float)width / (float)height, &cam) == PNPR_OK) {
         camp = &cam;
     }
     pnpr_target tgt = {0, 0, 0, width, height, 1};

@@ -1,0 +1,80 @@
+/* Argument helpers shared by the subcommands: numbers, comma lists, the view options. */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int cli_parse_number(const char *s, double lo, double hi, double *r)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) return 0;
+    *r = v;
+    return 1;
+}
+
+int cli_parse_list(const char *s, int n, double *r)
+{
+    const char *p = s;
+    for (int i = 0; i < n; i++) {
+        char *end;
+        errno = 0;
+        r[i] = strtod(p, &end);
+        if (errno || end == p || !isfinite(r[i])) return 0;
+        if (i + 1 < n) { if (*end != ',') return 0; p = end + 1; }
+        else if (*end) return 0;
+    }
+    return 1;
+}
+
+void cli_view_init(cli_view *v, int width, int height)
+{
+    memset(v, 0, sizeof *v);
+    v->up[2] = 1;
+    v->fov = 45;
+    v->width = width;
+    v->height = height;
+}
+
+int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    double *vec = NULL;
+    int *have = NULL;
+    if (!strcmp(a, "--eye")) { vec = v->eye; have = &v->have_eye; }
+    else if (!strcmp(a, "--target")) { vec = v->target; have = &v->have_target; }
+    else if (!strcmp(a, "--up")) { vec = v->up; have = &v->have_up; }
+    else if (strcmp(a, "--fov") && strcmp(a, "--size")) return 0;
+    if (!val) return 0; /* "missing value" is reported by the caller's unknown-option path */
+    (*i)++;
+    if (vec) {
+        if (!cli_parse_list(val, 3, vec)) { fprintf(stderr, "pointnpr %s: %s wants X,Y,Z, got '%s'\n", cmd, a, val); return -1; }
+        *have = 1;
+        return 1;
+    }
+    if (!strcmp(a, "--fov")) {
+        if (!cli_parse_number(val, 1e-3, 179, &v->fov)) { fprintf(stderr, "pointnpr %s: --fov wants degrees in (0,179], got '%s'\n", cmd, val); return -1; }
+        return 1;
+    }
+    int w = 0, h = 0, n = 0;
+    if (sscanf(val, "%dx%d%n", &w, &h, &n) != 2 || val[n] || w < 1 || h < 1 || w > 16384 || h > 16384) {
+        fprintf(stderr, "pointnpr %s: --size wants WxH with 1..16384 each, got '%s'\n", cmd, val);
+        return -1;
+    }
+    v->width = w;
+    v->height = h;
+    return 1;
+}
+
+int cli_view_check(const cli_view *v, const char *cmd)
+{
+    if (v->have_eye != v->have_target || (v->have_up && !v->have_eye)) {
+        fprintf(stderr, "pointnpr %s: --eye and --target go together (--up needs them too)\n", cmd);
+        return 0;
+    }
+    return 1;
+}
