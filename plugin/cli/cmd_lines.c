@@ -3,6 +3,9 @@
 
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
+#ifdef PNPR_HAVE_RENDER
+#include <pointnpr/render.h>
+#endif
 
 #include <errno.h>
 #include <math.h>
@@ -26,6 +29,13 @@ static void usage(FILE *f)
             "  --min-length L       drop spurs and isolated lines shorter than L (default 5h)\n"
             "  --direction-weight B how much edges across the feature direction cost (default 4)\n"
             "  --no-corners         do not join line ends at corners and across gaps\n"
+            "  --svg OUT.svg        also draw the lines as SVG through a camera, hidden parts removed\n"
+            "                       by a depth test against IN's points\n"
+            "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fov DEG --size WxH\n"
+            "                       the SVG's camera (as in 'pointnpr render'; default: fit the cloud)\n"
+            "  --stroke-width PX    SVG stroke width (default 1.5)\n"
+            "  --taper F            strokes narrow to a point over the fraction F of their length\n"
+            "  --show-hidden        keep hidden parts in the SVG\n"
             "  --k N, --threshold T feature options used when features are computed\n"
             "  --quiet              no progress on stderr\n");
 }
@@ -41,12 +51,28 @@ int cli_lines(int argc, char **argv)
     const char *in = NULL, *out = NULL;
     pnpr_lines_options lo = {0};
     pnpr_features_options fo = {0};
-    int quiet = 0;
+    int quiet = 0, show_hidden = 0;
+    const char *svg = NULL;
+    double stroke = 0, taper = 0;
+    cli_view view;
+    cli_view_init(&view, 1024, 768);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         double x;
+        int vo = cli_view_option(&view, "lines", argc, argv, &i);
+        if (vo < 0) return 2;
+        if (vo > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
+        else if (!strcmp(a, "--show-hidden")) show_hidden = 1;
+        else if (v && !strcmp(a, "--svg")) { svg = v; i++; }
+        else if (v && !strcmp(a, "--stroke-width")) {
+            if (!cli_parse_number(v, 1e-3, 1e3, &stroke)) { fprintf(stderr, "pointnpr lines: --stroke-width wants a positive number of pixels, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--taper")) {
+            if (!cli_parse_number(v, 0, 1, &taper)) { fprintf(stderr, "pointnpr lines: --taper wants a fraction in [0,1], got '%s'\n", v); return 2; }
+            i++;
+        }
         else if (!strcmp(a, "--no-corners")) lo.no_corners = 1;
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
         else if (v && (!strcmp(a, "--spacing") || !strcmp(a, "--radius") || !strcmp(a, "--merge-tol") ||
@@ -74,6 +100,10 @@ int cli_lines(int argc, char **argv)
         else { fprintf(stderr, "pointnpr lines: more than one input given ('%s')\n", a); return 2; }
     }
     if (!in || !out) { usage(stderr); return 2; }
+    if (!cli_view_check(&view, "lines")) return 2;
+#ifndef PNPR_HAVE_RENDER
+    if (svg) { fprintf(stderr, "pointnpr lines: --svg needs the renderer, which this build does not have\n"); return 2; }
+#endif
     int as_ply = ends_with(out, ".ply");
     if (!as_ply && !ends_with(out, ".obj")) {
         fprintf(stderr, "pointnpr lines: the output must end in .obj or .ply, got '%s'\n", out);
@@ -103,11 +133,43 @@ int cli_lines(int argc, char **argv)
     pnpr_polylines lines = {0};
     pnpr_lines_stats stats;
     st = pnpr_profile_lines(&cloud, &lo, &lines, &stats);
-    pnpr_cloud_free(&cloud);
     if (st != PNPR_OK) {
         fprintf(stderr, "pointnpr lines: %s: %s\n", in, pnpr_status_string(st));
+        pnpr_cloud_free(&cloud);
         return 1;
     }
+#ifdef PNPR_HAVE_RENDER
+    if (svg) {
+        pnpr_svg_options so = {0};
+        so.width = view.width;
+        so.height = view.height;
+        so.stroke_width = (float)stroke;
+        so.taper = (float)taper;
+        so.occluders = show_hidden ? NULL : &cloud;
+        pnpr_camera cam, *camp = NULL;
+        if (view.have_eye) {
+            memset(&cam, 0, sizeof cam);
+            memcpy(cam.eye, view.eye, sizeof cam.eye);
+            memcpy(cam.target, view.target, sizeof cam.target);
+            memcpy(cam.up, view.up, sizeof cam.up);
+            cam.fov_y_deg = (float)view.fov;
+            camp = &cam;
+        } else if (pnpr_camera_fit(&cloud, NULL, (float)view.fov, (float)view.width / (float)view.height, &cam) == PNPR_OK) {
+            camp = &cam;
+        }
+        st = pnpr_write_lines_svg(svg, &lines, camp, &so, &err);
+        if (st != PNPR_OK) {
+            cli_report_error("lines", st, &err);
+            pnpr_lines_free(&lines);
+            pnpr_cloud_free(&cloud);
+            return 1;
+        }
+        if (!quiet) fprintf(stderr, "wrote %s\n", svg);
+    }
+#else
+    (void)show_hidden; (void)stroke; (void)taper;
+#endif
+    pnpr_cloud_free(&cloud);
     if (stats.directional_points == 0)
         fprintf(stderr, "pointnpr lines: %s has no directional feature points: no lines (the output is empty)\n", in);
     else if (!quiet)
