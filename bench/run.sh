@@ -57,3 +57,6 @@ e2e_bpp=$(awk -v r="$rss" -v n="$points" 'BEGIN { printf "%.0f", r * 1024 / n }'
   echo "| \`pointnpr features\` end to end: peak RSS | $((rss / 1024)) MB = $e2e_bpp bytes/point |"
 } > "$out/features.md"
 cat "$out/features.md"
+
+echo "== profile lines: scaling 10k..1M directional points" >&2
+"$build/bench/bench_lines" 1000000 | tee "$out/lines.md"
