@@ -71,14 +71,17 @@ static double color_term(const degree_job *j, size_t i, const uint32_t *row)
     tangent_basis(n, u, v);
     double pc[3] = {0, 0, 0}, cc[3] = {0, 0, 0};
     size_t m = 0;
+    int uniform = 1; /* all colours equal: exactly no gradient (the mean would leave rounding dust) */
+    const uint8_t *c0 = j->rgb + 3 * i;
     for (size_t r = 0; r < j->k; r++) {
         if (row[r] == PNPR_INDEX_NONE) continue;
         const float *p = j->xyz + 3 * (size_t)row[r];
         const uint8_t *c = j->rgb + 3 * (size_t)row[r];
         for (int a = 0; a < 3; a++) { pc[a] += p[a]; cc[a] += c[a] / 255.0; }
+        uniform &= c[0] == c0[0] && c[1] == c0[1] && c[2] == c0[2];
         m++;
     }
-    if (m < 3) return 0.0;
+    if (m < 3 || uniform) return 0.0;
     for (int a = 0; a < 3; a++) { pc[a] /= (double)m; cc[a] /= (double)m; }
     double s_uu = 0, s_uv = 0, s_vv = 0, b_u[3] = {0, 0, 0}, b_v[3] = {0, 0, 0}, rsum = 0;
     const float *pi = j->xyz + 3 * i;

@@ -115,7 +115,17 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     for (int f = 0; f < 5; f++) out[f] = pnpr_cloud_find_property(cloud, fnames[f])->data;
     float *degree = out[0], *conf = out[1];
     uint8_t *cls = pnpr_cloud_find_property(cloud, "feature_class")->data;
+    /* input normals are kept unless asked otherwise, or unless most of them are missing (zero or
+     * non-finite: a layer that carries a normal field without data) */
     int keep_normals = cloud->normal && !opts->recompute_normals;
+    if (keep_normals) {
+        size_t have = 0;
+        for (size_t i = 0; i < n; i++) {
+            const float *v = cloud->normal + 3 * i;
+            have += isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]) && (v[0] != 0 || v[1] != 0 || v[2] != 0);
+        }
+        if (2 * have < n) keep_normals = 0;
+    }
     if ((st = pnpr_cloud_alloc_normals(cloud)) != PNPR_OK) return st;
 
     size_t valid = 0;

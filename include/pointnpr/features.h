@@ -69,8 +69,8 @@ typedef struct pnpr_features_stats {
 } pnpr_features_stats;
 
 /* ---- the whole pipeline on a cloud ---------------------------------------------------------
- * Computes normals (kept from the input unless opts->recompute_normals; stored in
- * cloud->normal) and adds the extra properties feature_degree (float), feature_class (uchar),
+ * Computes normals (kept from the input unless opts->recompute_normals or unless more than half
+ * of them are zero/non-finite; stored in cloud->normal) and adds the extra properties feature_degree (float), feature_class (uchar),
  * feature_confidence (float), feature_dir_x/y/z (float), replacing existing ones of that name.
  * Points with NaN/Inf coordinates get normal (0,0,0), degree 0, class 0, confidence 0.
  * stats may be NULL. */
