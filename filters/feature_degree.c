@@ -113,20 +113,26 @@ static double color_term(const degree_job *j, size_t i, const uint32_t *row)
     return clamp01(sqrt(g2) * r_rms / COLOR_SCALE);
 }
 
+/* Mean of values[] over a kNN row (skipping `skip`, e.g. the point itself); 0 neighbours: NaN. */
+static double row_mean(const uint32_t *row, size_t k, const float *values, size_t skip)
+{
+    double sum = 0;
+    size_t m = 0;
+    for (size_t r = 0; r < k; r++) {
+        if (row[r] == PNPR_INDEX_NONE || row[r] == skip) continue;
+        sum += values[row[r]];
+        m++;
+    }
+    return m ? sum / (double)m : NAN;
+}
+
 /* Box filter of the fit error over each neighbourhood (the point included). */
 static void smooth_range(void *ctx, size_t begin, size_t end)
 {
     const degree_job *j = ctx;
     for (size_t i = begin; i < end; i++) {
-        const uint32_t *row = j->knn + i * j->k;
-        double sum = 0;
-        size_t m = 0;
-        for (size_t r = 0; r < j->k; r++) {
-            if (row[r] == PNPR_INDEX_NONE) continue;
-            sum += j->raw_err[row[r]];
-            m++;
-        }
-        j->smooth_out[i] = m ? (float)(sum / (double)m) : j->raw_err[i];
+        double mean = row_mean(j->knn + i * j->k, j->k, j->raw_err, PNPR_INDEX_NONE);
+        j->smooth_out[i] = mean == mean ? (float)mean : j->raw_err[i];
     }
 }
 
@@ -135,14 +141,8 @@ static void degree_range(void *ctx, size_t begin, size_t end)
     const degree_job *j = ctx;
     for (size_t i = begin; i < end; i++) {
         const uint32_t *row = j->knn + i * j->k;
-        double sum = 0;
-        size_t m = 0;
-        for (size_t r = 0; r < j->k; r++) {
-            if (row[r] == PNPR_INDEX_NONE || row[r] == i) continue;
-            sum += j->err[row[r]];
-            m++;
-        }
-        double g = m ? clamp01((j->err[i] - sum / (double)m) / GEO_SCALE) : 0.0;
+        double mean = row_mean(row, j->k, j->err, i);
+        double g = mean == mean ? clamp01((j->err[i] - mean) / GEO_SCALE) : 0.0;
         double c = (j->rgb && j->wc > 0) ? color_term(j, i, row) : 0.0;
         j->degree[i] = (float)clamp01(j->wg * g + j->wc * c);
     }

@@ -222,6 +222,22 @@ static int worse(float da, float db)
     return da > db;
 }
 
+/* Puts (d, idx) at the root's place and sifts it down among the first h->n entries. */
+static void sift_down(heap *h, float d, uint32_t idx)
+{
+    size_t c = 0;
+    for (;;) {
+        size_t l = 2 * c + 1, r = l + 1, m = c;
+        float md = d;
+        if (l < h->n && worse(h->d[l], md)) { m = l; md = h->d[l]; }
+        if (r < h->n && worse(h->d[r], md)) { m = r; }
+        if (m == c) break;
+        h->d[c] = h->d[m]; h->i[c] = h->i[m];
+        c = m;
+    }
+    h->d[c] = d; h->i[c] = idx;
+}
+
 static void heap_offer(heap *h, float d, uint32_t idx)
 {
     if (h->n < h->k) {
@@ -236,17 +252,7 @@ static void heap_offer(heap *h, float d, uint32_t idx)
         return;
     }
     if (!worse(h->d[0], d)) return;
-    size_t c = 0;
-    for (;;) {
-        size_t l = 2 * c + 1, r = l + 1, m = c;
-        float md = d;
-        if (l < h->n && worse(h->d[l], md)) { m = l; md = h->d[l]; }
-        if (r < h->n && worse(h->d[r], md)) { m = r; }
-        if (m == c) break;
-        h->d[c] = h->d[m]; h->i[c] = h->i[m];
-        c = m;
-    }
-    h->d[c] = d; h->i[c] = idx;
+    sift_down(h, d, idx);
 }
 
 static float heap_bound(const heap *h)
@@ -292,19 +298,7 @@ static void heap_sort(heap *h)
     while (h->n > 1) {
         float d = h->d[0]; uint32_t i = h->i[0];
         size_t last = --h->n;
-        float ld = h->d[last]; uint32_t li = h->i[last];
-        /* sift the last element down from the root */
-        size_t c = 0;
-        for (;;) {
-            size_t l = 2 * c + 1, r = l + 1, m = c;
-            float md = ld;
-            if (l < h->n && worse(h->d[l], md)) { m = l; md = h->d[l]; }
-            if (r < h->n && worse(h->d[r], md)) { m = r; }
-            if (m == c) break;
-            h->d[c] = h->d[m]; h->i[c] = h->i[m];
-            c = m;
-        }
-        h->d[c] = ld; h->i[c] = li;
+        sift_down(h, h->d[last], h->i[last]); /* the last element, from the root */
         h->d[last] = d; h->i[last] = i;
     }
     h->n = n;

@@ -2,31 +2,10 @@
  * World coordinates = origin + offset in double, printed with %.17g (exact round trip). */
 #include <pointnpr/lines.h>
 
-#include <errno.h>
+#include "../core/internal.h"
+
 #include <stdio.h>
 #include <string.h>
-
-static pnpr_status open_tmp(const char *path, char *tmp, size_t cap, FILE **r_f, pnpr_error *err)
-{
-    if (!path || !path[0]) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "no output path");
-    if ((size_t)snprintf(tmp, cap, "%s.tmp", path) >= cap)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: path too long", path);
-    *r_f = fopen(tmp, "wb");
-    if (!*r_f) return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, strerror(errno));
-    return PNPR_OK;
-}
-
-static pnpr_status close_rename(FILE *f, const char *tmp, const char *path, int write_failed, pnpr_error *err)
-{
-    int bad = write_failed | ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad || rename(tmp, path) != 0) {
-        int e = errno;
-        remove(tmp);
-        return pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot write (%s)", path, strerror(e));
-    }
-    return PNPR_OK;
-}
 
 static int valid_lines(const pnpr_polylines *l)
 {
@@ -43,7 +22,7 @@ pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *l, pnpr
     if (!valid_lines(l)) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "invalid polylines");
     char tmp[4096];
     FILE *f;
-    pnpr_status st = open_tmp(path, tmp, sizeof tmp, &f, err);
+    pnpr_status st = pnpr_file_begin(path, tmp, sizeof tmp, &f, err);
     if (st != PNPR_OK) return st;
     int bad = fprintf(f, "# profile lines by pointnpr %s: %zu polylines\n", PNPR_VERSION_STRING, l->count) < 0;
     size_t nv = vertex_total(l);
@@ -56,7 +35,7 @@ pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *l, pnpr
         if (l->closed[p] && l->offset[p + 1] > l->offset[p]) bad |= fprintf(f, " %zu", l->offset[p] + 1) < 0;
         bad |= fputc('\n', f) == EOF;
     }
-    return close_rename(f, tmp, path, bad, err);
+    return pnpr_file_commit(f, tmp, path, bad, err);
 }
 
 pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *l, pnpr_error *err)
@@ -69,7 +48,7 @@ pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *l, pnpr
     }
     char tmp[4096];
     FILE *f;
-    pnpr_status st = open_tmp(path, tmp, sizeof tmp, &f, err);
+    pnpr_status st = pnpr_file_begin(path, tmp, sizeof tmp, &f, err);
     if (st != PNPR_OK) return st;
     int bad = fprintf(f,
                       "ply\nformat ascii 1.0\ncomment profile lines by pointnpr %s\n"
@@ -84,5 +63,5 @@ pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *l, pnpr
         for (size_t v = a + 1; v < b && !bad; v++) bad = fprintf(f, "%zu %zu\n", v - 1, v) < 0;
         if (l->closed[p] && b - a > 2 && !bad) bad = fprintf(f, "%zu %zu\n", b - 1, a) < 0;
     }
-    return close_rename(f, tmp, path, bad, err);
+    return pnpr_file_commit(f, tmp, path, bad, err);
 }

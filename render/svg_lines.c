@@ -12,10 +12,10 @@
  *   whose half-width grows linearly from 0 over the first `taper` fraction of its length and
  *   shrinks likewise at its end. Coordinates in px with 2 decimals. */
 #include "render_internal.h"
+#include "../core/internal.h"
 
 #include <pointnpr/knn.h>
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -183,9 +183,8 @@ pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
     }
 
     char tmp[4096];
-    if ((size_t)snprintf(tmp, sizeof tmp, "%s.tmp", path) >= sizeof tmp) { free(zb); return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: path too long", path); }
-    FILE *f = fopen(tmp, "wb");
-    if (!f) { free(zb); return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, strerror(errno)); }
+    FILE *f;
+    if ((st = pnpr_file_begin(path, tmp, sizeof tmp, &f, err)) != PNPR_OK) { free(zb); return st; }
     const uint8_t *sc = opts->stroke_rgb;
     char colour[16];
     snprintf(colour, sizeof colour, "#%02x%02x%02x", sc[0], sc[1], sc[2]);
@@ -226,12 +225,5 @@ pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
     }
     bad |= fprintf(f, "</g>\n</svg>\n") < 0;
     free(xy); free(vis); free(zb);
-    bad |= ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad || rename(tmp, path) != 0) {
-        int e = errno;
-        remove(tmp);
-        return pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot write (%s)", path, strerror(e));
-    }
-    return PNPR_OK;
+    return pnpr_file_commit(f, tmp, path, bad, err);
 }

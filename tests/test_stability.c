@@ -84,6 +84,18 @@ static void test_offsets_and_scales(void)
     pnpr_cloud_free(&ref);
 }
 
+/* Largest angle between a normal and the z axis (either sign). */
+static double worst_from_z(const pnpr_cloud *c)
+{
+    const float z[3] = {0, 0, 1}, mz[3] = {0, 0, -1};
+    double worst = 0;
+    for (size_t i = 0; i < c->count; i++) {
+        double a = fmin(angle_deg(c->normal + 3 * i, z), angle_deg(c->normal + 3 * i, mz));
+        if (a > worst) worst = a;
+    }
+    return worst;
+}
+
 /* A plane 1 x 1 whose points are jittered by 1e-7 of its extent: normals within 0.01 degree of z,
  * no features. And a box 1 x 1 x 1e-7 (two faces 1e-7 apart): normals along z, defined. */
 static void test_thin(void)
@@ -95,12 +107,7 @@ static void test_thin(void)
     CHECK_STATUS(pnpr_cloud_set_world(&c, c.src_xyz), PNPR_OK);
     pnpr_features_stats s;
     CHECK_STATUS(pnpr_compute_features(&c, NULL, &s), PNPR_OK);
-    double worst = 0;
-    const float z[3] = {0, 0, 1}, mz[3] = {0, 0, -1};
-    for (size_t i = 0; i < c.count; i++) {
-        double a = fmin(angle_deg(c.normal + 3 * i, z), angle_deg(c.normal + 3 * i, mz));
-        if (a > worst) worst = a;
-    }
+    double worst = worst_from_z(&c);
     fprintf(stderr, "| plane with 1e-7 jitter | normals: worst %.2e deg from z | feature points %zu | bad values %zu |\n", worst,
             s.feature_points, bad_values(&c));
     CHECK(worst < 0.01);
@@ -114,11 +121,7 @@ static void test_thin(void)
     CHECK_STATUS(pnpr_test_plane(&top, 60, 60, 0.01, up), PNPR_OK);
     CHECK_STATUS(pnpr_cloud_append(&c, &top), PNPR_OK);
     CHECK_STATUS(pnpr_compute_features(&c, NULL, &s), PNPR_OK);
-    worst = 0;
-    for (size_t i = 0; i < c.count; i++) {
-        double a = fmin(angle_deg(c.normal + 3 * i, z), angle_deg(c.normal + 3 * i, mz));
-        if (a > worst) worst = a;
-    }
+    worst = worst_from_z(&c);
     fprintf(stderr, "| two sheets 1e-7 apart | normals: worst %.2e deg from z | feature points %zu | bad values %zu |\n", worst,
             s.feature_points, bad_values(&c));
     CHECK(worst < 0.01);
