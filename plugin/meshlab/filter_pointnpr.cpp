@@ -11,10 +11,15 @@
 #include "filter_pointnpr.h"
 
 #include <pointnpr/features.h>
+#include <pointnpr/knn.h>
+#include <pointnpr/lines.h>
+#include <pointnpr/segment.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <new>
 #include <string>
 #include <typeinfo>
@@ -22,7 +27,80 @@
 
 #include <QElapsedTimer>
 
+/* Owns a pnpr_cloud for the duration of a call (freed on every path, exceptions included). */
+struct CloudGuard {
+    pnpr_cloud cloud;
+    CloudGuard() { std::memset(&cloud, 0, sizeof cloud); }
+    ~CloudGuard() { pnpr_cloud_free(&cloud); }
+    CloudGuard(const CloudGuard &) = delete;
+    CloudGuard &operator=(const CloudGuard &) = delete;
+};
+
+/* The current layer's live vertices as a pnpr_cloud: cloud point i is verts[i]; origin = centre
+ * of the finite bounding box (double), float offsets (NaN/Inf vertices stay non-finite there:
+ * every library call leaves them out). Shared by every filter. */
+struct LayerCloud {
+    std::vector<CMeshO::VertexPointer> verts;
+    size_t finite = 0;
+    bool hasColor = false;
+    bool keepNormals = false; /* the layer's own normals were copied into the cloud */
+    CloudGuard g;
+};
+
+/* pnpr_progress -> vcg::CallBackPos: the library reports a fraction per named stage; MeshLab
+ * wants one percentage. A bridge owns the slice [lo, hi] of MeshLab's bar; with featureStages the
+ * feature pipeline's stages are mapped to equal sub-slices in pipeline order (stages the run skips
+ * just make the bar jump), otherwise each stage's fraction fills the slice. A host callback
+ * returning false cancels the run. */
+struct ProgressBridge {
+    vcg::CallBackPos *cb;
+    int lo, hi;
+    bool featureStages;
+    const char *prefix;
+    int last_percent;
+    std::string text;
+};
+
 namespace {
+
+ProgressBridge makeBridge(vcg::CallBackPos *cb, int lo, int hi, bool featureStages, const char *prefix)
+{
+    ProgressBridge pb = {cb, lo, hi, featureStages, prefix, -1, std::string()};
+    return pb;
+}
+
+int progressToMeshLab(void *user, const char *stage, double fraction)
+{
+    ProgressBridge *pb = static_cast<ProgressBridge *>(user);
+    if (!pb || !pb->cb) return 0;
+    if (!(fraction >= 0.0)) fraction = 0.0;
+    if (fraction > 1.0) fraction = 1.0;
+    double pos = fraction;
+    if (pb->featureStages) {
+        int index = PNPR_STAGE_COUNT_ - 1;
+        for (int s = 0; s < PNPR_STAGE_COUNT_; s++) {
+            if (stage && std::strcmp(stage, pnpr_stage_name(static_cast<pnpr_stage>(s))) == 0) {
+                index = s;
+                break;
+            }
+        }
+        pos = (index + fraction) / PNPR_STAGE_COUNT_;
+    }
+    int percent = pb->lo + static_cast<int>((pb->hi - pb->lo) * pos);
+    percent = std::min(std::max(percent, 0), 100);
+    if (percent == pb->last_percent) return 0;
+    pb->last_percent = percent;
+    pb->text = std::string(pb->prefix) + ": " + (stage ? stage : "");
+    return pb->cb(percent, pb->text.c_str()) ? 0 : 1;
+}
+
+pnpr_progress progressOf(ProgressBridge &pb)
+{
+    pnpr_progress p;
+    p.fn = progressToMeshLab;
+    p.user = &pb;
+    return p;
+}
 
 const char *const kAttrClass = "feature_class";
 const char *const kAttrConfidence = "feature_confidence";
@@ -35,45 +113,6 @@ const unsigned char kPalette[4][3] = {
     {220, 30, 30},   /* 2 directional feature: red */
     {20, 20, 20},    /* 3 dithering point: near black */
 };
-
-/* Owns a pnpr_cloud for the duration of a call (freed on every path, exceptions included). */
-struct CloudGuard {
-    pnpr_cloud cloud;
-    CloudGuard() { std::memset(&cloud, 0, sizeof cloud); }
-    ~CloudGuard() { pnpr_cloud_free(&cloud); }
-    CloudGuard(const CloudGuard &) = delete;
-    CloudGuard &operator=(const CloudGuard &) = delete;
-};
-
-/* pnpr_progress -> vcg::CallBackPos: the library reports a fraction per named stage; MeshLab
- * wants one percentage. Stages are mapped to equal slices in pipeline order; stages the run skips
- * just make the bar jump. A host callback returning false cancels the run. */
-struct ProgressBridge {
-    vcg::CallBackPos *cb;
-    int last_percent;
-    std::string text;
-};
-
-int progressToMeshLab(void *user, const char *stage, double fraction)
-{
-    ProgressBridge *pb = static_cast<ProgressBridge *>(user);
-    if (!pb || !pb->cb) return 0;
-    int index = PNPR_STAGE_COUNT_ - 1;
-    for (int s = 0; s < PNPR_STAGE_COUNT_; s++) {
-        if (stage && std::strcmp(stage, pnpr_stage_name(static_cast<pnpr_stage>(s))) == 0) {
-            index = s;
-            break;
-        }
-    }
-    if (!(fraction >= 0.0)) fraction = 0.0;
-    if (fraction > 1.0) fraction = 1.0;
-    int percent = static_cast<int>(100.0 * (index + fraction) / PNPR_STAGE_COUNT_);
-    if (percent > 100) percent = 100;
-    if (percent == pb->last_percent) return 0;
-    pb->last_percent = percent;
-    pb->text = std::string("NPR features: ") + (stage ? stage : "");
-    return pb->cb(percent, pb->text.c_str()) ? 0 : 1;
-}
 
 /* A named per-vertex attribute of exactly type T: an attribute of that name but another type
  * (e.g. left by another plugin) would alias memory through vcglib's size-only lookup, so it is
@@ -110,7 +149,7 @@ bool finite3(const Point3m &p)
 
 FilterPointnprPlugin::FilterPointnprPlugin()
 {
-    typeList << FP_FEATURES << FP_SELECT_FEATURES;
+    typeList << FP_FEATURES << FP_SELECT_FEATURES << FP_PROFILE_LINES << FP_SEGMENT_JSEG << FP_SEGMENT_GROW;
     for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
 }
 
@@ -124,6 +163,9 @@ QString FilterPointnprPlugin::filterName(FilterIDType filter) const
     switch (filter) {
     case FP_FEATURES: return "NPR: Compute feature degree and classify points";
     case FP_SELECT_FEATURES: return "NPR: Select feature points";
+    case FP_PROFILE_LINES: return "NPR: Profile lines";
+    case FP_SEGMENT_JSEG: return "NPR: Segment (JSEG)";
+    case FP_SEGMENT_GROW: return "NPR: Segment (connected components / colour region growing)";
     default: return QString();
     }
 }
@@ -149,6 +191,35 @@ QString FilterPointnprPlugin::filterInfo(FilterIDType filter) const
         return "Selects the vertices of the current layer whose <b>feature_class</b> attribute (computed by "
                "<i>NPR: Compute feature degree and classify points</i>) is the chosen class: directional or "
                "non-directional feature points, any feature point, or dithering points.";
+    case FP_PROFILE_LINES:
+        return "PointWorks <i>profile lines</i> of the current layer: the directional feature points are linked "
+               "into a neighbour graph, shifted onto the feature, merged, connected by a minimum spanning forest "
+               "that prefers edges along the feature direction, split into chains (short spurs dropped, chain "
+               "ends joined at corners), fitted with cubic B-splines and sampled into polylines.<br>"
+               "The feature classes and directions come from the layer's <b>feature_class</b>/<b>feature_dir</b> "
+               "attributes (<i>NPR: Compute feature degree and classify points</i>); a layer without them is "
+               "analysed first with the k/threshold/confidence below (the layer itself is left unchanged).<br>"
+               "Result: a <b>new polyline layer</b> (vertices + edges, no faces) named after the source layer, "
+               "with the source layer's transformation. Save it as OBJ (polylines become <tt>l</tt> lines; "
+               "PLY export drops edges). No layer is added when there are no lines.<br>"
+               "See: <i>Hui Xu, Nathan Gossett, Baoquan Chen</i>, <b>\"Abstraction and Depiction of Sparsely "
+               "Scanned Outdoor Environments\"</b> (PointWorks), section 5.2.";
+    case FP_SEGMENT_JSEG:
+        return "3D JSEG colour segmentation of the current layer (needs per-vertex colour): colours quantised "
+               "in CIE L*a*b*, a local J value (class separation) per point over its neighbours, seed regions "
+               "of low J grown in J order, similar and small regions merged. Optionally a level of the region "
+               "hierarchy (HSI colour distance with the size rule) cut at a segment count or threshold.<br>"
+               "Result: per-vertex attribute <b>segment</b> (float label 0..S-1; -1 for NaN/Inf vertices); "
+               "optionally vertex colours = segment mean colour (on by default) and vertex quality = label.<br>"
+               "See: <i>Ming-Te Chi, Tong-Yee Lee</i>, <b>\"Stylized and Abstract Painterly Rendering System "
+               "Using a Multiscale Segmented Sphere Hierarchy\"</b>, section 3.2.";
+    case FP_SEGMENT_GROW:
+        return "Segments the current layer by <b>connected components</b> (points closer than a distance are "
+               "connected; geometry only) or by <b>colour region growing</b> (a neighbour joins a region when "
+               "its colour is close; adjacent regions of similar mean colour merge; needs per-vertex colour).<br>"
+               "Result: per-vertex attribute <b>segment</b> (float label 0..S-1; -1 for NaN/Inf vertices); "
+               "optionally vertex colours by segment (mean colour, or a distinct colour per segment for a layer "
+               "without colours) and vertex quality = label.";
     default: return QString();
     }
 }
@@ -173,6 +244,9 @@ int FilterPointnprPlugin::getPreConditions(QAction *) const
 int FilterPointnprPlugin::postCondition(QAction *a) const
 {
     if (ID(a) == FP_SELECT_FEATURES) return MeshModel::MM_VERTFLAGSELECT;
+    if (ID(a) == FP_PROFILE_LINES) return MeshModel::MM_NONE; /* a new layer; the source is unchanged */
+    if (ID(a) == FP_SEGMENT_JSEG || ID(a) == FP_SEGMENT_GROW)
+        return MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR;
     return MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTNORMAL | MeshModel::MM_VERTCOLOR;
 }
 
@@ -223,6 +297,105 @@ void FilterPointnprPlugin::initParameterSet(QAction *a, MeshModel &, RichParamet
         par.addParam(RichBool("addToSelection", false, "Add to current selection",
                               "Keep the current vertex selection and add the class to it; off: replace it."));
         break;
+    case FP_PROFILE_LINES:
+        par.addParam(RichFloat("spacing", 0.0f, "Sample spacing h",
+                               "Sample spacing h of the directional points, in the layer's units. 0 = automatic "
+                               "(median nearest-neighbour distance among the directional points). The defaults "
+                               "below are multiples of h."));
+        par.addParam(RichFloat("radius", 0.0f, "Neighbourhood radius",
+                               "Directional points closer than this are linked in the graph. 0 = 3 h. Larger values "
+                               "bridge gaps in sparse scans but may link neighbouring parallel creases."));
+        par.addParam(RichFloat("mergeTolerance", 0.0f, "Merge tolerance",
+                               "Shifted points closer than this are merged into one node. 0 = h."));
+        par.addParam(RichFloat("minLength", 0.0f, "Minimum line length",
+                               "Spurs and isolated lines shorter than this are dropped. 0 = 5 h; raise it to keep "
+                               "only long profile lines."));
+        par.addParam(RichFloat("directionWeight", 4.0f, "Direction weight",
+                               "How much more an edge costs when it crosses the points' feature directions instead "
+                               "of following them (beta in the edge weight; > 0, default 4). Higher values follow "
+                               "the creases more strictly."));
+        par.addParam(RichInt("shiftIterations", 4, "Noise-reducing shifts",
+                             "Iterations that move every directional point towards its neighbours across the "
+                             "feature (0 = none, at most 100)."));
+        par.addParam(RichBool("corners", true, "Join at corners",
+                              "Join line ends that point at a common corner (and bridge small gaps). Off: lines "
+                              "stop short of corners."));
+        par.addParam(RichBool("recomputeFeatures", false, "Recompute features",
+                              "Always run the feature analysis (with the three parameters below) instead of using "
+                              "the layer's feature_class/feature_dir attributes. Layers without those attributes "
+                              "are analysed anyway; the layer itself is never changed by this filter."));
+        par.addParam(RichInt("k", 16, "Neighbours (k)",
+                             "Feature analysis (when it runs): nearest neighbours of each point, 1..1024."));
+        par.addParam(RichFloat("threshold", 0.0f, "Feature threshold",
+                               "Feature analysis (when it runs): feature-degree threshold in [0,1]; 0 = automatic."));
+        par.addParam(RichFloat("directionConfidence", 0.6f, "Directional confidence",
+                               "Feature analysis (when it runs): minimum line-fit confidence in (0,1] of a "
+                               "directional point."));
+        break;
+    case FP_SEGMENT_JSEG:
+        par.addParam(RichInt("segments", 0, "Segment count (hierarchy)",
+                             "> 0: cut the region hierarchy (HSI colour distance, size rule) of the JSEG regions at "
+                             "this many segments (fewer when JSEG found fewer). 0 = the JSEG regions as they are."));
+        par.addParam(RichFloat("hierarchyThreshold", 0.0f, "Hierarchy threshold",
+                               "> 0: cut the region hierarchy where the HSI colour distance of a merge exceeds this "
+                               "(0..~1.5; e.g. 0.1). Combined with the segment count, the coarser limit wins. "
+                               "0 = no threshold."));
+        par.addParam(RichInt("classes", 16, "Colour classes",
+                             "k-means colour classes of the quantiser (1..255) before close class centres merge."));
+        par.addParam(RichFloat("quantDistance", 12.0f, "Class merge distance",
+                               "Class centres closer than this CIE76 colour difference (delta E) become one class. "
+                               "0 = never merge classes."));
+        par.addParam(RichInt("k", 24, "Neighbours (k)",
+                             "J neighbourhood: the k nearest points (the point included), 2..256."));
+        par.addParam(RichFloat("radius", 0.0f, "Neighbourhood radius",
+                               "> 0: the J neighbourhood keeps only those of the k nearest within this distance "
+                               "(layer units). 0 = no radius limit."));
+        par.addParam(RichFloat("seedFactor", 0.6f, "Seed factor",
+                               "Seed points are those with J <= factor x mean J (> 0; smaller: fewer, more uniform "
+                               "seeds, fewer segments)."));
+        par.addParam(RichFloat("mergeDistance", 10.0f, "Region merge distance",
+                               "Adjacent regions whose mean colours differ by less (CIE76 delta E) merge. "
+                               "0 = no colour merge."));
+        par.addParam(RichInt("minSize", 0, "Minimum segment size",
+                             "Regions with fewer points merge into the closest-coloured neighbour. "
+                             "0 = automatic (max(k, points / 1000))."));
+        par.addParam(RichBool("colorBySegment", true, "Colour vertices by segment",
+                              "OVERWRITES the vertex colours with each segment's mean colour (the flat-shaded look "
+                              "artists want to see; on by default). Off: only the 'segment' attribute is written."));
+        par.addParam(RichBool("labelToQuality", false, "Label to vertex quality",
+                              "Also store the segment label in the vertex quality (overwriting e.g. the feature "
+                              "degree): then 'Select by Vertex Quality' selects segments and meshlabserver's "
+                              "'-m vq' saves the labels."));
+        break;
+    case FP_SEGMENT_GROW:
+        par.addParam(RichEnum("method", 0, QStringList() << "Connected components" << "Colour region growing",
+                              "Method", "Connected components: geometry only (points closer than the distance "
+                              "are connected). Colour region growing: neighbours of similar colour join a region "
+                              "(needs per-vertex colour)."));
+        par.addParam(RichFloat("distance", 0.0f, "Neighbour distance",
+                               "Points farther apart than this are never connected (layer units). "
+                               "0 = 3 x the median point spacing."));
+        par.addParam(RichInt("minSize", 10, "Minimum segment size",
+                             "Components: smaller components join the component of their nearest point in a kept "
+                             "one (1 = keep all). Region growing: smaller regions merge into the closest-coloured "
+                             "neighbour."));
+        par.addParam(RichInt("k", 16, "Neighbours (k)",
+                             "Region growing: neighbours considered per point, 1..256 (components use all points "
+                             "within the distance)."));
+        par.addParam(RichFloat("pointColorDistance", 25.0f, "Point colour distance",
+                               "Region growing: a neighbour joins when its RGB colour differs from the point's by "
+                               "less than this (Euclidean, 0..255 units; > 0)."));
+        par.addParam(RichFloat("regionColorDistance", 10.0f, "Region merge distance",
+                               "Region growing: adjacent regions whose mean colours differ less (CIE76 delta E) "
+                               "merge. 0 = no merge."));
+        par.addParam(RichBool("colorBySegment", false, "Colour vertices by segment",
+                              "OVERWRITES the vertex colours: each segment's mean colour, or for a layer without "
+                              "colours a distinct colour per segment. Off: only the 'segment' attribute is written."));
+        par.addParam(RichBool("labelToQuality", false, "Label to vertex quality",
+                              "Also store the segment label in the vertex quality (overwriting e.g. the feature "
+                              "degree): then 'Select by Vertex Quality' selects segments and meshlabserver's "
+                              "'-m vq' saves the labels."));
+        break;
     default: break;
     }
 }
@@ -242,6 +415,9 @@ bool FilterPointnprPlugin::applyFilter(QAction *a, MeshDocument &md, const RichP
         switch (ID(a)) {
         case FP_FEATURES: return computeFeatures(md, par, cb);
         case FP_SELECT_FEATURES: return selectFeatures(md, par);
+        case FP_PROFILE_LINES: return profileLines(md, par, cb);
+        case FP_SEGMENT_JSEG: return segment(md, par, cb, true);
+        case FP_SEGMENT_GROW: return segment(md, par, cb, false);
         default: return fail("unknown filter");
         }
     } catch (const std::bad_alloc &) {
@@ -253,53 +429,28 @@ bool FilterPointnprPlugin::applyFilter(QAction *a, MeshDocument &md, const RichP
     }
 }
 
-bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
-{
-    MeshModel *mm = md.mm();
-    if (!mm) return fail("there is no current layer");
-    CMeshO &m = mm->cm;
-    const QString layer = mm->label();
+/* ---- shared helpers ---------------------------------------------------------------------- */
 
-    /* ---- parameters, checked before anything changes ---- */
-    pnpr_features_options fo;
-    std::memset(&fo, 0, sizeof fo);
-    const int k = par.getInt("k");
-    const float threshold = par.getFloat("threshold");
-    const float wg = par.getFloat("weightGeometry"), wc = par.getFloat("weightColor");
-    const float conf = par.getFloat("directionConfidence");
-    const float dither = par.getFloat("ditherScale");
-    if (k < 1 || k > 1024) return fail(QString("k must be in 1..1024 (got %1)").arg(k));
-    if (!(threshold >= 0.0f && threshold <= 1.0f))
-        return fail(QString("the feature threshold must be in [0,1], 0 = automatic (got %1)").arg(threshold));
-    if (!(wg >= 0.0f && wc >= 0.0f && wg + wc > 0.0f && std::isfinite(wg + wc)))
-        return fail(QString("the weights must be non-negative and not both 0 (got %1, %2)").arg(wg).arg(wc));
-    if (!(conf > 0.0f && conf <= 1.0f))
-        return fail(QString("the directional confidence must be in (0,1] (got %1)").arg(conf));
-    if (!(dither > 0.0f && dither <= 1e6f))
-        return fail(QString("the dither scale must be a positive number (got %1)").arg(dither));
-    fo.k = static_cast<uint32_t>(k);
-    fo.threshold = threshold;
-    fo.weight_geometry = wg;
-    fo.weight_color = wc;
-    fo.direction_confidence = conf;
-    fo.dither_scale = dither;
-    const bool recompute = par.getBool("recomputeNormals");
-    const bool colorByClass = par.getBool("colorByClass");
+bool FilterPointnprPlugin::loadLayerCloud(MeshModel &mm, bool withColor, bool withLayerNormals, const char *what,
+                                          const char *leftOutNote, LayerCloud &lc)
+{
+    CMeshO &m = mm.cm;
+    const QString layer = mm.label();
 
     /* ---- live vertices, finite bounding box in double ---- */
-    std::vector<CMeshO::VertexPointer> verts;
-    verts.reserve(m.vert.size());
+    lc.verts.clear();
+    lc.verts.reserve(m.vert.size());
     for (CMeshO::VertexIterator vi = m.vert.begin(); vi != m.vert.end(); ++vi)
-        if (!vi->IsD()) verts.push_back(&*vi);
-    const size_t n = verts.size();
+        if (!vi->IsD()) lc.verts.push_back(&*vi);
+    const size_t n = lc.verts.size();
     if (n == 0) return fail(QString("layer '%1' has no vertices: nothing to analyse").arg(layer));
     if (m.fn > 0)
-        Log("pointnpr: layer '%s' is a mesh with %d faces: the features use its %zu vertices only; faces are "
-            "left unchanged", qUtf8Printable(layer), m.fn, n);
+        Log("pointnpr: layer '%s' is a mesh with %d faces: the %s use its %zu vertices only; faces are "
+            "left unchanged", qUtf8Printable(layer), m.fn, what, n);
 
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     size_t finite = 0;
-    for (CMeshO::VertexPointer v : verts) {
+    for (CMeshO::VertexPointer v : lc.verts) {
         const Point3m &p = v->cP();
         if (!finite3(p)) continue;
         for (int c = 0; c < 3; c++) {
@@ -309,59 +460,130 @@ bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameter
         }
         finite++;
     }
+    lc.finite = finite;
     if (finite == 0)
         return fail(QString("layer '%1': none of its %2 vertices has finite coordinates").arg(layer).arg(n));
     if (finite < n)
-        Log("pointnpr: %zu of %zu vertices have NaN/Inf coordinates: they are left out (class 0, quality 0)",
-            n - finite, n);
+        Log("pointnpr: %zu of %zu vertices have NaN/Inf coordinates: they are left out (%s)", n - finite, n,
+            leftOutNote);
 
     /* ---- the cloud: origin = bbox centre (double), float offsets ---- */
-    CloudGuard g;
-    pnpr_cloud &cloud = g.cloud;
+    pnpr_cloud &cloud = lc.g.cloud;
     pnpr_status st = pnpr_cloud_alloc(&cloud, n);
     if (st != PNPR_OK) return fail(QString("cannot allocate the cloud: %1").arg(pnpr_status_string(st)));
     for (int c = 0; c < 3; c++) cloud.origin[c] = 0.5 * (lo[c] + hi[c]);
     cloud.src_coord_type = PNPR_TYPE_FLOAT32;
     for (size_t i = 0; i < n; i++) {
-        const Point3m &p = verts[i]->cP();
+        const Point3m &p = lc.verts[i]->cP();
         for (int c = 0; c < 3; c++)
             cloud.xyz[3 * i + c] = static_cast<float>(static_cast<double>(p[c]) - cloud.origin[c]);
     }
-    const bool hasColor = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
-    if (hasColor) {
+    lc.hasColor = withColor && mm.hasDataMask(MeshModel::MM_VERTCOLOR);
+    if (lc.hasColor) {
         if ((st = pnpr_cloud_alloc_rgb(&cloud)) != PNPR_OK)
             return fail(QString("cannot allocate colours: %1").arg(pnpr_status_string(st)));
         for (size_t i = 0; i < n; i++) {
-            const vcg::Color4b &col = verts[i]->cC();
+            const vcg::Color4b &col = lc.verts[i]->cC();
             for (int c = 0; c < 3; c++) cloud.rgb[3 * i + c] = col[c];
         }
     }
 
     /* Normals: kept (normalised) when the layer has them and they are meaningful: at least 99% of
      * the finite vertices carry a finite non-zero normal (MeshLab's normals of meshes are
-     * area/angle-weighted sums, not unit length); else computed and written back. */
-    bool keepNormals = false;
-    if (!recompute && mm->hasDataMask(MeshModel::MM_VERTNORMAL)) {
+     * area/angle-weighted sums, not unit length); else the library computes them. */
+    lc.keepNormals = false;
+    if (withLayerNormals && mm.hasDataMask(MeshModel::MM_VERTNORMAL)) {
         size_t good = 0;
-        for (CMeshO::VertexPointer v : verts) {
+        for (CMeshO::VertexPointer v : lc.verts) {
             if (!finite3(v->cP())) continue;
             const Point3m &nn = v->cN();
             const double len = std::sqrt(double(nn[0]) * nn[0] + double(nn[1]) * nn[1] + double(nn[2]) * nn[2]);
             good += (std::isfinite(len) && len > 1e-12);
         }
-        keepNormals = good > 0 && good >= finite - finite / 100;
+        lc.keepNormals = good > 0 && good >= finite - finite / 100;
     }
-    if (keepNormals) {
+    if (lc.keepNormals) {
         if ((st = pnpr_cloud_alloc_normals(&cloud)) != PNPR_OK)
             return fail(QString("cannot allocate normals: %1").arg(pnpr_status_string(st)));
         for (size_t i = 0; i < n; i++) {
-            const Point3m &nn = verts[i]->cN();
+            const Point3m &nn = lc.verts[i]->cN();
             const double len = std::sqrt(double(nn[0]) * nn[0] + double(nn[1]) * nn[1] + double(nn[2]) * nn[2]);
             if (!(std::isfinite(len) && len > 0)) continue; /* stays (0,0,0) */
             for (int c = 0; c < 3; c++) cloud.normal[3 * i + c] = static_cast<float>(nn[c] / len);
         }
     }
+    return true;
+}
+
+/* The feature parameters (k, threshold, directionConfidence; with `all` also the weights and the
+ * dither scale), checked before anything changes. */
+bool FilterPointnprPlugin::checkFeatureParams(const RichParameterList &par, bool all, pnpr_features_options &fo)
+{
+    std::memset(&fo, 0, sizeof fo);
+    const int k = par.getInt("k");
+    const float threshold = par.getFloat("threshold");
+    const float conf = par.getFloat("directionConfidence");
+    if (k < 1 || k > 1024) return fail(QString("k must be in 1..1024 (got %1)").arg(k));
+    if (!(threshold >= 0.0f && threshold <= 1.0f))
+        return fail(QString("the feature threshold must be in [0,1], 0 = automatic (got %1)").arg(threshold));
+    if (!(conf > 0.0f && conf <= 1.0f))
+        return fail(QString("the directional confidence must be in (0,1] (got %1)").arg(conf));
+    fo.k = static_cast<uint32_t>(k);
+    fo.threshold = threshold;
+    fo.direction_confidence = conf;
+    fo.weight_geometry = fo.weight_color = 0.5f;
+    fo.dither_scale = 1.0f;
+    if (all) {
+        const float wg = par.getFloat("weightGeometry"), wc = par.getFloat("weightColor");
+        const float dither = par.getFloat("ditherScale");
+        if (!(wg >= 0.0f && wc >= 0.0f && wg + wc > 0.0f && std::isfinite(wg + wc)))
+            return fail(QString("the weights must be non-negative and not both 0 (got %1, %2)").arg(wg).arg(wc));
+        if (!(dither > 0.0f && dither <= 1e6f))
+            return fail(QString("the dither scale must be a positive number (got %1)").arg(dither));
+        fo.weight_geometry = wg;
+        fo.weight_color = wc;
+        fo.dither_scale = dither;
+    }
+    return true;
+}
+
+/* pnpr_compute_features on the layer cloud; the layer is not touched. */
+bool FilterPointnprPlugin::runFeatures(LayerCloud &lc, pnpr_features_options &fo, ProgressBridge &pb,
+                                       pnpr_features_stats &stats, double &seconds)
+{
     fo.recompute_normals = 0; /* without cloud.normal the library computes them anyway */
+    fo.progress = progressOf(pb);
+    std::memset(&stats, 0, sizeof stats);
+    QElapsedTimer timer;
+    timer.start();
+    const pnpr_status st = pnpr_compute_features(&lc.g.cloud, &fo, &stats);
+    seconds = timer.elapsed() / 1000.0;
+    if (st == PNPR_ERR_CANCELLED) return fail("cancelled; the layer is unchanged");
+    if (st != PNPR_OK) return fail(QString("feature analysis failed: %1").arg(pnpr_status_string(st)));
+    return true;
+}
+
+/* ---- NPR: Compute feature degree and classify points ------------------------------------- */
+
+bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
+{
+    MeshModel *mm = md.mm();
+    if (!mm) return fail("there is no current layer");
+    CMeshO &m = mm->cm;
+    const QString layer = mm->label();
+
+    /* ---- parameters, checked before anything changes ---- */
+    pnpr_features_options fo;
+    if (!checkFeatureParams(par, true, fo)) return false;
+    const float threshold = fo.threshold;
+    const bool recompute = par.getBool("recomputeNormals");
+    const bool colorByClass = par.getBool("colorByClass");
+
+    LayerCloud lc;
+    if (!loadLayerCloud(*mm, true, !recompute, "features", "class 0, quality 0", lc)) return false;
+    pnpr_cloud &cloud = lc.g.cloud;
+    const size_t n = lc.verts.size();
+    const bool hasColor = lc.hasColor, keepNormals = lc.keepNormals;
 
     if (par.getBool("useViewpoint")) {
         /* scene coordinates -> the layer's own vertex coordinates (inverse of the layer transform) */
@@ -376,20 +598,11 @@ bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameter
         for (int c = 0; c < 3; c++) fo.viewpoint[c] = local[c];
     }
 
-    ProgressBridge pb = {cb, -1, std::string()};
-    fo.progress.fn = progressToMeshLab;
-    fo.progress.user = &pb;
-
     /* ---- run ---- */
+    ProgressBridge pb = makeBridge(cb, 0, 100, true, "NPR features");
     pnpr_features_stats stats;
-    std::memset(&stats, 0, sizeof stats);
-    QElapsedTimer timer;
-    timer.start();
-    st = pnpr_compute_features(&cloud, &fo, &stats);
-    const double seconds = timer.elapsed() / 1000.0;
-    if (st == PNPR_ERR_CANCELLED) return fail("cancelled; the layer is unchanged");
-    if (st != PNPR_OK)
-        return fail(QString("feature analysis of layer '%1' failed: %2").arg(layer).arg(pnpr_status_string(st)));
+    double seconds = 0;
+    if (!runFeatures(lc, fo, pb, stats, seconds)) return false;
 
     const pnpr_property *pDeg = pnpr_cloud_find_property(&cloud, "feature_degree");
     const pnpr_property *pCls = pnpr_cloud_find_property(&cloud, "feature_class");
@@ -414,7 +627,7 @@ bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameter
     }
     size_t counts[4] = {0, 0, 0, 0};
     for (size_t i = 0; i < n; i++) {
-        CMeshO::VertexPointer v = verts[i];
+        CMeshO::VertexPointer v = lc.verts[i];
         const double deg = pnpr_type_get(pDeg->type, pDeg->data, i);
         int cls = static_cast<int>(pnpr_type_get(pCls->type, pCls->data, i));
         if (cls < 0 || cls > 3) cls = 0;
@@ -482,5 +695,401 @@ bool FilterPointnprPlugin::selectFeatures(MeshDocument &md, const RichParameterL
     m.svn = static_cast<int>(total);
     Log("pointnpr: layer '%s': selected %zu %s (%zu vertices selected in all)", qUtf8Printable(mm->label()),
         chosen, names[which], total);
+    return true;
+}
+
+/* ---- NPR: Profile lines ------------------------------------------------------------------- */
+
+namespace {
+
+/* Owns a pnpr_polylines for the duration of a call. */
+struct LinesGuard {
+    pnpr_polylines lines;
+    LinesGuard() { std::memset(&lines, 0, sizeof lines); }
+    ~LinesGuard() { pnpr_lines_free(&lines); }
+    LinesGuard(const LinesGuard &) = delete;
+    LinesGuard &operator=(const LinesGuard &) = delete;
+};
+
+bool nonNegative(float x) { return x >= 0.0f && std::isfinite(x); }
+
+} // namespace
+
+bool FilterPointnprPlugin::profileLines(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
+{
+    MeshModel *mm = md.mm();
+    if (!mm) return fail("there is no current layer");
+    CMeshO &m = mm->cm;
+    const QString layer = mm->label();
+
+    /* ---- parameters, checked before anything changes ---- */
+    pnpr_lines_options lo;
+    std::memset(&lo, 0, sizeof lo);
+    const float spacing = par.getFloat("spacing"), radius = par.getFloat("radius");
+    const float mergeTol = par.getFloat("mergeTolerance"), minLength = par.getFloat("minLength");
+    const float beta = par.getFloat("directionWeight");
+    const int shifts = par.getInt("shiftIterations");
+    if (!nonNegative(spacing)) return fail(QString("the sample spacing must be >= 0, 0 = automatic (got %1)").arg(spacing));
+    if (!nonNegative(radius)) return fail(QString("the neighbourhood radius must be >= 0, 0 = 3 h (got %1)").arg(radius));
+    if (!nonNegative(mergeTol)) return fail(QString("the merge tolerance must be >= 0, 0 = h (got %1)").arg(mergeTol));
+    if (!nonNegative(minLength)) return fail(QString("the minimum line length must be >= 0, 0 = 5 h (got %1)").arg(minLength));
+    if (!(beta > 0.0f && beta <= 1e6f)) return fail(QString("the direction weight must be > 0 (got %1)").arg(beta));
+    if (shifts < 0 || shifts > 100) return fail(QString("the noise-reducing shifts must be in 0..100 (got %1)").arg(shifts));
+    lo.spacing = spacing;
+    lo.connect_radius = radius;
+    lo.merge_tol = mergeTol;
+    lo.min_length = minLength;
+    lo.direction_weight = beta;
+    lo.shift_iterations = shifts == 0 ? -1 : shifts;
+    lo.no_corners = par.getBool("corners") ? 0 : 1;
+    pnpr_features_options fo;
+    if (!checkFeatureParams(par, false, fo)) return false;
+
+    CMeshO::PerVertexAttributeHandle<float> hClass;
+    CMeshO::PerVertexAttributeHandle<vcg::Point3f> hDir;
+    const bool fromLayer = !par.getBool("recomputeFeatures") && findAttribute<float>(m, kAttrClass, hClass) &&
+                           findAttribute<vcg::Point3f>(m, kAttrDir, hDir);
+
+    LayerCloud lc;
+    if (!loadLayerCloud(*mm, true, true, "profile lines", "no line passes through them", lc)) return false;
+    pnpr_cloud &cloud = lc.g.cloud;
+    const size_t n = lc.verts.size();
+
+    /* ---- run: features (unless the layer has them), then the lines ---- */
+    LinesGuard lg;
+    pnpr_polylines &lines = lg.lines;
+    pnpr_lines_stats ls;
+    std::memset(&ls, 0, sizeof ls);
+    double featureSeconds = 0;
+    QElapsedTimer timer;
+    pnpr_status st;
+    if (fromLayer) {
+        std::vector<float> xyz, dir;
+        for (size_t i = 0; i < n; i++) {
+            CMeshO::VertexPointer v = lc.verts[i];
+            if (!finite3(v->cP()) || std::lround(hClass[v]) != PNPR_CLASS_DIRECTIONAL) continue;
+            const vcg::Point3f d = hDir[v];
+            const double len = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
+            if (!(std::isfinite(len) && len > 1e-12)) continue;
+            for (int c = 0; c < 3; c++) {
+                xyz.push_back(cloud.xyz[3 * i + c]);
+                dir.push_back(static_cast<float>(d[c] / len));
+            }
+        }
+        Log("pointnpr: layer '%s': feature classes and directions taken from its attributes (%s, %s)",
+            qUtf8Printable(layer), kAttrClass, kAttrDir);
+        ProgressBridge pb = makeBridge(cb, 0, 100, false, "NPR profile lines");
+        lo.progress = progressOf(pb);
+        timer.start();
+        st = pnpr_profile_lines_points(xyz.data(), dir.data(), xyz.size() / 3, cloud.origin, &lo, &lines, &ls);
+    } else {
+        ProgressBridge pf = makeBridge(cb, 0, 70, true, "NPR profile lines: features");
+        pnpr_features_stats fs;
+        if (!runFeatures(lc, fo, pf, fs, featureSeconds)) return false;
+        Log("pointnpr: layer '%s' analysed for the lines (it is left unchanged): %zu points, k %u, threshold %.3f, "
+            "%s colour; %.3f s", qUtf8Printable(layer), n, fs.k_used, fs.threshold_used, lc.hasColor ? "with" : "without",
+            featureSeconds);
+        ProgressBridge pb = makeBridge(cb, 70, 100, false, "NPR profile lines");
+        lo.progress = progressOf(pb);
+        timer.start();
+        st = pnpr_profile_lines(&cloud, &lo, &lines, &ls);
+    }
+    const double seconds = timer.elapsed() / 1000.0;
+    if (st == PNPR_ERR_CANCELLED) return fail("cancelled; no layer was added");
+    if (st != PNPR_OK)
+        return fail(QString("profile lines of layer '%1' failed: %2").arg(layer).arg(pnpr_status_string(st)));
+
+    /* ---- the polylines that have an edge ---- */
+    size_t nv = 0, ne = 0, polylines = 0, closedCount = 0;
+    for (size_t l = 0; l < lines.count; l++) {
+        const size_t len = lines.offset[l + 1] - lines.offset[l];
+        if (len < 2) continue;
+        polylines++;
+        nv += len;
+        ne += len - 1;
+        if (lines.closed[l] && len > 2) {
+            ne++;
+            closedCount++;
+        }
+    }
+    if (polylines == 0) {
+        if (ls.directional_points == 0)
+            return fail(QString("no profile lines: layer '%1' has no directional feature points (lower the feature "
+                                "threshold or the directional confidence, or check the layer is a scan with creases); "
+                                "no layer was added").arg(layer));
+        return fail(QString("no profile lines: the %1 directional points of layer '%2' form no line longer than the "
+                            "minimum length (lower it or raise the neighbourhood radius); no layer was added")
+                        .arg(ls.directional_points)
+                        .arg(layer));
+    }
+    if (nv > static_cast<size_t>(std::numeric_limits<int>::max()) || ne > static_cast<size_t>(std::numeric_limits<int>::max()))
+        return fail("too many line vertices for one MeshLab layer");
+
+    /* ---- the new layer: in the source layer's frame (origin + offsets in double -> float) ---- */
+    MeshModel *out = md.addNewMesh("", layer + " profile lines", true);
+    if (!out) return fail("MeshLab could not add a layer");
+    try {
+        CMeshO &o = out->cm;
+        o.Tr = m.Tr;
+        CMeshO::VertexIterator vi = vcg::tri::Allocator<CMeshO>::AddVertices(o, nv);
+        std::vector<CMeshO::VertexPointer> vp;
+        vp.reserve(nv);
+        for (size_t l = 0; l < lines.count; l++) {
+            const size_t a = lines.offset[l], b = lines.offset[l + 1];
+            if (b - a < 2) continue;
+            for (size_t j = a; j < b; j++, ++vi) {
+                for (int c = 0; c < 3; c++)
+                    vi->P()[c] = static_cast<Scalarm>(lines.origin[c] + static_cast<double>(lines.xyz[3 * j + c]));
+                vi->N() = Point3m(0, 0, 0);
+                vp.push_back(&*vi);
+            }
+        }
+        CMeshO::EdgeIterator ei = vcg::tri::Allocator<CMeshO>::AddEdges(o, ne);
+        size_t base = 0;
+        for (size_t l = 0; l < lines.count; l++) {
+            const size_t len = lines.offset[l + 1] - lines.offset[l];
+            if (len < 2) continue;
+            for (size_t j = 0; j + 1 < len; j++, ++ei) {
+                ei->V(0) = vp[base + j];
+                ei->V(1) = vp[base + j + 1];
+            }
+            if (lines.closed[l] && len > 2) {
+                ei->V(0) = vp[base + len - 1];
+                ei->V(1) = vp[base];
+                ++ei;
+            }
+            base += len;
+        }
+        vcg::tri::UpdateBounding<CMeshO>::Box(o);
+    } catch (...) {
+        md.delMesh(out); /* never leave a half-built layer behind */
+        throw;
+    }
+
+    Log("pointnpr: layer '%s': %zu directional points -> %zu polylines (%zu closed, %zu corners joined), %zu vertices, "
+        "%zu edges, total length %.6g, spacing h %.6g; %.3f s", qUtf8Printable(layer), ls.directional_points, polylines,
+        closedCount, ls.corners, nv, ne, ls.total_length, static_cast<double>(ls.spacing_used), seconds + featureSeconds);
+    Log("pointnpr: new layer '%s' (polylines: vertices + edges; save as OBJ to keep them)", qUtf8Printable(out->label()));
+    if (cb) cb(100, "NPR profile lines: done");
+    return true;
+}
+
+/* ---- NPR: Segment ------------------------------------------------------------------------- */
+
+namespace {
+
+const char *const kAttrSegment = "segment";
+
+/* A distinct colour per label (golden-ratio hue steps) for layers without colours. */
+vcg::Color4b labelColor(uint32_t label)
+{
+    const double h = std::fmod(label * 0.6180339887498949, 1.0) * 6.0, s = 0.65, v = 0.95;
+    const int i = static_cast<int>(h) % 6;
+    const double f = h - std::floor(h), p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+    double r = v, g = t, b = p;
+    switch (i) {
+    case 1: r = q; g = v; b = p; break;
+    case 2: r = p; g = v; b = t; break;
+    case 3: r = p; g = q; b = v; break;
+    case 4: r = t; g = p; b = v; break;
+    case 5: r = v; g = p; b = q; break;
+    default: break;
+    }
+    return vcg::Color4b(static_cast<unsigned char>(255 * r + 0.5), static_cast<unsigned char>(255 * g + 0.5),
+                        static_cast<unsigned char>(255 * b + 0.5), 255);
+}
+
+/* Owns a kd-tree. */
+struct TreeGuard {
+    pnpr_kdtree *tree = nullptr;
+    TreeGuard() = default;
+    ~TreeGuard() { pnpr_kdtree_free(tree); }
+    TreeGuard(const TreeGuard &) = delete;
+    TreeGuard &operator=(const TreeGuard &) = delete;
+};
+
+} // namespace
+
+bool FilterPointnprPlugin::segment(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb, bool jseg)
+{
+    MeshModel *mm = md.mm();
+    if (!mm) return fail("there is no current layer");
+    CMeshO &m = mm->cm;
+    const QString layer = mm->label();
+    const int method = jseg ? -1 : par.getEnum("method"); /* 0 components, 1 colour region growing */
+    const char *const methodName = jseg ? "JSEG" : (method == 0 ? "connected components" : "colour region growing");
+    if (!jseg && method != 0 && method != 1) return fail(QString("unknown method %1").arg(method));
+    const bool needColor = jseg || method == 1;
+
+    /* ---- parameters, checked before anything changes ---- */
+    pnpr_jseg_options jo;
+    pnpr_components_options co;
+    pnpr_rgbgrow_options ro;
+    std::memset(&jo, 0, sizeof jo);
+    std::memset(&co, 0, sizeof co);
+    std::memset(&ro, 0, sizeof ro);
+    int segmentsWanted = 0;
+    float hThreshold = 0;
+    if (jseg) {
+        segmentsWanted = par.getInt("segments");
+        hThreshold = par.getFloat("hierarchyThreshold");
+        const int classes = par.getInt("classes"), k = par.getInt("k"), minSize = par.getInt("minSize");
+        const float qd = par.getFloat("quantDistance"), radius = par.getFloat("radius");
+        const float seed = par.getFloat("seedFactor"), md2 = par.getFloat("mergeDistance");
+        if (segmentsWanted < 0) return fail(QString("the segment count must be >= 0, 0 = no hierarchy cut (got %1)").arg(segmentsWanted));
+        if (!nonNegative(hThreshold)) return fail(QString("the hierarchy threshold must be >= 0, 0 = none (got %1)").arg(hThreshold));
+        if (classes < 1 || classes > 255) return fail(QString("the colour classes must be in 1..255 (got %1)").arg(classes));
+        if (k < 2 || k > 256) return fail(QString("k must be in 2..256 (got %1)").arg(k));
+        if (minSize < 0) return fail(QString("the minimum segment size must be >= 0, 0 = automatic (got %1)").arg(minSize));
+        if (!nonNegative(qd)) return fail(QString("the class merge distance must be >= 0, 0 = none (got %1)").arg(qd));
+        if (!nonNegative(radius)) return fail(QString("the neighbourhood radius must be >= 0, 0 = none (got %1)").arg(radius));
+        if (!(seed > 0.0f && seed <= 1e6f)) return fail(QString("the seed factor must be > 0 (got %1)").arg(seed));
+        if (!nonNegative(md2)) return fail(QString("the region merge distance must be >= 0, 0 = none (got %1)").arg(md2));
+        jo.classes = static_cast<uint32_t>(classes);
+        jo.quant_distance = qd > 0 ? qd : -1.0f;
+        jo.k = static_cast<uint32_t>(k);
+        jo.radius = radius;
+        jo.seed_factor = seed;
+        jo.merge_distance = md2 > 0 ? md2 : -1.0f;
+        jo.min_size = static_cast<uint32_t>(minSize);
+    } else {
+        const float dist = par.getFloat("distance");
+        const int minSize = par.getInt("minSize"), k = par.getInt("k");
+        const float pcd = par.getFloat("pointColorDistance"), rcd = par.getFloat("regionColorDistance");
+        if (!nonNegative(dist)) return fail(QString("the neighbour distance must be >= 0, 0 = automatic (got %1)").arg(dist));
+        if (minSize < 0) return fail(QString("the minimum segment size must be >= 0 (got %1)").arg(minSize));
+        if (method == 1) {
+            if (k < 1 || k > 256) return fail(QString("k must be in 1..256 (got %1)").arg(k));
+            if (!(pcd > 0.0f && pcd <= 1e6f)) return fail(QString("the point colour distance must be > 0 (got %1)").arg(pcd));
+            if (!nonNegative(rcd)) return fail(QString("the region merge distance must be >= 0, 0 = none (got %1)").arg(rcd));
+        }
+        co.distance = dist;
+        co.min_size = static_cast<uint32_t>(minSize);
+        ro.k = static_cast<uint32_t>(k);
+        ro.distance = dist;
+        ro.point_distance = pcd;
+        ro.region_distance = rcd > 0 ? rcd : -1.0f;
+        ro.min_size = minSize > 1 ? static_cast<uint32_t>(minSize) : 1u;
+    }
+    const bool colorBy = par.getBool("colorBySegment");
+    const bool toQuality = par.getBool("labelToQuality");
+
+    LayerCloud lc;
+    if (!loadLayerCloud(*mm, needColor || colorBy, false, "segments", "segment -1", lc)) return false;
+    if (needColor && !lc.hasColor)
+        return fail(QString("layer '%1' has no per-vertex colour: %2 segments by colour (use 'NPR: Segment (connected "
+                            "components / colour region growing)' with connected components for a layer without "
+                            "colours)").arg(layer).arg(methodName));
+    const pnpr_cloud &cloud = lc.g.cloud;
+    const size_t n = lc.verts.size();
+    if (n > (size_t(1) << 24))
+        return fail(QString("layer '%1' has %2 vertices: more than 2^24, labels would not be exact as floats").arg(layer).arg(n));
+
+    /* ---- run ---- */
+    std::vector<uint32_t> labels(n);
+    pnpr_segment_info info;
+    std::memset(&info, 0, sizeof info);
+    QElapsedTimer timer;
+    timer.start();
+    pnpr_status st;
+    const bool cut = jseg && (segmentsWanted > 0 || hThreshold > 0);
+    ProgressBridge pb = makeBridge(cb, 0, cut ? 80 : 100, false, jseg ? "NPR JSEG" : "NPR segments");
+    if (jseg) {
+        jo.progress = progressOf(pb);
+        st = pnpr_segment_jseg(cloud.xyz, cloud.rgb, n, &jo, labels.data(), &info);
+    } else if (method == 0) {
+        co.progress = progressOf(pb);
+        st = pnpr_segment_components(cloud.xyz, n, &co, labels.data(), &info);
+    } else {
+        ro.progress = progressOf(pb);
+        st = pnpr_segment_rgbgrow(cloud.xyz, cloud.rgb, n, &ro, labels.data(), &info);
+    }
+    if (st == PNPR_ERR_CANCELLED) return fail("cancelled; the layer is unchanged");
+    if (st != PNPR_OK)
+        return fail(QString("%1 segmentation of layer '%2' failed: %3").arg(methodName).arg(layer).arg(pnpr_status_string(st)));
+    uint32_t S = info.segment_count;
+    const uint32_t regions = S;
+    const uint32_t invalid = info.invalid_segment;
+    if (cut && S > 1) {
+        /* the region hierarchy over the valid segments (the invalid segment, the last label, stays apart) */
+        const uint32_t hs = invalid != PNPR_LABEL_NONE ? S - 1 : S;
+        const size_t kk = n > 10 ? 10 : n;
+        std::vector<uint32_t> knn(n * kk);
+        std::vector<pnpr_segment_merge> merges(hs > 1 ? hs - 1 : 1);
+        TreeGuard tg;
+        ProgressBridge ph = makeBridge(cb, 80, 100, false, "NPR JSEG: hierarchy");
+        pnpr_knn_options ko;
+        std::memset(&ko, 0, sizeof ko);
+        ko.progress = progressOf(ph);
+        if ((st = pnpr_kdtree_build(cloud.xyz, n, 0, &tg.tree)) == PNPR_OK &&
+            (st = pnpr_knn_self(tg.tree, n, kk, &ko, knn.data(), nullptr)) == PNPR_OK) {
+            pnpr_region_graph g = {knn.data(), kk, kk};
+            pnpr_hierarchy_options ho;
+            std::memset(&ho, 0, sizeof ho);
+            ho.progress = progressOf(ph);
+            uint32_t nm = 0;
+            if ((st = pnpr_segment_hierarchy(cloud.rgb, n, &g, labels.data(), hs, &ho, merges.data(), &nm)) == PNPR_OK) {
+                uint32_t target = segmentsWanted > 0 ? static_cast<uint32_t>(segmentsWanted) : 0;
+                if (target && invalid != PNPR_LABEL_NONE) target = target > 1 ? target - 1 : 1;
+                st = pnpr_segment_hierarchy_cut(labels.data(), n, hs, merges.data(), nm, target, hThreshold,
+                                                labels.data(), &S);
+            }
+        }
+        if (st == PNPR_ERR_CANCELLED) return fail("cancelled; the layer is unchanged");
+        if (st != PNPR_OK)
+            return fail(QString("the region hierarchy of layer '%1' failed: %2").arg(layer).arg(pnpr_status_string(st)));
+    }
+    const double seconds = timer.elapsed() / 1000.0;
+    /* after a cut the invalid points hold the last label */
+    const uint32_t invalidLabel = invalid == PNPR_LABEL_NONE ? PNPR_LABEL_NONE : S - 1;
+    const uint32_t validSegments = invalid == PNPR_LABEL_NONE ? S : S - 1;
+
+    std::vector<float> mean;
+    if (colorBy && lc.hasColor) {
+        mean.assign(3 * static_cast<size_t>(S ? S : 1), 0.0f);
+        if ((st = pnpr_segment_mean_colors(cloud.rgb, labels.data(), n, S, mean.data(), nullptr)) != PNPR_OK)
+            return fail(QString("segment colours failed: %1").arg(pnpr_status_string(st)));
+    }
+
+    /* ---- write back (nothing above touched the layer) ---- */
+    auto hSeg = attributeOfType<float>(m, kAttrSegment);
+    for (CMeshO::VertexIterator vi = m.vert.begin(); vi != m.vert.end(); ++vi) hSeg[vi] = -1.0f;
+    if (toQuality) mm->updateDataMask(MeshModel::MM_VERTQUALITY);
+    if (colorBy) mm->updateDataMask(MeshModel::MM_VERTCOLOR);
+    for (size_t i = 0; i < n; i++) {
+        CMeshO::VertexPointer v = lc.verts[i];
+        const uint32_t l = labels[i];
+        const bool valid = l != invalidLabel && l < S;
+        const float value = valid ? static_cast<float>(l) : -1.0f;
+        hSeg[v] = value;
+        if (toQuality) v->Q() = value;
+        if (colorBy && valid) {
+            if (lc.hasColor) {
+                const float *c = &mean[3 * static_cast<size_t>(l)];
+                v->C() = vcg::Color4b(static_cast<unsigned char>(std::lround(std::min(255.0f, std::max(0.0f, c[0])))),
+                                      static_cast<unsigned char>(std::lround(std::min(255.0f, std::max(0.0f, c[1])))),
+                                      static_cast<unsigned char>(std::lround(std::min(255.0f, std::max(0.0f, c[2])))),
+                                      255);
+            } else {
+                v->C() = labelColor(l);
+            }
+        }
+    }
+
+    if (jseg)
+        Log("pointnpr: layer '%s': JSEG: %zu points (%zu valid), %u colour classes, mean J %.3f, %u seed regions, "
+            "%u grown, %u regions after merging", qUtf8Printable(layer), n, info.valid_points, info.classes,
+            static_cast<double>(info.mean_j), info.seed_regions, info.grown_regions,
+            invalid == PNPR_LABEL_NONE ? regions : regions - 1);
+    else
+        Log("pointnpr: layer '%s': %s: %zu points (%zu valid)", qUtf8Printable(layer), methodName, n, info.valid_points);
+    if (cut)
+        Log("pointnpr: region hierarchy cut (%s%s%s): %u segments", segmentsWanted > 0 ? "segment count" : "",
+            segmentsWanted > 0 && hThreshold > 0 ? " and " : "", hThreshold > 0 ? "threshold" : "", validSegments);
+    Log("pointnpr: %u segments; %.3f s; stored per-vertex attribute %s (float label 0..%u%s)%s%s", validSegments, seconds,
+        kAttrSegment, validSegments ? validSegments - 1 : 0, invalid == PNPR_LABEL_NONE ? "" : ", -1 for NaN/Inf vertices",
+        colorBy ? (lc.hasColor ? ", vertex colours = segment mean colour" : ", vertex colours = one colour per segment") : "",
+        toQuality ? ", vertex quality = label" : "");
+    if (cb) cb(100, "NPR segments: done");
     return true;
 }

@@ -6,6 +6,13 @@
 
 #include <common/interfaces.h>
 
+#include <pointnpr/features.h>
+
+#include <QString>
+
+struct LayerCloud;
+struct ProgressBridge;
+
 class FilterPointnprPlugin : public QObject, public MeshFilterInterface
 {
     Q_OBJECT
@@ -13,7 +20,7 @@ class FilterPointnprPlugin : public QObject, public MeshFilterInterface
     Q_INTERFACES(MeshFilterInterface)
 
 public:
-    enum { FP_FEATURES, FP_SELECT_FEATURES };
+    enum { FP_FEATURES, FP_SELECT_FEATURES, FP_PROFILE_LINES, FP_SEGMENT_JSEG, FP_SEGMENT_GROW };
 
     FilterPointnprPlugin();
 
@@ -31,7 +38,16 @@ public:
 private:
     bool computeFeatures(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
     bool selectFeatures(MeshDocument &md, const RichParameterList &par);
+    bool profileLines(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
+    bool segment(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb, bool jseg);
     bool fail(const QString &message);
+
+    /* shared by the filters: the current layer -> pnpr_cloud, the feature analysis */
+    bool loadLayerCloud(MeshModel &mm, bool withColor, bool withLayerNormals, const char *what,
+                        const char *leftOutNote, LayerCloud &lc);
+    bool checkFeatureParams(const RichParameterList &par, bool all, pnpr_features_options &fo);
+    bool runFeatures(LayerCloud &lc, pnpr_features_options &fo, ProgressBridge &pb, pnpr_features_stats &stats,
+                     double &seconds);
 };
 
 #endif

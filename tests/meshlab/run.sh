@@ -2,7 +2,7 @@
 # MeshLab plugin tests: runs the filters of libfilter_pointnpr.so inside Debian's meshlabserver.
 #
 #   tests/meshlab/run.sh TEST PLUGIN_SO POINTNPR_CLI WORKDIR
-#     TEST: load | cube | offset | select | robust | lion
+#     TEST: load | cube | offset | select | robust | lion | lines | segment
 #
 # meshlabserver runs from a private folder WORKDIR/TEST/host holding a hard link (or copy) of the
 # binary and plugins/ with symlinks to the system plugins plus ours (MeshLab only looks for
@@ -135,6 +135,158 @@ select_xml() {
 EOF
 }
 
+# lines_xml [name=value ...]: the profile-lines filter with every parameter
+lines_xml() {
+  local spacing=0 radius=0 merge=0 minlen=0 beta=4 shifts=4 corners=true recompute=false k=16 threshold=0 conf=0.6 kv
+  for kv in "$@"; do local "$kv"; done
+  cat << EOF
+ <filter name="NPR: Profile lines">
+  <Param type="RichFloat" name="spacing" value="$spacing"/>
+  <Param type="RichFloat" name="radius" value="$radius"/>
+  <Param type="RichFloat" name="mergeTolerance" value="$merge"/>
+  <Param type="RichFloat" name="minLength" value="$minlen"/>
+  <Param type="RichFloat" name="directionWeight" value="$beta"/>
+  <Param type="RichInt" name="shiftIterations" value="$shifts"/>
+  <Param type="RichBool" name="corners" value="$corners"/>
+  <Param type="RichBool" name="recomputeFeatures" value="$recompute"/>
+  <Param type="RichInt" name="k" value="$k"/>
+  <Param type="RichFloat" name="threshold" value="$threshold"/>
+  <Param type="RichFloat" name="directionConfidence" value="$conf"/>
+ </filter>
+EOF
+}
+# jseg_xml [name=value ...]: the JSEG filter with every parameter
+jseg_xml() {
+  local segments=0 hthr=0 classes=16 qd=12 k=24 radius=0 seed=0.6 md=10 minsize=0 color=true quality=true kv
+  for kv in "$@"; do local "$kv"; done
+  cat << EOF
+ <filter name="NPR: Segment (JSEG)">
+  <Param type="RichInt" name="segments" value="$segments"/>
+  <Param type="RichFloat" name="hierarchyThreshold" value="$hthr"/>
+  <Param type="RichInt" name="classes" value="$classes"/>
+  <Param type="RichFloat" name="quantDistance" value="$qd"/>
+  <Param type="RichInt" name="k" value="$k"/>
+  <Param type="RichFloat" name="radius" value="$radius"/>
+  <Param type="RichFloat" name="seedFactor" value="$seed"/>
+  <Param type="RichFloat" name="mergeDistance" value="$md"/>
+  <Param type="RichInt" name="minSize" value="$minsize"/>
+  <Param type="RichBool" name="colorBySegment" value="$color"/>
+  <Param type="RichBool" name="labelToQuality" value="$quality"/>
+ </filter>
+EOF
+}
+# grow_xml [name=value ...]: components (method=0) / colour region growing (method=1)
+grow_xml() {
+  local method=0 distance=0 minsize=10 k=16 pcd=25 rcd=10 color=false quality=true kv
+  for kv in "$@"; do local "$kv"; done
+  cat << EOF
+ <filter name="NPR: Segment (connected components / colour region growing)">
+  <Param type="RichEnum" name="method" value="$method" enum_cardinality="2" enum_val0="Connected components" enum_val1="Colour region growing"/>
+  <Param type="RichFloat" name="distance" value="$distance"/>
+  <Param type="RichInt" name="minSize" value="$minsize"/>
+  <Param type="RichInt" name="k" value="$k"/>
+  <Param type="RichFloat" name="pointColorDistance" value="$pcd"/>
+  <Param type="RichFloat" name="regionColorDistance" value="$rcd"/>
+  <Param type="RichBool" name="colorBySegment" value="$color"/>
+  <Param type="RichBool" name="labelToQuality" value="$quality"/>
+ </filter>
+EOF
+}
+
+# check_cube_lines OBJ SIDE H OX OY OZ: profile lines of the cube [0,SIDE]^3 + (OX,OY,OZ) saved as
+# OBJ (v + l): >= 12 polylines (connected components of the edge graph; the plugin gives every
+# polyline its own vertices), every vertex within 2h of a cube edge, total edge length within 10%
+# of 12 x SIDE, no vertex without an edge.
+check_cube_lines() {
+  awk -v s="$2" -v h="$3" -v ox="$4" -v oy="$5" -v oz="$6" '
+    function absv(v) { return v < 0 ? -v : v }
+    function find(a) { while (par[a] != a) { par[a] = par[par[a]]; a = par[a] } return a }
+    $1 == "v" { nv++; x[nv] = $2 - ox; y[nv] = $3 - oy; z[nv] = $4 - oz; par[nv] = nv }
+    $1 == "l" { for (i = 2; i < NF; i++) { a = $i + 0; b = $(i + 1) + 0; ne++; used[a] = used[b] = 1
+                  len += sqrt((x[a] - x[b]) ^ 2 + (y[a] - y[b]) ^ 2 + (z[a] - z[b]) ^ 2)
+                  ra = find(a); rb = find(b); if (ra != rb) par[ra] = rb } }
+    END {
+      for (v = 1; v <= nv; v++) {
+        d[0] = x[v] < s - x[v] ? absv(x[v]) : absv(s - x[v]); d[1] = y[v] < s - y[v] ? absv(y[v]) : absv(s - y[v])
+        d[2] = z[v] < s - z[v] ? absv(z[v]) : absv(s - z[v])
+        for (a = 0; a < 3; a++) for (b = a + 1; b < 3; b++) if (d[b] < d[a]) { t = d[a]; d[a] = d[b]; d[b] = t }
+        e = sqrt(d[0] ^ 2 + d[1] ^ 2); if (e > emax) emax = e; if (e > 2 * h) far++
+        if (!used[v]) lonely++; if (find(v) == v) comps++
+      }
+      printf "lines: %d vertices, %d edges, %d polylines, total length %.4f (12 x side = %g), max distance to an edge %.4g (h = %g), %d vertices farther than 2h, %d without an edge\n",
+        nv, ne, comps, len, 12 * s, emax, h, far, lonely
+      exit (nv > 0 && comps >= 12 && far == 0 && lonely == 0 && len >= 0.9 * 12 * s && len <= 1.1 * 12 * s) ? 0 : 1
+    }' "$1"
+}
+
+# ari_awk: lines "TRUTH RESULT" -> "ARI TRUTH_SEGMENTS RESULT_SEGMENTS" (adjusted Rand index, Hubert & Arabie)
+ari_awk() {
+  awk '{ n++; nij[$1 SUBSEP $2]++; a[$1]++; b[$2]++ }
+    function c2(v) { return v * (v - 1) / 2 }
+    END { for (k in nij) sij += c2(nij[k]); for (k in a) { sa += c2(a[k]); na++ } for (k in b) { sb += c2(b[k]); nb++ }
+          e = sa * sb / c2(n); mx = (sa + sb) / 2
+          printf "%.4f %d %d\n", (mx == e ? 1 : (sij - e) / (mx - e)), na, nb }'
+}
+
+# scene_ply OUT.ply TRUTH SEED: the library test scene (tests/test_segment.c make_scene, clean:
+# spacing 0.02, position noise 0.001, colour noise 4): grey ground plane, red box on it, blue
+# sphere touching the box, green cylinder touching its other side; TRUTH gets "x y z object" per
+# point in file order.
+scene_ply() {
+  awk -v seed="$3" -v truth="$2" 'function nrm() { return sqrt(-2 * log(1 - rand())) * cos(6.283185307179586 * rand()) }
+    function add(x, y, z, r, g, b, o,   c) {
+      px[N] = x + 0.001 * nrm(); py[N] = y + 0.001 * nrm(); pz[N] = z + 0.001 * nrm()
+      c = r + 4 * nrm(); cr[N] = c < 0 ? 0 : (c > 255 ? 255 : int(c + 0.5))
+      c = g + 4 * nrm(); cg[N] = c < 0 ? 0 : (c > 255 ? 255 : int(c + 0.5))
+      c = b + 4 * nrm(); cb[N] = c < 0 ? 0 : (c > 255 ? 255 : int(c + 0.5))
+      obj[N] = o; N++ }
+    BEGIN { srand(seed); h = 0.02; PI = 3.14159265358979323846
+      for (x = -1; x <= 1 + 1e-9; x += h) for (y = -1; y <= 1 + 1e-9; y += h) {
+        if (x > -0.5 && x < 0.1 && y > -0.3 && y < 0.3) continue
+        add(x, y, 0, 140, 140, 140, 0) }
+      m = int(0.6 / h + 0.5)
+      for (i = 0; i <= m; i++) for (j = 0; j <= m; j++) {
+        u = -0.5 + 0.6 * i / m; v = 0.6 * j / m; w = -0.3 + 0.6 * i / m
+        if (j > 0) { add(u, -0.3, v, 200, 40, 40, 1); add(u, 0.3, v, 200, 40, 40, 1)
+                     if (i > 0 && i < m) { add(-0.5, w, v, 200, 40, 40, 1); add(0.1, w, v, 200, 40, 40, 1) } }
+        if (i > 0 && i < m && j > 0 && j < m) add(u, -0.3 + 0.6 * j / m, 0.6, 200, 40, 40, 1) }
+      r = 0.35; ns = int(4 * PI * r * r / (h * h))
+      for (i = 0; i < ns; i++) { z = 1 - 2 * (i + 0.5) / ns; rr = sqrt(1 - z * z); phi = i * PI * (3 - sqrt(5))
+        add(0.45 + h + r * rr * cos(phi), r * rr * sin(phi), 0.35 + r * z, 40, 60, 200, 2) }
+      cr0 = 0.2; nr = int(2 * PI * cr0 / h); nz = int(0.8 / h)
+      for (a = 0; a < nr; a++) for (b = 1; b <= nz; b++) { t = 2 * PI * a / nr
+        add(-0.2 + cr0 * cos(t), 0.5 + h + cr0 * sin(t), 0.8 * b / nz, 40, 170, 60, 3) }
+      for (x = -cr0; x <= cr0; x += h) for (y = -cr0; y <= cr0; y += h)
+        if (x * x + y * y < (cr0 - h / 2) ^ 2) add(-0.2 + x, 0.5 + h + y, 0.8, 40, 170, 60, 3)
+      printf "ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n", N
+      for (i = 0; i < N; i++) { printf "%.7g %.7g %.7g %d %d %d\n", px[i], py[i], pz[i], cr[i], cg[i], cb[i]
+                                printf "%.7g %.7g %.7g %d\n", px[i], py[i], pz[i], obj[i] > truth } }' > "$1"
+}
+
+# score_segments OUT-ASCII.ply TRUTH WHAT MIN_ARI [SEGMENTS]: ARI of the labels saved in vertex
+# quality and of the colours against the truth (file order; positions must match the truth file);
+# with SEGMENTS the label count must equal it. Labels must be integers 0..S-1.
+score_segments() {
+  local out=$1 truth=$2 what=$3 min=$4 want=${5:-0} q c qa qt qs ca cs
+  awk '/^property/ && !b { col[$NF] = np++ } /^end_header/ { b = 1; next }
+    b { printf "%s %s %s %s %s,%s,%s\n", $(col["x"] + 1), $(col["y"] + 1), $(col["z"] + 1), $(col["quality"] + 1),
+        $(col["red"] + 1), $(col["green"] + 1), $(col["blue"] + 1) }' "$out" > "$T/scored.txt"
+  if ! awk 'NR == FNR { tx[FNR] = $1; ty[FNR] = $2; tz[FNR] = $3; n = FNR; next }
+      { m++; d = ($1 - tx[FNR]) ^ 2 + ($2 - ty[FNR]) ^ 2 + ($3 - tz[FNR]) ^ 2; if (d > 1e-8) bad++
+        if ($4 != int($4) || $4 < 0) badl++; if ($4 + 1 > S) S = $4 + 1; seen[$4] = 1 }
+      END { for (l in seen) k++; if (bad || m != n || badl || k != S) { printf "order/labels: %d of %d points moved, %d non-integer labels, %d labels used of 0..%d\n", bad, n, badl, k, S - 1; exit 1 } }' \
+      "$truth" "$T/scored.txt"; then
+    fail "$what: output does not line up with the ground truth or labels are not 0..S-1"; return 1
+  fi
+  q=$(paste -d ' ' <(awk '{ print $4 }' "$truth") <(awk '{ print $4 }' "$T/scored.txt") | ari_awk)
+  c=$(paste -d ' ' <(awk '{ print $4 }' "$truth") <(awk '{ print $5 }' "$T/scored.txt") | ari_awk)
+  read -r qa qt qs <<< "$q"; read -r ca _ cs <<< "$c"
+  log "$what: ARI of the labels $qa ($qs segments, truth $qt), ARI of the colours $ca ($cs colours)"
+  awk -v a="$qa" -v m="$min" 'BEGIN { exit a >= m ? 0 : 1 }' || fail "$what: label ARI $qa < $min"
+  [[ "$want" == 0 || "$qs" == "$want" ]] || fail "$what: $qs segments, expected $want"
+  LAST_SCORE="$qa $qs $ca $cs"
+}
+
 # to_ascii IN.ply OUT.ply: MeshLab's binary PLY -> ascii through the project's own reader/writer
 to_ascii() { "$CLI" convert "$1" -o "$2" --ascii --quiet || { fail "pointnpr convert $1 failed"; return 1; }; }
 
@@ -202,14 +354,20 @@ load)
   expect_rc dump 0
   no_plugin_errors dump
   [[ -f "$T/filters.html" ]] || die "meshlabserver -d wrote no filter list"
-  for f in "NPR: Compute feature degree and classify points" "NPR: Select feature points"; do
+  for f in "NPR: Compute feature degree and classify points" "NPR: Select feature points" "NPR: Profile lines" \
+           "NPR: Segment (JSEG)" "NPR: Segment (connected components / colour region growing)"; do
     grep -qF "$f" "$T/filters.html" || fail "filter '$f' is not registered"
   done
   # the list shows each parameter's type and description
   for p in "Int:Neighbours (k)" "Float:Feature threshold" "Float:Geometry weight" "Float:Colour weight" \
            "Float:Directional confidence" "Float:Dither scale" "Bool:Recompute normals" \
            "Bool:Orient towards viewpoint" "Point3f:Viewpoint" "Bool:Colour points by class" "Enum:Class" \
-           "Bool:Add to current selection"; do
+           "Bool:Add to current selection" "Float:Sample spacing h" "Float:Neighbourhood radius" \
+           "Float:Merge tolerance" "Float:Minimum line length" "Float:Direction weight" "Int:Noise-reducing shifts" \
+           "Bool:Join at corners" "Bool:Recompute features" "Int:Segment count (hierarchy)" "Float:Hierarchy threshold" \
+           "Int:Colour classes" "Float:Class merge distance" "Float:Seed factor" "Float:Region merge distance" \
+           "Int:Minimum segment size" "Bool:Colour vertices by segment" "Bool:Label to vertex quality" "Enum:Method" \
+           "Float:Neighbour distance" "Float:Point colour distance"; do
     grep -qF "\c ${p%%:*}  </TD> <TD> ${p#*:} </TD>" "$T/filters.html" || fail "parameter '$p' missing from the filter list"
   done
   # the same plugin loaded into the interactive host's plugin folder layout works with a script too
@@ -335,7 +493,7 @@ robust)
   mlx "$T/ok.mlx" "$(features_xml)" "$(select_xml 2)"
   mlserver ok -i "$T/cube.ply" -o "$T/ok-out.ply" -s "$T/ok.mlx" && expect_rc ok 0
   for r in empty badk badw selfirst; do
-    [[ -f "$T/$r.rc" ]] && log "$r: exit status $(cat "$T/$r.rc"): $(grep -m1 'pointnpr:' "$T/$r.log")"
+    [[ -f "$T/$r.rc" ]] && log "$r: exit status $(cat "$T/$r.rc"): $(grep 'LOG: .*pointnpr:' "$T/$r.log" | tail -n 1)"
   done
   ;;
 
@@ -377,6 +535,130 @@ lion)
                   near(pf, cf) && near(pd, cd) && near(pdi, cdi) && pd > 0 && pdi > 0) ? 0 : 1 }' \
       "$T/lion-cli.ply" "$T/lion-out-a.ply" || fail "lion results"
   fi
+  ;;
+
+lines)
+  # Profile lines of the sampled cube [0,1]^3 (the cube test's grid, h = 0.02) as a new polyline
+  # layer saved as OBJ: >= 12 polylines, every vertex within 2h of a cube edge, total length within
+  # 10% of 12. (a) features computed by the lines filter, (b) from the feature filter's stored
+  # attributes, (c) a cube of side 1000 at (1e7, -1e7, 5e6), (d) robustness.
+  n=50
+  cube_ply "$T/cube.ply" 1 $n 0 0 0
+  mlx "$T/l.mlx" "$(lines_xml)"
+  if mlserver lines -i "$T/cube.ply" -o "$T/lines.obj" -s "$T/l.mlx"; then
+    expect_rc lines 0
+    expect_log lines "layer 'cube.ply' analysed for the lines \\(it is left unchanged\\): 15002 points"
+    expect_log lines "new layer 'cube.ply profile lines'"
+    grep -m1 "directional points ->" "$T/lines.log"
+    check_cube_lines "$T/lines.obj" 1 0.02 0 0 0 || fail "cube lines, features computed by the filter (see above)"
+  fi
+  mlx "$T/fl.mlx" "$(features_xml)" "$(lines_xml)"
+  if mlserver stored -i "$T/cube.ply" -o "$T/stored.obj" -s "$T/fl.mlx"; then
+    expect_rc stored 0
+    expect_log stored "feature classes and directions taken from its attributes"
+    check_cube_lines "$T/stored.obj" 1 0.02 0 0 0 || fail "cube lines from stored features (see above)"
+  fi
+  cube_ply "$T/far.ply" 1000 $n 10000000 -10000000 5000000
+  if mlserver far -i "$T/far.ply" -o "$T/far.obj" -s "$T/l.mlx"; then
+    expect_rc far 0
+    check_cube_lines "$T/far.obj" 1000 20 10000000 -10000000 5000000 || fail "cube lines at 1e7 (see above)"
+  fi
+  # robustness: empty layer, no directional points (a plane), lines shorter than the minimum
+  # length, a bad parameter: exit 255 with the message and nothing saved; NaN vertices: left out
+  printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n' > "$T/empty.ply"
+  mlserver empty -i "$T/empty.ply" -o "$T/empty.obj" -s "$T/l.mlx" && expect_rc empty 255 &&
+    expect_log empty "has no vertices: nothing to analyse"
+  awk 'BEGIN { printf "ply\nformat ascii 1.0\nelement vertex 1600\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+    for (i = 0; i < 1600; i++) printf "%g %g 0\n", (i % 40) / 40, int(i / 40) / 40 }' > "$T/plane.ply"
+  mlserver plane -i "$T/plane.ply" -o "$T/plane.obj" -s "$T/l.mlx" && expect_rc plane 255 &&
+    expect_log plane "no profile lines: layer 'plane.ply' has no directional feature points .*no layer was added"
+  mlx "$T/long.mlx" "$(lines_xml minlen=100)"
+  mlserver long -i "$T/cube.ply" -o "$T/long.obj" -s "$T/long.mlx" && expect_rc long 255 &&
+    expect_log long "directional points of layer 'cube.ply' form no line longer than the minimum length"
+  mlx "$T/beta.mlx" "$(lines_xml beta=0)"
+  mlserver beta -i "$T/cube.ply" -o "$T/beta.obj" -s "$T/beta.mlx" && expect_rc beta 255 &&
+    expect_log beta "the direction weight must be > 0 \\(got 0\\)"
+  for r in empty plane long beta; do [[ -e "$T/$r.obj" ]] && fail "'$r': a failed run saved $r.obj"; done
+  { printf 'ply\nformat ascii 1.0\nelement vertex 15004\nproperty float x\nproperty float y\nproperty float z\nend_header\nnan 0 0\n0 nan inf\n'
+    sed '1,/^end_header/d' "$T/cube.ply"; } > "$T/nan.ply"
+  if mlserver nan -i "$T/nan.ply" -o "$T/nan.obj" -s "$T/l.mlx"; then
+    expect_rc nan 0
+    expect_log nan "2 of 15004 vertices have NaN/Inf coordinates: they are left out \\(no line passes through them\\)"
+    check_cube_lines "$T/nan.obj" 1 0.02 0 0 0 || fail "cube lines with NaN vertices (see above)"
+  fi
+  for r in empty plane long beta; do
+    [[ -f "$T/$r.rc" ]] && log "$r: exit status $(cat "$T/$r.rc"): $(grep 'LOG: .*pointnpr:' "$T/$r.log" | tail -n 1)"
+  done
+  ;;
+
+segment)
+  # Segmentation of the library's clean test scene (tests/test_segment.c: ground plane, box,
+  # sphere, cylinder, touching, 4 objects) with known labels: adjusted Rand index of the labels
+  # (saved through vertex quality) against the truth >= 0.9, the bound of the library's own
+  # tests for the clean scene; the segment mean colours give the same partition.
+  scene_ply "$T/scene.ply" "$T/truth.txt" 11
+  log "scene: $(wc -l < "$T/truth.txt") points"
+  run_seg() { # NAME MIN_ARI SEGMENTS FILTER_XML
+    local name=$1 min=$2 want=$3
+    mlx "$T/$name.mlx" "$4"
+    mlserver "$name" -i "$T/scene.ply" -o "$T/$name.ply" -m vc vq -s "$T/$name.mlx" || return 1
+    expect_rc "$name" 0
+    to_ascii "$T/$name.ply" "$T/$name-a.ply" || return 1
+    score_segments "$T/$name-a.ply" "$T/truth.txt" "$name" "$min" "$want"
+  }
+  LAST_SCORE=""
+  if run_seg jseg 0.9 0 "$(jseg_xml)"; then
+    read -r qa qs ca cs <<< "$LAST_SCORE"
+    # colours = segment mean colours: as many colours as segments, the same partition
+    [[ "$cs" == "$qs" ]] && awk -v a="$qa" -v c="$ca" 'BEGIN { exit (a - c < 1e-3 && c - a < 1e-3) ? 0 : 1 }' ||
+      fail "jseg: the colours ($cs, ARI $ca) are not one mean colour per segment ($qs, ARI $qa)"
+    expect_log jseg "JSEG: [0-9]+ points \\([0-9]+ valid\\), [0-9]+ colour classes"
+    expect_log jseg "stored per-vertex attribute segment \\(float label 0\\.\\.[0-9]+\\), vertex colours = segment mean colour, vertex quality = label"
+  fi
+  run_seg jseg4 0.9 4 "$(jseg_xml segments=4)" && expect_log jseg4 "region hierarchy cut \\(segment count\\): 4 segments"
+  if run_seg rgbgrow 0.9 0 "$(grow_xml method=1)"; then
+    # colours untouched without "colour by segment"
+    paste -d ' ' <(sed '1,/^end_header/d' "$T/scene.ply" | awk '{ print $4, $5, $6 }') <(awk '{ print $5 }' "$T/scored.txt") |
+      awk '{ if ($1 "," $2 "," $3 != $4) bad++ } END { exit bad ? 1 : 0 }' || fail "rgbgrow changed the colours without 'colour by segment'"
+  fi
+  # connected components: three spheres 1 apart (800 points each) and two far outliers, which
+  # join their nearest kept component with a minimum size (the library test's known answer)
+  awk -v truth="$T/spheres-truth.txt" 'BEGIN { PI = 3.14159265358979323846; n = 800
+    print "ply\nformat ascii 1.0\nelement vertex 2402\nproperty float x\nproperty float y\nproperty float z\nend_header"
+    for (b = 0; b < 3; b++) for (i = 0; i < n; i++) { z = 1 - 2 * (i + 0.5) / n; rr = sqrt(1 - z * z); phi = i * PI * (3 - sqrt(5))
+      x = b + 0.3 * rr * cos(phi); y = 0.3 * rr * sin(phi); printf "%.7g %.7g %.7g\n", x, y, 0.3 * z; printf "%.7g %.7g %.7g %d\n", x, y, 0.3 * z, b > truth }
+    print "5 5 5"; print "5 5 5 2" > truth; print "-5 5 5"; print "-5 5 5 0" > truth }' > "$T/spheres.ply"
+  mlx "$T/cc.mlx" "$(grow_xml method=0 distance=0.15 minsize=10 color=true)"
+  if mlserver cc -i "$T/spheres.ply" -o "$T/cc.ply" -m vc vq -s "$T/cc.mlx" && expect_rc cc 0 && to_ascii "$T/cc.ply" "$T/cc-a.ply"; then
+    score_segments "$T/cc-a.ply" "$T/spheres-truth.txt" "components" 0.9999 3
+    expect_log cc "vertex colours = one colour per segment"
+  fi
+  # robustness: JSEG / region growing without colours, an empty layer, a bad parameter: exit 255
+  # with the message; NaN vertices: segment -1, success
+  cube_ply "$T/cube.ply" 1 10 0 0 0
+  mlx "$T/j.mlx" "$(jseg_xml)"
+  mlserver nocolour -i "$T/cube.ply" -o "$T/nocolour.ply" -s "$T/j.mlx" && expect_rc nocolour 255 &&
+    expect_log nocolour "layer 'cube.ply' has no per-vertex colour: JSEG segments by colour"
+  mlx "$T/g.mlx" "$(grow_xml method=1)"
+  mlserver nocolour2 -i "$T/cube.ply" -o "$T/nocolour2.ply" -s "$T/g.mlx" && expect_rc nocolour2 255 &&
+    expect_log nocolour2 "has no per-vertex colour: colour region growing segments by colour"
+  printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n' > "$T/empty.ply"
+  mlserver empty -i "$T/empty.ply" -o "$T/empty-out.ply" -s "$T/j.mlx" && expect_rc empty 255 &&
+    expect_log empty "has no vertices: nothing to analyse"
+  mlx "$T/bad.mlx" "$(jseg_xml seed=0)"
+  mlserver bad -i "$T/scene.ply" -o "$T/bad-out.ply" -s "$T/bad.mlx" && expect_rc bad 255 &&
+    expect_log bad "the seed factor must be > 0 \\(got 0\\)"
+  total=$(wc -l < "$T/truth.txt")
+  { sed -n '1,/^end_header/p' "$T/scene.ply" | sed "s/^element vertex .*/element vertex $((total + 2))/"
+    echo "nan 0 0 255 0 0"; echo "0 nan inf 0 255 0"; sed '1,/^end_header/d' "$T/scene.ply"; } > "$T/nan.ply"
+  if mlserver nan -i "$T/nan.ply" -o "$T/nan-out.ply" -m vc vq -s "$T/j.mlx"; then
+    expect_rc nan 0
+    expect_log nan "2 of $((total + 2)) vertices have NaN/Inf coordinates: they are left out \\(segment -1\\)"
+    expect_log nan "-1 for NaN/Inf vertices"
+  fi
+  for r in nocolour nocolour2 empty bad; do
+    [[ -f "$T/$r.rc" ]] && log "$r: exit status $(cat "$T/$r.rc"): $(grep 'LOG: .*pointnpr:' "$T/$r.log" | tail -n 1)"
+  done
   ;;
 
 *) die "unknown test '$TEST'" ;;
