@@ -33,8 +33,10 @@ test: test-release test-asan
 demo: build
 	bash scripts/demo.sh $(BUILD)
 
-bench: build
+bench: deps
 	bash packaging/install-deps.sh --bench
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPNPR_WERROR=ON -DPNPR_BENCH_PEERS=ON
+	cmake --build $(BUILD) -j $(JOBS)
 	bash bench/run.sh $(BUILD)
 
 clean:

@@ -63,3 +63,16 @@ echo "== profile lines: scaling 10k..1M directional points" >&2
 
 echo "== normals at growing coordinate offsets: Open3D (ours: tests/test_stability)" >&2
 /usr/bin/python3 bench/open3d_offset.py 20000 | tee "$out/open3d_offset.md"
+
+echo "== segmentation: ours vs PCL RegionGrowingRGB on generated scenes with known labels" >&2
+mkdir -p "$out/segment"
+"$build/bench/segment/bench_segment" "$out/segment" 0.005 | tee "$out/segment.md"
+if [ -x "$build/bench/segment/segment_pcl" ]; then
+  for scene in clean noisy; do
+    timeout 600 "$build/bench/segment/segment_pcl" "$out/segment/scene_$scene.bin" | tee -a "$out/segment.md" ||
+      echo "| $scene | PCL RegionGrowingRGB | did not finish within 600 s |" | tee -a "$out/segment.md"
+  done
+fi
+
+echo "== error against run time: pointnpr bench accuracy" >&2
+"$build/pointnpr" bench accuracy --out "$out/accuracy" | tee "$out/accuracy.md"

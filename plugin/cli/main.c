@@ -45,6 +45,7 @@ static void usage(FILE *f)
             "  render IN -o OUT.png         stylised image (sketchy, stipple, painterly, cartoon, points)\n"
             "  lines IN -o OUT.obj          profile lines (polylines; OBJ, PLY or SVG)\n"
             "  segment IN -o OUT.ply        segments (jseg, components, rgbgrow, labels)\n"
+            "  bench accuracy [--out DIR]   error against run time of the feature analysis\n"
             "run 'pointnpr <command> --help' for the options of a command\n",
             PNPR_VERSION_STRING);
 }
@@ -61,6 +62,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "render")) return cli_render(argc - 1, argv + 1);
     if (!strcmp(cmd, "lines")) return cli_lines(argc - 1, argv + 1);
     if (!strcmp(cmd, "segment")) return cli_segment(argc - 1, argv + 1);
+    if (!strcmp(cmd, "bench")) return cli_bench(argc - 1, argv + 1);
     fprintf(stderr, "pointnpr: unknown command '%s'\n", cmd);
     usage(stderr);
     return 2;
