@@ -137,7 +137,7 @@ static void plot(const char *path, const row *rows, size_t n, const char *study,
             if (!strcmp(rows[i].study, study))
                 fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"10\">%g</text>\n", PX(rows[i].seconds) + 3,
                         PY(s ? rows[i].e2 : rows[i].e1) - 4, colours[s], rows[i].knob);
-        fprintf(f, "<text x=\"%g\" y=\"%g\" fill=\"%s\">%s</text>\n", W - R - 200, T + 14 + 16 * s, colours[s], names[s]);
+        fprintf(f, "<text x=\"%g\" y=\"%g\" fill=\"%s\">%s</text>\n", W - R - 170, 14.0 + 14 * s, colours[s], names[s]);
     }
     fprintf(f, "</svg>\n");
 #undef PX
