@@ -1,5 +1,5 @@
 /* The PointWorks renderer: two-pass visibility mask (section 4.3), continuous resolution queue
- * (4.4), `points` and `sketchy` (5.1) styles. See docs/rendering.md. */
+ * (4.4), `points`, `sketchy` (5.1) and `lines` (5.2) styles. See docs/rendering.md. */
 #include "render_internal.h"
 #include "gl_state.h"
 #include "pnpr_shaders.h"
@@ -25,17 +25,20 @@ typedef struct pnpr_vertex {
     float dir[3];
 } pnpr_vertex;
 
-typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size; } splat_uniforms;
+typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color; } splat_uniforms;
+typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink; } line_uniforms;
 typedef struct stroke_uniforms {
     GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points;
 } stroke_uniforms;
 
 struct pnpr_renderer {
-    GLuint prog_splat, prog_stroke, prog_composite;
+    GLuint prog_splat, prog_stroke, prog_composite, prog_line;
     splat_uniforms us;
+    line_uniforms ul;
     stroke_uniforms ut;
     GLint uc_frame, uc_origin;
     GLuint vbo, vao_points, vao_strokes, vao_empty;
+    GLuint line_vbo, vao_lines;
     GLuint stroke_tex;
     GLuint fbo, color_tex, depth_rb;
     int fb_w, fb_h;
@@ -48,6 +51,9 @@ struct pnpr_renderer {
     int has_features;
     double origin[3];
     float bmin[3], bmax[3];
+    /* the profile lines: segments as pairs of float offsets from line_origin */
+    size_t line_segments;
+    double line_origin[3];
 };
 
 /* ---- shaders -------------------------------------------------------------------------------- */
@@ -149,9 +155,11 @@ static void release_gl(pnpr_renderer *r)
     if (r->prog_splat) glDeleteProgram(r->prog_splat);
     if (r->prog_stroke) glDeleteProgram(r->prog_stroke);
     if (r->prog_composite) glDeleteProgram(r->prog_composite);
+    if (r->prog_line) glDeleteProgram(r->prog_line);
     if (r->vbo) glDeleteBuffers(1, &r->vbo);
-    GLuint vaos[3] = {r->vao_points, r->vao_strokes, r->vao_empty};
-    glDeleteVertexArrays(3, vaos);
+    if (r->line_vbo) glDeleteBuffers(1, &r->line_vbo);
+    GLuint vaos[4] = {r->vao_points, r->vao_strokes, r->vao_empty, r->vao_lines};
+    glDeleteVertexArrays(4, vaos);
     if (r->stroke_tex) glDeleteTextures(1, &r->stroke_tex);
     if (r->color_tex) glDeleteTextures(1, &r->color_tex);
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
@@ -202,7 +210,8 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->prog_splat = link_program(pnpr_shader_splat_vert, pnpr_shader_splat_frag, "splat", err);
     r->prog_stroke = r->prog_splat ? link_program(pnpr_shader_stroke_vert, pnpr_shader_stroke_frag, "stroke", err) : 0;
     r->prog_composite = r->prog_stroke ? link_program(pnpr_shader_composite_vert, pnpr_shader_composite_frag, "composite", err) : 0;
-    if (!r->prog_composite) { st = PNPR_ERR_UNSUPPORTED; goto done; }
+    r->prog_line = r->prog_composite ? link_program(pnpr_shader_line_vert, pnpr_shader_line_frag, "line", err) : 0;
+    if (!r->prog_line) { st = PNPR_ERR_UNSUPPORTED; goto done; }
     GLuint p = r->prog_splat;
     r->us.view = glGetUniformLocation(p, "u_view");
     r->us.proj = glGetUniformLocation(p, "u_proj");
@@ -210,6 +219,15 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->us.radius_scale = glGetUniformLocation(p, "u_radius_scale");
     r->us.depth_push = glGetUniformLocation(p, "u_depth_push");
     r->us.max_size = glGetUniformLocation(p, "u_max_size");
+    r->us.fade = glGetUniformLocation(p, "u_fade");
+    r->us.fade_color = glGetUniformLocation(p, "u_fade_color");
+    p = r->prog_line;
+    r->ul.view = glGetUniformLocation(p, "u_view");
+    r->ul.proj = glGetUniformLocation(p, "u_proj");
+    r->ul.viewport = glGetUniformLocation(p, "u_viewport");
+    r->ul.width = glGetUniformLocation(p, "u_width");
+    r->ul.near_plane = glGetUniformLocation(p, "u_near");
+    r->ul.ink = glGetUniformLocation(p, "u_ink");
     p = r->prog_stroke;
     r->ut.view = glGetUniformLocation(p, "u_view");
     r->ut.proj = glGetUniformLocation(p, "u_proj");
@@ -232,6 +250,17 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     glGenVertexArrays(1, &r->vao_empty);
     set_attribs(r->vao_points, r->vbo, 0, 0);
     set_attribs(r->vao_strokes, r->vbo, 0, 1);
+    /* line segments: two ends per instance */
+    glGenBuffers(1, &r->line_vbo);
+    glGenVertexArrays(1, &r->vao_lines);
+    glBindVertexArray(r->vao_lines);
+    glBindBuffer(GL_ARRAY_BUFFER, r->line_vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), (const void *)0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), (const void *)(uintptr_t)(3 * sizeof(float)));
+    glVertexAttribDivisor(0, 1);
+    glVertexAttribDivisor(1, 1);
 
     uint8_t *tex = malloc((size_t)STROKE_TEX_W * STROKE_TEX_H * STROKE_LAYERS);
     if (!tex) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
@@ -428,6 +457,56 @@ done:
 
 int pnpr_renderer_has_features(const pnpr_renderer *r) { return r && r->has_features; }
 
+static int finite3(const float *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+pnpr_status pnpr_renderer_set_lines(pnpr_renderer *r, const pnpr_polylines *lines, pnpr_error *err)
+{
+    if (!r) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: NULL renderer");
+    size_t segs = 0;
+    if (lines && lines->count > 0) {
+        if (!lines->offset)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines without offsets");
+        if (lines->offset[0] != 0)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines: offset[0] is %zu, not 0", lines->offset[0]);
+        for (size_t i = 0; i < lines->count; i++) {
+            size_t a = lines->offset[i], b = lines->offset[i + 1];
+            if (b < a)
+                return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines: offsets decrease at polyline %zu", i);
+            if (b - a >= 2) segs += (b - a - 1) + (lines->closed && lines->closed[i] && b - a >= 3);
+        }
+        if (!isfinite(lines->origin[0]) || !isfinite(lines->origin[1]) || !isfinite(lines->origin[2]))
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines: non-finite origin");
+        if (lines->offset[lines->count] > 0 && !lines->xyz)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines have vertices but no coordinates");
+        if (segs > (size_t)0x7FFFFFFF / 6)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: too many line segments (%zu)", segs);
+    }
+    float *buf = malloc((segs ? segs : 1) * 6 * sizeof *buf);
+    if (!buf) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "renderer: lines: out of memory");
+    size_t m = 0;
+    for (size_t i = 0; segs && i < lines->count; i++) {
+        size_t a = lines->offset[i], b = lines->offset[i + 1];
+        if (b - a < 2) continue;
+        size_t n = b - a, nseg = (n - 1) + (lines->closed && lines->closed[i] && n >= 3);
+        for (size_t k = 0; k < nseg; k++) {
+            const float *p = lines->xyz + 3 * (a + k), *q = lines->xyz + 3 * (a + (k + 1) % n);
+            if (!finite3(p) || !finite3(q)) continue;
+            memcpy(buf + 6 * m, p, 3 * sizeof *p);
+            memcpy(buf + 6 * m + 3, q, 3 * sizeof *q);
+            m++;
+        }
+    }
+    pnpr_gl_state saved;
+    pnpr_gl_state_save(&saved);
+    glBindBuffer(GL_ARRAY_BUFFER, r->line_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m * 6 * sizeof *buf), m ? buf : NULL, GL_STATIC_DRAW);
+    pnpr_gl_state_restore(&saved);
+    free(buf);
+    r->line_segments = m;
+    if (m) memcpy(r->line_origin, lines->origin, sizeof r->line_origin);
+    return PNPR_OK;
+}
+
 /* ---- draw ----------------------------------------------------------------------------------- */
 
 static pnpr_status ensure_framebuffer(pnpr_renderer *r, int w, int h, pnpr_error *err)
@@ -484,7 +563,8 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: stroke texture %d is not 0, 1 or 2", o.stroke_texture);
     if (!finite4(o.background) || !finite4(o.ink) || !isfinite(o.density) || o.density < 0 ||
         !isfinite(o.point_scale) || o.point_scale < 0 || !isfinite(o.mask_scale) || o.mask_scale < 0 ||
-        !isfinite(o.stroke_length) || o.stroke_length < 0 || !isfinite(o.stroke_width) || o.stroke_width < 0)
+        !isfinite(o.stroke_length) || o.stroke_length < 0 || !isfinite(o.stroke_width) || o.stroke_width < 0 ||
+        !isfinite(o.line_width) || o.line_width < 0 || !(o.faint >= 0 && o.faint <= 1))
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative");
     if (pnpr_style_needs_features(o.style) && r->count > 0 && !r->has_features)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
@@ -494,6 +574,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
     float mask_scale = o.mask_scale > 0 ? o.mask_scale : 1.5f;
     float stroke_length = o.stroke_length > 0 ? o.stroke_length : 6;
     float stroke_width = o.stroke_width > 0 ? o.stroke_width : 2;
+    float line_width = o.line_width > 0 ? o.line_width : 2;
     float ink[4] = {0.08f, 0.08f, 0.1f, 1};
     if (o.ink[0] != 0 || o.ink[1] != 0 || o.ink[2] != 0 || o.ink[3] != 0) memcpy(ink, o.ink, sizeof ink);
 
@@ -545,21 +626,37 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
     glDepthFunc(GL_LEQUAL);
 
     size_t strokes = 0;
+    int sketchy = o.style == PNPR_STYLE_SKETCHY, lines = o.style == PNPR_STYLE_LINES;
+    int masked = sketchy || lines; /* pass 1 is a depth-only visibility mask */
     if (n_draw > 0) {
-        /* pass 1 (sketchy) / the only pass (points): round disks of the prefixes */
-        int sketchy = o.style == PNPR_STYLE_SKETCHY;
         glUseProgram(r->prog_splat);
         glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc.view);
         glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc.proj);
         glUniform1f(r->us.ppu, fc.pixels_per_unit);
         glUniform1f(r->us.max_size, r->max_point_size);
-        glUniform1f(r->us.radius_scale, point_scale * lod * (sketchy ? mask_scale : 1));
-        glUniform1f(r->us.depth_push, sketchy ? 1.0f : 0.0f);
+        glUniform1f(r->us.fade, 0.0f);
         glDisable(GL_BLEND);
-        if (sketchy) glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glBindVertexArray(r->vao_points);
+        if (lines && o.faint > 0) {
+            /* lines over a faint point rendering: regular splats, colours mixed with the
+             * (opaque) background, then a fresh depth buffer for the mask */
+            float bg[4] = {o.background[0], o.background[1], o.background[2], o.background[3]};
+            glUniform1f(r->us.fade, 1.0f - o.faint);
+            glUniform4fv(r->us.fade_color, 1, bg);
+            glUniform1f(r->us.radius_scale, point_scale * lod);
+            glUniform1f(r->us.depth_push, 0.0f);
+            for (size_t g = 0; g < ng; g++)
+                if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+            glClear(GL_DEPTH_BUFFER_BIT);
+            glUniform1f(r->us.fade, 0.0f);
+        }
+        /* pass 1 (mask) / the only pass (points): round disks of the prefixes */
+        glUniform1f(r->us.radius_scale, point_scale * lod * (masked ? mask_scale : 1));
+        glUniform1f(r->us.depth_push, masked ? 1.0f : 0.0f);
+        if (masked) glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         for (size_t g = 0; g < ng; g++)
             if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 
         if (sketchy) {
             /* pass 2: strokes, depth-tested against the mask, no depth writes, blended */
@@ -591,6 +688,32 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
                 strokes += gdraw[g];
             }
         }
+    }
+    if (lines && r->line_segments > 0) {
+        /* pass 2 of `lines`: the segments, depth-tested against the mask (no mask when the
+         * cloud is empty: nothing hides them), no depth writes, blended */
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        /* the lines' offsets are relative to their own origin: view * translate(line - cloud origin) */
+        double d[3] = {r->line_origin[0] - r->origin[0], r->line_origin[1] - r->origin[1],
+                       r->line_origin[2] - r->origin[2]};
+        float lview[16];
+        memcpy(lview, fc.view, sizeof lview);
+        for (int row = 0; row < 4; row++)
+            lview[12 + row] = (float)((double)fc.view[row] * d[0] + (double)fc.view[4 + row] * d[1] +
+                                      (double)fc.view[8 + row] * d[2] + (double)fc.view[12 + row]);
+        glUseProgram(r->prog_line);
+        glUniformMatrix4fv(r->ul.view, 1, GL_FALSE, lview);
+        glUniformMatrix4fv(r->ul.proj, 1, GL_FALSE, fc.proj);
+        glUniform2f(r->ul.viewport, (float)w, (float)h);
+        glUniform1f(r->ul.width, line_width);
+        glUniform1f(r->ul.near_plane, (float)fc.near_plane);
+        glUniform4fv(r->ul.ink, 1, ink);
+        glBindVertexArray(r->vao_lines);
+        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)r->line_segments);
+        strokes = r->line_segments;
     }
 
     if (!target->offscreen) {
@@ -661,7 +784,7 @@ void pnpr_renderer_frame_size(const pnpr_renderer *r, int *w, int *h)
 
 /* ---- styles --------------------------------------------------------------------------------- */
 
-static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy"};
+static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines"};
 
 const char *pnpr_style_name(pnpr_style s)
 {

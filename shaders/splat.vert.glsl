@@ -1,6 +1,7 @@
 #version 330 core
-// Round splats as GL points: pass 1 (visibility mask, depth only) and the `points` style.
-// Point size is perspective-correct: the disk's world diameter projected at the point's depth.
+// Round splats as GL points: pass 1 (visibility mask), the `points` style, the faint points under
+// `lines`. Point size is perspective-correct: the disk's world diameter projected at the point's
+// depth.
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in float a_radius;
 layout(location = 2) in vec4 a_color;
@@ -11,6 +12,8 @@ uniform float u_pixels_per_unit; // proj[1][1] * viewport height / 2: pixels per
 uniform float u_radius_scale;    // multiplies a_radius
 uniform float u_depth_push;      // eye-space push away from the viewer, in radii (mask pass)
 uniform float u_max_size;        // implementation's largest point size
+uniform float u_fade;            // 0..1: the colour is mix(a_color, u_fade_color, u_fade)
+uniform vec4 u_fade_color;
 
 out vec4 v_color;
 
@@ -25,5 +28,5 @@ void main()
     vec4 pushed = u_proj * eye;
     // keep the disk's screen position, take the pushed depth
     gl_Position = vec4(clip.xy / clip.w * pushed.w, pushed.z, pushed.w);
-    v_color = a_color;
+    v_color = mix(a_color, u_fade_color, u_fade);
 }

@@ -87,6 +87,8 @@ typedef struct pnpr_renderer pnpr_renderer;
 typedef enum pnpr_style {
     PNPR_STYLE_POINTS = 0, /* plain round splats in the point colour (baseline, single pass) */
     PNPR_STYLE_SKETCHY,    /* PointWorks sketch: strokes along feature directions + hatches */
+    PNPR_STYLE_LINES,      /* profile lines (pnpr_renderer_set_lines) as dark strokes, hidden parts
+                            * removed by the visibility mask of the cloud (section 5.2) */
     PNPR_STYLE_COUNT_
 } pnpr_style;
 
@@ -132,6 +134,9 @@ typedef struct pnpr_draw_options {
     float ink[4];          /* stroke colour (zero = opaque near-black 0.08,0.08,0.1,1) */
     int ink_from_points;   /* strokes take the point colour instead of `ink` */
     pnpr_composite composite;
+    float line_width;      /* lines: stroke width in pixels (0 = 2) */
+    float faint;           /* lines: 0..1, the cloud drawn faintly under the lines (its colours
+                            * mixed with the background, this much of the point colour); 0 = none */
 } pnpr_draw_options;
 
 /* Where the frame goes: framebuffer object `framebuffer` (0 = the default framebuffer) and the
@@ -147,7 +152,7 @@ typedef struct pnpr_target {
 typedef struct pnpr_render_stats {
     size_t points_total;   /* points uploaded (finite ones) */
     size_t points_drawn;   /* queue prefix drawn this frame (pass 2 and the mask alike) */
-    size_t strokes_drawn;  /* sketchy: primitives of pass 2 */
+    size_t strokes_drawn;  /* sketchy: primitives of pass 2; lines: line segments */
     double coverage_px;    /* screen pixels covered by the projected bounding box */
 } pnpr_render_stats;
 
@@ -163,6 +168,14 @@ void pnpr_renderer_destroy(pnpr_renderer *renderer);
  * Features are taken from feature_class (+ feature_dir_x/y/z) when present. */
 pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *renderer, const pnpr_cloud *cloud,
                                     const pnpr_upload_options *opts, pnpr_error *err);
+
+/* Profile lines for the `lines` style (include/pointnpr/lines.h), replacing earlier ones; the data
+ * are copied (the caller keeps ownership). NULL or zero lines: none (the style then draws only
+ * the background, and the faint points when asked). Line vertices are world positions
+ * (origin + offset) like the cloud's, so lines and cloud may have different origins. Segments
+ * with a non-finite end are dropped. PNPR_ERR_INVALID_ARGUMENT for inconsistent offsets. */
+pnpr_status pnpr_renderer_set_lines(pnpr_renderer *renderer, const pnpr_polylines *lines,
+                                    pnpr_error *err);
 
 /* Renders one frame. camera NULL = pnpr_camera_fit of the uploaded cloud for the target's
  * aspect. PNPR_ERR_NOT_FOUND when the style needs features the cloud does not carry;
@@ -181,7 +194,7 @@ void pnpr_renderer_frame_size(const pnpr_renderer *renderer, int *r_width, int *
 /* Whether the uploaded cloud carries the feature properties (class and direction). */
 int pnpr_renderer_has_features(const pnpr_renderer *renderer);
 
-const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy"; "" if invalid */
+const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines"; "" if invalid */
 pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 int pnpr_style_needs_features(pnpr_style style);
 

@@ -14,6 +14,7 @@ int cli_render(int argc, char **argv)
 #else
 
 #include <pointnpr/features.h>
+#include <pointnpr/lines.h>
 #include <pointnpr/render.h>
 
 #include <errno.h>
@@ -27,7 +28,7 @@ static void usage(FILE *f)
             "usage: pointnpr render IN -o OUT.png [options]\n"
             "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG.\n"
             "options:\n"
-            "  --style S            points | sketchy (default points)\n"
+            "  --style S            points | sketchy | lines (default points)\n"
             "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
             "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n"
             "  --stroke-texture T   directional stroke texture 0, 1 or 2 (default 0)\n"
@@ -40,10 +41,14 @@ static void usage(FILE *f)
             "  --density D          at most D points per covered screen pixel (default: no limit)\n"
             "  --seed S             continuous resolution queue seed (default 0)\n"
             "  --point-scale F      disk radius multiplier (default 1)\n"
+            "  --line-width PX      lines: stroke width in pixels (default 2)\n"
+            "  --faint F            lines: draw the cloud faintly under the lines, F in (0,1]\n"
+            "                       of the point colour (default: lines only)\n"
             "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
             "  --alpha              transparent background, PNG with alpha\n"
             "  --quiet              no progress on stderr\n"
-            "  Styles that need features (sketchy) compute them when IN lacks them.\n");
+            "  Styles that need features (sketchy, lines) compute them when IN lacks them;\n"
+            "  lines computes the profile lines (pointnpr lines) from them.\n");
 }
 
 int cli_render(int argc, char **argv)
@@ -70,7 +75,7 @@ int cli_render(int argc, char **argv)
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
         else if (v && !strcmp(a, "--style")) {
             pnpr_style s;
-            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points or sketchy, got '%s'\n", v); return 2; }
+            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points, sketchy or lines, got '%s'\n", v); return 2; }
             dopt.style = s; i++;
         } else if (v && !strcmp(a, "--sketch")) {
             if (!strcmp(v, "a")) dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
@@ -96,6 +101,12 @@ int cli_render(int argc, char **argv)
         } else if (v && !strcmp(a, "--point-scale")) {
             if (!cli_parse_number(v, 1e-3, 1e3, &x)) { fprintf(stderr, "pointnpr render: --point-scale wants a positive number, got '%s'\n", v); return 2; }
             dopt.point_scale = (float)x; i++;
+        } else if (v && !strcmp(a, "--line-width")) {
+            if (!cli_parse_number(v, 1e-2, 1e3, &x)) { fprintf(stderr, "pointnpr render: --line-width wants a positive number of pixels, got '%s'\n", v); return 2; }
+            dopt.line_width = (float)x; i++;
+        } else if (v && !strcmp(a, "--faint")) {
+            if (!cli_parse_number(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr render: --faint wants a number in (0,1], got '%s'\n", v); return 2; }
+            dopt.faint = (float)x; i++;
         } else if (v && !strcmp(a, "--background")) {
             if (!cli_parse_list(v, 3, bg) || bg[0] < 0 || bg[0] > 255 || bg[1] < 0 || bg[1] > 255 || bg[2] < 0 || bg[2] > 255) {
                 fprintf(stderr, "pointnpr render: --background wants R,G,B in 0..255, got '%s'\n", v); return 2;
@@ -127,7 +138,8 @@ int cli_render(int argc, char **argv)
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
 
-    if (pnpr_style_needs_features(dopt.style) &&
+    int want_lines = dopt.style == PNPR_STYLE_LINES;
+    if ((pnpr_style_needs_features(dopt.style) || want_lines) &&
         (!pnpr_cloud_find_property(&cloud, "feature_class") || !pnpr_cloud_find_property(&cloud, "feature_dir_x") ||
          !pnpr_cloud_find_property(&cloud, "feature_dir_y") || !pnpr_cloud_find_property(&cloud, "feature_dir_z"))) {
         if (!quiet) fprintf(stderr, "%s has no features: computing them (pointnpr features saves them)\n", in);
@@ -143,6 +155,18 @@ int cli_render(int argc, char **argv)
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
     st = pnpr_renderer_set_cloud(ren, &cloud, &uopt, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+    if (want_lines) {
+        pnpr_polylines lines = {0};
+        pnpr_lines_options lo = {0};
+        lo.progress = prog;
+        pnpr_lines_stats ls;
+        st = pnpr_profile_lines(&cloud, &lo, &lines, &ls);
+        if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: profile lines: %s\n", in, pnpr_status_string(st)); goto done; }
+        if (!quiet) fprintf(stderr, "%s: %zu profile lines, total length %.6g\n", in, lines.count, ls.total_length);
+        st = pnpr_renderer_set_lines(ren, &lines, &err);
+        pnpr_lines_free(&lines);
+        if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+    }
 
     pnpr_camera cam, *camp = NULL;
     if (view.have_eye) {

@@ -45,6 +45,11 @@ check '[ $? -eq 0 ]' "sketchy render exits 0 ($(cat "$dir/log2.txt"))"
 check 'grep -q "computing them" "$dir/log2.txt"' "features computed for sketchy"
 check '[ "$(png_type "$dir/sketchy.png")" -eq 6 ]' "PNG is RGBA with --alpha"
 
+# lines on a cloud without features: features and profile lines computed on the fly
+"$bin" render "$dir/cube.ply" -o "$dir/lines.png" --style lines --line-width 3 --faint 0.3 --size 160x120 2> "$dir/log3.txt"
+check '[ $? -eq 0 ]' "lines render exits 0 ($(cat "$dir/log3.txt"))"
+check 'grep -q "profile lines" "$dir/log3.txt" && grep -q "style lines" "$dir/log3.txt"' "profile lines computed for lines"
+
 # explicit camera in world coordinates, budget, seed: deterministic
 for k in 1 2; do
   "$bin" render "$dir/cube.ply" -o "$dir/cam$k.png" --size 120x90 --quiet --eye 5123459,4012342,252 \
@@ -56,7 +61,8 @@ check 'cmp -s "$dir/cam1.png" "$dir/cam2.png"' "same input and seed give identic
 # usage errors: 2
 for args in "" "$dir/cube.ply" "$dir/cube.ply -o $dir/x.png --style oil" "$dir/cube.ply -o $dir/x.png --size 0x10" \
             "$dir/cube.ply -o $dir/x.png --eye 1,2,3" "$dir/cube.ply -o $dir/x.png --background 300,0,0" \
-            "$dir/cube.ply -o $dir/x.png --budget -5" "$dir/cube.ply -o $dir/x.png --sketch d" "$dir/cube.ply -o $dir/x.png --bogus"; do
+            "$dir/cube.ply -o $dir/x.png --budget -5" "$dir/cube.ply -o $dir/x.png --sketch d" "$dir/cube.ply -o $dir/x.png --bogus" \
+            "$dir/cube.ply -o $dir/x.png --style lines --faint 2" "$dir/cube.ply -o $dir/x.png --line-width 0"; do
   "$bin" render $args > /dev/null 2>&1
   rc=$?
   check '[ $rc -eq 2 ]' "usage error exits 2: render $args (got $rc)"
@@ -72,6 +78,8 @@ check '[ $? -eq 1 ] && grep -q "same point" "$dir/err3.txt"' "degenerate camera 
 printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n' > "$dir/empty.ply"
 "$bin" render "$dir/empty.ply" -o "$dir/empty.png" --size 32x32 --quiet --style sketchy
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/empty.png")" -eq 32 ]' "empty cloud renders the background"
+"$bin" render "$dir/empty.ply" -o "$dir/empty-lines.png" --size 32x32 --quiet --style lines
+check '[ $? -eq 0 ] && cmp -s "$dir/empty.png" "$dir/empty-lines.png"' "empty cloud, lines style: the same background image"
 "$bin" render --help | grep -q "usage: pointnpr render"
 check '[ $? -eq 0 ]' "--help"
 exit $fail

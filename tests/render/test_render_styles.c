@@ -1,0 +1,297 @@
+/* The styles beyond `points` and `sketchy`, with known answers: `lines` (a cube's edges seen from
+ * a corner: the three front edges drawn, the three hidden back edges not; no lines = background;
+ * width; faint points; host GL state kept; bad input).
+ * Exits 77 (skipped) when this machine has no headless EGL / GL 3.3. */
+#include "testutil.h"
+#include "../../render/render_internal.h"
+
+#include <pointnpr/features.h>
+#include <pointnpr/lines.h>
+#include <pointnpr/render.h>
+
+#include <epoxy/gl.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { W = 240, H = 200 };
+
+static const double cube_off[3] = {500000.25, -300000.5, 120.0}; /* georeferenced-like */
+
+static pnpr_status render(pnpr_renderer *r, const pnpr_camera *cam, const pnpr_draw_options *o,
+                          uint8_t *px, pnpr_render_stats *st)
+{
+    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_error err = {0};
+    pnpr_status s = pnpr_renderer_draw(r, cam, o, &t, st, &err);
+    if (s != PNPR_OK) { fprintf(stderr, "draw: %s\n", err.message); return s; }
+    return pnpr_renderer_read_frame(r, px, 0);
+}
+
+static int grey(const uint8_t *px, int x, int y)
+{
+    const uint8_t *p = px + 4 * ((size_t)y * W + x);
+    return (p[0] + p[1] + p[2]) / 3;
+}
+
+/* Darkest / lightest grey within r px of (x, y) (image coordinates, top row first). */
+static int darkest_near(const uint8_t *px, double x, double y, int r)
+{
+    int best = 255;
+    for (int dy = -r; dy <= r; dy++)
+        for (int dx = -r; dx <= r; dx++) {
+            int u = (int)floor(x) + dx, v = (int)floor(y) + dy;
+            if (u < 0 || v < 0 || u >= W || v >= H) continue;
+            int g = grey(px, u, v);
+            if (g < best) best = g;
+        }
+    return best;
+}
+
+/* World point -> pixel (x right, y down), through the renderer's own camera code. */
+static void project(const pnpr_frame_camera *fc, const double origin[3], const double world[3],
+                    double *x, double *y)
+{
+    const float *V = fc->view, *P = fc->proj;
+    double p[3] = {world[0] - origin[0], world[1] - origin[1], world[2] - origin[2]};
+    double v[4], c[4];
+    for (int r = 0; r < 4; r++) v[r] = V[r] * p[0] + V[4 + r] * p[1] + V[8 + r] * p[2] + V[12 + r];
+    for (int r = 0; r < 4; r++) c[r] = P[r] * v[0] + P[4 + r] * v[1] + P[8 + r] * v[2] + P[12 + r] * v[3];
+    *x = (c[0] / c[3] + 1) * 0.5 * W;
+    *y = (1 - c[1] / c[3]) * 0.5 * H;
+}
+
+/* The 12 edges of the cube [0,1]^3 + cube_off as polylines of 21 vertices each, stored relative
+ * to their own origin (cube_off + (0.5, 0.5, 0.5)), unlike the cloud's. */
+static void cube_edges(pnpr_polylines *l)
+{
+    enum { NV = 21 };
+    memset(l, 0, sizeof *l);
+    l->count = 12;
+    l->offset = malloc(13 * sizeof *l->offset);
+    l->xyz = malloc(12 * NV * 3 * sizeof *l->xyz);
+    l->closed = calloc(12, 1);
+    for (int a = 0; a < 3; a++) l->origin[a] = cube_off[a] + 0.5;
+    int e = 0;
+    for (int axis = 0; axis < 3; axis++)
+        for (int c = 0; c < 4; c++) {
+            int o1 = (axis + 1) % 3, o2 = (axis + 2) % 3;
+            l->offset[e] = (size_t)e * NV;
+            for (int k = 0; k < NV; k++) {
+                float *p = l->xyz + 3 * ((size_t)e * NV + k);
+                p[axis] = (float)k / (NV - 1) - 0.5f;
+                p[o1] = (float)(c & 1) - 0.5f;
+                p[o2] = (float)((c >> 1) & 1) - 0.5f;
+            }
+            e++;
+        }
+    l->offset[12] = 12 * NV;
+}
+
+static void free_lines(pnpr_polylines *l)
+{
+    free(l->offset); free(l->xyz); free(l->closed);
+    memset(l, 0, sizeof *l);
+}
+
+/* A few GL state items a host may have set (the full list is test_render_gl's). */
+typedef struct mini_state { GLint v[12][4]; GLboolean e[4]; } mini_state;
+static void take(mini_state *s)
+{
+    memset(s, 0, sizeof *s);
+    static const GLenum ints[] = {GL_DRAW_FRAMEBUFFER_BINDING, GL_VIEWPORT, GL_DEPTH_FUNC, GL_BLEND_SRC_RGB,
+                                  GL_BLEND_DST_ALPHA, GL_CURRENT_PROGRAM, GL_VERTEX_ARRAY_BINDING,
+                                  GL_ARRAY_BUFFER_BINDING, GL_ACTIVE_TEXTURE, GL_PACK_ALIGNMENT};
+    for (int i = 0; i < 10; i++) glGetIntegerv(ints[i], s->v[i]);
+    GLboolean b[4];
+    glGetBooleanv(GL_COLOR_WRITEMASK, b);
+    for (int i = 0; i < 4; i++) s->v[10][i] = b[i];
+    glGetBooleanv(GL_DEPTH_WRITEMASK, b);
+    s->v[11][0] = b[0];
+    static const GLenum en[] = {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_SCISSOR_TEST};
+    for (int i = 0; i < 4; i++) s->e[i] = glIsEnabled(en[i]);
+}
+static void odd_state(GLuint vao, GLuint buf)
+{
+    glViewport(3, 5, 17, 19);
+    glDepthFunc(GL_GREATER);
+    glBlendFunc(GL_DST_COLOR, GL_SRC_ALPHA);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, buf);
+    glActiveTexture(GL_TEXTURE2);
+    glPixelStorei(GL_PACK_ALIGNMENT, 2);
+    glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_DEPTH_TEST); glEnable(GL_BLEND); glEnable(GL_CULL_FACE); glEnable(GL_SCISSOR_TEST);
+}
+
+/* ---- lines: a cube's edges from a corner ------------------------------------------------- */
+static void test_lines_cube(pnpr_renderer *r)
+{
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_test_cube(&c, 1.0, 0.02, 0.0, cube_off, 3), PNPR_OK);
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
+    pnpr_polylines l;
+    cube_edges(&l);
+    pnpr_camera cam = {{0}, {0}, {0, 0, 1}, 40, 0, 0};
+    static const double eye[3] = {2.6, -1.7, 2.1};
+    for (int a = 0; a < 3; a++) { cam.eye[a] = cube_off[a] + eye[a]; cam.target[a] = cube_off[a] + 0.5; }
+    pnpr_frame_camera fc;
+    float lo[3], hi[3];
+    CHECK(pnpr_cloud_bounds(&c, lo, hi) != 0);
+    CHECK_STATUS(pnpr_frame_camera_make(&cam, c.origin, lo, hi, 1, W, H, &fc, NULL), PNPR_OK);
+    /* nearest corner (1,0,1): its three edges are in front; the farthest (0,1,0) is hidden */
+    static const double front[3][3] = {{0.5, 0, 1}, {1, 0.5, 1}, {1, 0, 0.5}};
+    static const double back[3][3] = {{0.5, 1, 0}, {0, 0.5, 0}, {0, 1, 0.5}};
+
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.style = PNPR_STYLE_LINES;
+    o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+    uint8_t *px = malloc(W * H * 4), *px2 = malloc(W * H * 4);
+    pnpr_render_stats st;
+
+    /* no lines: exactly the background */
+    CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
+    size_t bad = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++) bad += !(px[4 * i] == 255 && px[4 * i + 1] == 255 && px[4 * i + 2] == 255 && px[4 * i + 3] == 255);
+    CHECK_MSG(bad == 0, "no lines: %zu pixels are not the background", bad);
+    CHECK(st.strokes_drawn == 0);
+
+    CHECK_STATUS(pnpr_renderer_set_lines(r, &l, NULL), PNPR_OK);
+    CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
+    CHECK_MSG(st.strokes_drawn == 12 * 20, "segments drawn: %zu", st.strokes_drawn);
+    for (int e = 0; e < 3; e++) {
+        double wf[3], wb[3], x, y;
+        for (int a = 0; a < 3; a++) { wf[a] = cube_off[a] + front[e][a]; wb[a] = cube_off[a] + back[e][a]; }
+        project(&fc, c.origin, wf, &x, &y);
+        int d = darkest_near(px, x, y, 2);
+        CHECK_MSG(d < 80, "front edge %d at (%.1f, %.1f): darkest grey %d, expected a dark line", e, x, y, d);
+        project(&fc, c.origin, wb, &x, &y);
+        d = darkest_near(px, x, y, 3);
+        CHECK_MSG(d == 255, "hidden back edge %d at (%.1f, %.1f): darkest grey %d, expected background", e, x, y, d);
+    }
+    /* wider lines: more ink */
+    size_t dark2 = 0, dark6 = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) dark2 += grey(px, x, y) < 128;
+    o.line_width = 6;
+    CHECK_STATUS(render(r, &cam, &o, px2, NULL), PNPR_OK);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) dark6 += grey(px2, x, y) < 128;
+    CHECK_MSG(dark6 > 2 * dark2 && dark2 > 100, "width 6: %zu dark pixels, width 2: %zu", dark6, dark2);
+    o.line_width = 0;
+
+    /* without occluders nothing hides the back edges */
+    pnpr_cloud empty = {0};
+    pnpr_camera cam_nf = cam;
+    cam_nf.near_plane = 0.5f; cam_nf.far_plane = 10;
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &empty, NULL, NULL), PNPR_OK);
+    CHECK_STATUS(render(r, &cam_nf, &o, px2, NULL), PNPR_OK);
+    for (int e = 0; e < 3; e++) {
+        double wb[3], x, y;
+        for (int a = 0; a < 3; a++) wb[a] = cube_off[a] + back[e][a];
+        project(&fc, c.origin, wb, &x, &y);
+        int d = darkest_near(px2, x, y, 2);
+        CHECK_MSG(d < 80, "no occluders: back edge %d at (%.1f, %.1f): darkest grey %d", e, x, y, d);
+    }
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
+
+    /* faint points: the faces show lightly (not background, lighter than the lines) */
+    o.faint = 0.3f;
+    CHECK_STATUS(render(r, &cam, &o, px2, NULL), PNPR_OK);
+    {
+        double centre[3] = {cube_off[0] + 0.5, cube_off[1] + 0.0, cube_off[2] + 0.5}, x, y; /* front face y=0 */
+        project(&fc, c.origin, centre, &x, &y);
+        int g = grey(px2, (int)x, (int)y);
+        CHECK_MSG(g < 255 && g > 150, "faint face centre grey %d (expected light grey)", g);
+        for (int e = 0; e < 3; e++) {
+            double wf[3];
+            for (int a = 0; a < 3; a++) wf[a] = cube_off[a] + front[e][a];
+            project(&fc, c.origin, wf, &x, &y);
+            CHECK_MSG(darkest_near(px2, x, y, 2) < 80, "faint: front edge %d still dark", e);
+        }
+    }
+    o.faint = 0;
+
+    /* host GL state: odd values before, the same after set_lines, draw (composited) */
+    {
+        GLuint vao, buf, fbo, tex;
+        glGenVertexArrays(1, &vao);
+        glGenBuffers(1, &buf);
+        glGenFramebuffers(1, &fbo);
+        glGenTextures(1, &tex);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, W + 10, H + 10, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+        odd_state(vao, buf);
+        mini_state before, after;
+        take(&before);
+        CHECK_STATUS(pnpr_renderer_set_lines(r, &l, NULL), PNPR_OK);
+        pnpr_target t = {fbo, 4, 6, W, H, 0};
+        o.faint = 0.5f;
+        CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, NULL), PNPR_OK);
+        o.faint = 0;
+        take(&after);
+        CHECK_MSG(memcmp(&before, &after, sizeof before) == 0, "lines: host GL state changed");
+        CHECK_MSG(glGetError() == GL_NO_ERROR, "lines: GL error");
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBindVertexArray(0);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        glActiveTexture(GL_TEXTURE0);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_DEPTH_TEST); glDisable(GL_BLEND); glDisable(GL_CULL_FACE); glDisable(GL_SCISSOR_TEST);
+        glViewport(0, 0, W, H);
+        glDepthFunc(GL_LESS);
+        glBlendFunc(GL_ONE, GL_ZERO);
+        glDeleteFramebuffers(1, &fbo);
+        glDeleteTextures(1, &tex);
+        glDeleteBuffers(1, &buf);
+        glDeleteVertexArrays(1, &vao);
+    }
+
+    /* bad input */
+    pnpr_error err = {0};
+    l.offset[3] = l.offset[2] - 1;
+    CHECK_STATUS(pnpr_renderer_set_lines(r, &l, &err), PNPR_ERR_INVALID_ARGUMENT);
+    l.offset[3] = 3 * 21;
+    l.xyz[5] = NAN; /* one vertex of the first edge: its two segments are dropped */
+    CHECK_STATUS(pnpr_renderer_set_lines(r, &l, NULL), PNPR_OK);
+    CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
+    CHECK_MSG(st.strokes_drawn == 12 * 20 - 2, "NaN vertex: %zu segments", st.strokes_drawn);
+    o.faint = 1.5f;
+    CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    o.faint = 0; o.line_width = NAN;
+    CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    o.line_width = 0;
+    /* clearing the lines */
+    CHECK_STATUS(pnpr_renderer_set_lines(r, NULL, NULL), PNPR_OK);
+    CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
+    CHECK(st.strokes_drawn == 0);
+
+    free(px); free(px2);
+    free_lines(&l);
+    pnpr_cloud_free(&c);
+}
+
+int main(void)
+{
+    pnpr_gl_context *ctx = NULL;
+    pnpr_error err = {0};
+    if (pnpr_gl_context_create(&ctx, &err) != PNPR_OK) {
+        fprintf(stderr, "test_render_styles: skipped: %s\n", err.message);
+        return 77;
+    }
+    pnpr_renderer *r = NULL;
+    CHECK_STATUS(pnpr_renderer_create(NULL, &r, &err), PNPR_OK);
+    if (r) {
+        test_lines_cube(r);
+        pnpr_renderer_destroy(r);
+    }
+    pnpr_gl_context_destroy(ctx);
+    return pnpr_test_finish("test_render_styles");
+}
