@@ -104,17 +104,28 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     float min_conf = opts->direction_confidence > 0 ? opts->direction_confidence : 0.6f;
     run r = {r_stats, &opts->progress, 0, 0};
 
+    /* the stages the wanted outputs need (docs/features.md, "Computing only what is needed") */
+    const uint32_t want = opts->want ? opts->want : PNPR_WANT_ALL;
+    if (want & ~(uint32_t)PNPR_WANT_ALL) return PNPR_ERR_INVALID_ARGUMENT;
+    const int need_dither = (want & PNPR_WANT_DITHER) != 0;
+    const int need_classify = need_dither || (want & PNPR_WANT_CLASSES);
+    const int need_degree = need_classify || (want & PNPR_WANT_DEGREE);
+    /* dithering reads the tone from the normals' orientation when there are no colours */
+    const int need_oriented = (want & PNPR_WANT_NORMALS) || (need_dither && !cloud->rgb);
+
     /* outputs (allocated first: a cloud that cannot hold them fails before the work) */
     static const char *const fnames[5] = {"feature_degree", "feature_confidence", "feature_dir_x",
                                           "feature_dir_y", "feature_dir_z"};
     pnpr_status st;
-    for (int f = 0; f < 5; f++)
+    int nout = need_classify ? 5 : (need_degree ? 1 : 0);
+    for (int f = 0; f < nout; f++)
         if ((st = pnpr_cloud_add_property(cloud, fnames[f], PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK) return st;
-    if ((st = pnpr_cloud_add_property(cloud, "feature_class", PNPR_TYPE_UINT8, NULL)) != PNPR_OK) return st;
-    float *out[5]; /* degree, confidence, dir x, y, z — looked up after all adds (props may move) */
-    for (int f = 0; f < 5; f++) out[f] = pnpr_cloud_find_property(cloud, fnames[f])->data;
+    if (need_classify && (st = pnpr_cloud_add_property(cloud, "feature_class", PNPR_TYPE_UINT8, NULL)) != PNPR_OK) return st;
+    float *out[5] = {NULL, NULL, NULL, NULL, NULL}; /* degree, confidence, dir x, y, z — looked up
+                                                     * after all adds (props may move) */
+    for (int f = 0; f < nout; f++) out[f] = pnpr_cloud_find_property(cloud, fnames[f])->data;
     float *degree = out[0], *conf = out[1];
-    uint8_t *cls = pnpr_cloud_find_property(cloud, "feature_class")->data;
+    uint8_t *cls = need_classify ? pnpr_cloud_find_property(cloud, "feature_class")->data : NULL;
     /* input normals are kept unless asked otherwise, or unless most of them are missing (zero or
      * non-finite: a layer that carries a normal field without data) */
     int keep_normals = cloud->normal && !opts->recompute_normals;
@@ -126,7 +137,14 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
         }
         if (2 * have < n) keep_normals = 0;
     }
-    if ((st = pnpr_cloud_alloc_normals(cloud)) != PNPR_OK) return st;
+    /* unoriented normals are not handed out: when nobody wants normals, they live in a scratch
+     * array (the colour term needs the tangent plane) and the cloud gets none */
+    const int normals_to_cloud = keep_normals || need_oriented || cloud->normal;
+    float *normals = NULL;
+    if (normals_to_cloud) {
+        if ((st = pnpr_cloud_alloc_normals(cloud)) != PNPR_OK) return st;
+        normals = cloud->normal;
+    }
 
     size_t valid = 0;
     for (size_t i = 0; i < n; i++) {
@@ -138,14 +156,14 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     r_stats->k_used = (uint32_t)k;
     if (valid < 3 || k < 3) {
         /* too few points for any plane: defined empty result */
-        if (!keep_normals) memset(cloud->normal, 0, 3 * n * sizeof(float));
+        if (normals && !keep_normals) memset(normals, 0, 3 * n * sizeof(float));
         r_stats->threshold_used = opts->threshold;
         return PNPR_OK;
     }
 
     pnpr_kdtree *tree = NULL;
     uint32_t *knn = NULL, *perm = NULL, *tree_index = NULL;
-    float *xyz = NULL, *fit = NULL;
+    float *xyz = NULL, *fit = NULL, *own_normals = NULL;
     char *scratch = NULL;
     int permuted = 0;
     const size_t m = valid;
@@ -199,43 +217,50 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     scratch = NULL;
 
     /* PCA always runs: its fit error drives the feature degree even when normals are kept */
-    fit = malloc(m * sizeof *fit);
-    if (!fit) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    fit = need_degree ? malloc(m * sizeof *fit) : NULL;
+    if (need_degree && !fit) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    if (!normals && !(normals = own_normals = malloc(m * 3 * sizeof *normals))) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     if (stage_begin(&r, PNPR_STAGE_NORMALS)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_estimate_normals(xyz, m, knn, k, opts->threads, keep_normals ? NULL : cloud->normal, fit));
+    st = stage_end(&r, pnpr_estimate_normals(xyz, m, knn, k, opts->threads, keep_normals ? NULL : normals, fit));
     if (st != PNPR_OK) goto done;
 
     /* the feature degree only needs the tangent plane (the normal's sign does not matter), so it
      * runs before the orientation and the fit errors are gone before the orientation's queue
      * is built */
-    if (stage_begin(&r, PNPR_STAGE_FEATURE_DEGREE)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_feature_degree(xyz, cloud->rgb, cloud->normal, fit, m, knn, k, opts->weight_geometry,
-                                           opts->weight_color, opts->threads, degree));
-    free(fit);
-    fit = NULL;
-    if (st != PNPR_OK) goto done;
-
-    if (!keep_normals) {
-        if (stage_begin(&r, PNPR_STAGE_ORIENT)) { st = PNPR_ERR_CANCELLED; goto done; }
-        double vp[3];
-        for (int a = 0; a < 3; a++) vp[a] = opts->viewpoint[a] - cloud->origin[a];
-        st = stage_end(&r, pnpr_orient_normals(xyz, m, knn, k, opts->has_viewpoint ? vp : NULL, cloud->normal));
+    if (need_degree) {
+        if (stage_begin(&r, PNPR_STAGE_FEATURE_DEGREE)) { st = PNPR_ERR_CANCELLED; goto done; }
+        st = stage_end(&r, pnpr_feature_degree(xyz, cloud->rgb, normals, fit, m, knn, k, opts->weight_geometry,
+                                               opts->weight_color, opts->threads, degree));
+        free(fit);
+        fit = NULL;
         if (st != PNPR_OK) goto done;
     }
 
-    float threshold = opts->threshold > 0 ? opts->threshold : pnpr_auto_threshold(degree, m);
-    r_stats->threshold_used = threshold;
-    if (stage_begin(&r, PNPR_STAGE_CLASSIFY)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_classify_features(xyz, degree, m, 2 * k, threshold, min_conf, opts->threads, cls, conf, out[2], out[3], out[4]));
-    if (st != PNPR_OK) goto done;
-    for (size_t i = 0; i < m; i++) {
-        r_stats->feature_points += cls[i] != PNPR_CLASS_NONE;
-        r_stats->directional_points += cls[i] == PNPR_CLASS_DIRECTIONAL;
+    if (!keep_normals && need_oriented) {
+        if (stage_begin(&r, PNPR_STAGE_ORIENT)) { st = PNPR_ERR_CANCELLED; goto done; }
+        double vp[3];
+        for (int a = 0; a < 3; a++) vp[a] = opts->viewpoint[a] - cloud->origin[a];
+        st = stage_end(&r, pnpr_orient_normals(xyz, m, knn, k, opts->has_viewpoint ? vp : NULL, normals));
+        if (st != PNPR_OK) goto done;
     }
 
-    if (stage_begin(&r, PNPR_STAGE_DITHER)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_dither(xyz, cloud->rgb, cloud->normal, NULL, m, knn, k, opts->dither_scale, cls,
-                                   &r_stats->dither_points));
+    if (need_degree)
+        r_stats->threshold_used = opts->threshold > 0 ? opts->threshold : pnpr_auto_threshold(degree, m);
+    if (need_classify) {
+        if (stage_begin(&r, PNPR_STAGE_CLASSIFY)) { st = PNPR_ERR_CANCELLED; goto done; }
+        st = stage_end(&r, pnpr_classify_features(xyz, degree, m, 2 * k, r_stats->threshold_used, min_conf, opts->threads,
+                                                  cls, conf, out[2], out[3], out[4]));
+        if (st != PNPR_OK) goto done;
+        for (size_t i = 0; i < m; i++) {
+            r_stats->feature_points += cls[i] != PNPR_CLASS_NONE;
+            r_stats->directional_points += cls[i] == PNPR_CLASS_DIRECTIONAL;
+        }
+    }
+    if (need_dither) {
+        if (stage_begin(&r, PNPR_STAGE_DITHER)) { st = PNPR_ERR_CANCELLED; goto done; }
+        st = stage_end(&r, pnpr_dither(xyz, cloud->rgb, normals, NULL, m, knn, k, opts->dither_scale, cls,
+                                       &r_stats->dither_points));
+    }
 done:
     free(knn);
     free(fit);
@@ -260,5 +285,6 @@ done:
     pnpr_free(tree_index);
     free(perm);
     free(scratch);
+    free(own_normals);
     return st;
 }

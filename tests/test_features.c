@@ -384,8 +384,59 @@ static void test_cancel(void)
     pnpr_cloud_free(&c);
 }
 
+/* Computing only what is needed: each wanted output runs its stages and no other (stage run
+ * counters), and its values equal those of the full run. */
+static void test_wanted_outputs(void)
+{
+    pnpr_cloud full = {0};
+    CHECK_STATUS(pnpr_test_cube(&full, 1.0, 0.04, 0.0, NULL, 3), PNPR_OK);
+    CHECK_STATUS(pnpr_compute_features(&full, NULL, NULL), PNPR_OK);
+    const float *deg_full = prop_f(&full, "feature_degree");
+    const uint8_t *cls_full = prop_class(&full);
+    struct { uint32_t want; int orient, degree, classify, dither; } cases[] = {
+        {PNPR_WANT_NORMALS, 1, 0, 0, 0},
+        {PNPR_WANT_DEGREE, 0, 1, 0, 0},
+        {PNPR_WANT_CLASSES, 0, 1, 1, 0},
+        {PNPR_WANT_DITHER, 1, 1, 1, 1}, /* no colours: the tone comes from oriented normals */
+        {PNPR_WANT_DEGREE | PNPR_WANT_NORMALS, 1, 1, 0, 0},
+    };
+    for (size_t t = 0; t < sizeof cases / sizeof *cases; t++) {
+        pnpr_cloud c = {0};
+        CHECK_STATUS(pnpr_test_cube(&c, 1.0, 0.04, 0.0, NULL, 3), PNPR_OK);
+        pnpr_features_options o = {0};
+        o.want = cases[t].want;
+        pnpr_features_stats s;
+        CHECK_STATUS(pnpr_compute_features(&c, &o, &s), PNPR_OK);
+        CHECK_MSG(s.runs[PNPR_STAGE_KNN] == 1 && s.runs[PNPR_STAGE_NORMALS] == 1, "want %u", (unsigned)o.want);
+        CHECK_MSG((int)s.runs[PNPR_STAGE_ORIENT] == cases[t].orient, "want %u: orient ran %u", (unsigned)o.want, (unsigned)s.runs[PNPR_STAGE_ORIENT]);
+        CHECK_MSG((int)s.runs[PNPR_STAGE_FEATURE_DEGREE] == cases[t].degree, "want %u", (unsigned)o.want);
+        CHECK_MSG((int)s.runs[PNPR_STAGE_CLASSIFY] == cases[t].classify, "want %u", (unsigned)o.want);
+        CHECK_MSG((int)s.runs[PNPR_STAGE_DITHER] == cases[t].dither, "want %u", (unsigned)o.want);
+        /* only the wanted outputs are stored, and they equal the full run's */
+        CHECK((c.normal != NULL) == (cases[t].orient != 0));
+        CHECK((prop_f(&c, "feature_degree") != NULL) == (cases[t].degree != 0));
+        CHECK((prop_class(&c) != NULL) == (cases[t].classify != 0));
+        const float *deg = prop_f(&c, "feature_degree");
+        const uint8_t *cls = prop_class(&c);
+        size_t diff = 0;
+        for (size_t i = 0; i < c.count; i++) {
+            if (deg) diff += deg[i] != deg_full[i];
+            if (cls && cases[t].dither) diff += cls[i] != cls_full[i];
+            if (cls && !cases[t].dither) diff += cls[i] != (cls_full[i] == PNPR_CLASS_DITHER ? PNPR_CLASS_NONE : cls_full[i]);
+            if (c.normal && cases[t].orient) diff += memcmp(c.normal + 3 * i, full.normal + 3 * i, 3 * sizeof(float)) != 0;
+        }
+        CHECK_MSG(diff == 0, "want %u: %zu values differ from the full run", (unsigned)o.want, diff);
+        pnpr_cloud_free(&c);
+    }
+    pnpr_features_options bad = {0};
+    bad.want = 16;
+    CHECK_STATUS(pnpr_compute_features(&full, &bad, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    pnpr_cloud_free(&full);
+}
+
 int main(void)
 {
+    test_wanted_outputs();
     test_eigen();
     test_sphere_and_offset();
     test_cube();

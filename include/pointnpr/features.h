@@ -30,7 +30,24 @@ enum {
     PNPR_CLASS_DITHER = 3
 };
 
+/* Outputs of pnpr_compute_features; options.want = a combination, 0 = all. Only the stages the
+ * wanted outputs need run (stats.runs tells which did):
+ *   NORMALS  oriented normals (cloud->normal)        kd-tree, knn, normals, orient
+ *   DEGREE   feature_degree                           kd-tree, knn, normals (fit error), degree
+ *   CLASSES  + feature_class/confidence/dir           ... + classify
+ *   DITHER   + dithering points in feature_class     ... + classify, dither (+ orient without colours)
+ * Normals the input carries are kept (and reused for the tangent plane); normals computed but not
+ * wanted (and not oriented) are not stored in the cloud. */
+enum {
+    PNPR_WANT_NORMALS = 1,
+    PNPR_WANT_DEGREE = 2,
+    PNPR_WANT_CLASSES = 4,
+    PNPR_WANT_DITHER = 8,
+    PNPR_WANT_ALL = 15
+};
+
 typedef struct pnpr_features_options {
+    uint32_t want;           /* PNPR_WANT_* bits; 0 = all */
     uint32_t k;              /* neighbourhood size; 0 = 16. Clamped to the number of valid points. */
     float threshold;         /* feature-degree threshold for feature points; 0 = automatic */
     float weight_geometry;   /* weights of the two terms; both 0 = 0.5 / 0.5. */
@@ -70,8 +87,9 @@ typedef struct pnpr_features_stats {
 
 /* ---- the whole pipeline on a cloud ---------------------------------------------------------
  * Computes normals (kept from the input unless opts->recompute_normals or unless more than half
- * of them are zero/non-finite; stored in cloud->normal) and adds the extra properties feature_degree (float), feature_class (uchar),
- * feature_confidence (float), feature_dir_x/y/z (float), replacing existing ones of that name.
+ * of them are zero/non-finite; stored in cloud->normal) and adds the extra properties
+ * feature_degree (float), feature_class (uchar), feature_confidence (float), feature_dir_x/y/z
+ * (float), replacing existing ones of that name — those of opts->want (default: all).
  * Points with NaN/Inf coordinates get normal (0,0,0), degree 0, class 0, confidence 0.
  * stats may be NULL. */
 pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options *opts,

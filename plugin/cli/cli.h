@@ -12,6 +12,7 @@ int cli_render(int argc, char **argv);
 int cli_lines(int argc, char **argv);
 int cli_segment(int argc, char **argv);
 int cli_bench(int argc, char **argv);
+int cli_explain(int argc, char **argv);
 
 /* Progress on stderr; never cancels. user: a cli_progress_state (zeroed before first use).
  * On a terminal: one updating "\r<stage> 42%" line per stage; otherwise (logs, CI) one line

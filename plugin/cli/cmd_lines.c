@@ -123,6 +123,7 @@ int cli_lines(int argc, char **argv)
     if (!pnpr_cloud_find_property(&cloud, "feature_class") || !pnpr_cloud_find_property(&cloud, "feature_dir_x") ||
         !pnpr_cloud_find_property(&cloud, "feature_dir_y") || !pnpr_cloud_find_property(&cloud, "feature_dir_z")) {
         if (!quiet) fprintf(stderr, "%s has no feature properties: computing them\n", in);
+        fo.want = PNPR_WANT_CLASSES; /* lines need directional points, not dithering or normals */
         st = pnpr_compute_features(&cloud, &fo, NULL);
         if (st != PNPR_OK) {
             fprintf(stderr, "pointnpr lines: %s: features: %s\n", in, pnpr_status_string(st));
