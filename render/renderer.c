@@ -1,5 +1,5 @@
 /* The PointWorks renderer: two-pass visibility mask (section 4.3), continuous resolution queue
- * (4.4), `points`, `sketchy` (5.1) and `lines` (5.2) styles. See docs/rendering.md. */
+ * (4.4), `points`, `sketchy` (5.1), `lines` (5.2) and `stipple` styles. See docs/rendering.md. */
 #include "render_internal.h"
 #include "gl_state.h"
 #include "pnpr_shaders.h"
@@ -25,7 +25,7 @@ typedef struct pnpr_vertex {
     float dir[3];
 } pnpr_vertex;
 
-typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color; } splat_uniforms;
+typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size; } splat_uniforms;
 typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink; } line_uniforms;
 typedef struct stroke_uniforms {
     GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points;
@@ -221,6 +221,7 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->us.max_size = glGetUniformLocation(p, "u_max_size");
     r->us.fade = glGetUniformLocation(p, "u_fade");
     r->us.fade_color = glGetUniformLocation(p, "u_fade_color");
+    r->us.fixed_size = glGetUniformLocation(p, "u_fixed_size");
     p = r->prog_line;
     r->ul.view = glGetUniformLocation(p, "u_view");
     r->ul.proj = glGetUniformLocation(p, "u_proj");
@@ -564,7 +565,8 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
     if (!finite4(o.background) || !finite4(o.ink) || !isfinite(o.density) || o.density < 0 ||
         !isfinite(o.point_scale) || o.point_scale < 0 || !isfinite(o.mask_scale) || o.mask_scale < 0 ||
         !isfinite(o.stroke_length) || o.stroke_length < 0 || !isfinite(o.stroke_width) || o.stroke_width < 0 ||
-        !isfinite(o.line_width) || o.line_width < 0 || !(o.faint >= 0 && o.faint <= 1))
+        !isfinite(o.line_width) || o.line_width < 0 || !(o.faint >= 0 && o.faint <= 1) ||
+        !isfinite(o.dot_size) || o.dot_size < 0)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative");
     if (pnpr_style_needs_features(o.style) && r->count > 0 && !r->has_features)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
@@ -575,6 +577,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
     float stroke_length = o.stroke_length > 0 ? o.stroke_length : 6;
     float stroke_width = o.stroke_width > 0 ? o.stroke_width : 2;
     float line_width = o.line_width > 0 ? o.line_width : 2;
+    float dot_size = o.dot_size > 0 ? o.dot_size : 2.5f;
     float ink[4] = {0.08f, 0.08f, 0.1f, 1};
     if (o.ink[0] != 0 || o.ink[1] != 0 || o.ink[2] != 0 || o.ink[3] != 0) memcpy(ink, o.ink, sizeof ink);
 
@@ -627,7 +630,8 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
 
     size_t strokes = 0;
     int sketchy = o.style == PNPR_STYLE_SKETCHY, lines = o.style == PNPR_STYLE_LINES;
-    int masked = sketchy || lines; /* pass 1 is a depth-only visibility mask */
+    int stipple = o.style == PNPR_STYLE_STIPPLE;
+    int masked = sketchy || lines || stipple; /* pass 1 is a depth-only visibility mask */
     if (n_draw > 0) {
         glUseProgram(r->prog_splat);
         glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc.view);
@@ -635,6 +639,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
         glUniform1f(r->us.ppu, fc.pixels_per_unit);
         glUniform1f(r->us.max_size, r->max_point_size);
         glUniform1f(r->us.fade, 0.0f);
+        glUniform1f(r->us.fixed_size, 0.0f);
         glDisable(GL_BLEND);
         glBindVertexArray(r->vao_points);
         if (lines && o.faint > 0) {
@@ -687,6 +692,24 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
                 glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)gdraw[g]);
                 strokes += gdraw[g];
             }
+        }
+    }
+    if (stipple && n_draw > 0) {
+        /* pass 2 of `stipple`: the queue prefixes of the feature and dithering groups as dots of
+         * a fixed screen size in the ink colour (antialiased edges), depth-tested against the
+         * mask, no depth writes, blended */
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        glUniform1f(r->us.radius_scale, point_scale * lod);
+        glUniform1f(r->us.depth_push, 0.0f);
+        glUniform1f(r->us.fade, 1.0f);
+        glUniform4fv(r->us.fade_color, 1, ink);
+        glUniform1f(r->us.fixed_size, dot_size);
+        for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
+            if (!gdraw[g]) continue;
+            glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+            strokes += gdraw[g];
         }
     }
     if (lines && r->line_segments > 0) {
@@ -784,7 +807,7 @@ void pnpr_renderer_frame_size(const pnpr_renderer *r, int *w, int *h)
 
 /* ---- styles --------------------------------------------------------------------------------- */
 
-static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines"};
+static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple"};
 
 const char *pnpr_style_name(pnpr_style s)
 {
@@ -799,4 +822,4 @@ pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style)
     return PNPR_ERR_NOT_FOUND;
 }
 
-int pnpr_style_needs_features(pnpr_style s) { return s == PNPR_STYLE_SKETCHY; }
+int pnpr_style_needs_features(pnpr_style s) { return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE; }

@@ -14,8 +14,11 @@ uniform float u_depth_push;      // eye-space push away from the viewer, in radi
 uniform float u_max_size;        // implementation's largest point size
 uniform float u_fade;            // 0..1: the colour is mix(a_color, u_fade_color, u_fade)
 uniform vec4 u_fade_color;
+uniform float u_fixed_size;      // > 0: a dot of this diameter in pixels (stipple), antialiased
 
 out vec4 v_color;
+out float v_sprite_px;           // the sprite's size in pixels
+out float v_dot_radius_px;       // > 0: antialiased dot of this radius; 0: hard disk
 
 void main()
 {
@@ -24,6 +27,12 @@ void main()
     vec4 clip = u_proj * eye;
     float size = 2.0 * r * u_pixels_per_unit / max(clip.w, 1e-6);
     gl_PointSize = clamp(size, 1.0, u_max_size);
+    v_dot_radius_px = 0.0;
+    if (u_fixed_size > 0.0) {
+        gl_PointSize = clamp(u_fixed_size + 1.0, 1.0, u_max_size); // + a fringe pixel
+        v_dot_radius_px = 0.5 * u_fixed_size;
+    }
+    v_sprite_px = gl_PointSize;
     eye.z -= u_depth_push * r; // the camera looks down -z
     vec4 pushed = u_proj * eye;
     // keep the disk's screen position, take the pushed depth

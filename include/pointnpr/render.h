@@ -89,6 +89,7 @@ typedef enum pnpr_style {
     PNPR_STYLE_SKETCHY,    /* PointWorks sketch: strokes along feature directions + hatches */
     PNPR_STYLE_LINES,      /* profile lines (pnpr_renderer_set_lines) as dark strokes, hidden parts
                             * removed by the visibility mask of the cloud (section 5.2) */
+    PNPR_STYLE_STIPPLE,    /* small dark round dots on the feature and dithering points */
     PNPR_STYLE_COUNT_
 } pnpr_style;
 
@@ -137,6 +138,7 @@ typedef struct pnpr_draw_options {
     float line_width;      /* lines: stroke width in pixels (0 = 2) */
     float faint;           /* lines: 0..1, the cloud drawn faintly under the lines (its colours
                             * mixed with the background, this much of the point colour); 0 = none */
+    float dot_size;        /* stipple: dot diameter in pixels (0 = 2.5) */
 } pnpr_draw_options;
 
 /* Where the frame goes: framebuffer object `framebuffer` (0 = the default framebuffer) and the
@@ -152,7 +154,7 @@ typedef struct pnpr_target {
 typedef struct pnpr_render_stats {
     size_t points_total;   /* points uploaded (finite ones) */
     size_t points_drawn;   /* queue prefix drawn this frame (pass 2 and the mask alike) */
-    size_t strokes_drawn;  /* sketchy: primitives of pass 2; lines: line segments */
+    size_t strokes_drawn;  /* sketchy: primitives of pass 2; lines: line segments; stipple: dots */
     double coverage_px;    /* screen pixels covered by the projected bounding box */
 } pnpr_render_stats;
 
@@ -194,7 +196,7 @@ void pnpr_renderer_frame_size(const pnpr_renderer *renderer, int *r_width, int *
 /* Whether the uploaded cloud carries the feature properties (class and direction). */
 int pnpr_renderer_has_features(const pnpr_renderer *renderer);
 
-const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines"; "" if invalid */
+const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple"; "" if invalid */
 pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 int pnpr_style_needs_features(pnpr_style style);
 

@@ -28,7 +28,7 @@ static void usage(FILE *f)
             "usage: pointnpr render IN -o OUT.png [options]\n"
             "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG.\n"
             "options:\n"
-            "  --style S            points | sketchy | lines (default points)\n"
+            "  --style S            points | sketchy | lines | stipple (default points)\n"
             "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
             "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n"
             "  --stroke-texture T   directional stroke texture 0, 1 or 2 (default 0)\n"
@@ -42,12 +42,13 @@ static void usage(FILE *f)
             "  --seed S             continuous resolution queue seed (default 0)\n"
             "  --point-scale F      disk radius multiplier (default 1)\n"
             "  --line-width PX      lines: stroke width in pixels (default 2)\n"
+            "  --dot-size PX        stipple: dot diameter in pixels (default 2.5)\n"
             "  --faint F            lines: draw the cloud faintly under the lines, F in (0,1]\n"
             "                       of the point colour (default: lines only)\n"
             "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
             "  --alpha              transparent background, PNG with alpha\n"
             "  --quiet              no progress on stderr\n"
-            "  Styles that need features (sketchy, lines) compute them when IN lacks them;\n"
+            "  Styles that need features (sketchy, stipple, lines) compute them when IN lacks them;\n"
             "  lines computes the profile lines (pointnpr lines) from them.\n");
 }
 
@@ -75,7 +76,7 @@ int cli_render(int argc, char **argv)
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
         else if (v && !strcmp(a, "--style")) {
             pnpr_style s;
-            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points, sketchy or lines, got '%s'\n", v); return 2; }
+            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points, sketchy, lines or stipple, got '%s'\n", v); return 2; }
             dopt.style = s; i++;
         } else if (v && !strcmp(a, "--sketch")) {
             if (!strcmp(v, "a")) dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
@@ -104,6 +105,9 @@ int cli_render(int argc, char **argv)
         } else if (v && !strcmp(a, "--line-width")) {
             if (!cli_parse_number(v, 1e-2, 1e3, &x)) { fprintf(stderr, "pointnpr render: --line-width wants a positive number of pixels, got '%s'\n", v); return 2; }
             dopt.line_width = (float)x; i++;
+        } else if (v && !strcmp(a, "--dot-size")) {
+            if (!cli_parse_number(v, 1e-2, 1e3, &x)) { fprintf(stderr, "pointnpr render: --dot-size wants a positive number of pixels, got '%s'\n", v); return 2; }
+            dopt.dot_size = (float)x; i++;
         } else if (v && !strcmp(a, "--faint")) {
             if (!cli_parse_number(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr render: --faint wants a number in (0,1], got '%s'\n", v); return 2; }
             dopt.faint = (float)x; i++;

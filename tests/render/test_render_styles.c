@@ -1,6 +1,7 @@
 /* The styles beyond `points` and `sketchy`, with known answers: `lines` (a cube's edges seen from
  * a corner: the three front edges drawn, the three hidden back edges not; no lines = background;
- * width; faint points; host GL state kept; bad input).
+ * width; faint points; host GL state kept; bad input), `stipple` (darkness across a tone-gradient
+ * plane increases with the tone).
  * Exits 77 (skipped) when this machine has no headless EGL / GL 3.3. */
 #include "testutil.h"
 #include "../../render/render_internal.h"
@@ -278,6 +279,83 @@ static void test_lines_cube(pnpr_renderer *r)
     pnpr_cloud_free(&c);
 }
 
+/* ---- stipple: darkness follows the tone --------------------------------------------------- */
+static void test_stipple_tone(pnpr_renderer *r)
+{
+    /* a plane 2 x 1 (spacing 0.025), grey from light (x = 0) to dark (x = 2), features computed:
+     * the dithering points' density follows the tone, and so must the image's darkness */
+    enum { NX = 81, NY = 41 };
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_test_plane(&c, NX, NY, 0.025, cube_off), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_alloc_rgb(&c), PNPR_OK);
+    float lo[3], hi[3];
+    CHECK(pnpr_cloud_bounds(&c, lo, hi) != 0);
+    for (size_t i = 0; i < c.count; i++) {
+        double t = (c.xyz[3 * i] - lo[0]) / (hi[0] - lo[0]); /* 0 .. 1 */
+        uint8_t g = (uint8_t)(250 - 230 * t);
+        c.rgb[3 * i] = c.rgb[3 * i + 1] = c.rgb[3 * i + 2] = g;
+    }
+    CHECK_STATUS(pnpr_compute_features(&c, NULL, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
+    CHECK(pnpr_renderer_has_features(r));
+    pnpr_camera cam = {{0}, {0}, {0, 1, 0}, 30, 0, 0};
+    for (int a = 0; a < 3; a++) cam.target[a] = c.origin[a] + 0.5 * (lo[a] + hi[a]);
+    memcpy(cam.eye, cam.target, sizeof cam.eye);
+    cam.eye[2] += 4.0;
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.style = PNPR_STYLE_STIPPLE;
+    o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+    uint8_t *px = malloc(W * H * 4);
+    pnpr_render_stats st;
+    CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
+    CHECK(st.strokes_drawn > 0 && st.strokes_drawn < c.count);
+    /* mean darkness in 5 bands across x, inside the plane's image */
+    pnpr_frame_camera fc;
+    CHECK_STATUS(pnpr_frame_camera_make(&cam, c.origin, lo, hi, 1, W, H, &fc, NULL), PNPR_OK);
+    double x0, y0, x1, y1;
+    double wlo[3] = {c.origin[0] + lo[0], c.origin[1] + lo[1], c.origin[2]};
+    double whi[3] = {c.origin[0] + hi[0], c.origin[1] + hi[1], c.origin[2]};
+    project(&fc, c.origin, wlo, &x0, &y0);
+    project(&fc, c.origin, whi, &x1, &y1);
+    if (y0 > y1) { double t = y0; y0 = y1; y1 = t; }
+    double dark[5] = {0};
+    for (int b = 0; b < 5; b++) {
+        int xa = (int)(x0 + (x1 - x0) * (b + 0.1) / 5), xb = (int)(x0 + (x1 - x0) * (b + 0.9) / 5);
+        size_t n = 0;
+        for (int y = (int)y0 + 3; y < (int)y1 - 3; y++)
+            for (int x = xa; x < xb; x++) { dark[b] += 255 - grey(px, x, y); n++; }
+        dark[b] /= n ? (double)n : 1;
+    }
+    for (int b = 1; b < 5; b++)
+        CHECK_MSG(dark[b] > dark[b - 1], "stipple band %d darkness %.2f not above band %d's %.2f", b, dark[b], b - 1, dark[b - 1]);
+    CHECK_MSG(dark[4] > 3 * dark[0] + 5, "darkest band %.2f vs lightest %.2f", dark[4], dark[0]);
+    fprintf(stderr, "stipple band darkness: %.1f %.1f %.1f %.1f %.1f (%zu dots)\n", dark[0], dark[1], dark[2], dark[3], dark[4], st.strokes_drawn);
+    /* dots are only dark ink on white: no pixel is coloured */
+    size_t coloured = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++) {
+        int mx = px[4 * i], mn = px[4 * i];
+        for (int k = 1; k < 3; k++) { if (px[4 * i + k] > mx) mx = px[4 * i + k]; if (px[4 * i + k] < mn) mn = px[4 * i + k]; }
+        coloured += mx - mn > 8;
+    }
+    CHECK_MSG(coloured == 0, "%zu coloured pixels in a stipple image", coloured);
+    /* a budget draws fewer dots; without features: NOT_FOUND */
+    o.budget = c.count / 4;
+    CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
+    CHECK(st.points_drawn == c.count / 4);
+    o.budget = 0;
+    pnpr_upload_options uo;
+    memset(&uo, 0, sizeof uo);
+    uo.ignore_features = 1;
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, &uo, NULL), PNPR_OK);
+    CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_ERR_NOT_FOUND);
+    o.dot_size = -1;
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
+    CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    free(px);
+    pnpr_cloud_free(&c);
+}
+
 int main(void)
 {
     pnpr_gl_context *ctx = NULL;
@@ -290,6 +368,7 @@ int main(void)
     CHECK_STATUS(pnpr_renderer_create(NULL, &r, &err), PNPR_OK);
     if (r) {
         test_lines_cube(r);
+        test_stipple_tone(r);
         pnpr_renderer_destroy(r);
     }
     pnpr_gl_context_destroy(ctx);
