@@ -1,5 +1,5 @@
 /* The PointWorks renderer: two-pass visibility mask (section 4.3), continuous resolution queue
- * (4.4), `points`, `sketchy` (5.1), `lines` (5.2) and `stipple` styles. See docs/rendering.md. */
+ * (4.4), `points`, `sketchy` (5.1), `lines` (5.2), `stipple` and `cartoon` (5.4) styles. See docs/rendering.md. */
 #include "render_internal.h"
 #include "gl_state.h"
 #include "pnpr_shaders.h"
@@ -23,9 +23,10 @@ typedef struct pnpr_vertex {
     float radius;
     uint8_t rgba[4];
     float dir[3];
+    uint8_t flat[4]; /* cartoon: the segment's mean colour (the point colour without labels) */
 } pnpr_vertex;
 
-typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size; } splat_uniforms;
+typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels; } splat_uniforms;
 typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink; } line_uniforms;
 typedef struct stroke_uniforms {
     GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points;
@@ -37,7 +38,7 @@ struct pnpr_renderer {
     line_uniforms ul;
     stroke_uniforms ut;
     GLint uc_frame, uc_origin;
-    GLuint vbo, vao_points, vao_strokes, vao_empty;
+    GLuint vbo, vao_points, vao_strokes, vao_empty, vao_flat;
     GLuint line_vbo, vao_lines;
     GLuint stroke_tex;
     GLuint fbo, color_tex, depth_rb;
@@ -48,7 +49,7 @@ struct pnpr_renderer {
     size_t count;
     size_t group_start[GROUP_MAX + 2];
     size_t group_count;
-    int has_features;
+    int has_features, has_labels;
     double origin[3];
     float bmin[3], bmax[3];
     /* the profile lines: segments as pairs of float offsets from line_origin */
@@ -158,15 +159,15 @@ static void release_gl(pnpr_renderer *r)
     if (r->prog_line) glDeleteProgram(r->prog_line);
     if (r->vbo) glDeleteBuffers(1, &r->vbo);
     if (r->line_vbo) glDeleteBuffers(1, &r->line_vbo);
-    GLuint vaos[4] = {r->vao_points, r->vao_strokes, r->vao_empty, r->vao_lines};
-    glDeleteVertexArrays(4, vaos);
+    GLuint vaos[5] = {r->vao_points, r->vao_strokes, r->vao_empty, r->vao_lines, r->vao_flat};
+    glDeleteVertexArrays(5, vaos);
     if (r->stroke_tex) glDeleteTextures(1, &r->stroke_tex);
     if (r->color_tex) glDeleteTextures(1, &r->color_tex);
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
 }
 
-static void set_attribs(GLuint vao, GLuint vbo, size_t first, int instanced)
+static void set_attribs(GLuint vao, GLuint vbo, size_t first, int instanced, int flat)
 {
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -178,7 +179,7 @@ static void set_attribs(GLuint vao, GLuint vbo, size_t first, int instanced)
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, stride, PNPR_ATTR_OFFSET(radius));
     glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, PNPR_ATTR_OFFSET(rgba));
+    glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, flat ? PNPR_ATTR_OFFSET(flat) : PNPR_ATTR_OFFSET(rgba));
     if (instanced) {
         glEnableVertexAttribArray(3);
         glVertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, stride, PNPR_ATTR_OFFSET(dir));
@@ -222,6 +223,7 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->us.fade = glGetUniformLocation(p, "u_fade");
     r->us.fade_color = glGetUniformLocation(p, "u_fade_color");
     r->us.fixed_size = glGetUniformLocation(p, "u_fixed_size");
+    r->us.levels = glGetUniformLocation(p, "u_levels");
     p = r->prog_line;
     r->ul.view = glGetUniformLocation(p, "u_view");
     r->ul.proj = glGetUniformLocation(p, "u_proj");
@@ -249,8 +251,10 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     glGenVertexArrays(1, &r->vao_points);
     glGenVertexArrays(1, &r->vao_strokes);
     glGenVertexArrays(1, &r->vao_empty);
-    set_attribs(r->vao_points, r->vbo, 0, 0);
-    set_attribs(r->vao_strokes, r->vbo, 0, 1);
+    glGenVertexArrays(1, &r->vao_flat);
+    set_attribs(r->vao_points, r->vbo, 0, 0, 0);
+    set_attribs(r->vao_strokes, r->vbo, 0, 1, 0);
+    set_attribs(r->vao_flat, r->vbo, 0, 0, 1);
     /* line segments: two ends per instance */
     glGenBuffers(1, &r->line_vbo);
     glGenVertexArrays(1, &r->vao_lines);
@@ -355,6 +359,40 @@ done:
     return st;
 }
 
+typedef struct label_index { uint32_t label, j; } label_index;
+
+static int cmp_label(const void *a, const void *b)
+{
+    const label_index *x = a, *y = b;
+    if (x->label != y->label) return x->label < y->label ? -1 : 1;
+    return x->j < y->j ? -1 : x->j > y->j;
+}
+
+/* Mean colour (rounded) of each segment over its finite points: r_flat[3 j] for finite point j
+ * (cloud index src[j]). Sorting (label, j) pairs handles any label values, PNPR_LABEL_NONE
+ * included (one more segment). Without colours every point is grey 160. */
+static pnpr_status segment_means(const pnpr_cloud *cloud, const uint32_t *src, size_t n, uint8_t *r_flat)
+{
+    label_index *li = malloc(n * sizeof *li);
+    if (!li) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t j = 0; j < n; j++) { li[j].label = cloud->label[src[j]]; li[j].j = (uint32_t)j; }
+    qsort(li, n, sizeof *li, cmp_label);
+    for (size_t a = 0; a < n;) {
+        size_t b = a;
+        double sum[3] = {0, 0, 0};
+        while (b < n && li[b].label == li[a].label) {
+            for (int c = 0; c < 3; c++) sum[c] += cloud->rgb ? cloud->rgb[3 * (size_t)src[li[b].j] + c] : 160;
+            b++;
+        }
+        uint8_t mean[3];
+        for (int c = 0; c < 3; c++) mean[c] = (uint8_t)(sum[c] / (double)(b - a) + 0.5);
+        for (size_t k = a; k < b; k++) memcpy(r_flat + 3 * (size_t)li[k].j, mean, 3);
+        a = b;
+    }
+    free(li);
+    return PNPR_OK;
+}
+
 static int group_of_class(double c)
 {
     switch ((int)c) {
@@ -396,8 +434,9 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     uint8_t *group = malloc(n ? n : 1);
     uint32_t *order = malloc((n ? n : 1) * sizeof *order);
     pnpr_vertex *verts = malloc((n ? n : 1) * sizeof *verts);
+    uint8_t *flat = cloud->label ? malloc((n ? n : 1) * 3) : NULL;
     pnpr_status st = PNPR_OK;
-    if (!src || !xyz || !radius || !group || !order || !verts) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    if (!src || !xyz || !radius || !group || !order || !verts || (cloud->label && !flat)) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     n = 0;
     for (size_t i = 0; i < cloud->count; i++) {
         const float *p = cloud->xyz + 3 * i;
@@ -415,6 +454,10 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     size_t starts[GROUP_MAX + 2];
     st = pnpr_crq_order(n, group, (uint32_t)ngroups, o.seed, order, starts);
     if (st != PNPR_OK) goto done;
+    if (cloud->label && n > 0) {
+        st = segment_means(cloud, src, n, flat);
+        if (st != PNPR_OK) goto done;
+    }
     for (size_t q = 0; q < n; q++) {
         uint32_t j = order[q];
         size_t i = src[j];
@@ -424,6 +467,9 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
         if (cloud->rgb) memcpy(v->rgba, cloud->rgb + 3 * i, 3);
         else v->rgba[0] = v->rgba[1] = v->rgba[2] = 160;
         v->rgba[3] = 255;
+        if (cloud->label) memcpy(v->flat, flat + 3 * (size_t)j, 3);
+        else memcpy(v->flat, v->rgba, 3);
+        v->flat[3] = 255;
         v->dir[0] = v->dir[1] = v->dir[2] = 0;
         if (features) {
             float d[3];
@@ -446,17 +492,19 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     r->group_count = ngroups;
     for (size_t g = 0; g <= ngroups + 1; g++) r->group_start[g] = starts[g];
     r->has_features = features;
+    r->has_labels = cloud->label != NULL;
     memcpy(r->origin, cloud->origin, sizeof r->origin);
     if (pnpr_cloud_bounds(cloud, r->bmin, r->bmax) == 0) {
         memset(r->bmin, 0, sizeof r->bmin);
         memset(r->bmax, 0, sizeof r->bmax);
     }
 done:
-    free(src); free(xyz); free(radius); free(group); free(order); free(verts);
+    free(src); free(xyz); free(radius); free(group); free(order); free(verts); free(flat);
     return st;
 }
 
 int pnpr_renderer_has_features(const pnpr_renderer *r) { return r && r->has_features; }
+int pnpr_renderer_has_labels(const pnpr_renderer *r) { return r && r->has_labels; }
 
 static int finite3(const float *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 
@@ -566,14 +614,14 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
         !isfinite(o.point_scale) || o.point_scale < 0 || !isfinite(o.mask_scale) || o.mask_scale < 0 ||
         !isfinite(o.stroke_length) || o.stroke_length < 0 || !isfinite(o.stroke_width) || o.stroke_width < 0 ||
         !isfinite(o.line_width) || o.line_width < 0 || !(o.faint >= 0 && o.faint <= 1) ||
-        !isfinite(o.dot_size) || o.dot_size < 0)
+        !isfinite(o.dot_size) || o.dot_size < 0 || o.levels < 0 || o.levels == 1 || o.levels > 256)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative");
     if (pnpr_style_needs_features(o.style) && r->count > 0 && !r->has_features)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style '%s' needs the feature properties feature_class and feature_dir_x/y/z (pnpr_compute_features)",
                               pnpr_style_name(o.style));
     float point_scale = o.point_scale > 0 ? o.point_scale : 1;
-    float mask_scale = o.mask_scale > 0 ? o.mask_scale : 1.5f;
+    float mask_scale = o.mask_scale > 0 ? o.mask_scale : o.style == PNPR_STYLE_CARTOON ? 2.0f : 1.5f;
     float stroke_length = o.stroke_length > 0 ? o.stroke_length : 6;
     float stroke_width = o.stroke_width > 0 ? o.stroke_width : 2;
     float line_width = o.line_width > 0 ? o.line_width : 2;
@@ -630,7 +678,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
 
     size_t strokes = 0;
     int sketchy = o.style == PNPR_STYLE_SKETCHY, lines = o.style == PNPR_STYLE_LINES;
-    int stipple = o.style == PNPR_STYLE_STIPPLE;
+    int stipple = o.style == PNPR_STYLE_STIPPLE, cartoon = o.style == PNPR_STYLE_CARTOON;
     int masked = sketchy || lines || stipple; /* pass 1 is a depth-only visibility mask */
     if (n_draw > 0) {
         glUseProgram(r->prog_splat);
@@ -640,6 +688,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
         glUniform1f(r->us.max_size, r->max_point_size);
         glUniform1f(r->us.fade, 0.0f);
         glUniform1f(r->us.fixed_size, 0.0f);
+        glUniform1f(r->us.levels, 0.0f);
         glDisable(GL_BLEND);
         glBindVertexArray(r->vao_points);
         if (lines && o.faint > 0) {
@@ -655,13 +704,32 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
             glClear(GL_DEPTH_BUFFER_BIT);
             glUniform1f(r->us.fade, 0.0f);
         }
-        /* pass 1 (mask) / the only pass (points): round disks of the prefixes */
-        glUniform1f(r->us.radius_scale, point_scale * lod * (masked ? mask_scale : 1));
-        glUniform1f(r->us.depth_push, masked ? 1.0f : 0.0f);
+        /* pass 1 (mask) / the only pass (points): round disks of the prefixes. Cartoon: the
+         * enlarged disks go into depth AND colour, in the outline colour */
+        glUniform1f(r->us.radius_scale, point_scale * lod * (masked || cartoon ? mask_scale : 1));
+        glUniform1f(r->us.depth_push, masked || cartoon ? 1.0f : 0.0f);
         if (masked) glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        if (cartoon) {
+            glUniform1f(r->us.fade, 1.0f);
+            glUniform4f(r->us.fade_color, ink[0], ink[1], ink[2], 1.0f);
+        }
         for (size_t g = 0; g < ng; g++)
             if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        if (cartoon) {
+            /* pass 2: the same points as regular-size opaque splats in flat colours, depth-tested
+             * against the enlarged disks, no depth writes, the frame not cleared: the outline
+             * colour stays where no splat covers an enlarged disk (silhouettes) */
+            glDepthMask(GL_FALSE);
+            glUniform1f(r->us.fade, 0.0f);
+            glUniform1f(r->us.radius_scale, point_scale * lod);
+            glUniform1f(r->us.depth_push, 0.0f);
+            glUniform1f(r->us.levels, r->has_labels ? 0.0f : (float)(o.levels ? o.levels : 4));
+            glBindVertexArray(r->vao_flat);
+            for (size_t g = 0; g < ng; g++)
+                if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+            glUniform1f(r->us.levels, 0.0f);
+        }
 
         if (sketchy) {
             /* pass 2: strokes, depth-tested against the mask, no depth writes, blended */
@@ -688,7 +756,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
                 glUniform1i(r->ut.mode, directional ? 0 : 1);
                 glUniform1f(r->ut.layer, directional ? (float)o.stroke_texture : (float)STROKE_LAYER_HATCH);
                 glUniform1f(r->ut.length, directional ? stroke_length : 0.5f * stroke_length);
-                set_attribs(r->vao_strokes, r->vbo, r->group_start[g], 1);
+                set_attribs(r->vao_strokes, r->vbo, r->group_start[g], 1, 0);
                 glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)gdraw[g]);
                 strokes += gdraw[g];
             }
@@ -807,7 +875,7 @@ void pnpr_renderer_frame_size(const pnpr_renderer *r, int *w, int *h)
 
 /* ---- styles --------------------------------------------------------------------------------- */
 
-static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple"};
+static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon"};
 
 const char *pnpr_style_name(pnpr_style s)
 {

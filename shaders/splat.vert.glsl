@@ -15,6 +15,7 @@ uniform float u_max_size;        // implementation's largest point size
 uniform float u_fade;            // 0..1: the colour is mix(a_color, u_fade_color, u_fade)
 uniform vec4 u_fade_color;
 uniform float u_fixed_size;      // > 0: a dot of this diameter in pixels (stipple), antialiased
+uniform float u_levels;          // >= 2: colour quantised to this many levels per channel (cartoon)
 
 out vec4 v_color;
 out float v_sprite_px;           // the sprite's size in pixels
@@ -38,4 +39,6 @@ void main()
     // keep the disk's screen position, take the pushed depth
     gl_Position = vec4(clip.xy / clip.w * pushed.w, pushed.z, pushed.w);
     v_color = mix(a_color, u_fade_color, u_fade);
+    if (u_levels >= 2.0)
+        v_color.rgb = floor(v_color.rgb * (u_levels - 1.0) + 0.5) / (u_levels - 1.0);
 }

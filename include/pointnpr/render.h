@@ -90,6 +90,8 @@ typedef enum pnpr_style {
     PNPR_STYLE_LINES,      /* profile lines (pnpr_renderer_set_lines) as dark strokes, hidden parts
                             * removed by the visibility mask of the cloud (section 5.2) */
     PNPR_STYLE_STIPPLE,    /* small dark round dots on the feature and dithering points */
+    PNPR_STYLE_CARTOON,    /* flat colours per segment (cloud->label) or quantised, dark silhouettes
+                            * from enlarged pass-1 disks (section 5.4) */
     PNPR_STYLE_COUNT_
 } pnpr_style;
 
@@ -128,17 +130,20 @@ typedef struct pnpr_draw_options {
     float density;         /* at most density * (screen pixels covered by the cloud's projected
                             * bounding box) points per frame (0 = no limit) */
     float point_scale;     /* multiplies the disk radii (0 = 1) */
-    float mask_scale;      /* visibility-mask disks = point_scale * mask_scale * radius (0 = 1.5) */
+    float mask_scale;      /* visibility-mask disks = point_scale * mask_scale * radius (0 = 1.5;
+                            * cartoon: the enlarged outline disks, 0 = 2) */
     float stroke_length;   /* directional stroke length in disk radii (0 = 6); hatches are half */
     float stroke_width;    /* stroke width in pixels (0 = 2) */
     int stroke_texture;    /* 0, 1, 2: the three directional stroke textures (paper fig. 5 a-c) */
-    float ink[4];          /* stroke colour (zero = opaque near-black 0.08,0.08,0.1,1) */
+    float ink[4];          /* stroke, line, dot and cartoon outline colour (zero = opaque
+                            * near-black 0.08,0.08,0.1,1) */
     int ink_from_points;   /* strokes take the point colour instead of `ink` */
     pnpr_composite composite;
     float line_width;      /* lines: stroke width in pixels (0 = 2) */
     float faint;           /* lines: 0..1, the cloud drawn faintly under the lines (its colours
                             * mixed with the background, this much of the point colour); 0 = none */
     float dot_size;        /* stipple: dot diameter in pixels (0 = 2.5) */
+    int levels;            /* cartoon without segment labels: colour levels per channel (0 = 4, >= 2) */
 } pnpr_draw_options;
 
 /* Where the frame goes: framebuffer object `framebuffer` (0 = the default framebuffer) and the
@@ -195,8 +200,11 @@ void pnpr_renderer_frame_size(const pnpr_renderer *renderer, int *r_width, int *
 
 /* Whether the uploaded cloud carries the feature properties (class and direction). */
 int pnpr_renderer_has_features(const pnpr_renderer *renderer);
+/* Whether it carried segment labels (cloud->label): cartoon then paints each segment in its mean
+ * colour (computed at upload over the segment's finite points). */
+int pnpr_renderer_has_labels(const pnpr_renderer *renderer);
 
-const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple"; "" if invalid */
+const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon"; "" if invalid */
 pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 int pnpr_style_needs_features(pnpr_style style);
 

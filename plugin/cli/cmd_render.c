@@ -28,7 +28,8 @@ static void usage(FILE *f)
             "usage: pointnpr render IN -o OUT.png [options]\n"
             "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG.\n"
             "options:\n"
-            "  --style S            points | sketchy | lines | stipple (default points)\n"
+            "  --style S            points | sketchy | lines | stipple | cartoon\n"
+            "                       (default points)\n"
             "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
             "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n"
             "  --stroke-texture T   directional stroke texture 0, 1 or 2 (default 0)\n"
@@ -43,6 +44,9 @@ static void usage(FILE *f)
             "  --point-scale F      disk radius multiplier (default 1)\n"
             "  --line-width PX      lines: stroke width in pixels (default 2)\n"
             "  --dot-size PX        stipple: dot diameter in pixels (default 2.5)\n"
+            "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
+            "                       (PLY property segment or label, pointnpr segment; default 4)\n"
+            "  --outline-scale F    cartoon: outline disks are F times the splats (default 2)\n"
             "  --faint F            lines: draw the cloud faintly under the lines, F in (0,1]\n"
             "                       of the point colour (default: lines only)\n"
             "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
@@ -76,7 +80,7 @@ int cli_render(int argc, char **argv)
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
         else if (v && !strcmp(a, "--style")) {
             pnpr_style s;
-            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points, sketchy, lines or stipple, got '%s'\n", v); return 2; }
+            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points, sketchy, lines, stipple or cartoon, got '%s'\n", v); return 2; }
             dopt.style = s; i++;
         } else if (v && !strcmp(a, "--sketch")) {
             if (!strcmp(v, "a")) dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
@@ -108,6 +112,12 @@ int cli_render(int argc, char **argv)
         } else if (v && !strcmp(a, "--dot-size")) {
             if (!cli_parse_number(v, 1e-2, 1e3, &x)) { fprintf(stderr, "pointnpr render: --dot-size wants a positive number of pixels, got '%s'\n", v); return 2; }
             dopt.dot_size = (float)x; i++;
+        } else if (v && !strcmp(a, "--levels")) {
+            if (!cli_parse_number(v, 2, 256, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --levels wants an integer in 2..256, got '%s'\n", v); return 2; }
+            dopt.levels = (int)x; i++;
+        } else if (v && !strcmp(a, "--outline-scale")) {
+            if (!cli_parse_number(v, 1, 100, &x)) { fprintf(stderr, "pointnpr render: --outline-scale wants a number >= 1, got '%s'\n", v); return 2; }
+            dopt.mask_scale = (float)x; i++;
         } else if (v && !strcmp(a, "--faint")) {
             if (!cli_parse_number(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr render: --faint wants a number in (0,1], got '%s'\n", v); return 2; }
             dopt.faint = (float)x; i++;

@@ -53,6 +53,9 @@ check 'grep -q "profile lines" "$dir/log3.txt" && grep -q "style lines" "$dir/lo
 "$bin" render "$dir/cube.ply" -o "$dir/stipple.png" --style stipple --dot-size 2 --size 160x120 --quiet
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/stipple.png")" -eq 160 ]' "stipple render exits 0"
 
+"$bin" render "$dir/cube.ply" -o "$dir/cartoon.png" --style cartoon --levels 3 --outline-scale 2.5 --size 160x120 --quiet
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/cartoon.png")" -eq 160 ]' "cartoon render exits 0"
+
 # explicit camera in world coordinates, budget, seed: deterministic
 for k in 1 2; do
   "$bin" render "$dir/cube.ply" -o "$dir/cam$k.png" --size 120x90 --quiet --eye 5123459,4012342,252 \
@@ -66,7 +69,8 @@ for args in "" "$dir/cube.ply" "$dir/cube.ply -o $dir/x.png --style oil" "$dir/c
             "$dir/cube.ply -o $dir/x.png --eye 1,2,3" "$dir/cube.ply -o $dir/x.png --background 300,0,0" \
             "$dir/cube.ply -o $dir/x.png --budget -5" "$dir/cube.ply -o $dir/x.png --sketch d" "$dir/cube.ply -o $dir/x.png --bogus" \
             "$dir/cube.ply -o $dir/x.png --style lines --faint 2" "$dir/cube.ply -o $dir/x.png --line-width 0" \
-            "$dir/cube.ply -o $dir/x.png --style stipple --dot-size -1"; do
+            "$dir/cube.ply -o $dir/x.png --style stipple --dot-size -1" \
+            "$dir/cube.ply -o $dir/x.png --style cartoon --levels 1" "$dir/cube.ply -o $dir/x.png --outline-scale 0.5"; do
   "$bin" render $args > /dev/null 2>&1
   rc=$?
   check '[ $rc -eq 2 ]' "usage error exits 2: render $args (got $rc)"

@@ -1,7 +1,8 @@
 /* The styles beyond `points` and `sketchy`, with known answers: `lines` (a cube's edges seen from
  * a corner: the three front edges drawn, the three hidden back edges not; no lines = background;
  * width; faint points; host GL state kept; bad input), `stipple` (darkness across a tone-gradient
- * plane increases with the tone).
+ * plane increases with the tone), `cartoon` (a sphere: dark pixels all along the projected
+ * silhouette circle, none inside, flat colours: 4 levels per channel or the segment means).
  * Exits 77 (skipped) when this machine has no headless EGL / GL 3.3. */
 #include "testutil.h"
 #include "../../render/render_internal.h"
@@ -356,6 +357,107 @@ static void test_stipple_tone(pnpr_renderer *r)
     pnpr_cloud_free(&c);
 }
 
+/* ---- cartoon: a sphere's silhouette is dark, its inside flat-coloured -------------------- */
+static int is_dark(const uint8_t *p) { return p[0] < 70 && p[1] < 70 && p[2] < 70; }
+
+static void test_cartoon_sphere(pnpr_renderer *r)
+{
+    const double R = 1.0, D = 5.0;
+    /* an evenly sampled sphere (Fibonacci lattice, spacing ~0.02): the splats cover it without
+     * holes (gaps in a sampling would show the outline colour, as the paper's method does) */
+    enum { NS = 30000 };
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_cloud_alloc(&c, NS), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_alloc_rgb(&c), PNPR_OK);
+    memcpy(c.origin, cube_off, sizeof c.origin);
+    pnpr_test_rng rng = {5};
+    for (size_t i = 0; i < NS; i++) {
+        double z = 1 - (2.0 * i + 1) / NS, rr = sqrt(1 - z * z), phi = 2.39996322972865332 * (double)i;
+        c.xyz[3 * i] = (float)(R * rr * cos(phi));
+        c.xyz[3 * i + 1] = (float)(R * rr * sin(phi));
+        c.xyz[3 * i + 2] = (float)(R * z);
+        int upper = z > 0;
+        c.rgb[3 * i] = (uint8_t)(upper ? 60 + 40 * pnpr_test_uniform(&rng) : 190 + 20 * pnpr_test_uniform(&rng));
+        c.rgb[3 * i + 1] = (uint8_t)(110 + 30 * pnpr_test_uniform(&rng));
+        c.rgb[3 * i + 2] = (uint8_t)(upper ? 200 + 40 * pnpr_test_uniform(&rng) : 40 + 40 * pnpr_test_uniform(&rng));
+    }
+    pnpr_camera cam = {{0}, {0}, {0, 0, 1}, 40, 0, 0};
+    memcpy(cam.target, cube_off, sizeof cam.target);
+    memcpy(cam.eye, cube_off, sizeof cam.eye);
+    cam.eye[1] -= D;
+    /* the silhouette circle's radius in pixels, centred in the image */
+    double rs = tan(asin(R / D)) / tan(20.0 * 3.14159265358979 / 180.0) * 0.5 * H;
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.style = PNPR_STYLE_CARTOON;
+    o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+    uint8_t *px = malloc(W * H * 4);
+    for (int labelled = 0; labelled < 2; labelled++) {
+        if (labelled) { /* two segments: upper and lower hemisphere */
+            CHECK_STATUS(pnpr_cloud_alloc_labels(&c), PNPR_OK);
+            for (size_t i = 0; i < c.count; i++) c.label[i] = c.xyz[3 * i + 2] > 0 ? 7 : 3;
+        }
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
+        CHECK(pnpr_renderer_has_labels(r) == labelled);
+        CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_OK);
+        /* along 90 rays from the centre: a dark pixel near the silhouette radius */
+        int rays_dark = 0;
+        for (int k = 0; k < 90; k++) {
+            double a = 2 * 3.14159265358979 * k / 90, cx = 0.5 * W, cy = 0.5 * H;
+            int found = 0;
+            for (double t = rs - 2.5; t <= rs + 3.5 && !found; t += 0.5) {
+                int x = (int)floor(cx + t * cos(a)), y = (int)floor(cy + t * sin(a));
+                if (x >= 0 && y >= 0 && x < W && y < H) found = is_dark(px + 4 * ((size_t)y * W + x));
+            }
+            rays_dark += found;
+        }
+        CHECK_MSG(rays_dark >= 88, "labels %d: %d of 90 rays find a dark silhouette pixel at r = %.1f px", labelled, rays_dark, rs);
+        /* the inner disk (0.75 of the radius): no dark pixel, only flat colours */
+        size_t dark = 0, off_level = 0, inner = 0;
+        uint8_t seen[2][3];
+        int nseen = 0, extra_colours = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                double dx = x + 0.5 - 0.5 * W, dy = y + 0.5 - 0.5 * H;
+                if (dx * dx + dy * dy > (0.75 * rs) * (0.75 * rs)) continue;
+                const uint8_t *p = px + 4 * ((size_t)y * W + x);
+                inner++;
+                dark += is_dark(p);
+                if (!labelled) {
+                    for (int ch = 0; ch < 3; ch++) off_level += p[ch] % 85 != 0; /* 4 levels: 0, 85, 170, 255 */
+                } else if (!is_dark(p)) {
+                    int known = 0;
+                    for (int s = 0; s < nseen; s++) known |= !memcmp(seen[s], p, 3);
+                    if (!known && nseen < 2) memcpy(seen[nseen++], p, 3);
+                    else if (!known) extra_colours++;
+                }
+            }
+        CHECK_MSG(inner > 1000 && dark == 0, "labels %d: %zu dark pixels inside the silhouette (of %zu)", labelled, dark, inner);
+        if (!labelled) CHECK_MSG(off_level == 0, "%zu channel values off the 4 levels", off_level);
+        else CHECK_MSG(nseen == 2 && extra_colours == 0, "labelled: %d colours + %d more inside (expected the 2 segment means)", nseen, extra_colours);
+        {
+            char path[600];
+            snprintf(path, sizeof path, "%s/cartoon_sphere_%d.png", PNPR_TEST_SCRATCH, labelled);
+            pnpr_write_png(path, px, W, H, 0, NULL);
+        }
+        fprintf(stderr, "cartoon labels %d: silhouette r = %.1f px, %d/90 rays dark, inner %zu px\n", labelled, rs, rays_dark, inner);
+    }
+    /* outside the enlarged silhouette: exactly the background */
+    size_t bad = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double dx = x + 0.5 - 0.5 * W, dy = y + 0.5 - 0.5 * H;
+            if (dx * dx + dy * dy < (rs + 8) * (rs + 8)) continue;
+            const uint8_t *p = px + 4 * ((size_t)y * W + x);
+            bad += !(p[0] == 255 && p[1] == 255 && p[2] == 255);
+        }
+    CHECK_MSG(bad == 0, "cartoon: %zu pixels outside the sphere are not background", bad);
+    o.levels = 1;
+    CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    free(px);
+    pnpr_cloud_free(&c);
+}
+
 int main(void)
 {
     pnpr_gl_context *ctx = NULL;
@@ -369,6 +471,7 @@ int main(void)
     if (r) {
         test_lines_cube(r);
         test_stipple_tone(r);
+        test_cartoon_sphere(r);
         pnpr_renderer_destroy(r);
     }
     pnpr_gl_context_destroy(ctx);
