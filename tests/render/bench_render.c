@@ -5,6 +5,7 @@
 #include "testutil.h"
 
 #include <pointnpr/features.h>
+#include <pointnpr/lines.h>
 #include <pointnpr/io.h>
 #include <pointnpr/render.h>
 
@@ -64,6 +65,12 @@ int main(int argc, char **argv)
     t0 = now();
     if (pnpr_renderer_set_cloud(r, &cloud, NULL, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
     double t_upload = now() - t0;
+    t0 = now();
+    pnpr_polylines lines = {0};
+    if (pnpr_profile_lines(&cloud, NULL, &lines, NULL) != PNPR_OK) { fprintf(stderr, "profile lines failed\n"); return 1; }
+    if (pnpr_renderer_set_lines(r, &lines, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
+    double t_lines = now() - t0;
+    pnpr_lines_free(&lines);
     static const double dir[3] = {1, -1.6, 1.1};
     pnpr_camera cam;
     pnpr_camera_fit(&cloud, dir, 45, (float)w / h, &cam);
@@ -71,13 +78,18 @@ int main(int argc, char **argv)
     const char *renderer_name = (const char *)glGetString(GL_RENDERER);
     printf("cloud: %s, %zu points; %dx%d; %s; median of %d frames (after 1 warm-up)\n",
            in ? in : "generated noisy cube", cloud.count, w, h, renderer_name ? renderer_name : "?", frames);
-    printf("read %.2f s, features %.2f s, upload (kNN spacing + queue) %.2f s\n", t_read, t_feat, t_upload);
+    printf("read %.2f s, features %.2f s, upload (kNN spacing + queue) %.2f s, profile lines + upload %.2f s\n",
+           t_read, t_feat, t_upload, t_lines);
     printf("| style | points drawn | strokes | ms/frame | x points |\n|---|---:|---:|---:|---:|\n");
-    struct { const char *name; pnpr_style style; pnpr_sketch_variant v; } runs[] = {
-        {"points", PNPR_STYLE_POINTS, PNPR_SKETCH_ALL},
-        {"sketchy (a) directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL},
-        {"sketchy (b) + non-directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_NONDIRECTIONAL},
-        {"sketchy (c) + dithering", PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL},
+    struct { const char *name; pnpr_style style; pnpr_sketch_variant v; float faint; } runs[] = {
+        {"points", PNPR_STYLE_POINTS, PNPR_SKETCH_ALL, 0},
+        {"sketchy (a) directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL, 0},
+        {"sketchy (b) + non-directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_NONDIRECTIONAL, 0},
+        {"sketchy (c) + dithering", PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL, 0},
+        {"lines", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0},
+        {"lines --faint 0.3", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0.3f},
+        {"stipple", PNPR_STYLE_STIPPLE, PNPR_SKETCH_ALL, 0},
+        {"cartoon", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0},
     };
     double base = 0;
     double *ms = malloc(sizeof(double) * (size_t)frames);
@@ -86,6 +98,7 @@ int main(int argc, char **argv)
         memset(&o, 0, sizeof o);
         o.style = runs[k].style;
         o.sketch_variant = runs[k].v;
+        o.faint = runs[k].faint;
         o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
         pnpr_target t = {0, 0, 0, w, h, 1};
         pnpr_render_stats st;
