@@ -40,6 +40,11 @@ void cli_view_init(cli_view *v, int width, int height);
 int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i);
 /* --eye and --target given together (and --up only with them); prints why and returns 0 if not. */
 int cli_view_check(const cli_view *v, const char *cmd);
+#ifdef PNPR_HAVE_RENDER
+/* The look-at camera of the options, else one that fits the cloud (NULL when neither can be made). */
+#include <pointnpr/render.h>
+const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam);
+#endif
 
 /* Prints "pointnpr <cmd>: <message>" for a failed status (with pnpr_error detail when set). */
 void cli_report_error(const char *cmd, pnpr_status st, const pnpr_error *err);

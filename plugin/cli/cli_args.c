@@ -1,6 +1,10 @@
 /* Argument helpers shared by the subcommands: numbers, comma lists, the view options. */
 #include "cli.h"
 
+#ifdef PNPR_HAVE_RENDER
+#include <pointnpr/render.h>
+#endif
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -78,3 +82,21 @@ int cli_view_check(const cli_view *v, const char *cmd)
     }
     return 1;
 }
+
+#ifdef PNPR_HAVE_RENDER
+const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam)
+{
+    memset(r_cam, 0, sizeof *r_cam);
+    if (v->have_eye) {
+        memcpy(r_cam->eye, v->eye, sizeof r_cam->eye);
+        memcpy(r_cam->target, v->target, sizeof r_cam->target);
+        memcpy(r_cam->up, v->up, sizeof r_cam->up);
+        r_cam->fov_y_deg = (float)v->fov;
+        return r_cam;
+    }
+    if (cloud && cloud->count > 0 &&
+        pnpr_camera_fit(cloud, NULL, (float)v->fov, (float)v->width / (float)v->height, r_cam) == PNPR_OK)
+        return r_cam;
+    return NULL;
+}
+#endif

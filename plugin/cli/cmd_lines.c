@@ -147,17 +147,8 @@ int cli_lines(int argc, char **argv)
         so.stroke_width = (float)stroke;
         so.taper = (float)taper;
         so.occluders = show_hidden ? NULL : &cloud;
-        pnpr_camera cam, *camp = NULL;
-        if (view.have_eye) {
-            memset(&cam, 0, sizeof cam);
-            memcpy(cam.eye, view.eye, sizeof cam.eye);
-            memcpy(cam.target, view.target, sizeof cam.target);
-            memcpy(cam.up, view.up, sizeof cam.up);
-            cam.fov_y_deg = (float)view.fov;
-            camp = &cam;
-        } else if (pnpr_camera_fit(&cloud, NULL, (float)view.fov, (float)view.width / (float)view.height, &cam) == PNPR_OK) {
-            camp = &cam;
-        }
+        pnpr_camera cam;
+        const pnpr_camera *camp = cli_view_camera(&view, &cloud, &cam);
         st = pnpr_write_lines_svg(svg, &lines, camp, &so, &err);
         if (st != PNPR_OK) {
             cli_report_error("lines", st, &err);

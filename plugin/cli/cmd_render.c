@@ -182,17 +182,8 @@ int cli_render(int argc, char **argv)
         if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
     }
 
-    pnpr_camera cam, *camp = NULL;
-    if (view.have_eye) {
-        memset(&cam, 0, sizeof cam);
-        memcpy(cam.eye, view.eye, sizeof cam.eye);
-        memcpy(cam.target, view.target, sizeof cam.target);
-        memcpy(cam.up, view.up, sizeof cam.up);
-        cam.fov_y_deg = (float)view.fov;
-        camp = &cam;
-    } else if (cloud.count > 0 && pnpr_camera_fit(&cloud, NULL, (float)view.fov, (float)width / (float)height, &cam) == PNPR_OK) {
-        camp = &cam;
-    }
+    pnpr_camera cam;
+    const pnpr_camera *camp = cli_view_camera(&view, &cloud, &cam);
     pnpr_target tgt = {0, 0, 0, width, height, 1};
     pnpr_render_stats stats;
     st = pnpr_renderer_draw(ren, camp, &dopt, &tgt, &stats, &err);
