@@ -11,7 +11,8 @@
  * with the version numbers of both regions when the pair was pushed (a pair is stale once either
  * region has merged; stale pairs are skipped when popped: "lazy deletion"). After a merge the
  * new region's neighbour list is the union of both lists (representatives, deduplicated) and a
- * pair with every neighbour is pushed at its new cost.
+ * pair with every neighbour is pushed at its new cost — except for "hub" regions of more than 256
+ * neighbours, whose older pairs are re-evaluated lazily when popped (see merge()).
  *
  *  colour merge  cost = CIE76 delta E of the mean L*a*b* colours; only pairs below the bound
  *  size merge    cost = delta E, pushed only while one region is smaller than min_size
@@ -58,6 +59,7 @@ typedef struct u32vec {
 typedef struct rag {
     uint32_t S;
     uint32_t *parent, *version, *node;
+    uint32_t *clean_n; /* per region: list length after its last deduplication (0 = never: exact) */
     double *size;
     double *sum; /* 6 per region: r g b (0..1), L a b */
     u32vec *adj;
@@ -179,7 +181,7 @@ static void rag_free(rag *g)
 {
     if (g->adj)
         for (uint32_t i = 0; i < g->S; i++) free(g->adj[i].v);
-    free(g->adj); free(g->parent); free(g->version); free(g->node); free(g->size); free(g->sum);
+    free(g->adj); free(g->parent); free(g->version); free(g->node); free(g->size); free(g->sum); free(g->clean_n);
     free(g->heap);
     memset(g, 0, sizeof *g);
 }
@@ -207,7 +209,8 @@ static pnpr_status rag_build(rag *g, const uint8_t *rgb, size_t count, const pnp
     g->size = calloc(S, sizeof *g->size);
     g->sum = calloc((size_t)S * 6, sizeof *g->sum);
     g->adj = calloc(S, sizeof *g->adj);
-    if (!g->parent || !g->version || !g->node || !g->size || !g->sum || !g->adj) return PNPR_ERR_OUT_OF_MEMORY;
+    g->clean_n = calloc(S, sizeof *g->clean_n);
+    if (!g->parent || !g->version || !g->node || !g->size || !g->sum || !g->adj || !g->clean_n) return PNPR_ERR_OUT_OF_MEMORY;
     for (uint32_t i = 0; i < S; i++) { g->parent[i] = i; g->node[i] = i; }
     for (size_t i = 0; i < count; i++) {
         uint32_t l = labels[i];
@@ -272,20 +275,11 @@ static pnpr_status push_all(rag *g)
     return PNPR_OK;
 }
 
-/* Merges b into a (both representatives); returns the new representative. */
-static uint32_t merge(rag *g, uint32_t a, uint32_t b, int *ok)
+/* Replaces the ids of a's neighbour list by their representatives, drops a itself, sorts and
+ * deduplicates. */
+static void clean_list(rag *g, uint32_t a)
 {
-    if (g->adj[a].n < g->adj[b].n) { uint32_t t = a; a = b; b = t; }
-    g->parent[b] = a;
-    g->size[a] += g->size[b];
-    for (int c = 0; c < 6; c++) g->sum[6 * (size_t)a + c] += g->sum[6 * (size_t)b + c];
-    g->version[a]++;
-    g->version[b]++;
     u32vec *va = &g->adj[a];
-    for (uint32_t q = 0; q < g->adj[b].n; q++)
-        if (!vec_push(va, g->adj[b].v[q])) { *ok = 0; return a; }
-    free(g->adj[b].v);
-    memset(&g->adj[b], 0, sizeof g->adj[b]);
     uint32_t u = 0;
     for (uint32_t q = 0; q < va->n; q++) {
         uint32_t r = find(g->parent, va->v[q]);
@@ -296,8 +290,45 @@ static uint32_t merge(rag *g, uint32_t a, uint32_t b, int *ok)
     u = 0;
     for (uint32_t q = 0; q < va->n; q++) if (!u || va->v[q] != va->v[u - 1]) va->v[u++] = va->v[q];
     va->n = u;
-    for (uint32_t q = 0; q < va->n; q++)
-        if (!push_pair(g, a, va->v[q])) { *ok = 0; return a; }
+}
+
+/* Merges b into a (both representatives); returns the new representative.
+ * Regions with up to HUB neighbours are kept exact: the merged list is cleaned and a pair with
+ * every neighbour is pushed at its new cost. A region that outgrows that ("hub": a large region
+ * absorbing thousands of small noisy fragments) would make every merge cost O(degree log degree)
+ * and flood the heap; for it only the pairs with the absorbed region's neighbours are pushed, its
+ * list is cleaned when it has doubled, and its older pairs are re-evaluated when they are popped
+ * (run() re-pushes a popped pair whose versions changed at its current cost). */
+#define HUB 256
+static uint32_t merge(rag *g, uint32_t a, uint32_t b, int *ok)
+{
+    if (g->adj[a].n < g->adj[b].n) { uint32_t t = a; a = b; b = t; }
+    g->parent[b] = a;
+    g->size[a] += g->size[b];
+    for (int c = 0; c < 6; c++) g->sum[6 * (size_t)a + c] += g->sum[6 * (size_t)b + c];
+    g->version[a]++;
+    g->version[b]++;
+    u32vec *va = &g->adj[a], vb = g->adj[b];
+    memset(&g->adj[b], 0, sizeof g->adj[b]);
+    for (uint32_t q = 0; q < vb.n; q++)
+        if (!vec_push(va, vb.v[q])) { free(vb.v); *ok = 0; return a; }
+    if (va->n <= HUB && !g->clean_n[a]) {
+        free(vb.v);
+        clean_list(g, a);
+        for (uint32_t q = 0; q < va->n; q++)
+            if (!push_pair(g, a, va->v[q])) { *ok = 0; return a; }
+        return a;
+    }
+    /* hub: new pairs for b's former neighbours only; clean the list when it has doubled */
+    if (!g->clean_n[a] || va->n > 2 * g->clean_n[a]) {
+        clean_list(g, a);
+        g->clean_n[a] = va->n ? va->n : 1;
+    }
+    for (uint32_t q = 0; q < vb.n; q++) {
+        uint32_t r = find(g->parent, vb.v[q]);
+        if (r != a && !push_pair(g, a, r)) { free(vb.v); *ok = 0; return a; }
+    }
+    free(vb.v);
     return a;
 }
 
@@ -310,7 +341,11 @@ static pnpr_status run(rag *g, pnpr_segment_merge *r_merges, uint32_t *io_merge_
     while (g->heap_n) {
         heap_entry e = heap_pop(g);
         if (find(g->parent, e.a) != e.a || find(g->parent, e.b) != e.b) continue;
-        if (g->version[e.a] != e.va || g->version[e.b] != e.vb) continue;
+        if (g->version[e.a] != e.va || g->version[e.b] != e.vb) {
+            /* a pair of a hub is kept up to date lazily: re-evaluate it now */
+            if ((g->clean_n[e.a] || g->clean_n[e.b]) && !push_pair(g, e.a, e.b)) return PNPR_ERR_OUT_OF_MEMORY;
+            continue;
+        }
         double dist = g->mode == MODE_HIER ? hsi_distance(g, e.a, e.b) : e.cost;
         uint32_t na = g->node[e.a], nb = g->node[e.b];
         int ok = 1;
