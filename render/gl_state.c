@@ -48,6 +48,14 @@ void pnpr_gl_state_save(pnpr_gl_state *s)
     glGetIntegerv(GL_UNPACK_SKIP_IMAGES, &s->unpack[4]);
     glGetIntegerv(GL_UNPACK_IMAGE_HEIGHT, &s->unpack[5]);
     glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &s->unpack[6]);
+    static const GLenum st[2][7] = {
+        {GL_STENCIL_FUNC, GL_STENCIL_REF, GL_STENCIL_VALUE_MASK, GL_STENCIL_FAIL, GL_STENCIL_PASS_DEPTH_FAIL,
+         GL_STENCIL_PASS_DEPTH_PASS, GL_STENCIL_WRITEMASK},
+        {GL_STENCIL_BACK_FUNC, GL_STENCIL_BACK_REF, GL_STENCIL_BACK_VALUE_MASK, GL_STENCIL_BACK_FAIL,
+         GL_STENCIL_BACK_PASS_DEPTH_FAIL, GL_STENCIL_BACK_PASS_DEPTH_PASS, GL_STENCIL_BACK_WRITEMASK}};
+    for (int f = 0; f < 2; f++)
+        for (int i = 0; i < 7; i++) glGetIntegerv(st[f][i], &s->stencil[f][i]);
+    glGetIntegerv(GL_STENCIL_CLEAR_VALUE, &s->stencil_clear);
     glActiveTexture((GLenum)s->active_texture);
 }
 
@@ -75,6 +83,10 @@ void pnpr_gl_state_neutral(void)
     glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
     glPixelStorei(GL_UNPACK_SKIP_IMAGES, 0);
     glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glStencilMask(0xFF);
+    glClearStencil(0);
 }
 
 void pnpr_gl_state_restore(const pnpr_gl_state *s)
@@ -117,4 +129,12 @@ void pnpr_gl_state_restore(const pnpr_gl_state *s)
     glPixelStorei(GL_UNPACK_SKIP_IMAGES, s->unpack[4]);
     glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, s->unpack[5]);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, (GLuint)s->unpack[6]);
+    for (int f = 0; f < 2; f++) {
+        GLenum face = f ? GL_BACK : GL_FRONT;
+        const GLint *v = s->stencil[f];
+        glStencilFuncSeparate(face, (GLenum)v[0], v[1], (GLuint)v[2]);
+        glStencilOpSeparate(face, (GLenum)v[3], (GLenum)v[4], (GLenum)v[5]);
+        glStencilMaskSeparate(face, (GLuint)v[6]);
+    }
+    glClearStencil(s->stencil_clear);
 }

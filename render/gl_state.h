@@ -22,7 +22,9 @@ typedef struct pnpr_gl_state {
     GLint program, vao, array_buffer;
     GLint active_texture, tex_2d, tex_2d_array, sampler;
     GLint pack[5];   /* alignment, row length, skip pixels, skip rows, pixel pack buffer */
-    GLint unpack[7]; /* alignment, row length, skip pixels, skip rows, skip images, image height, buffer */
+    GLint unpack[7];
+    GLint stencil[2][7]; /* front, back: func, ref, value mask, fail, depth fail, depth pass, write mask */
+    GLint stencil_clear; /* alignment, row length, skip pixels, skip rows, skip images, image height, buffer */
 } pnpr_gl_state;
 
 /* The capabilities saved (and set to a known value while the renderer works). */

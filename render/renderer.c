@@ -7,8 +7,10 @@
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
 
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +18,7 @@
 /* Queue groups: with features, one queue per class (as the paper groups them); else one. */
 enum { GROUP_DIRECTIONAL = 0, GROUP_NONDIRECTIONAL, GROUP_DITHER, GROUP_NONE, GROUP_MAX };
 
+enum { PNPR_PAINT_MAX_BRUSH = 4 }; /* painterly: the largest brush, in disk radii */
 enum { STROKE_TEX_W = 128, STROKE_TEX_H = 32, STROKE_LAYERS = 4, STROKE_LAYER_HATCH = 3 };
 
 typedef struct pnpr_vertex {
@@ -32,8 +35,18 @@ typedef struct stroke_uniforms {
     GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points;
 } stroke_uniforms;
 
+typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
+
+enum { PAINT_MAX_BINS = 16, PAINT_K = 12, BRUSH_TEX = 64 };
+
 struct pnpr_renderer {
-    GLuint prog_splat, prog_stroke, prog_composite, prog_line;
+    GLuint prog_splat, prog_stroke, prog_composite, prog_line, prog_paint;
+    paint_uniforms up;
+    /* painterly (section 5.3): the points again, sorted by feature degree into bins (each bin a
+     * queue), and one blended colour per point and pass (level-major) */
+    GLuint paint_vbo, paint_col_vbo, vao_paint, brush_tex;
+    size_t paint_bins;                       /* 0: no painterly data (no feature degree) */
+    size_t paint_start[PAINT_MAX_BINS + 2];
     splat_uniforms us;
     line_uniforms ul;
     stroke_uniforms ut;
@@ -44,7 +57,8 @@ struct pnpr_renderer {
     GLuint fbo, color_tex, depth_rb;
     int fb_w, fb_h;
     float max_point_size;
-    GLint max_size;
+    GLint max_size;      /* min of GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS */
+    float max_radius;    /* largest disk radius of the uploaded cloud (tile guard bands) */
     /* the uploaded cloud */
     size_t count;
     size_t group_start[GROUP_MAX + 2];
@@ -149,6 +163,22 @@ static void make_stroke_textures(uint8_t *out)
             }
 }
 
+/* The painterly brush dab: an ellipse (2:1, the long axis along u) with a soft, slightly ragged
+ * edge and bristle streaks along the long axis, mostly opaque. */
+static void make_brush_texture(uint8_t *out)
+{
+    for (int y = 0; y < BRUSH_TEX; y++)
+        for (int x = 0; x < BRUSH_TEX; x++) {
+            float u = (x + 0.5f) / BRUSH_TEX * 2 - 1, v = (y + 0.5f) / BRUSH_TEX * 2 - 1;
+            float rag = 0.08f * (hash01((uint32_t)(y * 31 + 7)) - 0.5f);
+            float e = sqrtf(u * u + (v / 0.55f) * (v / 0.55f));
+            float edge = smooth01(1.0f + rag, 0.8f + rag, e);
+            float streak = hash01((uint32_t)(y * 2654435761u + 101u));
+            float a = edge * (0.72f + 0.28f * streak);
+            out[(size_t)y * BRUSH_TEX + (size_t)x] = (uint8_t)(a * 255.0f + 0.5f);
+        }
+}
+
 /* ---- create / destroy ----------------------------------------------------------------------- */
 
 static void release_gl(pnpr_renderer *r)
@@ -157,6 +187,11 @@ static void release_gl(pnpr_renderer *r)
     if (r->prog_stroke) glDeleteProgram(r->prog_stroke);
     if (r->prog_composite) glDeleteProgram(r->prog_composite);
     if (r->prog_line) glDeleteProgram(r->prog_line);
+    if (r->prog_paint) glDeleteProgram(r->prog_paint);
+    if (r->paint_vbo) glDeleteBuffers(1, &r->paint_vbo);
+    if (r->paint_col_vbo) glDeleteBuffers(1, &r->paint_col_vbo);
+    if (r->vao_paint) glDeleteVertexArrays(1, &r->vao_paint);
+    if (r->brush_tex) glDeleteTextures(1, &r->brush_tex);
     if (r->vbo) glDeleteBuffers(1, &r->vbo);
     if (r->line_vbo) glDeleteBuffers(1, &r->line_vbo);
     GLuint vaos[5] = {r->vao_points, r->vao_strokes, r->vao_empty, r->vao_lines, r->vao_flat};
@@ -212,7 +247,15 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->prog_stroke = r->prog_splat ? link_program(pnpr_shader_stroke_vert, pnpr_shader_stroke_frag, "stroke", err) : 0;
     r->prog_composite = r->prog_stroke ? link_program(pnpr_shader_composite_vert, pnpr_shader_composite_frag, "composite", err) : 0;
     r->prog_line = r->prog_composite ? link_program(pnpr_shader_line_vert, pnpr_shader_line_frag, "line", err) : 0;
-    if (!r->prog_line) { st = PNPR_ERR_UNSUPPORTED; goto done; }
+    r->prog_paint = r->prog_line ? link_program(pnpr_shader_paint_vert, pnpr_shader_paint_frag, "paint", err) : 0;
+    if (!r->prog_paint) { st = PNPR_ERR_UNSUPPORTED; goto done; }
+    r->up.view = glGetUniformLocation(r->prog_paint, "u_view");
+    r->up.proj = glGetUniformLocation(r->prog_paint, "u_proj");
+    r->up.ppu = glGetUniformLocation(r->prog_paint, "u_pixels_per_unit");
+    r->up.radius_scale = glGetUniformLocation(r->prog_paint, "u_radius_scale");
+    r->up.max_size = glGetUniformLocation(r->prog_paint, "u_max_size");
+    r->up.style_filter = glGetUniformLocation(r->prog_paint, "u_style_filter");
+    r->up.brush = glGetUniformLocation(r->prog_paint, "u_brush");
     GLuint p = r->prog_splat;
     r->us.view = glGetUniformLocation(p, "u_view");
     r->us.proj = glGetUniformLocation(p, "u_proj");
@@ -281,6 +324,24 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
+    /* painterly: its vertex buffer, its colour levels (attribute 2 re-pointed per pass), the brush */
+    glGenBuffers(1, &r->paint_vbo);
+    glGenBuffers(1, &r->paint_col_vbo);
+    glGenVertexArrays(1, &r->vao_paint);
+    set_attribs(r->vao_paint, r->paint_vbo, 0, 0, 0);
+    uint8_t *brush = malloc((size_t)BRUSH_TEX * BRUSH_TEX);
+    if (!brush) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    make_brush_texture(brush);
+    glGenTextures(1, &r->brush_tex);
+    glBindTexture(GL_TEXTURE_2D, r->brush_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, BRUSH_TEX, BRUSH_TEX, 0, GL_RED, GL_UNSIGNED_BYTE, brush);
+    free(brush);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
     GLfloat range[2] = {1, 1};
     glGetFloatv(GL_POINT_SIZE_RANGE, range);
     r->max_point_size = range[1] >= 1 ? range[1] : 1;
@@ -288,6 +349,10 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &a);
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &b);
     r->max_size = a < b ? a : b;
+    GLint vp[2] = {0, 0};
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
+    if (vp[0] > 0 && vp[0] < r->max_size) r->max_size = vp[0];
+    if (vp[1] > 0 && vp[1] < r->max_size) r->max_size = vp[1];
 done:
     if (st != PNPR_OK) {
         release_gl(r);
@@ -320,10 +385,15 @@ static int cmp_float(const void *a, const void *b)
 
 /* radius[i] = distance from point i to its k-th nearest other point, capped at 4x the median
  * (isolated points), floored at 1/8 of the median (duplicates). */
-static pnpr_status spacing_radii(const float *xyz, size_t n, uint32_t k, int threads, float *radius)
+/* want_kk > 0: the neighbour lists (want_kk per point, the point itself included, nearest first)
+ * are handed over in *r_idx / *r_d2 (kk of them each, *r_kk), for the painterly colours. */
+static pnpr_status spacing_radii(const float *xyz, size_t n, uint32_t k, int threads, float *radius,
+                                 size_t want_kk, uint32_t **r_idx, float **r_d2, size_t *r_kk)
 {
+    if (r_idx) { *r_idx = NULL; *r_d2 = NULL; *r_kk = 0; }
     if (n == 1) { radius[0] = 1; return PNPR_OK; }
-    size_t kk = (size_t)k + 1 < n ? (size_t)k + 1 : n; /* + the point itself */
+    size_t kr = (size_t)k + 1 < n ? (size_t)k + 1 : n; /* + the point itself */
+    size_t kk = kr > want_kk ? kr : want_kk < n ? want_kk : n;
     pnpr_kdtree *tree = NULL;
     pnpr_status st = pnpr_kdtree_build_threads(xyz, n, 0, threads, &tree);
     if (st != PNPR_OK) return st;
@@ -337,17 +407,25 @@ static pnpr_status spacing_radii(const float *xyz, size_t n, uint32_t k, int thr
     if (st != PNPR_OK) goto done;
     for (size_t i = 0; i < n; i++) {
         float r = 0;
-        for (size_t j = kk; j-- > 0;)
+        for (size_t j = kr; j-- > 0;)
             if (idx[i * kk + j] != PNPR_INDEX_NONE && isfinite(d2[i * kk + j])) { r = sqrtf(d2[i * kk + j]); break; }
         radius[i] = r;
     }
-    /* median of the radii (copy into d2, no longer needed) */
-    memcpy(d2, radius, n * sizeof *d2);
-    qsort(d2, n, sizeof *d2, cmp_float);
-    float med = d2[n / 2];
-    if (!(med > 0)) { /* mostly duplicates: the largest distance found, else 1 */
-        med = d2[n - 1] > 0 ? d2[n - 1] : 1;
+    if (r_idx && want_kk > 0) { /* hand the lists over */
+        *r_idx = idx; *r_d2 = d2; *r_kk = kk;
+        idx = NULL;
+        d2 = NULL;
     }
+    /* median of the radii */
+    float *sorted = malloc(n * sizeof *sorted);
+    if (!sorted) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    memcpy(sorted, radius, n * sizeof *sorted);
+    qsort(sorted, n, sizeof *sorted, cmp_float);
+    float med = sorted[n / 2];
+    if (!(med > 0)) { /* mostly duplicates: the largest distance found, else 1 */
+        med = sorted[n - 1] > 0 ? sorted[n - 1] : 1;
+    }
+    free(sorted);
     for (size_t i = 0; i < n; i++) {
         if (radius[i] > 4 * med) radius[i] = 4 * med;
         if (!(radius[i] >= 0.125f * med)) radius[i] = 0.125f * med;
@@ -393,6 +471,73 @@ static pnpr_status segment_means(const pnpr_cloud *cloud, const uint32_t *src, s
     return PNPR_OK;
 }
 
+/* Brush size of painterly pass `pass` of `bins`, in disk radii: PNPR_PAINT_MAX_BRUSH for the
+ * first (all bins), 1 for the last (the highest-degree bin), geometric in between. */
+static float paint_brush(size_t pass, size_t bins)
+{
+    if (bins <= 1) return 1.0f;
+    return (float)pow((double)PNPR_PAINT_MAX_BRUSH, (double)(bins - 1 - pass) / (double)(bins - 1));
+}
+
+typedef struct degree_index { float d; uint32_t j; } degree_index;
+static int cmp_degree(const void *a, const void *b)
+{
+    const degree_index *x = a, *y = b;
+    if (x->d != y->d) return x->d < y->d ? -1 : 1;
+    return x->j < y->j ? -1 : x->j > y->j;
+}
+
+/* The painterly data (section 5.3): finite points sorted by feature_degree (non-finite = lowest)
+ * and divided evenly into `bins` bins, each shuffled into a queue (pnpr_crq_order); the vertices
+ * in that order (*r_pverts, copies of the class-ordered `verts`) and, per pass L and point, the
+ * blended colour: the mean colour of the point's neighbours (among its kk nearest, itself
+ * included) within the pass's brush radius paint_brush(L) * radius (*r_pcol, level-major RGBA8). */
+static pnpr_status paint_data(const pnpr_cloud *cloud, const pnpr_property *pdeg, const uint32_t *src,
+                              const float *radius, size_t n, size_t bins, uint64_t seed, const uint32_t *order,
+                              const pnpr_vertex *verts, const uint32_t *nidx, const float *nd2, size_t kk,
+                              uint32_t **r_porder, uint32_t **r_inv, uint8_t **r_bin, uint8_t **r_col,
+                              pnpr_vertex **r_pverts, size_t *r_starts)
+{
+    degree_index *di = malloc(n * sizeof *di);
+    uint8_t *bin = *r_bin = malloc(n);
+    uint32_t *porder = *r_porder = malloc(n * sizeof *porder);
+    uint32_t *inv = *r_inv = malloc(n * sizeof *inv);
+    uint8_t *col = *r_col = malloc(bins * n * 4);
+    pnpr_vertex *pv = *r_pverts = malloc(n * sizeof *pv);
+    if (!di || !bin || !porder || !inv || !col || !pv) { free(di); return PNPR_ERR_OUT_OF_MEMORY; }
+    for (size_t j = 0; j < n; j++) {
+        double d = pnpr_type_get(pdeg->type, pdeg->data, src[j]);
+        di[j].d = isfinite(d) ? (float)d : -FLT_MAX;
+        di[j].j = (uint32_t)j;
+    }
+    qsort(di, n, sizeof *di, cmp_degree);
+    for (size_t rank = 0; rank < n; rank++) bin[di[rank].j] = (uint8_t)(rank * bins / n);
+    free(di);
+    /* a seed of its own, so that the bins' order is not the class queues' */
+    pnpr_status st = pnpr_crq_order(n, bin, (uint32_t)bins, seed ^ 0x9E3779B97F4A7C15ull, porder, r_starts);
+    if (st != PNPR_OK) return st;
+    for (size_t q = 0; q < n; q++) inv[order[q]] = (uint32_t)q;
+    for (size_t q = 0; q < n; q++) {
+        uint32_t j = porder[q];
+        pv[q] = verts[inv[j]];
+        for (size_t L = 0; L < bins; L++) {
+            double lim = (double)paint_brush(L, bins) * radius[j];
+            double sum[3] = {0, 0, 0};
+            size_t cnt = 0;
+            for (size_t t = 0; t < kk && nidx; t++) {
+                uint32_t m = nidx[j * kk + t];
+                if (m == PNPR_INDEX_NONE || !((double)nd2[j * kk + t] <= lim * lim)) continue;
+                for (int c = 0; c < 3; c++) sum[c] += cloud->rgb ? cloud->rgb[3 * (size_t)src[m] + c] : 160;
+                cnt++;
+            }
+            uint8_t *o = col + 4 * (L * n + q);
+            for (int c = 0; c < 3; c++) o[c] = cnt ? (uint8_t)(sum[c] / (double)cnt + 0.5) : pv[q].rgba[c];
+            o[3] = 255;
+        }
+    }
+    return PNPR_OK;
+}
+
 static int group_of_class(double c)
 {
     switch ((int)c) {
@@ -421,6 +566,17 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
                                   pnpr_cloud_find_property(cloud, "feature_dir_y"),
                                   pnpr_cloud_find_property(cloud, "feature_dir_z")};
     int features = !o.ignore_features && pc && pd[0] && pd[1] && pd[2];
+    const pnpr_property *pdeg = features ? pnpr_cloud_find_property(cloud, "feature_degree") : NULL;
+    if (o.painterly_bins > PAINT_MAX_BINS)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: painterly_bins %u is more than %d",
+                              (unsigned)o.painterly_bins, PAINT_MAX_BINS);
+    size_t nbins = o.painterly_bins ? o.painterly_bins : 4;
+    uint32_t *nidx = NULL, *porder = NULL, *inv = NULL;
+    float *nd2 = NULL;
+    size_t nkk = 0;
+    uint8_t *pbin = NULL, *pcol = NULL;
+    pnpr_vertex *pverts = NULL;
+    size_t pstarts[PAINT_MAX_BINS + 2];
 
     /* the finite points */
     size_t n = 0;
@@ -447,7 +603,8 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
         n++;
     }
     if (n > 0) {
-        st = spacing_radii(xyz, n, k, o.threads, radius);
+        st = spacing_radii(xyz, n, k, o.threads, radius, pdeg ? PAINT_K : 0, pdeg ? &nidx : NULL,
+                           pdeg ? &nd2 : NULL, pdeg ? &nkk : NULL);
         if (st != PNPR_OK) goto done;
     }
     size_t ngroups = features ? GROUP_MAX : 1;
@@ -482,17 +639,31 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
             if (l2 > 0) for (int a = 0; a < 3; a++) v->dir[a] = (float)(d[a] / sqrt(l2));
         }
     }
+    if (pdeg && n > 0) {
+        st = paint_data(cloud, pdeg, src, radius, n, nbins, o.seed, order, verts, nidx, nd2, nkk,
+                        &porder, &inv, &pbin, &pcol, &pverts, pstarts);
+        if (st != PNPR_OK) goto done;
+    }
     pnpr_gl_state saved;
     pnpr_gl_state_save(&saved);
     glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof *verts), n ? verts : NULL, GL_STATIC_DRAW);
+    int paint = pdeg && n > 0;
+    glBindBuffer(GL_ARRAY_BUFFER, r->paint_vbo);
+    glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(n * sizeof *pverts) : 0, paint ? pverts : NULL, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
+    glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(nbins * n * 4) : 0, paint ? pcol : NULL, GL_STATIC_DRAW);
     pnpr_gl_state_restore(&saved);
+    r->paint_bins = paint ? nbins : 0;
+    if (paint) for (size_t b = 0; b <= nbins + 1; b++) r->paint_start[b] = pstarts[b];
 
     r->count = n;
     r->group_count = ngroups;
     for (size_t g = 0; g <= ngroups + 1; g++) r->group_start[g] = starts[g];
     r->has_features = features;
     r->has_labels = cloud->label != NULL;
+    r->max_radius = 0;
+    for (size_t j = 0; j < n; j++) if (radius[j] > r->max_radius) r->max_radius = radius[j];
     memcpy(r->origin, cloud->origin, sizeof r->origin);
     if (pnpr_cloud_bounds(cloud, r->bmin, r->bmax) == 0) {
         memset(r->bmin, 0, sizeof r->bmin);
@@ -500,6 +671,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     }
 done:
     free(src); free(xyz); free(radius); free(group); free(order); free(verts); free(flat);
+    free(nidx); free(nd2); free(porder); free(inv); free(pbin); free(pcol); free(pverts);
     return st;
 }
 
@@ -572,10 +744,10 @@ static pnpr_status ensure_framebuffer(pnpr_renderer *r, int w, int h, pnpr_error
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
     glBindRenderbuffer(GL_RENDERBUFFER, r->depth_rb);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
     glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->color_tex, 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->depth_rb);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, r->depth_rb);
     GLenum fs = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (fs != GL_FRAMEBUFFER_COMPLETE) {
         r->fb_w = r->fb_h = 0;
@@ -588,47 +760,51 @@ static pnpr_status ensure_framebuffer(pnpr_renderer *r, int w, int h, pnpr_error
 
 static int finite4(const float *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]) && isfinite(v[3]); }
 
-pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
-                               const pnpr_draw_options *opts, const pnpr_target *target,
-                               pnpr_render_stats *r_stats, pnpr_error *err)
+/* A tile of a larger image: the frame is the rectangle (x, y, w, h) (GL pixel convention, y up
+ * from the bottom row) of a full_w x full_h image; point sizes, queue counts and the camera are
+ * those of the full image (pnpr_renderer_snapshot). */
+typedef struct tile_rect { int full_w, full_h, x, y, w, h; } tile_rect;
+
+/* The camera, the queue count and the disk growth of a full image (shared by every tile). */
+typedef struct frame_plan {
+    pnpr_frame_camera fc;
+    size_t n_draw;
+    double coverage;
+    float lod;
+} frame_plan;
+
+static pnpr_status check_options(const pnpr_renderer *r, const pnpr_draw_options *opts, pnpr_draw_options *o,
+                                 pnpr_error *err)
 {
-    if (!r || !target) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: NULL renderer or target");
-    if (r_stats) memset(r_stats, 0, sizeof *r_stats);
-    pnpr_draw_options o;
-    memset(&o, 0, sizeof o);
-    if (opts) o = *opts;
-    int w = target->width, h = target->height;
-    if (w <= 0 || h <= 0)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: image size %dx%d must be positive", w, h);
-    if (w > r->max_size || h > r->max_size)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: image size %dx%d exceeds this GL's limit %d", w, h, (int)r->max_size);
-    if ((unsigned)o.style >= PNPR_STYLE_COUNT_)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: unknown style %d", (int)o.style);
-    if ((unsigned)o.sketch_variant >= PNPR_SKETCH_COUNT_)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: unknown sketch variant %d", (int)o.sketch_variant);
-    if ((unsigned)o.composite >= PNPR_COMPOSITE_COUNT_)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: unknown composite mode %d", (int)o.composite);
-    if (o.stroke_texture < 0 || o.stroke_texture > 2)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: stroke texture %d is not 0, 1 or 2", o.stroke_texture);
-    if (!finite4(o.background) || !finite4(o.ink) || !isfinite(o.density) || o.density < 0 ||
-        !isfinite(o.point_scale) || o.point_scale < 0 || !isfinite(o.mask_scale) || o.mask_scale < 0 ||
-        !isfinite(o.stroke_length) || o.stroke_length < 0 || !isfinite(o.stroke_width) || o.stroke_width < 0 ||
-        !isfinite(o.line_width) || o.line_width < 0 || !(o.faint >= 0 && o.faint <= 1) ||
-        !isfinite(o.dot_size) || o.dot_size < 0 || o.levels < 0 || o.levels == 1 || o.levels > 256)
+    memset(o, 0, sizeof *o);
+    if (opts) *o = *opts;
+    if ((unsigned)o->style >= PNPR_STYLE_COUNT_)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: unknown style %d", (int)o->style);
+    if ((unsigned)o->sketch_variant >= PNPR_SKETCH_COUNT_)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: unknown sketch variant %d", (int)o->sketch_variant);
+    if ((unsigned)o->composite >= PNPR_COMPOSITE_COUNT_)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: unknown composite mode %d", (int)o->composite);
+    if (o->stroke_texture < 0 || o->stroke_texture > 2)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: stroke texture %d is not 0, 1 or 2", o->stroke_texture);
+    if (!finite4(o->background) || !finite4(o->ink) || !isfinite(o->density) || o->density < 0 ||
+        !isfinite(o->point_scale) || o->point_scale < 0 || !isfinite(o->mask_scale) || o->mask_scale < 0 ||
+        !isfinite(o->stroke_length) || o->stroke_length < 0 || !isfinite(o->stroke_width) || o->stroke_width < 0 ||
+        !isfinite(o->line_width) || o->line_width < 0 || !(o->faint >= 0 && o->faint <= 1) ||
+        !isfinite(o->dot_size) || o->dot_size < 0 || o->levels < 0 || o->levels == 1 || o->levels > 256)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative");
-    if (pnpr_style_needs_features(o.style) && r->count > 0 && !r->has_features)
+    if (pnpr_style_needs_features(o->style) && o->style != PNPR_STYLE_PAINTERLY && r->count > 0 && !r->has_features)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style '%s' needs the feature properties feature_class and feature_dir_x/y/z (pnpr_compute_features)",
-                              pnpr_style_name(o.style));
-    float point_scale = o.point_scale > 0 ? o.point_scale : 1;
-    float mask_scale = o.mask_scale > 0 ? o.mask_scale : o.style == PNPR_STYLE_CARTOON ? 2.0f : 1.5f;
-    float stroke_length = o.stroke_length > 0 ? o.stroke_length : 6;
-    float stroke_width = o.stroke_width > 0 ? o.stroke_width : 2;
-    float line_width = o.line_width > 0 ? o.line_width : 2;
-    float dot_size = o.dot_size > 0 ? o.dot_size : 2.5f;
-    float ink[4] = {0.08f, 0.08f, 0.1f, 1};
-    if (o.ink[0] != 0 || o.ink[1] != 0 || o.ink[2] != 0 || o.ink[3] != 0) memcpy(ink, o.ink, sizeof ink);
+                              pnpr_style_name(o->style));
+    if (o->style == PNPR_STYLE_PAINTERLY && r->count > 0 && !r->paint_bins)
+        return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
+                              "renderer: style 'painterly' needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)");
+    return PNPR_OK;
+}
 
+static pnpr_status plan_frame(const pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *o,
+                              int w, int h, frame_plan *p, pnpr_error *err)
+{
     pnpr_camera cam;
     if (camera) cam = *camera;
     else {
@@ -642,37 +818,199 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
         memcpy(box.origin, r->origin, sizeof box.origin);
         pnpr_camera_fit(&box, NULL, 45, (float)w / (float)h, &cam);
     }
-    pnpr_frame_camera fc;
-    pnpr_status st = pnpr_frame_camera_make(&cam, r->origin, r->bmin, r->bmax, r->count > 0, w, h, &fc, err);
+    pnpr_status st = pnpr_frame_camera_make(&cam, r->origin, r->bmin, r->bmax, r->count > 0, w, h, &p->fc, err);
     if (st != PNPR_OK) return st;
-
     /* continuous resolution queue: how many points this frame */
     size_t n_draw = r->count;
-    double coverage = r->count ? pnpr_box_coverage(&fc, r->bmin, r->bmax, w, h) : 0;
-    if (o.budget > 0 && o.budget < n_draw) n_draw = o.budget;
-    if (o.density > 0) {
-        double cap = ceil((double)o.density * coverage);
+    p->coverage = r->count ? pnpr_box_coverage(&p->fc, r->bmin, r->bmax, w, h) : 0;
+    if (o->budget > 0 && o->budget < n_draw) n_draw = o->budget;
+    if (o->density > 0) {
+        double cap = ceil((double)o->density * p->coverage);
         if (cap < (double)n_draw) n_draw = (size_t)cap;
     }
+    p->n_draw = n_draw;
+    /* a random subset of fraction f has 1/sqrt(f) times the spacing: grow the disks to match */
+    p->lod = n_draw > 0 ? (float)sqrt((double)r->count / (double)n_draw) : 1;
+    return PNPR_OK;
+}
+
+/* The projection of a sub-rectangle of the image: clip x' = x * W/tw + w * (W - 2 x0 - tw)/tw
+ * (and y alike) maps the tile's pixels onto its own normalised device coordinates. */
+static void tile_projection(float proj[16], const tile_rect *t)
+{
+    double sx = (double)t->full_w / t->w, tx = ((double)t->full_w - 2.0 * t->x - t->w) / t->w;
+    double sy = (double)t->full_h / t->h, ty = ((double)t->full_h - 2.0 * t->y - t->h) / t->h;
+    for (int col = 0; col < 4; col++) {
+        double wv = proj[col * 4 + 3];
+        proj[col * 4 + 0] = (float)(sx * proj[col * 4 + 0] + tx * wv);
+        proj[col * 4 + 1] = (float)(sy * proj[col * 4 + 1] + ty * wv);
+    }
+}
+
+/* The directional strokes of the sketchy style's pass 2 (mode 0), shared with painterly. */
+static void stroke_program(pnpr_renderer *r, const pnpr_frame_camera *fc, int fw, int fh, float stroke_width,
+                           float point_scale, const float ink[4], int ink_from_points)
+{
+    glUseProgram(r->prog_stroke);
+    glUniformMatrix4fv(r->ut.view, 1, GL_FALSE, fc->view);
+    glUniformMatrix4fv(r->ut.proj, 1, GL_FALSE, fc->proj);
+    glUniform2f(r->ut.viewport, (float)fw, (float)fh);
+    glUniform1f(r->ut.ppu, fc->pixels_per_unit);
+    glUniform1f(r->ut.width, stroke_width);
+    glUniform1f(r->ut.radius_scale, point_scale);
+    glUniform1i(r->ut.strokes, 0);
+    glUniform4fv(r->ut.ink, 1, ink);
+    glUniform1i(r->ut.ink_from_points, ink_from_points != 0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, r->stroke_tex);
+}
+
+/* Painterly (section 5.3). Mask: the bins' queue prefixes (n_draw split over the bins) as enlarged
+ * pushed disks into depth, writing stencil 1. Pass L = 0..bins-1 draws bins L..bins-1 as brush
+ * dabs of paint_brush(L) disk radii in the pass's blended colours; it needs about 1/brush^2 of
+ * the points for the same coverage; the dab fills about half its sprite, so min(q * (points of
+ * bins L..), 2 q * count / brush^2) with
+ * q = n_draw / count, split over those bins in proportion to their sizes (never more than the
+ * mask drew of a bin). Passes whose brush is larger than the mask disk test stencil == 1 (the
+ * sky mask); the smaller ones do not. Then the directional strokes, stencil-tested. Returns the
+ * number of dabs and strokes. */
+static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, const pnpr_draw_options *o,
+                             int fw, int fh, size_t n_draw, float lod, const size_t *gdraw)
+{
+    size_t nb = r->paint_bins, bsize[PAINT_MAX_BINS], mdraw[PAINT_MAX_BINS], d[PAINT_MAX_BINS];
+    for (size_t b = 0; b < nb; b++) bsize[b] = r->paint_start[b + 1] - r->paint_start[b];
+    pnpr_crq_split(bsize, nb, n_draw, mdraw);
+    float point_scale = o->point_scale > 0 ? o->point_scale : 1;
+    float mask_scale = o->mask_scale > 0 ? o->mask_scale : 1.5f;
+    size_t dabs = 0;
+    /* the mask, with the sky stencil */
+    glUseProgram(r->prog_splat);
+    glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc->view);
+    glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc->proj);
+    glUniform1f(r->us.ppu, fc->pixels_per_unit);
+    glUniform1f(r->us.max_size, r->max_point_size);
+    glUniform1f(r->us.fade, 0.0f);
+    glUniform1f(r->us.fixed_size, 0.0f);
+    glUniform1f(r->us.levels, 0.0f);
+    glUniform1f(r->us.radius_scale, point_scale * lod * mask_scale);
+    glUniform1f(r->us.depth_push, 1.0f);
+    glDisable(GL_BLEND);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glStencilMask(0xFF);
+    set_attribs(r->vao_paint, r->paint_vbo, 0, 0, 0);
+    for (size_t b = 0; b < nb; b++)
+        if (mdraw[b]) glDrawArrays(GL_POINTS, (GLint)r->paint_start[b], (GLsizei)mdraw[b]);
+    /* the passes, large brushes to small */
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_FALSE);
+    glStencilMask(0);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(r->prog_paint);
+    glUniformMatrix4fv(r->up.view, 1, GL_FALSE, fc->view);
+    glUniformMatrix4fv(r->up.proj, 1, GL_FALSE, fc->proj);
+    glUniform1f(r->up.ppu, fc->pixels_per_unit);
+    glUniform1f(r->up.max_size, r->max_point_size);
+    glUniform1i(r->up.style_filter, -1);
+    glUniform1i(r->up.brush, 0);
+    glBindTexture(GL_TEXTURE_2D, r->brush_tex);
+    double q = r->count ? (double)n_draw / (double)r->count : 0;
+    for (size_t L = 0; L < nb; L++) {
+        float brush = paint_brush(L, nb);
+        size_t avail = 0;
+        for (size_t b = L; b < nb; b++) avail += bsize[b];
+        double want = q * (double)avail, cap = 2.0 * q * (double)r->count / ((double)brush * brush); /* 2: the dab (a 2:1 ellipse) covers about half its sprite */
+        size_t total = (size_t)ceil(want < cap ? want : cap);
+        pnpr_crq_split(bsize + L, nb - L, total, d + L);
+        if (brush > mask_scale && !o->paint_no_sky_mask) glEnable(GL_STENCIL_TEST);
+        else glDisable(GL_STENCIL_TEST);
+        glUniform1f(r->up.radius_scale, point_scale * lod * brush);
+        /* attribute 2 <- this pass's colour level (vertex i's colour at level L is at L*count + i) */
+        glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
+        glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, 4, (const void *)(uintptr_t)(L * r->count * 4));
+        for (size_t b = L; b < nb; b++) {
+            size_t m = d[b] < mdraw[b] ? d[b] : mdraw[b];
+            if (!m) continue;
+            glDrawArrays(GL_POINTS, (GLint)r->paint_start[b], (GLsizei)m);
+            dabs += m;
+        }
+    }
+    /* directional strokes on top, inside the sky mask */
+    if (!o->paint_no_strokes && gdraw[GROUP_DIRECTIONAL] > 0) {
+        if (!o->paint_no_sky_mask) glEnable(GL_STENCIL_TEST);
+        else glDisable(GL_STENCIL_TEST);
+        float ink[4] = {0.08f, 0.08f, 0.1f, 1};
+        if (o->ink[0] != 0 || o->ink[1] != 0 || o->ink[2] != 0 || o->ink[3] != 0) memcpy(ink, o->ink, sizeof ink);
+        stroke_program(r, fc, fw, fh, o->stroke_width > 0 ? o->stroke_width : 2, point_scale, ink, o->ink_from_points);
+        glUniform1i(r->ut.mode, 0);
+        glUniform1f(r->ut.layer, (float)o->stroke_texture);
+        glUniform1f(r->ut.length, o->stroke_length > 0 ? o->stroke_length : 6);
+        set_attribs(r->vao_strokes, r->vbo, r->group_start[GROUP_DIRECTIONAL], 1, 0);
+        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)gdraw[GROUP_DIRECTIONAL]);
+        dabs += gdraw[GROUP_DIRECTIONAL];
+    }
+    glDisable(GL_STENCIL_TEST);
+    glStencilMask(0xFF);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    return dabs;
+}
+
+static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
+                             const pnpr_target *target, const tile_rect *tile, pnpr_render_stats *r_stats,
+                             pnpr_error *err)
+{
+    if (!r || !target) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: NULL renderer or target");
+    if (r_stats) memset(r_stats, 0, sizeof *r_stats);
+    pnpr_draw_options o;
+    int fw = target->width, fh = target->height; /* the frame (framebuffer) */
+    int w = tile ? tile->full_w : fw, h = tile ? tile->full_h : fh; /* the image */
+    if (w <= 0 || h <= 0)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: image size %dx%d must be positive", w, h);
+    if (fw > r->max_size || fh > r->max_size)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT,
+                              "renderer: image size %dx%d exceeds this GL's limit %d (pnpr_renderer_snapshot renders larger images in tiles)",
+                              fw, fh, (int)r->max_size);
+    pnpr_status st = check_options(r, opts, &o, err);
+    if (st != PNPR_OK) return st;
+    float point_scale = o.point_scale > 0 ? o.point_scale : 1;
+    float mask_scale = o.mask_scale > 0 ? o.mask_scale : o.style == PNPR_STYLE_CARTOON ? 2.0f : 1.5f;
+    float stroke_length = o.stroke_length > 0 ? o.stroke_length : 6;
+    float stroke_width = o.stroke_width > 0 ? o.stroke_width : 2;
+    float line_width = o.line_width > 0 ? o.line_width : 2;
+    float dot_size = o.dot_size > 0 ? o.dot_size : 2.5f;
+    float ink[4] = {0.08f, 0.08f, 0.1f, 1};
+    if (o.ink[0] != 0 || o.ink[1] != 0 || o.ink[2] != 0 || o.ink[3] != 0) memcpy(ink, o.ink, sizeof ink);
+
+    frame_plan plan;
+    st = plan_frame(r, camera, &o, w, h, &plan, err);
+    if (st != PNPR_OK) return st;
+    pnpr_frame_camera fc = plan.fc;
+    if (tile) tile_projection(fc.proj, tile);
+    size_t n_draw = plan.n_draw;
+    double coverage = plan.coverage;
+    float lod = plan.lod;
     size_t gsize[GROUP_MAX + 1], gdraw[GROUP_MAX + 1];
     size_t ng = r->group_count + 1; /* + "other" (empty by construction) */
     for (size_t g = 0; g < ng; g++) gsize[g] = r->group_start[g + 1] - r->group_start[g];
     pnpr_crq_split(gsize, ng, n_draw, gdraw);
-    /* a random subset of fraction f has 1/sqrt(f) times the spacing: grow the disks to match */
-    float lod = n_draw > 0 ? (float)sqrt((double)r->count / (double)n_draw) : 1;
 
     pnpr_gl_state saved;
     pnpr_gl_state_save(&saved);
     pnpr_gl_state_neutral();
-    st = ensure_framebuffer(r, w, h, err);
+    st = ensure_framebuffer(r, fw, fh, err);
     if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-    glViewport(0, 0, w, h);
+    glViewport(0, 0, fw, fh);
     float a = o.background[3];
     glClearColor(o.background[0] * a, o.background[1] * a, o.background[2] * a, a); /* premultiplied */
     glClearDepth(1.0);
     glDepthMask(GL_TRUE);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClearStencil(0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
 
@@ -680,7 +1018,9 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
     int sketchy = o.style == PNPR_STYLE_SKETCHY, lines = o.style == PNPR_STYLE_LINES;
     int stipple = o.style == PNPR_STYLE_STIPPLE, cartoon = o.style == PNPR_STYLE_CARTOON;
     int masked = sketchy || lines || stipple; /* pass 1 is a depth-only visibility mask */
-    if (n_draw > 0) {
+    int painterly = o.style == PNPR_STYLE_PAINTERLY;
+    if (painterly && n_draw > 0) strokes = draw_painterly(r, &fc, &o, fw, fh, n_draw, lod, gdraw);
+    if (n_draw > 0 && !painterly) {
         glUseProgram(r->prog_splat);
         glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc.view);
         glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc.proj);
@@ -740,7 +1080,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
             glUseProgram(r->prog_stroke);
             glUniformMatrix4fv(r->ut.view, 1, GL_FALSE, fc.view);
             glUniformMatrix4fv(r->ut.proj, 1, GL_FALSE, fc.proj);
-            glUniform2f(r->ut.viewport, (float)w, (float)h);
+            glUniform2f(r->ut.viewport, (float)fw, (float)fh);
             glUniform1f(r->ut.ppu, fc.pixels_per_unit);
             glUniform1f(r->ut.width, stroke_width);
             glUniform1f(r->ut.radius_scale, point_scale);
@@ -798,7 +1138,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
         glUseProgram(r->prog_line);
         glUniformMatrix4fv(r->ul.view, 1, GL_FALSE, lview);
         glUniformMatrix4fv(r->ul.proj, 1, GL_FALSE, fc.proj);
-        glUniform2f(r->ul.viewport, (float)w, (float)h);
+        glUniform2f(r->ul.viewport, (float)fw, (float)fh);
         glUniform1f(r->ul.width, line_width);
         glUniform1f(r->ul.near_plane, (float)fc.near_plane);
         glUniform4fv(r->ul.ink, 1, ink);
@@ -807,7 +1147,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
         strokes = r->line_segments;
     }
 
-    if (!target->offscreen) {
+    if (!target->offscreen && !tile) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)target->framebuffer);
         glViewport(target->x, target->y, w, h);
         glDisable(GL_DEPTH_TEST);
@@ -836,6 +1176,33 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
     return PNPR_OK;
 }
 
+pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
+                               const pnpr_draw_options *opts, const pnpr_target *target,
+                               pnpr_render_stats *r_stats, pnpr_error *err)
+{
+    return draw_impl(r, camera, opts, target, NULL, r_stats, err);
+}
+
+/* GL's rows go bottom-up: flip in place; then optionally un-premultiply. */
+static void finish_pixels(uint8_t *rgba, int w, int h, int unpremultiply)
+{
+    size_t row = (size_t)w * 4;
+    for (int y = 0; y < h / 2; y++) {
+        uint8_t *p = rgba + (size_t)y * row, *q = rgba + (size_t)(h - 1 - y) * row;
+        for (size_t i = 0; i < row; i++) { uint8_t t = p[i]; p[i] = q[i]; q[i] = t; }
+    }
+    if (unpremultiply) {
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+            uint8_t *p = rgba + 4 * i;
+            if (p[3] == 0 || p[3] == 255) continue;
+            for (int c = 0; c < 3; c++) {
+                unsigned v = (p[c] * 255u + p[3] / 2u) / p[3];
+                p[c] = (uint8_t)(v > 255 ? 255 : v);
+            }
+        }
+    }
+}
+
 pnpr_status pnpr_renderer_read_frame(pnpr_renderer *r, uint8_t *rgba, int unpremultiply)
 {
     if (!r || !rgba) return PNPR_ERR_INVALID_ARGUMENT;
@@ -848,22 +1215,105 @@ pnpr_status pnpr_renderer_read_frame(pnpr_renderer *r, uint8_t *rgba, int unprem
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     pnpr_gl_state_restore(&saved);
-    /* GL's rows go bottom-up: flip in place */
-    size_t row = (size_t)w * 4;
-    for (int y = 0; y < h / 2; y++) {
-        uint8_t *p = rgba + (size_t)y * row, *q = rgba + (size_t)(h - 1 - y) * row;
-        for (size_t i = 0; i < row; i++) { uint8_t t = p[i]; p[i] = q[i]; q[i] = t; }
+    finish_pixels(rgba, w, h, unpremultiply);
+    return PNPR_OK;
+}
+
+int pnpr_renderer_max_size(const pnpr_renderer *r) { return r ? (int)r->max_size : 0; }
+
+pnpr_status pnpr_image_bytes(int width, int height, size_t limit, size_t *r_bytes, pnpr_error *err)
+{
+    if (r_bytes) *r_bytes = 0;
+    if (width <= 0 || height <= 0)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "image size %dx%d must be positive", width, height);
+    if (limit == 0) limit = PNPR_IMAGE_BYTES_DEFAULT_LIMIT;
+    if ((size_t)width > SIZE_MAX / 4 / (size_t)height || (size_t)width * (size_t)height * 4 > limit)
+        return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY,
+                              "image %dx%d needs %.3g GiB of RGBA memory, more than the limit of %.3g GiB",
+                              width, height, (double)width * (double)height * 4.0 / 1073741824.0,
+                              (double)limit / 1073741824.0);
+    if (r_bytes) *r_bytes = (size_t)width * (size_t)height * 4;
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
+                                   int width, int height, const pnpr_snapshot_options *sopts,
+                                   uint8_t *r_rgba, pnpr_render_stats *r_stats, pnpr_error *err)
+{
+    if (!r || !r_rgba) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "snapshot: NULL renderer or pixels");
+    if (r_stats) memset(r_stats, 0, sizeof *r_stats);
+    pnpr_snapshot_options so;
+    memset(&so, 0, sizeof so);
+    if (sopts) so = *sopts;
+    if (width <= 0 || height <= 0)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "snapshot: image size %dx%d must be positive", width, height);
+    if (so.max_tile_size < 0)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "snapshot: max_tile_size %d is negative", so.max_tile_size);
+    int tmax = (int)r->max_size;
+    if (so.max_tile_size > 0 && so.max_tile_size < tmax) tmax = so.max_tile_size;
+    pnpr_target tgt = {0, 0, 0, width, height, 1};
+    if (width <= tmax && height <= tmax) { /* one frame: exactly pnpr_renderer_draw */
+        pnpr_status st = draw_impl(r, camera, opts, &tgt, NULL, r_stats, err);
+        if (st != PNPR_OK) return st;
+        pnpr_progress_report(&so.progress, "tile 1/1", 1.0);
+        return pnpr_renderer_read_frame(r, r_rgba, so.unpremultiply);
     }
-    if (unpremultiply) {
-        for (size_t i = 0; i < (size_t)w * h; i++) {
-            uint8_t *p = rgba + 4 * i;
-            if (p[3] == 0 || p[3] == 255) continue;
-            for (int c = 0; c < 3; c++) {
-                unsigned v = (p[c] * 255u + p[3] / 2u) / p[3];
-                p[c] = (uint8_t)(v > 255 ? 255 : v);
-            }
+    if (tmax < 16)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "snapshot: tiles of at most %d px are too small", tmax);
+    pnpr_draw_options o;
+    pnpr_status st = check_options(r, opts, &o, err);
+    if (st != PNPR_OK) return st;
+    frame_plan plan;
+    st = plan_frame(r, camera, &o, width, height, &plan, err);
+    if (st != PNPR_OK) return st;
+    /* Guard band: GL drops a point sprite whose centre leaves the viewport, so every tile is
+     * rendered with a margin of the largest sprite's half size (estimated from the largest disk
+     * at the box's nearest depth, clamped to GL's point size range and to a quarter tile). */
+    double dmin = INFINITY;
+    for (int k = 0; k < 8; k++) {
+        double p[3] = {(k & 1) ? r->bmax[0] : r->bmin[0], (k & 2) ? r->bmax[1] : r->bmin[1],
+                       (k & 4) ? r->bmax[2] : r->bmin[2]};
+        double d = -((double)plan.fc.view[2] * p[0] + (double)plan.fc.view[6] * p[1] +
+                     (double)plan.fc.view[10] * p[2] + (double)plan.fc.view[14]);
+        if (d < dmin) dmin = d;
+    }
+    if (!(dmin > plan.fc.near_plane)) dmin = plan.fc.near_plane;
+    float ps = o.point_scale > 0 ? o.point_scale : 1, ms = o.mask_scale > 0 ? o.mask_scale : 2.0f;
+    double grow = ps * plan.lod * (ms > PNPR_PAINT_MAX_BRUSH ? ms : PNPR_PAINT_MAX_BRUSH);
+    double sprite = r->count ? 2.0 * r->max_radius * grow * plan.fc.pixels_per_unit / dmin : 0;
+    if (!(sprite <= r->max_point_size)) sprite = r->max_point_size;
+    double extra = (o.dot_size > 0 ? o.dot_size : 2.5) + (o.line_width > 0 ? o.line_width : 2);
+    int margin = (int)ceil(0.5 * sprite + extra) + 1;
+    if (margin > tmax / 4) margin = tmax / 4;
+    int inner = tmax - 2 * margin;
+    int nx = (width + inner - 1) / inner, ny = (height + inner - 1) / inner;
+    int ntiles = nx * ny, done = 0;
+    tgt.width = tgt.height = tmax;
+    for (int ty = 0; ty < ny; ty++)
+        for (int tx = 0; tx < nx; tx++) {
+            int x0 = tx * inner, y0 = ty * inner;
+            int iw = width - x0 < inner ? width - x0 : inner, ih = height - y0 < inner ? height - y0 : inner;
+            tile_rect t = {width, height, x0 - margin, y0 - margin, tmax, tmax};
+            pnpr_render_stats ts;
+            st = draw_impl(r, camera, &o, &tgt, &t, &ts, err);
+            if (st != PNPR_OK) return st;
+            if (r_stats && done == 0) *r_stats = ts;
+            pnpr_gl_state saved;
+            pnpr_gl_state_save(&saved);
+            pnpr_gl_state_neutral();
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
+            glReadBuffer(GL_COLOR_ATTACHMENT0);
+            glPixelStorei(GL_PACK_ROW_LENGTH, width);
+            glReadPixels(margin, margin, iw, ih, GL_RGBA, GL_UNSIGNED_BYTE,
+                         r_rgba + ((size_t)y0 * (size_t)width + (size_t)x0) * 4);
+            pnpr_gl_state_restore(&saved);
+            done++;
+            char stage[48];
+            snprintf(stage, sizeof stage, "tile %d/%d", done, ntiles);
+            if (pnpr_progress_report(&so.progress, stage, (double)done / ntiles))
+                return pnpr_error_set(err, PNPR_ERR_CANCELLED, "snapshot: cancelled after %s", stage);
         }
-    }
+    finish_pixels(r_rgba, width, height, so.unpremultiply);
     return PNPR_OK;
 }
 
@@ -875,7 +1325,7 @@ void pnpr_renderer_frame_size(const pnpr_renderer *r, int *w, int *h)
 
 /* ---- styles --------------------------------------------------------------------------------- */
 
-static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon"};
+static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon", "painterly"};
 
 const char *pnpr_style_name(pnpr_style s)
 {
@@ -890,4 +1340,7 @@ pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style)
     return PNPR_ERR_NOT_FOUND;
 }
 
-int pnpr_style_needs_features(pnpr_style s) { return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE; }
+int pnpr_style_needs_features(pnpr_style s)
+{
+    return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE || s == PNPR_STYLE_PAINTERLY;
+}

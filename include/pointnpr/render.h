@@ -92,6 +92,8 @@ typedef enum pnpr_style {
     PNPR_STYLE_STIPPLE,    /* small dark round dots on the feature and dithering points */
     PNPR_STYLE_CARTOON,    /* flat colours per segment (cloud->label) or quantised, dark silhouettes
                             * from enlarged pass-1 disks (section 5.4) */
+    PNPR_STYLE_PAINTERLY,  /* brush dabs in blended colours, large to small over feature-degree bins,
+                            * a stencil sky mask, directional strokes on top (section 5.3) */
     PNPR_STYLE_COUNT_
 } pnpr_style;
 
@@ -119,6 +121,8 @@ typedef struct pnpr_upload_options {
     uint64_t seed;      /* continuous resolution queue seed (0 is a valid seed) */
     int ignore_features; /* treat the cloud as if it had no feature properties */
     int threads;        /* kNN threads; 0 = all cores */
+    uint32_t painterly_bins; /* painterly: feature-degree bins = passes (0 = 4, at most 16); the
+                              * painterly data are built when the cloud has feature_degree */
 } pnpr_upload_options;
 
 /* Per-frame options; zero = documented default. Colours are linear 0..1 RGBA. */
@@ -144,6 +148,8 @@ typedef struct pnpr_draw_options {
                             * mixed with the background, this much of the point colour); 0 = none */
     float dot_size;        /* stipple: dot diameter in pixels (0 = 2.5) */
     int levels;            /* cartoon without segment labels: colour levels per channel (0 = 4, >= 2) */
+    int paint_no_sky_mask; /* painterly: no stencil test in the large passes (paper fig. 8 left) */
+    int paint_no_strokes;  /* painterly: no directional strokes on top */
 } pnpr_draw_options;
 
 /* Where the frame goes: framebuffer object `framebuffer` (0 = the default framebuffer) and the
@@ -192,19 +198,52 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *renderer, const pnpr_camera *camer
                                const pnpr_draw_options *opts, const pnpr_target *target,
                                pnpr_render_stats *r_stats, pnpr_error *err);
 
+/* ---- snapshots of any size (tiled) ---- */
+
+/* Default limit of pnpr_image_bytes: 4 GiB (a 32768 x 32768 RGBA image). */
+#define PNPR_IMAGE_BYTES_DEFAULT_LIMIT ((size_t)4 << 30)
+
+/* The bytes of a width x height RGBA8 image, checked before allocating: PNPR_ERR_OUT_OF_MEMORY
+ * with a message when it overflows size_t or exceeds `limit` (0 = PNPR_IMAGE_BYTES_DEFAULT_LIMIT);
+ * PNPR_ERR_INVALID_ARGUMENT for a zero or negative size. */
+pnpr_status pnpr_image_bytes(int width, int height, size_t limit, size_t *r_bytes, pnpr_error *err);
+
+/* The largest frame edge this GL allows: min(GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE,
+ * GL_MAX_VIEWPORT_DIMS), queried at creation. */
+int pnpr_renderer_max_size(const pnpr_renderer *renderer);
+
+typedef struct pnpr_snapshot_options {
+    int max_tile_size;      /* largest tile edge in px, guard band included (0 = the GL limit); a
+                             * smaller value forces tiling (tests) */
+    int unpremultiply;      /* as pnpr_renderer_read_frame */
+    pnpr_progress progress; /* called after each tile with stage "tile i/n"; non-zero cancels */
+} pnpr_snapshot_options;
+
+/* Renders a width x height image of any size into r_rgba (width*height*4 bytes, RGBA8, top row
+ * first; size it with pnpr_image_bytes). Images within the GL limit (or max_tile_size) are one
+ * frame, exactly pnpr_renderer_draw + pnpr_renderer_read_frame. Larger ones are rendered as tiles:
+ * sub-frusta of the same camera, each with a guard band, with the point sizes, stroke sizes and
+ * queue counts of the full image, and stitched (docs/rendering.md). The renderer's frame afterwards
+ * holds the last tile. r_stats: those of the first tile (points drawn are the same for all). */
+pnpr_status pnpr_renderer_snapshot(pnpr_renderer *renderer, const pnpr_camera *camera,
+                                   const pnpr_draw_options *opts, int width, int height,
+                                   const pnpr_snapshot_options *sopts, uint8_t *r_rgba,
+                                   pnpr_render_stats *r_stats, pnpr_error *err);
+
 /* Copies the last frame (width*height*4 bytes, RGBA8, top row first). unpremultiply: colours of
  * partly transparent pixels divided by alpha (for PNGs with alpha). */
 pnpr_status pnpr_renderer_read_frame(pnpr_renderer *renderer, uint8_t *r_rgba, int unpremultiply);
 /* Size of the last frame (0 x 0 before the first draw). */
 void pnpr_renderer_frame_size(const pnpr_renderer *renderer, int *r_width, int *r_height);
 
-/* Whether the uploaded cloud carries the feature properties (class and direction). */
+/* Whether the uploaded cloud carries the feature properties (class and direction). The painterly
+ * style also needs feature_degree (PNPR_ERR_NOT_FOUND otherwise). */
 int pnpr_renderer_has_features(const pnpr_renderer *renderer);
 /* Whether it carried segment labels (cloud->label): cartoon then paints each segment in its mean
  * colour (computed at upload over the segment's finite points). */
 int pnpr_renderer_has_labels(const pnpr_renderer *renderer);
 
-const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon"; "" if invalid */
+const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly"; "" if invalid */
 pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 int pnpr_style_needs_features(pnpr_style style);
 

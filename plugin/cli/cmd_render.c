@@ -28,7 +28,7 @@ static void usage(FILE *f)
             "usage: pointnpr render IN -o OUT.png [options]\n"
             "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG.\n"
             "options:\n"
-            "  --style S            points | sketchy | lines | stipple | cartoon\n"
+            "  --style S            points | sketchy | lines | stipple | cartoon | painterly\n"
             "                       (default points)\n"
             "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
             "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n"
@@ -47,13 +47,24 @@ static void usage(FILE *f)
             "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
             "                       (PLY property segment or label, pointnpr segment; default 4)\n"
             "  --outline-scale F    cartoon: outline disks are F times the splats (default 2)\n"
+            "  --paint-bins N       painterly: feature-degree bins = passes, 1..16 (default 4)\n"
             "  --faint F            lines: draw the cloud faintly under the lines, F in (0,1]\n"
             "                       of the point colour (default: lines only)\n"
             "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
             "  --alpha              transparent background, PNG with alpha\n"
+            "  --max-tile PX        render in tiles of at most PX pixels (default: the GL limit;\n"
+            "                       larger images are always tiled, progress per tile on stderr)\n"
             "  --quiet              no progress on stderr\n"
-            "  Styles that need features (sketchy, stipple, lines) compute them when IN lacks them;\n"
+            "  Styles that need features (sketchy, stipple, painterly, lines) compute them when IN lacks them;\n"
             "  lines computes the profile lines (pointnpr lines) from them.\n");
+}
+
+/* Progress of a tiled snapshot: one line per tile (single-frame images print nothing). */
+static int tile_progress(void *user, const char *stage, double fraction)
+{
+    (void)user;
+    if (strcmp(stage, "tile 1/1") != 0) fprintf(stderr, "render: %s (%.0f %%)\n", stage, 100.0 * fraction);
+    return 0;
 }
 
 int cli_render(int argc, char **argv)
@@ -63,7 +74,7 @@ int cli_render(int argc, char **argv)
     memset(&dopt, 0, sizeof dopt);
     pnpr_upload_options uopt;
     memset(&uopt, 0, sizeof uopt);
-    int quiet = 0, alpha = 0;
+    int quiet = 0, alpha = 0, max_tile = 0;
     cli_view view;
     cli_view_init(&view, 1024, 768);
     double bg[3] = {255, 255, 255};
@@ -77,10 +88,14 @@ int cli_render(int argc, char **argv)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--alpha")) alpha = 1;
+        else if (v && !strcmp(a, "--max-tile")) {
+            if (!cli_parse_number(v, 16, 1e6, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --max-tile wants an integer >= 16, got '%s'\n", v); return 2; }
+            max_tile = (int)x; i++;
+        }
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
         else if (v && !strcmp(a, "--style")) {
             pnpr_style s;
-            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points, sketchy, lines, stipple or cartoon, got '%s'\n", v); return 2; }
+            if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points, sketchy, lines, stipple, cartoon or painterly, got '%s'\n", v); return 2; }
             dopt.style = s; i++;
         } else if (v && !strcmp(a, "--sketch")) {
             if (!strcmp(v, "a")) dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
@@ -118,6 +133,9 @@ int cli_render(int argc, char **argv)
         } else if (v && !strcmp(a, "--outline-scale")) {
             if (!cli_parse_number(v, 1, 100, &x)) { fprintf(stderr, "pointnpr render: --outline-scale wants a number >= 1, got '%s'\n", v); return 2; }
             dopt.mask_scale = (float)x; i++;
+        } else if (v && !strcmp(a, "--paint-bins")) {
+            if (!cli_parse_number(v, 1, 16, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --paint-bins wants an integer in 1..16, got '%s'\n", v); return 2; }
+            uopt.painterly_bins = (uint32_t)x; i++;
         } else if (v && !strcmp(a, "--faint")) {
             if (!cli_parse_number(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr render: --faint wants a number in (0,1], got '%s'\n", v); return 2; }
             dopt.faint = (float)x; i++;
@@ -184,13 +202,20 @@ int cli_render(int argc, char **argv)
 
     pnpr_camera cam;
     const pnpr_camera *camp = cli_view_camera(&view, &cloud, &cam);
-    pnpr_target tgt = {0, 0, 0, width, height, 1};
-    pnpr_render_stats stats;
-    st = pnpr_renderer_draw(ren, camp, &dopt, &tgt, &stats, &err);
+    size_t bytes = 0;
+    st = pnpr_image_bytes(width, height, 0, &bytes, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
-    pixels = malloc((size_t)width * (size_t)height * 4);
-    if (!pixels) { cli_report_error("render", PNPR_ERR_OUT_OF_MEMORY, NULL); goto done; }
-    st = pnpr_renderer_read_frame(ren, pixels, alpha);
+    pixels = malloc(bytes);
+    if (!pixels) {
+        fprintf(stderr, "pointnpr render: cannot allocate %zu bytes for a %dx%d image\n", bytes, width, height);
+        goto done;
+    }
+    pnpr_snapshot_options so = {0};
+    so.max_tile_size = max_tile;
+    so.unpremultiply = alpha;
+    so.progress.fn = quiet ? NULL : tile_progress;
+    pnpr_render_stats stats;
+    st = pnpr_renderer_snapshot(ren, camp, &dopt, width, height, &so, pixels, &stats, &err);
     if (st == PNPR_OK) st = pnpr_write_png(out, pixels, width, height, alpha, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
     if (!quiet)

@@ -90,6 +90,7 @@ int main(int argc, char **argv)
         {"lines --faint 0.3", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0.3f},
         {"stipple", PNPR_STYLE_STIPPLE, PNPR_SKETCH_ALL, 0},
         {"cartoon", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0},
+        {"painterly", PNPR_STYLE_PAINTERLY, PNPR_SKETCH_ALL, 0},
     };
     double base = 0;
     double *ms = malloc(sizeof(double) * (size_t)frames);

@@ -88,6 +88,21 @@ printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty floa
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/empty.png")" -eq 32 ]' "empty cloud renders the background"
 "$bin" render "$dir/empty.ply" -o "$dir/empty-lines.png" --size 32x32 --quiet --style lines
 check '[ $? -eq 0 ] && cmp -s "$dir/empty.png" "$dir/empty-lines.png"' "empty cloud, lines style: the same background image"
+# painterly: features computed on the fly, --paint-bins
+"$bin" render "$dir/cube.ply" -o "$dir/paint.png" --size 120x90 --style painterly --paint-bins 3 --quiet
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/paint.png")" -eq 120 ]' "painterly renders (--paint-bins 3)"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --style painterly --paint-bins 17 > /dev/null 2>&1
+check '[ $? -eq 2 ]' "--paint-bins 17 is a usage error"
+# tiled snapshots: forced 64-pixel tiles report progress per tile; an 8K image (7680x4320) renders
+"$bin" render "$dir/cube.ply" -o "$dir/tiled.png" --size 200x150 --max-tile 64 2> "$dir/tiles.txt"
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/tiled.png")" -eq 200 ] && [ "$(grep -c "^render: tile [0-9]*/[0-9]*" "$dir/tiles.txt")" -ge 12 ]' "--max-tile 64: tiles with progress per tile"
+"$bin" render "$dir/cube.ply" -o "$dir/tiled-q.png" --size 200x150 --max-tile 64 --quiet 2> "$dir/tiles-q.txt"
+check '[ $? -eq 0 ] && [ ! -s "$dir/tiles-q.txt" ]' "--quiet: no tile progress"
+"$bin" render "$dir/cube.ply" -o "$dir/8k.png" --size 7680x4320 --quiet
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/8k.png")" -eq 7680 ] && [ "$(png_h "$dir/8k.png")" -eq 4320 ]' "8K snapshot 7680x4320"
+rm -f "$dir/8k.png"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --max-tile 8 > /dev/null 2>&1
+check '[ $? -eq 2 ]' "--max-tile 8 is a usage error"
 "$bin" render --help | grep -q "usage: pointnpr render"
 check '[ $? -eq 0 ]' "--help"
 exit $fail
