@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # MeshLab plugin tests: runs the filters of libfilter_pointnpr.so inside Debian's meshlabserver.
 #
-#   tests/meshlab/run.sh TEST PLUGIN_SO POINTNPR_CLI WORKDIR
-#     TEST: load | cube | offset | select | robust | lion | lines | segment
+#   tests/meshlab/run.sh TEST PLUGIN_SO POINTNPR_CLI WORKDIR [DECORATE_SO]
+#     TEST: load | cube | offset | select | robust | lion | lines | segment | decorate
+#     DECORATE_SO: libdecorate_pointnpr.so ("NPR render"), also put into the host's plugins/;
+#     the decorate test runs the MeshLab GUI (/usr/bin/meshlab) under Xvfb.
 #
 # meshlabserver runs from a private folder WORKDIR/TEST/host holding a hard link (or copy) of the
 # binary and plugins/ with symlinks to the system plugins plus ours (MeshLab only looks for
@@ -16,6 +18,8 @@ TEST=${1:?usage: run.sh TEST PLUGIN_SO POINTNPR_CLI WORKDIR}
 PLUGIN=${2:?}
 CLI=${3:?}
 WORK=${4:?}
+DECORATE=${5:-}
+GUI_BIN=${PNPR_MESHLAB_GUI:-/usr/bin/meshlab}
 HERE=$(cd "$(dirname "$0")" && pwd)
 SRC=$(cd "$HERE/../.." && pwd)
 MLLIB=${PNPR_MESHLAB_LIBDIR:-/usr/lib/x86_64-linux-gnu/meshlab}
@@ -41,10 +45,14 @@ setup_host() {
     die "cannot copy $SERVER_BIN"
   local p
   for p in "$MLLIB"/plugins/*.so; do
-    [[ "$(basename "$p")" == libfilter_pointnpr.so ]] && continue # an installed older copy
+    [[ "$(basename "$p")" == lib*_pointnpr.so ]] && continue # an installed older copy
     ln -s "$p" "$T/host/plugins/"
   done
   ln -s "$(cd "$(dirname "$PLUGIN")" && pwd)/$(basename "$PLUGIN")" "$T/host/plugins/libfilter_pointnpr.so"
+  if [[ -n "$DECORATE" ]]; then
+    [[ -f "$DECORATE" ]] || die "plugin $DECORATE not built"
+    ln -s "$(cd "$(dirname "$DECORATE")" && pwd)/$(basename "$DECORATE")" "$T/host/plugins/libdecorate_pointnpr.so"
+  fi
 }
 
 # ---- Xvfb on a free display ----
@@ -659,6 +667,118 @@ segment)
   for r in nocolour nocolour2 empty bad; do
     [[ -f "$T/$r.rc" ]] && log "$r: exit status $(cat "$T/$r.rc"): $(grep 'LOG: .*pointnpr:' "$T/$r.log" | tail -n 1)"
   done
+  ;;
+
+decorate)
+  # The decorator "NPR render" in the MeshLab GUI: the GUI starts with both plugins, opens the
+  # cube [0,1]^3 grid (h = 0.02, 15 002 points, no normals/colours), the plugin turns the
+  # decoration on (test-only PNPR_MESHLAB_DECORATE_AT_START) and, on the 3rd frame with an
+  # unchanged camera, reads MeshLab's framebuffer before (MeshLab's own rendering) and after its
+  # draw (PNPR_MESHLAB_SNAPSHOT=PREFIX: PREFIX-plain/npr .png + .pgm, PREFIX-camera.txt with the
+  # GL modelview, projection and viewport). The snapshots stay in the work folder (artifacts).
+  [[ -n "$DECORATE" ]] || die "no decorate plugin given (5th argument)"
+  [[ -x "$GUI_BIN" ]] || die "$GUI_BIN not found (packaging/install-deps.sh installs meshlab)"
+  ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
+  cube_ply "$T/cube.ply" 1 50 0 0 0
+  # gui NAME STYLE: one GUI run until the snapshot is written (or 120 s), then MeshLab is stopped
+  gui() {
+    local name=$1 style=$2 pid i
+    mkdir -p "$T/home-$name"
+    (cd "$T" && HOME="$T/home-$name" XDG_RUNTIME_DIR="$T/home-$name" PNPR_MESHLAB_DECORATE_AT_START=1 \
+      PNPR_MESHLAB_SNAPSHOT="$T/$name" PNPR_MESHLAB_TEST_STYLE="$style" \
+      LD_LIBRARY_PATH="$MLLIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" exec timeout 150 "$T/host/meshlab" "$T/cube.ply") \
+      > "$T/$name.log" 2>&1 &
+    pid=$!
+    for i in $(seq 1 1200); do
+      [[ -f "$T/$name-camera.txt" ]] && break
+      kill -0 "$pid" 2> /dev/null || break
+      sleep 0.1
+    done
+    sleep 0.5 # a few more frames after the snapshot (a crash there fails too)
+    if kill -0 "$pid" 2> /dev/null; then
+      kill "$pid"; wait "$pid" 2> /dev/null
+    else
+      wait "$pid"; fail "'$name': MeshLab exited by itself (status $?) before it was stopped"
+    fi
+    if grep -qE "Segmentation fault|Aborted|core dumped|terminate called|Assertion .* failed" "$T/$name.log"; then
+      fail "'$name': MeshLab crashed:"; tail -n 20 "$T/$name.log"
+    fi
+    no_plugin_errors "$name"
+    expect_log "$name" "Enabled Decorate mode NPR render"
+    expect_log "$name" "NPR render: renderer created \\(OpenGL"
+    expect_log "$name" "pointnpr decorator: uploaded 15002 points from 1 layer"
+    expect_log "$name" "pointnpr decorator: snapshot .* written"
+    grep "pointnpr decorator:" "$T/$name.log"
+    [[ -f "$T/$name-camera.txt" && -f "$T/$name-npr.pgm" && -f "$T/$name-plain.pgm" ]] || { fail "'$name': no snapshot"; return 1; }
+    grep -q "^style $style\$" "$T/$name-camera.txt" || fail "'$name': style in $name-camera.txt is not $style"
+    check_snapshot "$T/$name-camera.txt" "$T/$name-plain.pgm" "$T/$name-npr.pgm" "$name" || fail "'$name': snapshot checks (see above)"
+  }
+  # check_snapshot CAMERA PLAIN NPR NAME: the cube's 4 front edges (z = 1) projected with MeshLab's
+  # own matrices: on each edge with >= 20 samples in the viewport, >= 80% of the samples have a
+  # dark pixel (< 110) within 3 px of the edge moved 0..h into the face; >= 2 edges checked. The 4 back edges (z = 0, hidden behind the
+  # front face in MeshLab's default view): <= 10% dark samples. Front face inside [0.3,0.7]^2:
+  # <= 5% dark. Background (top-left pixel) exactly paper white in the NPR frame, not in the
+  # plain one; >= 25% of the pixels differ by more than 40 grey levels from the plain frame.
+  check_snapshot() {
+    awk -v name="$4" '
+      FILENAME == ARGV[1] { if ($1 == "modelview") for (i = 0; i < 16; i++) M[i] = $(i + 2)
+                            if ($1 == "projection") for (i = 0; i < 16; i++) P[i] = $(i + 2)
+                            if ($1 == "viewport") { vx = $2; vy = $3; vw = $4; vh = $5 }
+                            next }
+      FNR == 1 { f++; row = -3 }
+      { row++ }
+      row == -1 { W = $1; H = $2; next }
+      row < 1 { next }
+      { for (c = 1; c <= NF; c++) { if (f == 1) pl[(row - 1) * W + c - 1] = $c; else np[(row - 1) * W + c - 1] = $c } }
+      function project(x, y, z,   e, i, cl) {
+        for (i = 0; i < 4; i++) e[i] = M[i] * x + M[4 + i] * y + M[8 + i] * z + M[12 + i]
+        for (i = 0; i < 4; i++) cl[i] = P[i] * e[0] + P[4 + i] * e[1] + P[8 + i] * e[2] + P[12 + i] * e[3]
+        if (cl[3] <= 0) return 0
+        PX = (cl[0] / cl[3] + 1) / 2 * vw; PY = vh - 1 - (cl[1] / cl[3] + 1) / 2 * vh
+        return PX >= 4 && PX < vw - 4 && PY >= 4 && PY < vh - 4
+      }
+      function darkNear(px, py, r,   dx, dy, v) {
+        for (dy = -r; dy <= r; dy++) for (dx = -r; dx <= r; dx++) { v = np[(int(py + 0.5) + dy) * W + int(px + 0.5) + dx]; if (v < 110) return 1 }
+        return 0
+      }
+      # edge k of the face z: 0 bottom (y=0), 1 top (y=1), 2 left (x=0), 3 right (x=1)
+      function edge(k, z, t) { if (k < 2) { EX = t; EY = k } else { EX = k - 2; EY = t } EZ = z }
+      END {
+        if (W != vw || H != vh) { printf "%s: image %dx%d, viewport %dx%d\n", name, W, H, vw, vh; exit 1 }
+        bad = 0; checked = 0
+        for (k = 0; k < 4; k++) {
+          n = 0; d = 0; nb = 0; db = 0
+          for (t = 0.1; t <= 0.9; t += 0.01) {
+            # profile lines run through the edge points up to ~0.7h inside the face (docs/lines.md):
+            # a dark pixel within 3 px of the edge moved 0..h (h = 0.02) into the front face
+            edge(k, 1, t); if (project(EX, EY, EZ)) { n++; hit = 0
+              for (s = 0; s <= 0.0201 && !hit; s += 0.004) {
+                ix = (k == 2) ? s : (k == 3) ? -s : 0; iy = (k == 0) ? s : (k == 1) ? -s : 0
+                if (project(EX + ix, EY + iy, EZ)) hit = darkNear(PX, PY, 3) }
+              d += hit }
+            edge(k, 0, t); if (project(EX, EY, EZ)) { nb++; db += darkNear(PX, PY, 1) }
+          }
+          printf "%s: front edge %d: %d of %d samples dark; back edge %d: %d of %d\n", name, k, d, n, k, db, nb
+          if (n >= 20) { checked++; if (d < 0.8 * n) bad++ }
+          if (nb > 0 && db > 0.1 * nb) bad++
+        }
+        if (checked < 2) { printf "%s: only %d front edges inside the viewport\n", name, checked; bad++ }
+        ni = 0; di = 0
+        for (x = 0.3; x <= 0.7; x += 0.02) for (y = 0.3; y <= 0.7; y += 0.02)
+          if (project(x, y, 1)) { ni++; if (np[int(PY + 0.5) * W + int(PX + 0.5)] < 110) di++ }
+        differ = 0
+        for (i = 0; i < W * H; i++) { dv = np[i] - pl[i]; if (dv > 40 || dv < -40) differ++ }
+        printf "%s: front face inside: %d of %d samples dark; background npr %d plain %d; %.1f%% of the pixels differ from the plain frame\n", name, di, ni, np[0], pl[0], 100 * differ / (W * H)
+        if (ni < 20 || di > 0.05 * ni) bad++
+        if (np[0] != 255 || pl[0] == 255) bad++
+        if (differ < 0.25 * W * H) bad++
+        exit bad ? 1 : 0
+      }' "$1" "$2" "$3"
+  }
+  gui sketchy sketchy
+  expect_log sketchy "features computed for the sketchy style \\(15002 points"
+  gui lines lines
+  expect_log lines "pointnpr decorator: [0-9]+ profile lines"
   ;;
 
 *) die "unknown test '$TEST'" ;;

@@ -1,0 +1,21 @@
+/* pointnpr — the few Qt OpenGL-context calls of the decorator, in their own translation unit:
+ * MeshLab's interfaces.h pulls in GLEW, and Qt's QOpenGLContext/QGLContext headers refuse to be
+ * included after GLEW (#warning, an error under -Werror). */
+#ifndef POINTNPR_DECORATE_GLCONTEXT_H
+#define POINTNPR_DECORATE_GLCONTEXT_H
+
+#include <functional>
+
+class QObject;
+class QWidget;
+
+namespace pnpr_meshlab {
+/* The current QOpenGLContext (as an opaque key), or nullptr. */
+void *currentGLContext();
+/* The widget of the current QGLContext (MeshLab's GLArea), or nullptr. */
+QWidget *currentGLWidget();
+/* Calls fn when the context `ctx` is about to be destroyed (while `receiver` lives). */
+void onGLContextDestroyed(void *ctx, QObject *receiver, std::function<void()> fn);
+} // namespace pnpr_meshlab
+
+#endif

@@ -1,0 +1,720 @@
+/* pointnpr — MeshLab 2020.09 decorate plugin "NPR render" (docs/meshlab.md).
+ *
+ * decorateDoc runs once per frame after MeshLab drew the layers, with the modelview holding the
+ * view and the trackball (not the layers' Tr). It
+ *   1. finds the pnpr_renderer of the current GL context (created on first use; one per context,
+ *      owned by this plugin instance, dropped when the context goes away),
+ *   2. merges the visible point layers (vertices, no faces, no edges) into one pnpr_cloud in
+ *      scene coordinates (each layer's Tr applied in double; origin = bounding-box centre) when
+ *      the layers changed (a signature of ids, counts, Tr and sampled vertices),
+ *   3. takes feature classes/directions from the filter plugin's attributes (feature_class,
+ *      feature_dir) when every layer has them, else runs pnpr_compute_features with only the
+ *      PNPR_WANT_* bits the style needs, the first time a style needs them,
+ *   4. turns MeshLab's GL_MODELVIEW/GL_PROJECTION into a pnpr_camera (look-at + vertical fov),
+ *   5. draws into MeshLab's bound framebuffer and viewport (composite REPLACE) and restores state.
+ * No C++ exception leaves the plugin: every entry point catches everything. */
+#include "decorate_pointnpr.h"
+#include "decorate_glcontext.h"
+
+#include <pointnpr/features.h>
+#include <pointnpr/lines.h>
+#include <pointnpr/render.h>
+
+#include <QApplication>
+#include <QColor>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QImage>
+#include <QPointer>
+#include <QTimer>
+#include <QWidget>
+
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <vector>
+
+namespace {
+
+const char *const kStyle = "PointNPR::Style";
+const char *const kVariant = "PointNPR::SketchVariant";
+const char *const kBudget = "PointNPR::PointBudget";
+const char *const kMotionBudget = "PointNPR::MotionBudget";
+const char *const kPaper = "PointNPR::PaperColor";
+const char *const kLineWidth = "PointNPR::LineWidth";
+
+/* enum index -> renderer style (the order shown in the dialog) */
+const pnpr_style kStyles[] = {PNPR_STYLE_POINTS, PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE,
+                              PNPR_STYLE_CARTOON, PNPR_STYLE_LINES};
+const int kStyleCount = 5;
+
+/* PNPR_WANT_* bits a style needs (docs/rendering.md): classes + directions for strokes and
+ * lines, dithering points for hatches and stipple dots. */
+uint32_t wantFor(pnpr_style style, pnpr_sketch_variant variant)
+{
+    switch (style) {
+    case PNPR_STYLE_SKETCHY:
+        return variant == PNPR_SKETCH_DIRECTIONAL ? (uint32_t)PNPR_WANT_CLASSES
+                                                  : (uint32_t)(PNPR_WANT_CLASSES | PNPR_WANT_DITHER);
+    case PNPR_STYLE_STIPPLE: return PNPR_WANT_CLASSES | PNPR_WANT_DITHER;
+    case PNPR_STYLE_LINES: return PNPR_WANT_CLASSES;
+    default: return 0;
+    }
+}
+
+/* The existing per-vertex attribute of type T, or false (nothing is created). */
+template <class T>
+bool findAttribute(CMeshO &m, const char *name, typename CMeshO::template PerVertexAttributeHandle<T> &h)
+{
+    CMeshO::PointerToAttribute key;
+    key._name = name;
+    auto it = m.vert_attr.find(key);
+    if (it == m.vert_attr.end() || it->_type != std::type_index(typeid(T))) return false;
+    h = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<T>(m, name);
+    return vcg::tri::Allocator<CMeshO>::IsValidHandle<T>(m, h);
+}
+
+bool isPointLayer(const MeshModel *mm)
+{
+    return mm && mm->isVisible() && mm->cm.vn > 0 && mm->cm.fn == 0 && mm->cm.en == 0;
+}
+
+struct Hash {
+    uint64_t h = 1469598103934665603ull;
+    void bytes(const void *p, size_t n)
+    {
+        const unsigned char *c = static_cast<const unsigned char *>(p);
+        for (size_t i = 0; i < n; i++) { h ^= c[i]; h *= 1099511628211ull; }
+    }
+    template <class T> void add(const T &v) { bytes(&v, sizeof v); }
+};
+
+/* Which layers are drawn and what they hold: ids, counts, array address, Tr, colour/attribute
+ * presence and up to 1024 sampled vertices (positions, colours, feature classes). A change
+ * inside a large layer that touches none of the samples is not seen (docs/meshlab.md). */
+uint64_t layerSignature(MeshDocument &md)
+{
+    Hash h;
+    for (MeshModel *mm : md.meshList) {
+        if (!isPointLayer(mm)) continue;
+        CMeshO &m = mm->cm;
+        h.add(mm->id());
+        h.add(m.vn);
+        h.add(m.vert.size());
+        const void *data = m.vert.empty() ? nullptr : (const void *)&m.vert[0];
+        h.add(data);
+        for (int r = 0; r < 4; r++)
+            for (int c = 0; c < 4; c++) h.add(m.Tr[r][c]);
+        bool colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
+        h.add(colour);
+        CMeshO::PerVertexAttributeHandle<float> hc;
+        bool hasClass = findAttribute<float>(m, "feature_class", hc);
+        CMeshO::PerVertexAttributeHandle<float> hs;
+        bool hasSeg = findAttribute<float>(m, "segment", hs);
+        h.add(hasClass);
+        h.add(hasSeg);
+        size_t n = m.vert.size(), step = std::max<size_t>(1, n / 1024);
+        for (size_t i = 0; i < n; i += step) {
+            const CVertexO &v = m.vert[i];
+            h.add(v.IsD());
+            h.add(v.cP()[0]); h.add(v.cP()[1]); h.add(v.cP()[2]);
+            if (colour) h.add(v.cC());
+            if (hasClass) h.add(hc[i]);
+            if (hasSeg) h.add(hs[i]);
+        }
+    }
+    return h.h;
+}
+
+QString status(pnpr_status st, const pnpr_error &err)
+{
+    return err.message[0] ? QString::fromUtf8(err.message) : QString::fromUtf8(pnpr_status_string(st));
+}
+
+} // namespace
+
+/* Everything the plugin keeps for one GL context. */
+struct DecorateContextState {
+    pnpr_renderer *renderer = nullptr;
+    bool failed = false;          /* renderer could not be created: logged once, nothing drawn */
+    pnpr_cloud cloud;             /* the merged layers as uploaded (kept for lazy features) */
+    pnpr_polylines lines;         /* profile lines for the lines style */
+    bool linesReady = false;
+    uint64_t signature = 0;
+    bool uploaded = false;
+    bool layerFeatures = false;   /* classes/directions came from the layers' attributes */
+    uint32_t have = 0;            /* PNPR_WANT_* bits computed (or taken from the layers) */
+    QString lastError;            /* the last message logged (not repeated every frame) */
+    double lastMV[16] = {0}, lastP[16] = {0};
+    bool haveLast = false;
+    QPointer<QWidget> widget;     /* the GL widget, for the repaint after camera motion */
+    QTimer *settle = nullptr;     /* full-budget repaint after motion stops */
+    int frames = 0;
+    bool snapshotDone = false;
+    DecorateContextState()
+    {
+        std::memset(&cloud, 0, sizeof cloud);
+        std::memset(&lines, 0, sizeof lines);
+    }
+};
+
+DecoratePointnprPlugin::DecoratePointnprPlugin()
+{
+    typeList << DP_NPR_RENDER;
+    for (FilterIDType tt : types()) actionList << new QAction(decorationName(tt), this);
+    for (QAction *ap : actionList) ap->setCheckable(true);
+    /* Test-only: turn the decoration on once MeshLab shows a document (tests/meshlab/run.sh). */
+    if (std::getenv("PNPR_MESHLAB_DECORATE_AT_START")) {
+        startupTimer_ = new QTimer(this);
+        startupTimer_->setInterval(250);
+        connect(startupTimer_, &QTimer::timeout, this, [this] { testStartupPoll(); });
+        startupTimer_->start();
+    }
+}
+
+DecoratePointnprPlugin::~DecoratePointnprPlugin()
+{
+    /* Renderers whose context is current are destroyed properly; the others' GL objects went
+     * (or go) with their context, only the CPU side is freed. */
+    for (auto it = states_.begin(); it != states_.end(); ++it) {
+        DecorateContextState *s = it.value();
+        if (s->renderer && pnpr_meshlab::currentGLContext() == it.key()) pnpr_renderer_destroy(s->renderer);
+        pnpr_cloud_free(&s->cloud);
+        pnpr_lines_free(&s->lines);
+        delete s->settle;
+        delete s;
+    }
+    states_.clear();
+}
+
+void DecoratePointnprPlugin::testStartupPoll()
+{
+    try {
+        if (++startupTicks_ > 240) { startupTimer_->stop(); return; } /* give up after 60 s */
+        bool area = false;
+        for (QWidget *w : QApplication::allWidgets())
+            if (std::strcmp(w->metaObject()->className(), "GLArea") == 0 && w->isVisible()) area = true;
+        const int kSettleTicks = 6; /* 1.5 s with a visible GLArea: the command-line mesh is loaded */
+        if (!area) { seenTicks_ = 0; return; }
+        if (++seenTicks_ < kSettleTicks) return;
+        QAction *a = actionList.isEmpty() ? nullptr : actionList.first();
+        if (!a || !a->isEnabled()) return;
+        startupTimer_->stop();
+        std::fprintf(stderr, "pointnpr decorator: enabling 'NPR render' (PNPR_MESHLAB_DECORATE_AT_START)\n");
+        a->trigger();
+    } catch (...) {
+        if (startupTimer_) startupTimer_->stop();
+    }
+}
+
+QString DecoratePointnprPlugin::pluginName() const { return "DecoratePointNPR"; }
+
+QString DecoratePointnprPlugin::decorationName(FilterIDType id) const
+{
+    return id == DP_NPR_RENDER ? QString("NPR render") : QString();
+}
+
+QString DecoratePointnprPlugin::decorationInfo(FilterIDType id) const
+{
+    if (id != DP_NPR_RENDER) return QString();
+    return tr("Draws the visible point layers (no faces, no edges) as a non-photorealistic rendering "
+              "(pointnpr: points, sketchy, stipple, cartoon, profile lines) over the viewport. Feature "
+              "classes come from 'NPR: Compute feature degree and classify points' when every layer "
+              "has them, else they are computed the first time a style needs them.");
+}
+
+int DecoratePointnprPlugin::getDecorationClass(QAction *) const
+{
+    return MeshDecorateInterface::PerDocument; /* GLArea::updateDecorator compares with ==: no other bits */
+}
+
+void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList &par)
+{
+    try {
+        if (!par.hasParameter(kStyle))
+            par.addParam(RichEnum(kStyle, 1, QStringList() << "points" << "sketchy" << "stipple" << "cartoon" << "lines",
+                                  "Style", "points: plain splats; sketchy: strokes along feature directions and hatches; "
+                                  "stipple: ink dots; cartoon: flat colours and outlines; lines: profile lines"));
+        if (!par.hasParameter(kVariant))
+            par.addParam(RichEnum(kVariant, 0, QStringList() << "all (strokes + hatches)" << "directional strokes only"
+                                                             << "strokes + non-directional hatches",
+                                  "Sketch variant", "sketchy style: which primitives are drawn"));
+        if (!par.hasParameter(kBudget))
+            par.addParam(RichInt(kBudget, 0, "Point budget", "at most this many points per frame (continuous "
+                                 "resolution queue prefix); 0 = all"));
+        if (!par.hasParameter(kMotionBudget))
+            par.addParam(RichInt(kMotionBudget, 200000, "Point budget while moving",
+                                 "budget of frames drawn while the camera changes (a full frame follows 0.3 s "
+                                 "after the motion stops); 0 = same as the point budget"));
+        if (!par.hasParameter(kPaper))
+            par.addParam(RichColor(kPaper, QColor(255, 255, 255), "Paper colour", "background of the drawing"));
+        if (!par.hasParameter(kLineWidth))
+            par.addParam(RichFloat(kLineWidth, 2.0f, "Line width", "profile lines and sketch strokes, pixels"));
+    } catch (...) {
+    }
+}
+
+bool DecoratePointnprPlugin::startDecorate(QAction *, MeshDocument &, const RichParameterList *, GLArea *)
+{
+    return true; /* the renderer is made on the first frame, in the context that draws it */
+}
+
+void DecoratePointnprPlugin::endDecorate(QAction *, MeshDocument &, const RichParameterList *, GLArea *)
+{
+    try {
+        void *ctx = pnpr_meshlab::currentGLContext();
+        if (ctx && states_.contains(ctx)) dropState(ctx);
+    } catch (...) {
+    }
+}
+
+void DecoratePointnprPlugin::dropState(void *ctx)
+{
+    DecorateContextState *s = states_.take(ctx);
+    if (!s) return;
+    if (s->renderer && pnpr_meshlab::currentGLContext() == ctx) pnpr_renderer_destroy(s->renderer);
+    pnpr_cloud_free(&s->cloud);
+    pnpr_lines_free(&s->lines);
+    delete s->settle;
+    delete s;
+}
+
+void DecoratePointnprPlugin::decorateDoc(QAction *, MeshDocument &md, const RichParameterList *par,
+                                         GLArea *, QPainter *, GLLogStream &lg)
+{
+    try {
+        draw(md, par, lg);
+    } catch (const std::bad_alloc &) {
+        lg.Logf(GLLogStream::WARNING, "NPR render: out of memory");
+    } catch (...) {
+        lg.Logf(GLLogStream::WARNING, "NPR render: unexpected error");
+    }
+}
+
+namespace {
+
+/* Parameters with fallbacks (a missing parameter never throws into MeshLab). */
+struct Params {
+    pnpr_style style = PNPR_STYLE_SKETCHY;
+    pnpr_sketch_variant variant = PNPR_SKETCH_ALL;
+    int budget = 0, motionBudget = 200000;
+    QColor paper = QColor(255, 255, 255);
+    float lineWidth = 2;
+};
+
+Params readParams(const RichParameterList *par)
+{
+    Params p;
+    if (par) {
+        if (par->hasParameter(kStyle)) {
+            int i = par->getEnum(kStyle);
+            if (i >= 0 && i < kStyleCount) p.style = kStyles[i];
+        }
+        if (par->hasParameter(kVariant)) {
+            int v = par->getEnum(kVariant);
+            if (v >= 0 && v < (int)PNPR_SKETCH_COUNT_) p.variant = (pnpr_sketch_variant)v;
+        }
+        if (par->hasParameter(kBudget)) p.budget = std::max(0, par->getInt(kBudget));
+        if (par->hasParameter(kMotionBudget)) p.motionBudget = std::max(0, par->getInt(kMotionBudget));
+        if (par->hasParameter(kPaper)) p.paper = par->getColor(kPaper);
+        if (par->hasParameter(kLineWidth)) p.lineWidth = par->getFloat(kLineWidth);
+    }
+    if (!(p.lineWidth > 0 && p.lineWidth < 100)) p.lineWidth = 2;
+    /* test-only override (tests/meshlab/run.sh): the style by name */
+    if (const char *s = std::getenv("PNPR_MESHLAB_TEST_STYLE")) {
+        pnpr_style st;
+        if (pnpr_style_from_name(s, &st) == PNPR_OK) p.style = st;
+    }
+    return p;
+}
+
+/* The visible point layers merged into `cloud` in scene coordinates (Tr applied). */
+pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures, QString &note)
+{
+    pnpr_cloud_free(&cloud);
+    std::vector<MeshModel *> layers;
+    size_t total = 0;
+    bool anyColour = false, allClass = true, allSeg = true;
+    for (MeshModel *mm : md.meshList) {
+        if (!isPointLayer(mm)) continue;
+        layers.push_back(mm);
+        total += (size_t)mm->cm.vn;
+        anyColour |= mm->hasDataMask(MeshModel::MM_VERTCOLOR);
+        CMeshO::PerVertexAttributeHandle<float> hc;
+        CMeshO::PerVertexAttributeHandle<Point3m> hd;
+        if (!findAttribute<float>(mm->cm, "feature_class", hc) || !findAttribute<Point3m>(mm->cm, "feature_dir", hd))
+            allClass = false;
+        CMeshO::PerVertexAttributeHandle<float> hs;
+        if (!findAttribute<float>(mm->cm, "segment", hs)) allSeg = false;
+    }
+    layerFeatures = false;
+    if (layers.empty() || total == 0) { note = "no visible point layer"; return PNPR_OK; }
+    std::vector<double> world(3 * total);
+    std::vector<uint8_t> rgb(anyColour ? 3 * total : 0);
+    std::vector<uint8_t> cls(allClass ? total : 0);
+    std::vector<float> dir(allClass ? 3 * total : 0);
+    std::vector<uint32_t> label(allSeg ? total : 0);
+    size_t j = 0;
+    uint32_t labelBase = 0;
+    for (MeshModel *mm : layers) {
+        CMeshO &m = mm->cm;
+        double T[4][4];
+        for (int r = 0; r < 4; r++)
+            for (int c = 0; c < 4; c++) T[r][c] = m.Tr[r][c];
+        bool colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
+        CMeshO::PerVertexAttributeHandle<float> hc, hs;
+        CMeshO::PerVertexAttributeHandle<Point3m> hd;
+        if (allClass) { findAttribute<float>(m, "feature_class", hc); findAttribute<Point3m>(m, "feature_dir", hd); }
+        if (allSeg) findAttribute<float>(m, "segment", hs);
+        uint32_t maxLabel = 0;
+        for (size_t i = 0; i < m.vert.size() && j < total; i++) {
+            const CVertexO &v = m.vert[i];
+            if (v.IsD()) continue;
+            double p[3] = {v.cP()[0], v.cP()[1], v.cP()[2]};
+            double w = T[3][0] * p[0] + T[3][1] * p[1] + T[3][2] * p[2] + T[3][3];
+            if (!(w != 0)) w = 1;
+            for (int r = 0; r < 3; r++) world[3 * j + r] = (T[r][0] * p[0] + T[r][1] * p[1] + T[r][2] * p[2] + T[r][3]) / w;
+            if (anyColour) {
+                for (int c = 0; c < 3; c++) rgb[3 * j + c] = colour ? v.cC()[c] : 180;
+            }
+            if (allClass) {
+                float c = hc[i];
+                cls[j] = (c >= 0 && c <= 3) ? (uint8_t)std::lround(c) : 0;
+                double d[3] = {hd[i][0], hd[i][1], hd[i][2]}, t[3], n = 0;
+                for (int r = 0; r < 3; r++) { t[r] = T[r][0] * d[0] + T[r][1] * d[1] + T[r][2] * d[2]; n += t[r] * t[r]; }
+                n = std::sqrt(n);
+                for (int r = 0; r < 3; r++) dir[3 * j + r] = n > 0 && std::isfinite(n) ? (float)(t[r] / n) : 0.0f;
+            }
+            if (allSeg) {
+                float s = hs[i];
+                uint32_t l = (s >= 0 && s < 16777216.0f) ? (uint32_t)s : 0;
+                label[j] = labelBase + l;
+                maxLabel = std::max(maxLabel, l);
+            }
+            j++;
+        }
+        labelBase += maxLabel + 1;
+    }
+    pnpr_status st = pnpr_cloud_alloc(&cloud, j);
+    if (st == PNPR_OK) st = pnpr_cloud_set_world(&cloud, world.data());
+    if (st == PNPR_OK && anyColour && (st = pnpr_cloud_alloc_rgb(&cloud)) == PNPR_OK)
+        std::memcpy(cloud.rgb, rgb.data(), 3 * j);
+    if (st == PNPR_OK && allSeg && (st = pnpr_cloud_alloc_labels(&cloud)) == PNPR_OK)
+        std::memcpy(cloud.label, label.data(), j * sizeof(uint32_t));
+    if (st == PNPR_OK && allClass) {
+        pnpr_property *pc = nullptr, *px = nullptr, *py = nullptr, *pz = nullptr;
+        st = pnpr_cloud_add_property(&cloud, "feature_class", PNPR_TYPE_UINT8, &pc);
+        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, "feature_dir_x", PNPR_TYPE_FLOAT32, &px);
+        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, "feature_dir_y", PNPR_TYPE_FLOAT32, &py);
+        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, "feature_dir_z", PNPR_TYPE_FLOAT32, &pz);
+        if (st == PNPR_OK) {
+            /* pnpr_cloud_add_property may move the property array: look them up again */
+            pc = pnpr_cloud_find_property(&cloud, "feature_class");
+            px = pnpr_cloud_find_property(&cloud, "feature_dir_x");
+            py = pnpr_cloud_find_property(&cloud, "feature_dir_y");
+            pz = pnpr_cloud_find_property(&cloud, "feature_dir_z");
+            std::memcpy(pc->data, cls.data(), j);
+            for (size_t i = 0; i < j; i++) {
+                ((float *)px->data)[i] = dir[3 * i];
+                ((float *)py->data)[i] = dir[3 * i + 1];
+                ((float *)pz->data)[i] = dir[3 * i + 2];
+            }
+            layerFeatures = true;
+        }
+    }
+    note = QString("%1 points from %2 layer(s)%3%4%5")
+               .arg(j).arg(layers.size())
+               .arg(anyColour ? ", colours" : "")
+               .arg(allClass ? ", feature classes from the layers' attributes" : "")
+               .arg(allSeg ? ", segment labels" : "");
+    return st;
+}
+
+/* Modelview (view x trackball) and projection -> look-at camera. Perspective: eye = MV^-1 * 0,
+ * view and up directions through MV^-1, vertical fov from P[5]. Orthographic (MeshLab's fov 5):
+ * a 1 degree perspective from far behind with the same visible height at the cloud's centre. */
+bool cameraFromGL(const double mv[16], const double P[16], const pnpr_cloud &cloud, pnpr_camera &cam)
+{
+    /* A = upper 3x3 (column-major: A[r][c] = mv[c*4+r]), t = translation */
+    double A[3][3], t[3];
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++) A[r][c] = mv[c * 4 + r];
+        t[r] = mv[12 + r];
+    }
+    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    if (!(std::fabs(det) > 1e-300) || !std::isfinite(det)) return false;
+    double I[3][3];
+    I[0][0] = (A[1][1] * A[2][2] - A[1][2] * A[2][1]) / det;
+    I[0][1] = (A[0][2] * A[2][1] - A[0][1] * A[2][2]) / det;
+    I[0][2] = (A[0][1] * A[1][2] - A[0][2] * A[1][1]) / det;
+    I[1][0] = (A[1][2] * A[2][0] - A[1][0] * A[2][2]) / det;
+    I[1][1] = (A[0][0] * A[2][2] - A[0][2] * A[2][0]) / det;
+    I[1][2] = (A[0][2] * A[1][0] - A[0][0] * A[1][2]) / det;
+    I[2][0] = (A[1][0] * A[2][1] - A[1][1] * A[2][0]) / det;
+    I[2][1] = (A[0][1] * A[2][0] - A[0][0] * A[2][1]) / det;
+    I[2][2] = (A[0][0] * A[1][1] - A[0][1] * A[1][0]) / det;
+    double eye[3], fwd[3], up[3];
+    for (int r = 0; r < 3; r++) {
+        eye[r] = -(I[r][0] * t[0] + I[r][1] * t[1] + I[r][2] * t[2]);
+        fwd[r] = -I[r][2];
+        up[r] = I[r][1];
+    }
+    double nf = std::sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]);
+    double scale = std::cbrt(std::fabs(det)); /* world -> eye units (uniform scale) */
+    if (!(nf > 0) || !(scale > 0)) return false;
+    for (double &f : fwd) f /= nf;
+    double d = up[0] * fwd[0] + up[1] * fwd[1] + up[2] * fwd[2];
+    for (int r = 0; r < 3; r++) up[r] -= d * fwd[r];
+    double nu = std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+    if (!(nu > 0)) return false;
+    for (double &u : up) u /= nu;
+    /* the cloud's bounding-box centre and size, for the target distance */
+    float lo[3], hi[3];
+    double centre[3] = {0, 0, 0}, diag = 1;
+    if (pnpr_cloud_bounds(&cloud, lo, hi) > 0) {
+        diag = 0;
+        for (int r = 0; r < 3; r++) {
+            centre[r] = cloud.origin[r] + 0.5 * ((double)lo[r] + (double)hi[r]);
+            diag += ((double)hi[r] - lo[r]) * ((double)hi[r] - lo[r]);
+        }
+        diag = std::sqrt(diag);
+        if (!(diag > 0)) diag = 1;
+    }
+    double depth = (centre[0] - eye[0]) * fwd[0] + (centre[1] - eye[1]) * fwd[1] + (centre[2] - eye[2]) * fwd[2];
+    std::memset(&cam, 0, sizeof cam);
+    bool ortho = std::fabs(P[15] - 1.0) < 1e-9 && std::fabs(P[11]) < 1e-9;
+    if (!ortho) {
+        if (!(P[5] > 0)) return false;
+        cam.fov_y_deg = (float)(2.0 * std::atan(1.0 / P[5]) * 180.0 / M_PI);
+        if (!(depth > 1e-6 * diag)) depth = diag; /* the target only fixes the view direction */
+        for (int r = 0; r < 3; r++) {
+            cam.eye[r] = eye[r];
+            cam.target[r] = eye[r] + depth * fwd[r];
+            cam.up[r] = up[r];
+        }
+    } else {
+        if (!(P[5] > 0)) return false;
+        double half = 1.0 / P[5] / scale; /* visible half-height in world units */
+        const double fov = 1.0;
+        double dist = half / std::tan(0.5 * fov * M_PI / 180.0);
+        cam.fov_y_deg = (float)fov;
+        for (int r = 0; r < 3; r++) {
+            cam.target[r] = eye[r] + depth * fwd[r];
+            cam.eye[r] = cam.target[r] - dist * fwd[r];
+            cam.up[r] = up[r];
+        }
+    }
+    return true;
+}
+
+/* test-only: PNPR_MESHLAB_SNAPSHOT=PREFIX writes PREFIX-plain.{png,pgm} (MeshLab's own frame,
+ * read before drawing), PREFIX-npr.{png,pgm} (after) and PREFIX-camera.txt (MV, P, viewport). */
+bool readViewport(const GLint vp[4], std::vector<unsigned char> &rgba)
+{
+    if (vp[2] <= 0 || vp[3] <= 0) return false;
+    rgba.assign((size_t)vp[2] * vp[3] * 4, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(vp[0], vp[1], vp[2], vp[3], GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    return true;
+}
+
+bool writeImages(const QString &prefix, const std::vector<unsigned char> &rgba, int w, int h)
+{
+    QImage img(w, h, QImage::Format_RGB888);
+    QFile pgm(prefix + ".pgm.tmp");
+    if (!pgm.open(QIODevice::WriteOnly)) return false;
+    QByteArray text = QString("P2\n%1 %2\n255\n").arg(w).arg(h).toUtf8();
+    for (int y = 0; y < h; y++) {
+        const unsigned char *row = &rgba[(size_t)(h - 1 - y) * w * 4]; /* GL rows go bottom-up */
+        for (int x = 0; x < w; x++) {
+            const unsigned char *p = row + 4 * x;
+            img.setPixel(x, y, qRgb(p[0], p[1], p[2]));
+            int g = (299 * p[0] + 587 * p[1] + 114 * p[2] + 500) / 1000;
+            text += QByteArray::number(g);
+            text += (x + 1 == w) ? '\n' : ' ';
+        }
+    }
+    bool ok = pgm.write(text) == text.size();
+    pgm.close();
+    ok = ok && img.save(prefix + ".png", "PNG");
+    QFile::remove(prefix + ".pgm");
+    return ok && QFile::rename(prefix + ".pgm.tmp", prefix + ".pgm");
+}
+
+} // namespace
+
+void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg)
+{
+    void *ctx = pnpr_meshlab::currentGLContext();
+    if (!ctx) return;
+    DecorateContextState *s = states_.value(ctx, nullptr);
+    if (!s) {
+        s = new DecorateContextState;
+        states_.insert(ctx, s);
+        pnpr_meshlab::onGLContextDestroyed(ctx, this, [this, ctx] {
+            try { dropState(ctx); } catch (...) {}
+        });
+        s->widget = pnpr_meshlab::currentGLWidget();
+        s->settle = new QTimer;
+        s->settle->setSingleShot(true);
+        QPointer<QWidget> w = s->widget;
+        QObject::connect(s->settle, &QTimer::timeout, [w] { if (w) w->update(); });
+        pnpr_error err{};
+        pnpr_status st = pnpr_renderer_create(nullptr, &s->renderer, &err);
+        if (st != PNPR_OK) {
+            s->failed = true;
+            lg.Logf(GLLogStream::WARNING, "NPR render: cannot create the renderer: %s", qUtf8Printable(status(st, err)));
+            std::fprintf(stderr, "pointnpr decorator: cannot create the renderer: %s\n", qUtf8Printable(status(st, err)));
+        } else {
+            lg.Logf(GLLogStream::FILTER, "NPR render: renderer created (OpenGL %s)",
+                     (const char *)glGetString(GL_VERSION));
+        }
+    }
+    if (s->failed || !s->renderer) return;
+    Params prm = readParams(par);
+    auto report = [&](const QString &msg, bool warning) {
+        if (msg == s->lastError) return;
+        s->lastError = msg;
+        lg.Logf(warning ? GLLogStream::WARNING : GLLogStream::FILTER, "NPR render: %s", qUtf8Printable(msg));
+        std::fprintf(stderr, "pointnpr decorator: %s\n", qUtf8Printable(msg));
+    };
+
+    /* 1. the cloud, re-uploaded when the layers changed */
+    uint64_t sig = layerSignature(md);
+    pnpr_error err{};
+    if (!s->uploaded || sig != s->signature) {
+        QElapsedTimer t;
+        t.start();
+        QString note;
+        pnpr_status st = buildCloud(md, s->cloud, s->layerFeatures, note);
+        s->have = s->layerFeatures ? (uint32_t)PNPR_WANT_CLASSES : 0u;
+        /* the filter's attributes carry classes incl. dithering points (class 3) */
+        if (s->layerFeatures) s->have |= PNPR_WANT_DITHER;
+        pnpr_lines_free(&s->lines);
+        s->linesReady = false;
+        if (st == PNPR_OK) st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, nullptr, &err);
+        if (st != PNPR_OK) { report("cannot upload the layers: " + status(st, err), true); return; }
+        s->uploaded = true;
+        s->signature = sig;
+        report(QString("uploaded %1 (%2 ms)").arg(note).arg(t.elapsed()), false);
+    }
+    if (s->cloud.count == 0) return; /* nothing to draw over MeshLab's own frame */
+
+    /* 2. features the style needs, computed once */
+    uint32_t want = wantFor(prm.style, prm.variant);
+    if ((want & ~s->have) != 0) {
+        QElapsedTimer t;
+        t.start();
+        pnpr_features_options fo;
+        std::memset(&fo, 0, sizeof fo);
+        fo.want = want | (s->have & (uint32_t)PNPR_WANT_DITHER);
+        pnpr_status st = pnpr_compute_features(&s->cloud, &fo, nullptr);
+        if (st == PNPR_OK) st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, nullptr, &err);
+        if (st != PNPR_OK) {
+            report("feature analysis failed: " + status(st, err), true);
+            s->have |= want; /* do not retry every frame; the style then reports NOT_FOUND */
+        } else {
+            s->have |= fo.want;
+            report(QString("features computed for the %1 style (%2 points, %3 ms)")
+                       .arg(pnpr_style_name(prm.style)).arg(s->cloud.count).arg(t.elapsed()), false);
+        }
+        pnpr_lines_free(&s->lines);
+        s->linesReady = false;
+    }
+    if (prm.style == PNPR_STYLE_LINES && !s->linesReady) {
+        QElapsedTimer t;
+        t.start();
+        pnpr_lines_options lo;
+        std::memset(&lo, 0, sizeof lo);
+        pnpr_status st = pnpr_profile_lines(&s->cloud, &lo, &s->lines, nullptr);
+        if (st == PNPR_OK) st = pnpr_renderer_set_lines(s->renderer, &s->lines, &err);
+        s->linesReady = true; /* also on failure: no retry every frame */
+        if (st != PNPR_OK) report("profile lines failed: " + status(st, err), true);
+        else report(QString("%1 profile lines (%2 ms)").arg(s->lines.count).arg(t.elapsed()), false);
+    }
+
+    /* 3. camera from MeshLab's matrices; motion = the matrices changed since the last frame */
+    double mv[16], P[16];
+    GLint vp[4], fb = 0;
+    glGetDoublev(GL_MODELVIEW_MATRIX, mv);
+    glGetDoublev(GL_PROJECTION_MATRIX, P);
+    glGetIntegerv(GL_VIEWPORT, vp);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
+    bool moving = s->haveLast && (std::memcmp(mv, s->lastMV, sizeof mv) != 0 || std::memcmp(P, s->lastP, sizeof P) != 0);
+    std::memcpy(s->lastMV, mv, sizeof mv);
+    std::memcpy(s->lastP, P, sizeof P);
+    s->haveLast = true;
+    pnpr_camera cam;
+    if (!cameraFromGL(mv, P, s->cloud, cam)) { report("degenerate view matrices: nothing drawn", true); return; }
+    if (vp[2] <= 0 || vp[3] <= 0) return;
+
+    pnpr_draw_options o;
+    std::memset(&o, 0, sizeof o);
+    o.style = prm.style;
+    o.sketch_variant = prm.variant;
+    o.background[0] = (float)prm.paper.redF();
+    o.background[1] = (float)prm.paper.greenF();
+    o.background[2] = (float)prm.paper.blueF();
+    o.background[3] = 1;
+    o.budget = (size_t)prm.budget;
+    if (moving && prm.motionBudget > 0 && (prm.budget == 0 || prm.motionBudget < prm.budget))
+        o.budget = (size_t)prm.motionBudget;
+    o.line_width = prm.lineWidth;
+    o.stroke_width = prm.lineWidth;
+    o.composite = PNPR_COMPOSITE_REPLACE;
+    pnpr_target tg;
+    std::memset(&tg, 0, sizeof tg);
+    tg.framebuffer = (uint32_t)fb;
+    tg.x = vp[0];
+    tg.y = vp[1];
+    tg.width = vp[2];
+    tg.height = vp[3];
+
+    const char *snap = std::getenv("PNPR_MESHLAB_SNAPSHOT");
+    /* test mode: the snapshot is taken on the 3rd frame with unchanged matrices */
+    bool takeSnap = snap && !s->snapshotDone && !moving && ++s->frames >= 3;
+    std::vector<unsigned char> plain, npr;
+
+    /* MeshLab calls decorateDoc outside its own glPushAttrib: save the legacy state here too. In a
+     * compatibility context gl_PointCoord needs GL_POINT_SPRITE (the core renderer assumes it). */
+    glPushAttrib(GL_ALL_ATTRIB_BITS);
+    glPushClientAttrib(GL_CLIENT_ALL_ATTRIB_BITS);
+    if (takeSnap) readViewport(vp, plain);
+    glEnable(GL_POINT_SPRITE);
+    pnpr_render_stats stats;
+    pnpr_status st = pnpr_renderer_draw(s->renderer, &cam, &o, &tg, &stats, &err);
+    if (takeSnap && st == PNPR_OK) readViewport(vp, npr);
+    glPopClientAttrib();
+    glPopAttrib();
+    if (st != PNPR_OK) { report(QString("draw (%1) failed: %2").arg(pnpr_style_name(prm.style)).arg(status(st, err)), true); return; }
+    if (moving && s->settle) s->settle->start(300); /* a full-budget frame once the camera rests */
+
+    if (snap && !s->snapshotDone) {
+        if (takeSnap && !plain.empty() && !npr.empty()) {
+            s->snapshotDone = true;
+            QString prefix = QString::fromLocal8Bit(snap);
+            bool ok = writeImages(prefix + "-plain", plain, vp[2], vp[3]) && writeImages(prefix + "-npr", npr, vp[2], vp[3]);
+            QFile f(prefix + "-camera.txt");
+            if (ok && f.open(QIODevice::WriteOnly)) {
+                QString txt = "modelview";
+                for (double v : mv) txt += QString(" %1").arg(v, 0, 'g', 17);
+                txt += "\nprojection";
+                for (double v : P) txt += QString(" %1").arg(v, 0, 'g', 17);
+                txt += QString("\nviewport %1 %2 %3 %4\nstyle %5\npoints %6 drawn %7 strokes %8\n")
+                           .arg(vp[0]).arg(vp[1]).arg(vp[2]).arg(vp[3]).arg(pnpr_style_name(prm.style))
+                           .arg(stats.points_total).arg(stats.points_drawn).arg(stats.strokes_drawn);
+                ok = f.write(txt.toUtf8()) > 0;
+                f.close();
+            }
+            std::fprintf(stderr, "pointnpr decorator: snapshot %s %s\n", snap, ok ? "written" : "FAILED");
+        } else if (s->widget) {
+            QPointer<QWidget> w = s->widget;
+            QTimer::singleShot(200, w.data(), [w] { if (w) w->update(); }); /* more frames until it is taken */
+        }
+    }
+}
