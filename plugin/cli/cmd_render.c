@@ -177,6 +177,10 @@ int cli_render(int argc, char **argv)
         if (!quiet) fprintf(stderr, "%s has no features: computing them (pointnpr features saves them)\n", in);
         pnpr_features_options fo = {0};
         fo.progress = prog;
+        /* only what the style draws (the plan `pointnpr explain --style S` prints): dithering
+         * points for stipple and sketchy (c), feature classes for the others */
+        int dither = dopt.style == PNPR_STYLE_STIPPLE || (dopt.style == PNPR_STYLE_SKETCHY && dopt.sketch_variant == PNPR_SKETCH_ALL);
+        fo.want = dither ? PNPR_WANT_DITHER : PNPR_WANT_CLASSES;
         st = pnpr_compute_features(&cloud, &fo, NULL);
         if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: features: %s\n", in, pnpr_status_string(st)); goto done; }
     }
