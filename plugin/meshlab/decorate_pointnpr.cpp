@@ -15,6 +15,7 @@
  * No C++ exception leaves the plugin: every entry point catches everything. */
 #include "decorate_pointnpr.h"
 #include "decorate_glcontext.h"
+#include "vcg_attributes.h"
 
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
@@ -39,6 +40,7 @@
 #include <vector>
 
 namespace {
+using pnpr_meshlab::findAttribute;
 
 const char *const kStyle = "PointNPR::Style";
 const char *const kVariant = "PointNPR::SketchVariant";
@@ -66,17 +68,6 @@ uint32_t wantFor(pnpr_style style, pnpr_sketch_variant variant)
     }
 }
 
-/* The existing per-vertex attribute of type T, or false (nothing is created). */
-template <class T>
-bool findAttribute(CMeshO &m, const char *name, typename CMeshO::template PerVertexAttributeHandle<T> &h)
-{
-    CMeshO::PointerToAttribute key;
-    key._name = name;
-    auto it = m.vert_attr.find(key);
-    if (it == m.vert_attr.end() || it->_type != std::type_index(typeid(T))) return false;
-    h = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<T>(m, name);
-    return vcg::tri::Allocator<CMeshO>::IsValidHandle<T>(m, h);
-}
 
 bool isPointLayer(const MeshModel *mm)
 {

@@ -9,6 +9,7 @@
  * No C++ exception leaves applyFilter: everything runs inside one try block and failures come
  * back as errorMessage + false, which MeshLab shows to the user (GUI) or prints (meshlabserver). */
 #include "filter_pointnpr.h"
+#include "vcg_attributes.h"
 
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
@@ -62,6 +63,7 @@ struct ProgressBridge {
 };
 
 namespace {
+using pnpr_meshlab::findAttribute;
 
 ProgressBridge makeBridge(vcg::CallBackPos *cb, int lo, int hi, bool featureStages, const char *prefix)
 {
@@ -128,17 +130,6 @@ typename CMeshO::template PerVertexAttributeHandle<T> attributeOfType(CMeshO &m,
     return vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<T>(m, name);
 }
 
-/* The existing attribute of type T, or an invalid handle (nothing is created). */
-template <class T>
-bool findAttribute(CMeshO &m, const char *name, typename CMeshO::template PerVertexAttributeHandle<T> &h)
-{
-    CMeshO::PointerToAttribute key;
-    key._name = name;
-    auto it = m.vert_attr.find(key);
-    if (it == m.vert_attr.end() || it->_type != std::type_index(typeid(T))) return false;
-    h = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<T>(m, name);
-    return vcg::tri::Allocator<CMeshO>::IsValidHandle<T>(m, h);
-}
 
 bool finite3(const Point3m &p)
 {
