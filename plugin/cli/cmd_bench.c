@@ -12,6 +12,9 @@
 #include "cli.h"
 
 #include <pointnpr/features.h>
+#ifdef PNPR_HAVE_RENDER
+#include <pointnpr/render.h>
+#endif
 
 #include <errno.h>
 #include <math.h>
@@ -145,6 +148,105 @@ static void plot(const char *path, const row *rows, size_t n, const char *study,
     fclose(f);
 }
 
+#ifdef PNPR_HAVE_RENDER
+/* Luma of an RGBA8 pixel. */
+static double luma(const uint8_t *p)
+{
+    return 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+}
+
+/* PSNR (dB, luma) and mean SSIM over 8x8 windows (luma, the usual constants for 8-bit data). */
+static void image_error(const uint8_t *a, const uint8_t *b, int w, int h, double *r_psnr, double *r_ssim)
+{
+    double mse = 0;
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+        double d = luma(a + 4 * i) - luma(b + 4 * i);
+        mse += d * d;
+    }
+    mse /= (double)w * (double)h;
+    *r_psnr = mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : 99.0;
+    const double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
+    double sum = 0;
+    int n = 0;
+    for (int y = 0; y + 8 <= h; y += 8)
+        for (int x = 0; x + 8 <= w; x += 8) {
+            double ma = 0, mb = 0, va = 0, vb = 0, cov = 0;
+            for (int dy = 0; dy < 8; dy++)
+                for (int dx = 0; dx < 8; dx++) {
+                    size_t q = 4 * ((size_t)(y + dy) * (size_t)w + (size_t)(x + dx));
+                    ma += luma(a + q); mb += luma(b + q);
+                }
+            ma /= 64; mb /= 64;
+            for (int dy = 0; dy < 8; dy++)
+                for (int dx = 0; dx < 8; dx++) {
+                    size_t q = 4 * ((size_t)(y + dy) * (size_t)w + (size_t)(x + dx));
+                    double ea = luma(a + q) - ma, eb = luma(b + q) - mb;
+                    va += ea * ea; vb += eb * eb; cov += ea * eb;
+                }
+            va /= 63; vb /= 63; cov /= 63;
+            sum += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+            n++;
+        }
+    *r_ssim = n ? sum / n : 1;
+}
+
+/* Continuous-resolution-queue budget: image error of a budgeted frame against the full frame, and
+ * the frame time, for the points and sketchy styles. Adds rows "render-<style>"; returns the
+ * number added (0 when no GL context can be had: the study is skipped with a message). */
+static size_t render_study(row *rows, size_t room, int quick)
+{
+    pnpr_gl_context *ctx = NULL;
+    pnpr_error err = {0};
+    if (pnpr_gl_context_create(&ctx, &err) != PNPR_OK) {
+        fprintf(stderr, "bench accuracy: render budget study skipped: %s\n", err.message);
+        return 0;
+    }
+    pnpr_renderer *r = NULL;
+    size_t nr = 0;
+    pnpr_cloud c = {0};
+    const int W = 512, H = 512;
+    uint8_t *full = malloc((size_t)W * H * 4), *img = malloc((size_t)W * H * 4);
+    if (!full || !img || pnpr_renderer_create(NULL, &r, &err) != PNPR_OK || make_sphere(&c, quick ? 50000 : 200000, 1.0) != PNPR_OK ||
+        pnpr_cloud_alloc_rgb(&c) != PNPR_OK)
+        goto done;
+    for (size_t i = 0; i < c.count; i++) /* colour bands, so that the image has detail */
+        for (int a = 0; a < 3; a++) c.rgb[3 * i + a] = (uint8_t)(127.5 + 127.5 * sin(9.0 * c.xyz[3 * i + a]));
+    pnpr_features_options fo = {0};
+    fo.want = PNPR_WANT_DITHER;
+    if (pnpr_compute_features(&c, &fo, NULL) != PNPR_OK || pnpr_renderer_set_cloud(r, &c, NULL, &err) != PNPR_OK) goto done;
+    const double fractions[] = {0.03, 0.1, 0.3, 1.0};
+    for (int style = 0; style < 2; style++) {
+        pnpr_draw_options o;
+        memset(&o, 0, sizeof o);
+        o.style = style ? PNPR_STYLE_SKETCHY : PNPR_STYLE_POINTS;
+        for (int a = 0; a < 4; a++) o.background[a] = 1;
+        pnpr_target t = {0, 0, 0, W, H, 1};
+        if (pnpr_renderer_draw(r, NULL, &o, &t, NULL, &err) != PNPR_OK || pnpr_renderer_read_frame(r, full, 0) != PNPR_OK) goto done;
+        for (int f = 0; f < 4 && nr < room; f++) {
+            o.budget = (size_t)(fractions[f] * (double)c.count);
+            double t0 = now(), best = INFINITY;
+            for (int rep = 0; rep < 3; rep++) { /* frame time: best of 3 (draw + read back) */
+                t0 = now();
+                if (pnpr_renderer_draw(r, NULL, &o, &t, NULL, &err) != PNPR_OK || pnpr_renderer_read_frame(r, img, 0) != PNPR_OK) goto done;
+                if (now() - t0 < best) best = now() - t0;
+            }
+            double psnr, ssim;
+            image_error(full, img, W, H, &psnr, &ssim);
+            row rw = {style ? "render-sketchy" : "render-points", fractions[f], best, ssim, psnr, o.budget};
+            rows[nr++] = rw;
+        }
+    }
+done:
+    if (err.message[0] && nr == 0) fprintf(stderr, "bench accuracy: render budget study: %s\n", err.message);
+    pnpr_cloud_free(&c);
+    free(full);
+    free(img);
+    pnpr_renderer_destroy(r);
+    pnpr_gl_context_destroy(ctx);
+    return nr;
+}
+#endif
+
 static int bench_accuracy(const char *dir, int quick)
 {
     if (mkdir(dir, 0777) != 0 && errno != EEXIST) { fprintf(stderr, "pointnpr bench: cannot create %s: %s\n", dir, strerror(errno)); return 1; }
@@ -211,6 +313,9 @@ static int bench_accuracy(const char *dir, int quick)
         pnpr_cloud_free(&c);
         fprintf(stderr, "\r%-20s %zu/17", "bench accuracy", nr);
     }
+#ifdef PNPR_HAVE_RENDER
+    nr += render_study(rows + nr, sizeof rows / sizeof *rows - nr, quick);
+#endif
     fprintf(stderr, "\n");
     char path[4096];
     snprintf(path, sizeof path, "%s/accuracy.csv", dir);
@@ -226,10 +331,17 @@ static int bench_accuracy(const char *dir, int quick)
     plot(path, rows, nr, "normals-sampling", "Sphere normals (k=16): error vs time, labels = fraction of points", "mean error (deg)", "95th percentile (deg)", 2.0);
     snprintf(path, sizeof path, "%s/features-k.svg", dir);
     plot(path, rows, nr, "features-k", "Noisy cube features: quality vs time, labels = k", "precision", "recall", 1.0);
+    for (int st = 0; st < 2; st++) {
+        const char *name = st ? "render-sketchy" : "render-points";
+        snprintf(path, sizeof path, "%s/%s.svg", dir, name);
+        plot(path, rows, nr, name, st ? "Sketchy frame: SSIM vs frame time, labels = budget fraction"
+                                       : "Points frame: SSIM vs frame time, labels = budget fraction",
+             "SSIM vs the full frame", NULL, 1.0);
+    }
     printf("| study | knob | points | seconds | error 1 | error 2 |\n|---|---|---|---|---|---|\n");
     for (size_t i = 0; i < nr; i++)
         printf("| %s | %g | %zu | %.3f | %.4g | %.4g |\n", rows[i].study, rows[i].knob, rows[i].points, rows[i].seconds, rows[i].e1, rows[i].e2);
-    fprintf(stderr, "wrote %s/accuracy.csv, normals-k.svg, normals-sampling.svg, features-k.svg\n", dir);
+    fprintf(stderr, "wrote %s/accuracy.csv and its plots (*.svg)\n", dir);
     return 0;
 }
 
