@@ -12,6 +12,8 @@
 #include "cli.h"
 
 #include <pointnpr/features.h>
+#include <pointnpr/knn.h>
+#include <pointnpr/segment.h>
 #ifdef PNPR_HAVE_RENDER
 #include <pointnpr/render.h>
 #endif
@@ -146,6 +148,64 @@ static void plot(const char *path, const row *rows, size_t n, const char *study,
 #undef PX
 #undef PY
     fclose(f);
+}
+
+/* Segmentation levels: a plane of 4 x 4 coloured patches (16 true segments, colour noise), JSEG,
+ * the Chi & Lee region hierarchy, cuts at 64 .. 2 segments: ARI against the truth (error 1) and
+ * the segment count (error 2) against the time of JSEG + hierarchy + cut. */
+static size_t segment_study(row *rows, size_t room, int quick)
+{
+    const size_t side = quick ? 200 : 400, n = side * side;
+    pnpr_cloud c = {0};
+    uint32_t *truth = malloc(n * sizeof *truth), *labels = malloc(n * sizeof *labels), *cut = malloc(n * sizeof *cut);
+    uint32_t *knn = NULL;
+    pnpr_segment_merge *merges = NULL;
+    pnpr_kdtree *tree = NULL;
+    size_t nr = 0;
+    if (!truth || !labels || !cut || pnpr_cloud_alloc(&c, n) != PNPR_OK || pnpr_cloud_alloc_rgb(&c) != PNPR_OK) goto done;
+    uint64_t seed = 5;
+    for (size_t j = 0; j < side; j++)
+        for (size_t i = 0; i < side; i++) {
+            size_t q = j * side + i, patch = (j * 4 / side) * 4 + i * 4 / side;
+            c.xyz[3 * q] = 0.01f * (float)i;
+            c.xyz[3 * q + 1] = 0.01f * (float)j;
+            c.xyz[3 * q + 2] = 0;
+            truth[q] = (uint32_t)patch;
+            for (int a = 0; a < 3; a++) { /* 16 distinct patch colours (r, g on a 4 x 4 grid), plus noise */
+                double base = a == 0 ? 35 + 60 * (double)(patch % 4) : (a == 1 ? 35 + 60 * (double)(patch / 4) : 80 + 30 * (double)((patch * 3) % 4));
+                double v = base + 6 * gauss(&seed);
+                c.rgb[3 * q + a] = (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
+            }
+        }
+    pnpr_segment_info info;
+    double t0 = now();
+    if (pnpr_segment_jseg(c.xyz, c.rgb, n, NULL, labels, &info) != PNPR_OK) goto done;
+    const size_t k = 16;
+    knn = malloc(n * k * sizeof *knn);
+    merges = malloc((info.segment_count + 1) * sizeof *merges);
+    if (!knn || !merges || pnpr_kdtree_build(c.xyz, n, 0, &tree) != PNPR_OK) goto done;
+    pnpr_knn_options ko = {0, {0}, 0};
+    if (pnpr_knn_self(tree, n, k, &ko, knn, NULL) != PNPR_OK) goto done;
+    pnpr_region_graph g = {knn, k, k};
+    uint32_t nm = 0;
+    if (pnpr_segment_hierarchy(c.rgb, n, &g, labels, info.segment_count, NULL, merges, &nm) != PNPR_OK) goto done;
+    double base_time = now() - t0;
+    const uint32_t targets[] = {64, 32, 16, 8, 4, 2};
+    for (int t = 0; t < 6 && nr < room; t++) {
+        double t1 = now();
+        uint32_t S = 0;
+        if (pnpr_segment_hierarchy_cut(labels, n, info.segment_count, merges, nm, targets[t], 0, cut, &S) != PNPR_OK) goto done;
+        double sec = base_time + (now() - t1);
+        pnpr_segment_score sc;
+        if (pnpr_segment_score_labels(truth, cut, n, &sc) != PNPR_OK) goto done;
+        row r = {"segment-levels", (double)targets[t], sec, sc.ari, (double)S, n};
+        rows[nr++] = r;
+    }
+done:
+    pnpr_kdtree_free(tree);
+    free(knn); free(merges); free(truth); free(labels); free(cut);
+    pnpr_cloud_free(&c);
+    return nr;
 }
 
 #ifdef PNPR_HAVE_RENDER
@@ -313,6 +373,7 @@ static int bench_accuracy(const char *dir, int quick)
         pnpr_cloud_free(&c);
         fprintf(stderr, "\r%-20s %zu/17", "bench accuracy", nr);
     }
+    nr += segment_study(rows + nr, sizeof rows / sizeof *rows - nr, quick);
 #ifdef PNPR_HAVE_RENDER
     nr += render_study(rows + nr, sizeof rows / sizeof *rows - nr, quick);
 #endif
