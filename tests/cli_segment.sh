@@ -50,6 +50,22 @@ check "sed '1,/end_header/d' \"$dir/jseg.ply\" | awk -v r=$rc_ -v p=$pc_ '(\$p =
 # labels from a property; then the hierarchy cut at 1 segment
 "$bin" segment "$dir/planes.ply" -o "$dir/labels.ply" --method labels --property part --ascii --quiet
 check '[ "$(pairs "$dir/labels.ply")" -eq 2 ] && [ "$(distinct "$dir/labels.ply" segment)" -eq 2 ]' "labels: one segment per part value"
+# covariance split: one colour on a folded sheet (z = 0 for x < 1, x = 1 wall above): one jseg
+# segment, split at the fold into two pure parts; a flat segment is not split
+awk 'BEGIN {
+  n = 0
+  for (i = 0; i < 20; i++) for (j = 0; j < 20; j++) { line[n++] = sprintf("%.4f %.4f 0 %d", i * 0.05, j * 0.05, 0) }
+  for (i = 1; i <= 20; i++) for (j = 0; j < 20; j++) { line[n++] = sprintf("1.0000 %.4f %.4f %d", j * 0.05, i * 0.05, 1) }
+  print "ply"; print "format ascii 1.0"; print "element vertex " n
+  print "property float x"; print "property float y"; print "property float z"
+  print "property uchar red"; print "property uchar green"; print "property uchar blue"
+  print "property int part"; print "end_header"
+  for (q = 0; q < n; q++) { split(line[q], f, " "); print f[1], f[2], f[3], 120, 120, 120, f[4] }
+}' > "$dir/fold.ply"
+"$bin" segment "$dir/fold.ply" -o "$dir/fold_split.ply" --split 0.02 --ascii --quiet
+check '[ "$(distinct "$dir/fold_split.ply" segment)" -ge 2 ] && [ "$(pairs "$dir/fold_split.ply")" -eq "$(distinct "$dir/fold_split.ply" segment)" ]' "--split cuts the fold into pure parts"
+"$bin" segment "$dir/planes.ply" -o "$dir/flat_split.ply" --split 0.02 --ascii --quiet
+check '[ "$(distinct "$dir/flat_split.ply" segment)" -eq 2 ]' "--split leaves flat segments whole"
 "$bin" segment "$dir/planes.ply" -o "$dir/one.ply" --segments 1 --ascii --quiet
 check '[ "$(distinct "$dir/one.ply" segment)" -eq 1 ]' "--segments 1 gives one segment"
 "$bin" segment "$dir/planes.ply" -o "$dir/thr.ply" --threshold 0.01 --ascii --quiet
@@ -80,6 +96,8 @@ check '[ $rc -eq 2 ]' "unknown method (got $rc)"
 check '[ $rc -eq 2 ]' "--segments and --threshold together (got $rc)"
 "$bin" segment "$dir/planes.ply" -o "$dir/x.ply" --segments 0 > /dev/null 2>&1; rc=$?
 check '[ $rc -eq 2 ]' "--segments 0 (got $rc)"
+"$bin" segment "$dir/planes.ply" -o "$dir/x.ply" --split 0.5 > /dev/null 2>&1; rc=$?
+check '[ $rc -eq 2 ]' "--split 0.5 (got $rc)"
 "$bin" segment "$dir/missing.ply" -o "$dir/x.ply" > /dev/null 2>&1; rc=$?
 check '[ $rc -eq 1 ]' "missing input file: exit 1 (got $rc)"
 set -e

@@ -134,6 +134,17 @@ pnpr_status pnpr_segment_hierarchy_cut(const uint32_t *labels, size_t count, uin
                                        uint32_t target_segments, float threshold,
                                        uint32_t *r_labels, uint32_t *r_segment_count);
 
+/* Covariance splitting within regions (Chi & Lee sec. 3.2, Pauly et al.): every region whose
+ * surface variation (PCA: lambda_min / trace) exceeds max_variation (0 = 0.02) is split by the
+ * plane through its centroid perpendicular to its direction of greatest variation, recursively,
+ * while both halves keep at least min_size points (0 = 32). Output: sub-region labels in
+ * r_labels (may equal labels), numbered by first appearance; points with label >= segment_count
+ * or non-finite coordinates share one extra label, the last. (segment_split.c) */
+pnpr_status pnpr_segment_covariance_split(const float *xyz, size_t count, const uint32_t *labels,
+                                          uint32_t segment_count, float max_variation,
+                                          uint32_t min_size, uint32_t *r_labels,
+                                          uint32_t *r_segment_count);
+
 /* ---- connected components ----------------------------------------------------------------- */
 
 typedef struct pnpr_components_options {

@@ -30,18 +30,11 @@ static void usage(FILE *f)
             "  --min-size M     smaller segments merge into a neighbour\n"
             "  --k N            neighbourhood size (jseg 24, rgbgrow 16)\n"
             "  --classes C      jseg: colour classes of the quantiser (16)\n"
+            "  --split V        then split every segment whose surface variation exceeds V along\n"
+            "                   its direction of greatest variation (Chi & Lee; e.g. 0.02)\n"
+            "  --split-min M    smallest part a split may leave (32)\n"
             "  --property NAME  labels: the property to read\n"
             "  --threads N, --ascii, --quiet\n");
-}
-
-static int parse_num(const char *s, double lo, double hi, double *r)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) return 0;
-    *r = v;
-    return 1;
 }
 
 static int is_int(double x) { return x == floor(x); }
@@ -49,7 +42,7 @@ static int is_int(double x) { return x == floor(x); }
 int cli_segment(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *method = "jseg", *property = NULL;
-    double segments = 0, threshold = 0, radius = 0, min_size = 0, k = 0, classes = 0, threads = 0;
+    double segments = 0, threshold = 0, radius = 0, min_size = 0, k = 0, classes = 0, threads = 0, split = 0, split_min = 0;
     pnpr_write_options wo = {0};
     int quiet = 0;
     for (int i = 1; i < argc; i++) {
@@ -67,25 +60,31 @@ int cli_segment(int argc, char **argv)
             method = v; i++;
         } else if (v && !strcmp(a, "--property")) { property = v; i++; }
         else if (v && !strcmp(a, "--segments")) {
-            if (!parse_num(v, 1, 4294967294.0, &segments) || !is_int(segments)) { fprintf(stderr, "pointnpr segment: --segments wants an integer >= 1, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, 4294967294.0, &segments) || !is_int(segments)) { fprintf(stderr, "pointnpr segment: --segments wants an integer >= 1, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--threshold")) {
-            if (!parse_num(v, 1e-9, 1e9, &threshold)) { fprintf(stderr, "pointnpr segment: --threshold wants a positive number, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1e-9, 1e9, &threshold)) { fprintf(stderr, "pointnpr segment: --threshold wants a positive number, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--radius")) {
-            if (!parse_num(v, 1e-30, 1e30, &radius)) { fprintf(stderr, "pointnpr segment: --radius wants a positive number, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1e-30, 1e30, &radius)) { fprintf(stderr, "pointnpr segment: --radius wants a positive number, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--min-size")) {
-            if (!parse_num(v, 1, 4294967295.0, &min_size) || !is_int(min_size)) { fprintf(stderr, "pointnpr segment: --min-size wants an integer >= 1, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, 4294967295.0, &min_size) || !is_int(min_size)) { fprintf(stderr, "pointnpr segment: --min-size wants an integer >= 1, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--k")) {
-            if (!parse_num(v, 2, 256, &k) || !is_int(k)) { fprintf(stderr, "pointnpr segment: --k wants an integer in 2..256, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 2, 256, &k) || !is_int(k)) { fprintf(stderr, "pointnpr segment: --k wants an integer in 2..256, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--classes")) {
-            if (!parse_num(v, 1, 255, &classes) || !is_int(classes)) { fprintf(stderr, "pointnpr segment: --classes wants an integer in 1..255, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, 255, &classes) || !is_int(classes)) { fprintf(stderr, "pointnpr segment: --classes wants an integer in 1..255, got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--split")) {
+            if (!cli_parse_number(v, 1e-9, 1.0 / 3.0, &split)) { fprintf(stderr, "pointnpr segment: --split wants a surface variation in (0, 1/3], got '%s'\n", v); return 2; }
+            i++;
+        } else if (v && !strcmp(a, "--split-min")) {
+            if (!cli_parse_number(v, 1, 4294967295.0, &split_min) || !is_int(split_min)) { fprintf(stderr, "pointnpr segment: --split-min wants an integer >= 1, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--threads")) {
-            if (!parse_num(v, 1, 1024, &threads) || !is_int(threads)) { fprintf(stderr, "pointnpr segment: --threads wants an integer >= 1, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, 1024, &threads) || !is_int(threads)) { fprintf(stderr, "pointnpr segment: --threads wants an integer >= 1, got '%s'\n", v); return 2; }
             i++;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "pointnpr segment: unknown option or missing value: %s\n", a);
@@ -171,6 +170,14 @@ int cli_segment(int argc, char **argv)
         if ((st = pnpr_segment_hierarchy_cut(labels, cloud.count, hs, merges, nm, target, (float)threshold, labels, &S)) != PNPR_OK)
             goto fail;
         if (!quiet) fprintf(stderr, "hierarchy: %u regions, %u merges, cut at %u segments\n", hs, nm, S);
+    }
+    if (split > 0) {
+        /* the invalid segment (last) stays as it is: split only 0 .. S-2 then */
+        uint32_t regions = info.invalid_segment != PNPR_LABEL_NONE && S ? S - 1 : S, before = S;
+        if ((st = pnpr_segment_covariance_split(cloud.xyz, cloud.count, labels, regions, (float)split, (uint32_t)split_min,
+                                                labels, &S)) != PNPR_OK)
+            goto fail;
+        if (!quiet) fprintf(stderr, "covariance split: %u segments -> %u\n", before, S);
     }
     if (!quiet)
         fprintf(stderr, "points %zu, method %s, %u segments%s\n", cloud.count, method, S,
