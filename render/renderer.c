@@ -1,5 +1,6 @@
 /* The PointWorks renderer: two-pass visibility mask (section 4.3), continuous resolution queue
- * (4.4), `points`, `sketchy` (5.1), `lines` (5.2), `stipple` and `cartoon` (5.4) styles. See docs/rendering.md. */
+ * (4.4), `points`, `sketchy` (5.1), `lines` (5.2), `stipple` and `cartoon` (5.4) styles, per-segment
+ * style maps (intermingled styles, figure 12). See docs/rendering.md. */
 #include "render_internal.h"
 #include "gl_state.h"
 #include "pnpr_shaders.h"
@@ -66,6 +67,14 @@ struct pnpr_renderer {
     int has_features, has_labels;
     double origin[3];
     float bmin[3], bmax[3];
+    /* style maps (intermingled styles): one style byte per vertex (attribute 4) in the main
+     * order (style_vbo) and in the painterly order (paint_style_vbo); the labels and the
+     * painterly order's main indices to fill them; the bytes last uploaded */
+    GLuint style_vbo, paint_style_vbo;
+    GLint us_filter, ut_filter;
+    uint32_t *vlabel;    /* label of each vertex (main order); NULL: the cloud has no labels */
+    uint32_t *paint_src; /* main-order index of each painterly vertex */
+    uint8_t *vstyle;     /* the style bytes in style_vbo (main order) */
     /* the profile lines: segments as pairs of float offsets from line_origin */
     size_t line_segments;
     double line_origin[3];
@@ -193,6 +202,8 @@ static void release_gl(pnpr_renderer *r)
     if (r->vao_paint) glDeleteVertexArrays(1, &r->vao_paint);
     if (r->brush_tex) glDeleteTextures(1, &r->brush_tex);
     if (r->vbo) glDeleteBuffers(1, &r->vbo);
+    if (r->style_vbo) glDeleteBuffers(1, &r->style_vbo);
+    if (r->paint_style_vbo) glDeleteBuffers(1, &r->paint_style_vbo);
     if (r->line_vbo) glDeleteBuffers(1, &r->line_vbo);
     GLuint vaos[5] = {r->vao_points, r->vao_strokes, r->vao_empty, r->vao_lines, r->vao_flat};
     glDeleteVertexArrays(5, vaos);
@@ -202,7 +213,7 @@ static void release_gl(pnpr_renderer *r)
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
 }
 
-static void set_attribs(GLuint vao, GLuint vbo, size_t first, int instanced, int flat)
+static void set_attribs(GLuint vao, GLuint vbo, GLuint sbo, size_t first, int instanced, int flat)
 {
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -221,6 +232,11 @@ static void set_attribs(GLuint vao, GLuint vbo, size_t first, int instanced, int
         for (GLuint a = 0; a < 4; a++) glVertexAttribDivisor(a, 1);
     }
 #undef PNPR_ATTR_OFFSET
+    /* attribute 4: the style byte of a style map (one byte per vertex in `sbo`) */
+    glBindBuffer(GL_ARRAY_BUFFER, sbo);
+    glEnableVertexAttribArray(4);
+    glVertexAttribIPointer(4, 1, GL_UNSIGNED_BYTE, 1, (const void *)(uintptr_t)first);
+    if (instanced) glVertexAttribDivisor(4, 1);
 }
 
 pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_renderer **r_renderer,
@@ -287,6 +303,16 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->ut.layer = glGetUniformLocation(p, "u_layer");
     r->ut.ink = glGetUniformLocation(p, "u_ink");
     r->ut.ink_from_points = glGetUniformLocation(p, "u_ink_from_points");
+    r->us_filter = glGetUniformLocation(r->prog_splat, "u_style_filter");
+    r->ut_filter = glGetUniformLocation(r->prog_stroke, "u_style_filter");
+    /* no style filter unless a style map is drawn (uniforms are program state) */
+    glUseProgram(r->prog_splat);
+    glUniform1i(r->us_filter, -1);
+    glUseProgram(r->prog_stroke);
+    glUniform1i(r->ut_filter, -1);
+    glUseProgram(r->prog_paint);
+    glUniform1i(r->up.style_filter, -1);
+    glUseProgram(0);
     r->uc_frame = glGetUniformLocation(r->prog_composite, "u_frame");
     r->uc_origin = glGetUniformLocation(r->prog_composite, "u_origin");
 
@@ -295,9 +321,11 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     glGenVertexArrays(1, &r->vao_strokes);
     glGenVertexArrays(1, &r->vao_empty);
     glGenVertexArrays(1, &r->vao_flat);
-    set_attribs(r->vao_points, r->vbo, 0, 0, 0);
-    set_attribs(r->vao_strokes, r->vbo, 0, 1, 0);
-    set_attribs(r->vao_flat, r->vbo, 0, 0, 1);
+    glGenBuffers(1, &r->style_vbo);
+    glGenBuffers(1, &r->paint_style_vbo);
+    set_attribs(r->vao_points, r->vbo, r->style_vbo, 0, 0, 0);
+    set_attribs(r->vao_strokes, r->vbo, r->style_vbo, 0, 1, 0);
+    set_attribs(r->vao_flat, r->vbo, r->style_vbo, 0, 0, 1);
     /* line segments: two ends per instance */
     glGenBuffers(1, &r->line_vbo);
     glGenVertexArrays(1, &r->vao_lines);
@@ -328,7 +356,7 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     glGenBuffers(1, &r->paint_vbo);
     glGenBuffers(1, &r->paint_col_vbo);
     glGenVertexArrays(1, &r->vao_paint);
-    set_attribs(r->vao_paint, r->paint_vbo, 0, 0, 0);
+    set_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
     uint8_t *brush = malloc((size_t)BRUSH_TEX * BRUSH_TEX);
     if (!brush) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     make_brush_texture(brush);
@@ -370,6 +398,9 @@ void pnpr_renderer_destroy(pnpr_renderer *r)
     pnpr_gl_state saved;
     pnpr_gl_state_save(&saved);
     release_gl(r);
+    free(r->vlabel);
+    free(r->paint_src);
+    free(r->vstyle);
     /* deleting a bound object unbinds it: put back what the host had (names it still owns) */
     pnpr_gl_state_restore(&saved);
     free(r);
@@ -577,6 +608,8 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     uint8_t *pbin = NULL, *pcol = NULL;
     pnpr_vertex *pverts = NULL;
     size_t pstarts[PAINT_MAX_BINS + 2];
+    uint32_t *vlabel = NULL, *paint_src = NULL;
+    uint8_t *zeros = NULL;
 
     /* the finite points */
     size_t n = 0;
@@ -644,11 +677,28 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
                         &porder, &inv, &pbin, &pcol, &pverts, pstarts);
         if (st != PNPR_OK) goto done;
     }
+    /* style maps: the labels in queue order, the painterly order's main indices, zero bytes */
+    int paint = pdeg && n > 0;
+    if (cloud->label) {
+        vlabel = malloc((n ? n : 1) * sizeof *vlabel);
+        if (!vlabel) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+        for (size_t q = 0; q < n; q++) vlabel[q] = cloud->label[src[order[q]]];
+    }
+    if (paint) {
+        paint_src = malloc(n * sizeof *paint_src);
+        if (!paint_src) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+        for (size_t q = 0; q < n; q++) paint_src[q] = inv[porder[q]];
+    }
+    zeros = calloc(n ? n : 1, 1);
+    if (!zeros) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     pnpr_gl_state saved;
     pnpr_gl_state_save(&saved);
+    glBindBuffer(GL_ARRAY_BUFFER, r->style_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n ? n : 1), zeros, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, r->paint_style_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(paint ? n : 1), zeros, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof *verts), n ? verts : NULL, GL_STATIC_DRAW);
-    int paint = pdeg && n > 0;
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_vbo);
     glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(n * sizeof *pverts) : 0, paint ? pverts : NULL, GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
@@ -657,6 +707,9 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     r->paint_bins = paint ? nbins : 0;
     if (paint) for (size_t b = 0; b <= nbins + 1; b++) r->paint_start[b] = pstarts[b];
 
+    free(r->vlabel); free(r->paint_src); free(r->vstyle);
+    r->vlabel = vlabel; r->paint_src = paint_src; r->vstyle = zeros;
+    vlabel = NULL; paint_src = NULL; zeros = NULL;
     r->count = n;
     r->group_count = ngroups;
     for (size_t g = 0; g <= ngroups + 1; g++) r->group_start[g] = starts[g];
@@ -672,6 +725,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
 done:
     free(src); free(xyz); free(radius); free(group); free(order); free(verts); free(flat);
     free(nidx); free(nd2); free(porder); free(inv); free(pbin); free(pcol); free(pverts);
+    free(vlabel); free(paint_src); free(zeros);
     return st;
 }
 
@@ -799,6 +853,25 @@ static pnpr_status check_options(const pnpr_renderer *r, const pnpr_draw_options
     if (o->style == PNPR_STYLE_PAINTERLY && r->count > 0 && !r->paint_bins)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'painterly' needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)");
+    if (o->style_map_count > 0 && !o->style_map)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style_map_count %zu without a style map", o->style_map_count);
+    if (o->style_map_count > 0xFFFFFFFFu)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style map too large (%zu entries)", o->style_map_count);
+    for (size_t i = 0; i < o->style_map_count; i++) {
+        pnpr_style s = o->style_map[i].style;
+        if ((unsigned)s >= PNPR_STYLE_COUNT_)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style map entry %zu (label %u): unknown style %d",
+                                  i, (unsigned)o->style_map[i].label, (int)s);
+        if (r->count == 0) continue;
+        if (s == PNPR_STYLE_PAINTERLY && !r->paint_bins)
+            return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
+                                  "renderer: style map: label %u is 'painterly', which needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)",
+                                  (unsigned)o->style_map[i].label);
+        if (pnpr_style_needs_features(s) && s != PNPR_STYLE_PAINTERLY && !r->has_features)
+            return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
+                                  "renderer: style map: label %u is '%s', which needs the feature properties feature_class and feature_dir_x/y/z (pnpr_compute_features)",
+                                  (unsigned)o->style_map[i].label, pnpr_style_name(s));
+    }
     return PNPR_OK;
 }
 
@@ -874,8 +947,11 @@ static void stroke_program(pnpr_renderer *r, const pnpr_frame_camera *fc, int fw
  * sky mask); the smaller ones do not. Then the directional strokes, stencil-tested. Returns the
  * number of dabs and strokes. */
 static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, const pnpr_draw_options *o,
-                             int fw, int fh, size_t n_draw, float lod, const size_t *gdraw)
+                             int fw, int fh, size_t n_draw, float lod, const size_t *gdraw, int filter)
 {
+    /* filter >= 0 (a style map): only the points of style `filter`; the shared mask (with stencil
+     * filter + 1 under the points of this style) is already drawn */
+    GLint ref = filter >= 0 ? filter + 1 : 1;
     size_t nb = r->paint_bins, bsize[PAINT_MAX_BINS], mdraw[PAINT_MAX_BINS], d[PAINT_MAX_BINS];
     for (size_t b = 0; b < nb; b++) bsize[b] = r->paint_start[b + 1] - r->paint_start[b];
     pnpr_crq_split(bsize, nb, n_draw, mdraw);
@@ -883,31 +959,34 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, cons
     float mask_scale = o->mask_scale > 0 ? o->mask_scale : 1.5f;
     size_t dabs = 0;
     /* the mask, with the sky stencil */
-    glUseProgram(r->prog_splat);
-    glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc->view);
-    glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc->proj);
-    glUniform1f(r->us.ppu, fc->pixels_per_unit);
-    glUniform1f(r->us.max_size, r->max_point_size);
-    glUniform1f(r->us.fade, 0.0f);
-    glUniform1f(r->us.fixed_size, 0.0f);
-    glUniform1f(r->us.levels, 0.0f);
-    glUniform1f(r->us.radius_scale, point_scale * lod * mask_scale);
-    glUniform1f(r->us.depth_push, 1.0f);
-    glDisable(GL_BLEND);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, 1, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    glStencilMask(0xFF);
-    set_attribs(r->vao_paint, r->paint_vbo, 0, 0, 0);
-    for (size_t b = 0; b < nb; b++)
-        if (mdraw[b]) glDrawArrays(GL_POINTS, (GLint)r->paint_start[b], (GLsizei)mdraw[b]);
+    if (filter < 0) {
+        glUseProgram(r->prog_splat);
+        glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc->view);
+        glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc->proj);
+        glUniform1f(r->us.ppu, fc->pixels_per_unit);
+        glUniform1f(r->us.max_size, r->max_point_size);
+        glUniform1f(r->us.fade, 0.0f);
+        glUniform1f(r->us.fixed_size, 0.0f);
+        glUniform1f(r->us.levels, 0.0f);
+        glUniform1f(r->us.radius_scale, point_scale * lod * mask_scale);
+        glUniform1f(r->us.depth_push, 1.0f);
+        glDisable(GL_BLEND);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_ALWAYS, 1, 0xFF);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+        glStencilMask(0xFF);
+        set_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
+        for (size_t b = 0; b < nb; b++)
+            if (mdraw[b]) glDrawArrays(GL_POINTS, (GLint)r->paint_start[b], (GLsizei)mdraw[b]);
+    }
+    set_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
     /* the passes, large brushes to small */
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_FALSE);
     glStencilMask(0);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glStencilFunc(GL_EQUAL, ref, 0xFF);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(r->prog_paint);
@@ -915,7 +994,7 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, cons
     glUniformMatrix4fv(r->up.proj, 1, GL_FALSE, fc->proj);
     glUniform1f(r->up.ppu, fc->pixels_per_unit);
     glUniform1f(r->up.max_size, r->max_point_size);
-    glUniform1i(r->up.style_filter, -1);
+    glUniform1i(r->up.style_filter, filter);
     glUniform1i(r->up.brush, 0);
     glBindTexture(GL_TEXTURE_2D, r->brush_tex);
     double q = r->count ? (double)n_draw / (double)r->count : 0;
@@ -946,10 +1025,11 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, cons
         float ink[4] = {0.08f, 0.08f, 0.1f, 1};
         if (o->ink[0] != 0 || o->ink[1] != 0 || o->ink[2] != 0 || o->ink[3] != 0) memcpy(ink, o->ink, sizeof ink);
         stroke_program(r, fc, fw, fh, o->stroke_width > 0 ? o->stroke_width : 2, point_scale, ink, o->ink_from_points);
+        glUniform1i(r->ut_filter, filter);
         glUniform1i(r->ut.mode, 0);
         glUniform1f(r->ut.layer, (float)o->stroke_texture);
         glUniform1f(r->ut.length, o->stroke_length > 0 ? o->stroke_length : 6);
-        set_attribs(r->vao_strokes, r->vbo, r->group_start[GROUP_DIRECTIONAL], 1, 0);
+        set_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->group_start[GROUP_DIRECTIONAL], 1, 0);
         glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)gdraw[GROUP_DIRECTIONAL]);
         dabs += gdraw[GROUP_DIRECTIONAL];
     }
@@ -957,6 +1037,266 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, cons
     glStencilMask(0xFF);
     glStencilFunc(GL_ALWAYS, 0, 0xFF);
     return dabs;
+}
+
+/* Pass 2 of `sketchy`: directional strokes and hatches of the groups' queue prefixes, depth-tested
+ * against the mask, no depth writes, blended. Returns the strokes drawn. */
+static size_t draw_sketchy(pnpr_renderer *r, const pnpr_frame_camera *fc, const pnpr_draw_options *o, int fw,
+                           int fh, const size_t *gdraw, float point_scale, const float ink[4])
+{
+    size_t strokes = 0;
+    float stroke_length = o->stroke_length > 0 ? o->stroke_length : 6;
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    stroke_program(r, fc, fw, fh, o->stroke_width > 0 ? o->stroke_width : 2, point_scale, ink, o->ink_from_points);
+    int draw_group[3] = {1, o->sketch_variant != PNPR_SKETCH_DIRECTIONAL, o->sketch_variant == PNPR_SKETCH_ALL};
+    for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
+        if (!draw_group[g] || !gdraw[g]) continue;
+        int directional = g == GROUP_DIRECTIONAL;
+        glUniform1i(r->ut.mode, directional ? 0 : 1);
+        glUniform1f(r->ut.layer, directional ? (float)o->stroke_texture : (float)STROKE_LAYER_HATCH);
+        glUniform1f(r->ut.length, directional ? stroke_length : 0.5f * stroke_length);
+        set_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->group_start[g], 1, 0);
+        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)gdraw[g]);
+        strokes += gdraw[g];
+    }
+    return strokes;
+}
+
+/* Pass 2 of `stipple`: the queue prefixes of the feature and dithering groups as dots of a fixed
+ * screen size in the ink colour (antialiased edges), depth-tested against the mask, no depth
+ * writes, blended. The splat program must be current with the frame's uniforms. */
+static size_t draw_stipple(pnpr_renderer *r, const pnpr_draw_options *o, const size_t *gdraw, float point_scale,
+                           float lod, const float ink[4])
+{
+    size_t dots = 0;
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUniform1f(r->us.radius_scale, point_scale * lod);
+    glUniform1f(r->us.depth_push, 0.0f);
+    glUniform1f(r->us.fade, 1.0f);
+    glUniform4fv(r->us.fade_color, 1, ink);
+    glUniform1f(r->us.fixed_size, o->dot_size > 0 ? o->dot_size : 2.5f);
+    glBindVertexArray(r->vao_points);
+    for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
+        if (!gdraw[g]) continue;
+        glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+        dots += gdraw[g];
+    }
+    glUniform1f(r->us.fade, 0.0f);
+    glUniform1f(r->us.fixed_size, 0.0f);
+    return dots;
+}
+
+/* Pass 2 of `lines`: the segments, depth-tested against the mask (no mask when the cloud is
+ * empty: nothing hides them), no depth writes, blended. Returns the segments drawn. */
+static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_camera *fc, const pnpr_draw_options *o, int fw, int fh,
+                         const float ink[4])
+{
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    /* the lines' offsets are relative to their own origin: view * translate(line - cloud origin) */
+    double d[3] = {r->line_origin[0] - r->origin[0], r->line_origin[1] - r->origin[1],
+                   r->line_origin[2] - r->origin[2]};
+    float lview[16];
+    memcpy(lview, fc->view, sizeof lview);
+    for (int row = 0; row < 4; row++)
+        lview[12 + row] = (float)((double)fc->view[row] * d[0] + (double)fc->view[4 + row] * d[1] +
+                                  (double)fc->view[8 + row] * d[2] + (double)fc->view[12 + row]);
+    glUseProgram(r->prog_line);
+    glUniformMatrix4fv(r->ul.view, 1, GL_FALSE, lview);
+    glUniformMatrix4fv(r->ul.proj, 1, GL_FALSE, fc->proj);
+    glUniform2f(r->ul.viewport, (float)fw, (float)fh);
+    glUniform1f(r->ul.width, o->line_width > 0 ? o->line_width : 2);
+    glUniform1f(r->ul.near_plane, (float)fc->near_plane);
+    glUniform4fv(r->ul.ink, 1, ink);
+    glBindVertexArray(r->vao_lines);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)r->line_segments);
+    return r->line_segments;
+}
+
+/* ---- style maps (intermingled styles) ---- */
+
+typedef struct map_key { uint32_t label, index; pnpr_style style; } map_key;
+static int cmp_map_key(const void *a, const void *b)
+{
+    const map_key *x = a, *y = b;
+    if (x->label != y->label) return x->label < y->label ? -1 : 1;
+    return x->index < y->index ? -1 : x->index > y->index;
+}
+
+/* The style of every vertex (main order) under o's map: a label's last entry, o->style for labels
+ * not in the map; r_used[s] = how many vertices got style s. The cloud has labels. */
+static pnpr_status resolve_styles(const pnpr_renderer *r, const pnpr_draw_options *o, uint8_t *r_style, size_t *r_used)
+{
+    size_t m = o->style_map_count;
+    map_key *keys = malloc(m * sizeof *keys);
+    if (!keys) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; i < m; i++) {
+        keys[i].label = o->style_map[i].label;
+        keys[i].index = (uint32_t)i;
+        keys[i].style = o->style_map[i].style;
+    }
+    qsort(keys, m, sizeof *keys, cmp_map_key);
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++) r_used[s] = 0;
+    for (size_t q = 0; q < r->count; q++) {
+        uint32_t label = r->vlabel[q];
+        size_t lo = 0, hi = m; /* first key with a larger label */
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo) / 2;
+            if (keys[mid].label <= label) lo = mid + 1;
+            else hi = mid;
+        }
+        pnpr_style s = lo > 0 && keys[lo - 1].label == label ? keys[lo - 1].style : o->style;
+        r_style[q] = (uint8_t)s;
+        r_used[s]++;
+    }
+    free(keys);
+    return PNPR_OK;
+}
+
+/* Uploads the per-vertex style bytes (main and painterly order) when they changed. */
+static pnpr_status upload_styles(pnpr_renderer *r, const uint8_t *vstyle)
+{
+    if (!memcmp(vstyle, r->vstyle, r->count)) return PNPR_OK;
+    glBindBuffer(GL_ARRAY_BUFFER, r->style_vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)r->count, vstyle);
+    if (r->paint_bins && r->paint_src) {
+        uint8_t *ps = malloc(r->count);
+        if (!ps) return PNPR_ERR_OUT_OF_MEMORY;
+        for (size_t q = 0; q < r->count; q++) ps[q] = vstyle[r->paint_src[q]];
+        glBindBuffer(GL_ARRAY_BUFFER, r->paint_style_vbo);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)r->count, ps);
+        free(ps);
+    }
+    memcpy(r->vstyle, vstyle, r->count);
+    return PNPR_OK;
+}
+
+/* A frame with several styles (a style map). Pass 1, the one visibility mask: every style's
+ * points of the queue prefixes (painterly's from its bin queues) as enlarged pushed disks into
+ * depth, each writing stencil = its style + 1 where it passes (the front-most surface's style);
+ * cartoon's disks are its outline disks (outline scale, ink colour), drawn after the others.
+ * Pass 2, each style over its own points (a vertex-shader filter on the style byte), in the
+ * order points (opaque, depth writes), cartoon fills, painterly (sky stencil = its style),
+ * stipple, sketchy, lines (stencil = the lines style: the lines show over those segments only).
+ * Returns the primitives of pass 2 other than plain splats. */
+static size_t draw_mapped(pnpr_renderer *r, const pnpr_frame_camera *fc, const pnpr_draw_options *o, int fw,
+                          int fh, size_t n_draw, float lod, const size_t *gdraw, size_t ng, const size_t *used,
+                          const float ink[4])
+{
+    float ps = o->point_scale > 0 ? o->point_scale : 1;
+    float mask_scale = o->mask_scale > 0 ? o->mask_scale : 1.5f;
+    float outline_scale = o->mask_scale > 0 ? o->mask_scale : 2.0f;
+    size_t strokes = 0;
+    size_t nb = r->paint_bins, bsize[PAINT_MAX_BINS], mdraw[PAINT_MAX_BINS];
+    for (size_t b = 0; b < nb; b++) bsize[b] = r->paint_start[b + 1] - r->paint_start[b];
+    if (nb) pnpr_crq_split(bsize, nb, n_draw, mdraw);
+
+    glUseProgram(r->prog_splat);
+    glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc->view);
+    glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc->proj);
+    glUniform1f(r->us.ppu, fc->pixels_per_unit);
+    glUniform1f(r->us.max_size, r->max_point_size);
+    glUniform1f(r->us.fade, 0.0f);
+    glUniform1f(r->us.fixed_size, 0.0f);
+    glUniform1f(r->us.levels, 0.0f);
+    glUniform1f(r->us.depth_push, 1.0f);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_STENCIL_TEST);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glStencilMask(0xFF);
+    /* pass 1: the shared mask */
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glUniform1f(r->us.radius_scale, ps * lod * mask_scale);
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++) {
+        if (!used[s] || s == PNPR_STYLE_CARTOON) continue;
+        glStencilFunc(GL_ALWAYS, s + 1, 0xFF);
+        glUniform1i(r->us_filter, s);
+        if (s == PNPR_STYLE_PAINTERLY) {
+            set_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
+            for (size_t b = 0; b < nb; b++)
+                if (mdraw[b]) glDrawArrays(GL_POINTS, (GLint)r->paint_start[b], (GLsizei)mdraw[b]);
+        } else {
+            glBindVertexArray(r->vao_points);
+            for (size_t g = 0; g < ng; g++)
+                if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+        }
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    if (used[PNPR_STYLE_CARTOON]) { /* outline disks: depth and colour (ink) */
+        glStencilFunc(GL_ALWAYS, PNPR_STYLE_CARTOON + 1, 0xFF);
+        glUniform1i(r->us_filter, PNPR_STYLE_CARTOON);
+        glUniform1f(r->us.radius_scale, ps * lod * outline_scale);
+        glUniform1f(r->us.fade, 1.0f);
+        glUniform4f(r->us.fade_color, ink[0], ink[1], ink[2], 1.0f);
+        glBindVertexArray(r->vao_points);
+        for (size_t g = 0; g < ng; g++)
+            if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+        glUniform1f(r->us.fade, 0.0f);
+    }
+    glStencilMask(0);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glDisable(GL_STENCIL_TEST);
+    /* pass 2 */
+    glUniform1f(r->us.depth_push, 0.0f);
+    glUniform1f(r->us.radius_scale, ps * lod);
+    if (used[PNPR_STYLE_POINTS]) { /* opaque splats, depth writes (the nearest wins) */
+        glUniform1i(r->us_filter, PNPR_STYLE_POINTS);
+        glBindVertexArray(r->vao_points);
+        for (size_t g = 0; g < ng; g++)
+            if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+    }
+    glDepthMask(GL_FALSE);
+    if (used[PNPR_STYLE_CARTOON]) { /* flat colours over the outline disks */
+        glUniform1i(r->us_filter, PNPR_STYLE_CARTOON);
+        glBindVertexArray(r->vao_flat);
+        for (size_t g = 0; g < ng; g++)
+            if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+    }
+    if (used[PNPR_STYLE_LINES] && o->faint > 0) { /* the faint points under the lines segments */
+        float bg[4] = {o->background[0], o->background[1], o->background[2], o->background[3]};
+        glUniform1i(r->us_filter, PNPR_STYLE_LINES);
+        glUniform1f(r->us.fade, 1.0f - o->faint);
+        glUniform4fv(r->us.fade_color, 1, bg);
+        glBindVertexArray(r->vao_points);
+        for (size_t g = 0; g < ng; g++)
+            if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
+        glUniform1f(r->us.fade, 0.0f);
+    }
+    if (used[PNPR_STYLE_PAINTERLY] && nb) {
+        strokes += draw_painterly(r, fc, o, fw, fh, n_draw, lod, gdraw, PNPR_STYLE_PAINTERLY);
+        glUniform1i(r->ut_filter, -1);
+        glUseProgram(r->prog_paint);
+        glUniform1i(r->up.style_filter, -1);
+        glUseProgram(r->prog_splat);
+    }
+    if (used[PNPR_STYLE_STIPPLE]) {
+        glUniform1i(r->us_filter, PNPR_STYLE_STIPPLE);
+        strokes += draw_stipple(r, o, gdraw, ps, lod, ink);
+    }
+    glUniform1i(r->us_filter, -1);
+    if (used[PNPR_STYLE_SKETCHY]) {
+        glUseProgram(r->prog_stroke);
+        glUniform1i(r->ut_filter, PNPR_STYLE_SKETCHY);
+        strokes += draw_sketchy(r, fc, o, fw, fh, gdraw, ps, ink);
+        glUniform1i(r->ut_filter, -1);
+    }
+    if (used[PNPR_STYLE_LINES] && r->line_segments > 0) {
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_EQUAL, PNPR_STYLE_LINES + 1, 0xFF);
+        strokes += draw_lines(r, fc, o, fw, fh, ink);
+        glDisable(GL_STENCIL_TEST);
+    }
+    glStencilMask(0xFF);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    return strokes;
 }
 
 static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
@@ -976,18 +1316,29 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
                               fw, fh, (int)r->max_size);
     pnpr_status st = check_options(r, opts, &o, err);
     if (st != PNPR_OK) return st;
+    /* a style map: the style of every point; when they all end up in one style, that style's
+     * own path (the same frame as without a map) */
+    uint8_t *vstyle = NULL;
+    size_t used[PNPR_STYLE_COUNT_] = {0};
+    if (o.style_map_count > 0 && r->count > 0 && r->vlabel) {
+        vstyle = malloc(r->count);
+        if (!vstyle) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "renderer: style map: out of memory");
+        st = resolve_styles(r, &o, vstyle, used);
+        if (st != PNPR_OK) { free(vstyle); return pnpr_error_set(err, st, "renderer: style map: out of memory"); }
+        int nused = 0;
+        pnpr_style only = o.style;
+        for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
+            if (used[s]) { nused++; only = (pnpr_style)s; }
+        if (nused <= 1) { o.style = only; free(vstyle); vstyle = NULL; }
+    }
     float point_scale = o.point_scale > 0 ? o.point_scale : 1;
     float mask_scale = o.mask_scale > 0 ? o.mask_scale : o.style == PNPR_STYLE_CARTOON ? 2.0f : 1.5f;
-    float stroke_length = o.stroke_length > 0 ? o.stroke_length : 6;
-    float stroke_width = o.stroke_width > 0 ? o.stroke_width : 2;
-    float line_width = o.line_width > 0 ? o.line_width : 2;
-    float dot_size = o.dot_size > 0 ? o.dot_size : 2.5f;
     float ink[4] = {0.08f, 0.08f, 0.1f, 1};
     if (o.ink[0] != 0 || o.ink[1] != 0 || o.ink[2] != 0 || o.ink[3] != 0) memcpy(ink, o.ink, sizeof ink);
 
     frame_plan plan;
     st = plan_frame(r, camera, &o, w, h, &plan, err);
-    if (st != PNPR_OK) return st;
+    if (st != PNPR_OK) { free(vstyle); return st; }
     pnpr_frame_camera fc = plan.fc;
     if (tile) tile_projection(fc.proj, tile);
     size_t n_draw = plan.n_draw;
@@ -1002,7 +1353,11 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
     pnpr_gl_state_save(&saved);
     pnpr_gl_state_neutral();
     st = ensure_framebuffer(r, fw, fh, err);
-    if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
+    if (st == PNPR_OK && vstyle) {
+        st = upload_styles(r, vstyle);
+        if (st != PNPR_OK) pnpr_error_set(err, st, "renderer: style map: out of memory");
+    }
+    if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); free(vstyle); return st; }
     glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     glViewport(0, 0, fw, fh);
     float a = o.background[3];
@@ -1015,12 +1370,19 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
     glDepthFunc(GL_LEQUAL);
 
     size_t strokes = 0;
+    int mapped = vstyle != NULL;
     int sketchy = o.style == PNPR_STYLE_SKETCHY, lines = o.style == PNPR_STYLE_LINES;
     int stipple = o.style == PNPR_STYLE_STIPPLE, cartoon = o.style == PNPR_STYLE_CARTOON;
     int masked = sketchy || lines || stipple; /* pass 1 is a depth-only visibility mask */
     int painterly = o.style == PNPR_STYLE_PAINTERLY;
-    if (painterly && n_draw > 0) strokes = draw_painterly(r, &fc, &o, fw, fh, n_draw, lod, gdraw);
-    if (n_draw > 0 && !painterly) {
+    if (vstyle) { /* several styles: none of the single-style paths below */
+        if (n_draw > 0) strokes = draw_mapped(r, &fc, &o, fw, fh, n_draw, lod, gdraw, ng, used, ink);
+        sketchy = lines = stipple = cartoon = masked = painterly = 0;
+        free(vstyle);
+        vstyle = NULL;
+    }
+    if (painterly && n_draw > 0) strokes = draw_painterly(r, &fc, &o, fw, fh, n_draw, lod, gdraw, -1);
+    if (n_draw > 0 && !painterly && !mapped) {
         glUseProgram(r->prog_splat);
         glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc.view);
         glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc.proj);
@@ -1071,81 +1433,10 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
             glUniform1f(r->us.levels, 0.0f);
         }
 
-        if (sketchy) {
-            /* pass 2: strokes, depth-tested against the mask, no depth writes, blended */
-            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-            glDepthMask(GL_FALSE);
-            glEnable(GL_BLEND);
-            glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-            glUseProgram(r->prog_stroke);
-            glUniformMatrix4fv(r->ut.view, 1, GL_FALSE, fc.view);
-            glUniformMatrix4fv(r->ut.proj, 1, GL_FALSE, fc.proj);
-            glUniform2f(r->ut.viewport, (float)fw, (float)fh);
-            glUniform1f(r->ut.ppu, fc.pixels_per_unit);
-            glUniform1f(r->ut.width, stroke_width);
-            glUniform1f(r->ut.radius_scale, point_scale);
-            glUniform1i(r->ut.strokes, 0);
-            glUniform4fv(r->ut.ink, 1, ink);
-            glUniform1i(r->ut.ink_from_points, o.ink_from_points != 0);
-            glBindTexture(GL_TEXTURE_2D_ARRAY, r->stroke_tex);
-            int draw_group[3] = {1, o.sketch_variant != PNPR_SKETCH_DIRECTIONAL,
-                                 o.sketch_variant == PNPR_SKETCH_ALL};
-            for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
-                if (!draw_group[g] || !gdraw[g]) continue;
-                int directional = g == GROUP_DIRECTIONAL;
-                glUniform1i(r->ut.mode, directional ? 0 : 1);
-                glUniform1f(r->ut.layer, directional ? (float)o.stroke_texture : (float)STROKE_LAYER_HATCH);
-                glUniform1f(r->ut.length, directional ? stroke_length : 0.5f * stroke_length);
-                set_attribs(r->vao_strokes, r->vbo, r->group_start[g], 1, 0);
-                glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)gdraw[g]);
-                strokes += gdraw[g];
-            }
-        }
+        if (sketchy) strokes += draw_sketchy(r, &fc, &o, fw, fh, gdraw, point_scale, ink);
     }
-    if (stipple && n_draw > 0) {
-        /* pass 2 of `stipple`: the queue prefixes of the feature and dithering groups as dots of
-         * a fixed screen size in the ink colour (antialiased edges), depth-tested against the
-         * mask, no depth writes, blended */
-        glDepthMask(GL_FALSE);
-        glEnable(GL_BLEND);
-        glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        glUniform1f(r->us.radius_scale, point_scale * lod);
-        glUniform1f(r->us.depth_push, 0.0f);
-        glUniform1f(r->us.fade, 1.0f);
-        glUniform4fv(r->us.fade_color, 1, ink);
-        glUniform1f(r->us.fixed_size, dot_size);
-        for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
-            if (!gdraw[g]) continue;
-            glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
-            strokes += gdraw[g];
-        }
-    }
-    if (lines && r->line_segments > 0) {
-        /* pass 2 of `lines`: the segments, depth-tested against the mask (no mask when the
-         * cloud is empty: nothing hides them), no depth writes, blended */
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glDepthMask(GL_FALSE);
-        glEnable(GL_BLEND);
-        glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        /* the lines' offsets are relative to their own origin: view * translate(line - cloud origin) */
-        double d[3] = {r->line_origin[0] - r->origin[0], r->line_origin[1] - r->origin[1],
-                       r->line_origin[2] - r->origin[2]};
-        float lview[16];
-        memcpy(lview, fc.view, sizeof lview);
-        for (int row = 0; row < 4; row++)
-            lview[12 + row] = (float)((double)fc.view[row] * d[0] + (double)fc.view[4 + row] * d[1] +
-                                      (double)fc.view[8 + row] * d[2] + (double)fc.view[12 + row]);
-        glUseProgram(r->prog_line);
-        glUniformMatrix4fv(r->ul.view, 1, GL_FALSE, lview);
-        glUniformMatrix4fv(r->ul.proj, 1, GL_FALSE, fc.proj);
-        glUniform2f(r->ul.viewport, (float)fw, (float)fh);
-        glUniform1f(r->ul.width, line_width);
-        glUniform1f(r->ul.near_plane, (float)fc.near_plane);
-        glUniform4fv(r->ul.ink, 1, ink);
-        glBindVertexArray(r->vao_lines);
-        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)r->line_segments);
-        strokes = r->line_segments;
-    }
+    if (stipple && n_draw > 0) strokes += draw_stipple(r, &o, gdraw, point_scale, lod, ink);
+    if (lines && r->line_segments > 0) strokes = draw_lines(r, &fc, &o, fw, fh, ink);
 
     if (!target->offscreen && !tile) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)target->framebuffer);

@@ -5,7 +5,9 @@
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in float a_radius;
 layout(location = 2) in vec4 a_color;
+layout(location = 4) in uint a_style; // the point's style under a style map
 
+uniform int u_style_filter;      // >= 0: draw only points whose a_style equals it (style maps)
 uniform mat4 u_view;
 uniform mat4 u_proj;
 uniform float u_pixels_per_unit; // proj[1][1] * viewport height / 2: pixels per world unit at w = 1
@@ -23,6 +25,14 @@ out float v_dot_radius_px;       // > 0: antialiased dot of this radius; 0: hard
 
 void main()
 {
+    if (u_style_filter >= 0 && int(a_style) != u_style_filter) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
+        gl_PointSize = 1.0;
+        v_color = vec4(0.0);
+        v_sprite_px = 1.0;
+        v_dot_radius_px = 0.0;
+        return;
+    }
     float r = a_radius * u_radius_scale;
     vec4 eye = u_view * vec4(a_pos, 1.0);
     vec4 clip = u_proj * eye;

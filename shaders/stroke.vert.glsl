@@ -6,7 +6,9 @@ layout(location = 0) in vec3 a_pos;
 layout(location = 1) in float a_radius;
 layout(location = 2) in vec4 a_color;
 layout(location = 3) in vec3 a_dir;
+layout(location = 4) in uint a_style; // the point's style under a style map
 
+uniform int u_style_filter;      // >= 0: draw only points whose a_style equals it (style maps)
 uniform mat4 u_view;
 uniform mat4 u_proj;
 uniform vec2 u_viewport;          // frame size in pixels
@@ -21,6 +23,12 @@ out vec4 v_color;
 
 void main()
 {
+    if (u_style_filter >= 0 && int(a_style) != u_style_filter) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
+        v_color = vec4(0.0);
+        v_uv = vec2(0.0);
+        return;
+    }
     int corner = gl_VertexID & 3;
     vec2 q = vec2((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0);
     vec4 clip = u_proj * (u_view * vec4(a_pos, 1.0));

@@ -125,9 +125,23 @@ typedef struct pnpr_upload_options {
                               * painterly data are built when the cloud has feature_degree */
 } pnpr_upload_options;
 
+/* One entry of a per-segment style map: points whose segment label (cloud->label) is `label`
+ * are drawn in `style`. */
+typedef struct pnpr_style_map_entry {
+    uint32_t label;
+    pnpr_style style;
+} pnpr_style_map_entry;
+
 /* Per-frame options; zero = documented default. Colours are linear 0..1 RGBA. */
 typedef struct pnpr_draw_options {
-    pnpr_style style;
+    pnpr_style style;      /* the style; with a style map, the default style of labels not in it */
+    /* Intermingled styles (paper figure 12): style_map_count > 0 entries (caller-owned, read
+     * during the call only) give segment labels their own styles; labels not listed (and every
+     * point of a cloud without labels) take `style`. One visibility mask over all points, then
+     * each style over its segments' points (docs/rendering.md). A label listed twice takes its
+     * last entry. 0 / NULL = no map. */
+    const pnpr_style_map_entry *style_map;
+    size_t style_map_count;
     pnpr_sketch_variant sketch_variant;
     float background[4];   /* clear colour of the frame (zero = transparent black) */
     size_t budget;         /* at most this many points per frame (0 = no limit) */

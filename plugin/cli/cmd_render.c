@@ -30,6 +30,9 @@ static void usage(FILE *f)
             "options:\n"
             "  --style S            points | sketchy | lines | stipple | cartoon | painterly\n"
             "                       (default points)\n"
+            "  --style-map FILE     intermingled styles: FILE has lines 'LABEL STYLE' (a segment label of\n"
+            "                       IN, PLY property segment or label) and '* STYLE' (the default, else\n"
+            "                       --style); '#' starts a comment\n"
             "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
             "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n"
             "  --stroke-texture T   directional stroke texture 0, 1 or 2 (default 0)\n"
@@ -59,6 +62,61 @@ static void usage(FILE *f)
             "  lines computes the profile lines (pointnpr lines) from them.\n");
 }
 
+/* Reads a style map file: lines "LABEL STYLE" and "* STYLE" (the default), '#' comments, blank
+ * lines. Returns 0 with a message naming the line on a bad line. */
+static int read_style_map(const char *path, pnpr_style_map_entry **r_map, size_t *r_count, pnpr_style *r_default,
+                          int *r_have_default)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) { fprintf(stderr, "pointnpr render: --style-map: cannot open '%s': %s\n", path, strerror(errno)); return 0; }
+    char line[512];
+    size_t cap = 0, n = 0;
+    pnpr_style_map_entry *map = NULL;
+    int ok = 1, lineno = 0;
+    while (ok && fgets(line, sizeof line, f)) {
+        lineno++;
+        char *hash = strchr(line, '#');
+        if (hash) *hash = 0;
+        char a[256], b[256], extra[2];
+        int got = sscanf(line, "%255s %255s %1s", a, b, extra);
+        if (got <= 0) continue; /* blank */
+        pnpr_style s;
+        if (got != 2) {
+            fprintf(stderr, "pointnpr render: --style-map %s:%d: want 'LABEL STYLE' or '* STYLE'\n", path, lineno);
+            ok = 0;
+        } else if (pnpr_style_from_name(b, &s) != PNPR_OK) {
+            fprintf(stderr, "pointnpr render: --style-map %s:%d: unknown style '%s' (points, sketchy, lines, stipple, cartoon, painterly)\n", path, lineno, b);
+            ok = 0;
+        } else if (!strcmp(a, "*")) {
+            *r_default = s;
+            *r_have_default = 1;
+        } else {
+            char *end;
+            errno = 0;
+            unsigned long long v = strtoull(a, &end, 10);
+            if (errno || end == a || *end || a[0] == '-' || v > 0xFFFFFFFFull) {
+                fprintf(stderr, "pointnpr render: --style-map %s:%d: label '%s' is not an integer in 0..4294967295 or '*'\n", path, lineno, a);
+                ok = 0;
+            } else {
+                if (n == cap) {
+                    cap = cap ? 2 * cap : 16;
+                    pnpr_style_map_entry *m2 = realloc(map, cap * sizeof *m2);
+                    if (!m2) { fprintf(stderr, "pointnpr render: --style-map: out of memory\n"); ok = 0; break; }
+                    map = m2;
+                }
+                map[n].label = (uint32_t)v;
+                map[n].style = s;
+                n++;
+            }
+        }
+    }
+    fclose(f);
+    if (!ok) { free(map); return 0; }
+    *r_map = map;
+    *r_count = n;
+    return 1;
+}
+
 /* Progress of a tiled snapshot: one line per tile (single-frame images print nothing). */
 static int tile_progress(void *user, const char *stage, double fraction)
 {
@@ -78,6 +136,7 @@ int cli_render(int argc, char **argv)
     cli_view view;
     cli_view_init(&view, 1024, 768);
     double bg[3] = {255, 255, 255};
+    const char *style_map_path = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -97,6 +156,8 @@ int cli_render(int argc, char **argv)
             pnpr_style s;
             if (pnpr_style_from_name(v, &s) != PNPR_OK) { fprintf(stderr, "pointnpr render: --style wants points, sketchy, lines, stipple, cartoon or painterly, got '%s'\n", v); return 2; }
             dopt.style = s; i++;
+        } else if (v && !strcmp(a, "--style-map")) {
+            style_map_path = v; i++;
         } else if (v && !strcmp(a, "--sketch")) {
             if (!strcmp(v, "a")) dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
             else if (!strcmp(v, "b")) dopt.sketch_variant = PNPR_SKETCH_NONDIRECTIONAL;
@@ -157,6 +218,19 @@ int cli_render(int argc, char **argv)
     for (int c = 0; c < 3; c++) dopt.background[c] = (float)(bg[c] / 255.0);
     dopt.background[3] = alpha ? 0.0f : 1.0f;
 
+    pnpr_style_map_entry *smap = NULL;
+    size_t smap_count = 0;
+    int map_has_default = 0;
+    pnpr_style map_default = dopt.style;
+    if (style_map_path && !read_style_map(style_map_path, &smap, &smap_count, &map_default, &map_has_default)) return 2;
+    if (map_has_default) dopt.style = map_default;
+    dopt.style_map = smap;
+    dopt.style_map_count = smap_count;
+    /* the styles this frame may draw: the default and the mapped ones */
+    int uses[PNPR_STYLE_COUNT_] = {0};
+    uses[dopt.style] = 1;
+    for (size_t m = 0; m < smap_count; m++) uses[smap[m].style] = 1;
+
     cli_progress_state ps = {{0}, 0, 0};
     pnpr_progress prog = {quiet ? NULL : cli_progress_stderr, &ps};
     pnpr_read_options ro = {0};
@@ -170,8 +244,9 @@ int cli_render(int argc, char **argv)
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
 
-    int want_lines = dopt.style == PNPR_STYLE_LINES;
-    if ((pnpr_style_needs_features(dopt.style) || want_lines) &&
+    int want_lines = uses[PNPR_STYLE_LINES], need_features = want_lines;
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++) need_features |= uses[s] && pnpr_style_needs_features((pnpr_style)s);
+    if (need_features &&
         (!pnpr_cloud_find_property(&cloud, "feature_class") || !pnpr_cloud_find_property(&cloud, "feature_dir_x") ||
          !pnpr_cloud_find_property(&cloud, "feature_dir_y") || !pnpr_cloud_find_property(&cloud, "feature_dir_z"))) {
         if (!quiet) fprintf(stderr, "%s has no features: computing them (pointnpr features saves them)\n", in);
@@ -179,7 +254,7 @@ int cli_render(int argc, char **argv)
         fo.progress = prog;
         /* only what the style draws (the plan `pointnpr explain --style S` prints): dithering
          * points for stipple and sketchy (c), feature classes for the others */
-        int dither = dopt.style == PNPR_STYLE_STIPPLE || (dopt.style == PNPR_STYLE_SKETCHY && dopt.sketch_variant == PNPR_SKETCH_ALL);
+        int dither = uses[PNPR_STYLE_STIPPLE] || (uses[PNPR_STYLE_SKETCHY] && dopt.sketch_variant == PNPR_SKETCH_ALL);
         fo.want = dither ? PNPR_WANT_DITHER : PNPR_WANT_CLASSES;
         st = pnpr_compute_features(&cloud, &fo, NULL);
         if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: features: %s\n", in, pnpr_status_string(st)); goto done; }
@@ -224,10 +299,11 @@ int cli_render(int argc, char **argv)
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
     if (!quiet)
         fprintf(stderr, "%s: %zu of %zu points drawn, %zu strokes, style %s, %dx%d -> %s\n", in,
-                stats.points_drawn, stats.points_total, stats.strokes_drawn, pnpr_style_name(dopt.style),
-                width, height, out);
+                stats.points_drawn, stats.points_total, stats.strokes_drawn,
+                smap_count ? "map" : pnpr_style_name(dopt.style), width, height, out);
     rc = 0;
 done:
+    free(smap);
     free(pixels);
     pnpr_renderer_destroy(ren);
     pnpr_gl_context_destroy(ctx);

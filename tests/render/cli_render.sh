@@ -103,6 +103,26 @@ check '[ $? -eq 0 ] && [ "$(png_w "$dir/8k.png")" -eq 7680 ] && [ "$(png_h "$dir
 rm -f "$dir/8k.png"
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --max-tile 8 > /dev/null 2>&1
 check '[ $? -eq 2 ]' "--max-tile 8 is a usage error"
+# --style-map: a cube with segment labels (x < 0.5: 0, else 1), 0 -> points, default sketchy
+awk '/^end_header/ { print "property int segment" } { print }' "$dir/cube.ply" | \
+  awk 'BEGIN { body = 0 } body { split($0, f, " "); print $0, (f[1] < 5123457.289 ? 0 : 1); next } { print } /^end_header/ { body = 1 }' > "$dir/cube_seg.ply"
+printf '# intermingled\n0 points\n* sketchy   # the rest\n\n' > "$dir/map.txt"
+"$bin" render "$dir/cube_seg.ply" -o "$dir/map.png" --size 200x150 --style-map "$dir/map.txt" 2> "$dir/map-log.txt"
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/map.png")" -eq 200 ] && grep -q "computing them" "$dir/map-log.txt" && grep -q "style map" "$dir/map-log.txt"' "--style-map renders (features computed for the mapped sketchy)"
+printf '0 points\n1 points\n' > "$dir/map-pts.txt"
+"$bin" render "$dir/cube_seg.ply" -o "$dir/map-pts.png" --size 200x150 --style-map "$dir/map-pts.txt" 2> "$dir/map-pts-log.txt"
+check '[ $? -eq 0 ] && ! grep -q "computing them" "$dir/map-pts-log.txt"' "--style-map with points only computes no features"
+printf '0 points\n1 nosuch\n' > "$dir/map-bad.txt"
+"$bin" render "$dir/cube_seg.ply" -o "$dir/x.png" --style-map "$dir/map-bad.txt" 2> "$dir/map-bad-log.txt"
+check '[ $? -eq 2 ] && grep -q "map-bad.txt:2: unknown style .nosuch." "$dir/map-bad-log.txt"' "--style-map: unknown style names its line"
+printf 'x points\n' > "$dir/map-bad2.txt"
+"$bin" render "$dir/cube_seg.ply" -o "$dir/x.png" --style-map "$dir/map-bad2.txt" 2> "$dir/map-bad2-log.txt"
+check '[ $? -eq 2 ] && grep -q "map-bad2.txt:1: label .x." "$dir/map-bad2-log.txt"' "--style-map: bad label names its line"
+printf '0 points sketchy\n' > "$dir/map-bad3.txt"
+"$bin" render "$dir/cube_seg.ply" -o "$dir/x.png" --style-map "$dir/map-bad3.txt" > /dev/null 2>&1
+check '[ $? -eq 2 ]' "--style-map: three words is an error"
+"$bin" render "$dir/cube_seg.ply" -o "$dir/x.png" --style-map "$dir/nonexistent.txt" > /dev/null 2>&1
+check '[ $? -eq 2 ]' "--style-map: missing file"
 "$bin" render --help | grep -q "usage: pointnpr render"
 check '[ $? -eq 0 ]' "--help"
 exit $fail
