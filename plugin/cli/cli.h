@@ -28,7 +28,8 @@ int cli_parse_number(const char *s, double lo, double hi, double *r);
 int cli_parse_list(const char *s, int n, double *r);
 
 /* The view options shared by render and lines: --eye X,Y,Z --target X,Y,Z --up X,Y,Z (look-at,
- * world coordinates), --fov DEG, --size WxH. */
+ * world coordinates), --fov DEG, --size WxH, or --camera FILE (the same look-at camera as text:
+ * "eye X Y Z", "target X Y Z", "up X Y Z", "fov DEG" lines; cli_write_camera_file writes one). */
 typedef struct cli_view {
     int have_eye, have_target, have_up;
     double eye[3], target[3], up[3], fov;
@@ -40,6 +41,7 @@ void cli_view_init(cli_view *v, int width, int height);
 int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i);
 /* --eye and --target given together (and --up only with them); prints why and returns 0 if not. */
 int cli_view_check(const cli_view *v, const char *cmd);
+int cli_write_camera_file(const char *path, const double eye[3], const double target[3], const double up[3], double fov);
 #ifdef PNPR_HAVE_RENDER
 /* The look-at camera of the options, else one that fits the cloud (NULL when neither can be made). */
 #include <pointnpr/render.h>

@@ -44,9 +44,62 @@ void cli_view_init(cli_view *v, int width, int height)
     v->height = height;
 }
 
+/* A camera file: lines "eye X Y Z", "target X Y Z", "up X Y Z", "fov DEG" (world coordinates;
+ * '#' comments and blank lines ignored; eye and target required). Returns 1, or 0 after printing
+ * FILE:LINE: what is wrong. */
+static int read_camera_file(cli_view *v, const char *cmd, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) { fprintf(stderr, "pointnpr %s: %s: %s\n", cmd, path, strerror(errno)); return 0; }
+    char line[512];
+    int ln = 0, ok = 1, have_eye = 0, have_target = 0;
+    while (ok && fgets(line, sizeof line, f)) {
+        ln++;
+        char key[32], extra[2];
+        double x[3];
+        char *hash = strchr(line, '#');
+        if (hash) *hash = 0;
+        if (sscanf(line, " %31s", key) != 1) continue; /* blank */
+        if (!strcmp(key, "fov")) {
+            ok = sscanf(line, " %*s %lf %1s", &x[0], extra) == 1 && isfinite(x[0]) && x[0] > 0 && x[0] < 179;
+            if (ok) v->fov = x[0];
+        } else if (!strcmp(key, "eye") || !strcmp(key, "target") || !strcmp(key, "up")) {
+            ok = sscanf(line, " %*s %lf %lf %lf %1s", &x[0], &x[1], &x[2], extra) == 3 && isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]);
+            double *dst = !strcmp(key, "eye") ? v->eye : (!strcmp(key, "target") ? v->target : v->up);
+            if (ok) memcpy(dst, x, sizeof x);
+            if (ok && !strcmp(key, "eye")) have_eye = 1;
+            if (ok && !strcmp(key, "target")) have_target = 1;
+            if (ok && !strcmp(key, "up")) v->have_up = 1;
+        } else ok = 0;
+        if (!ok) fprintf(stderr, "pointnpr %s: %s:%d: expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)\n", cmd, path, ln);
+    }
+    fclose(f);
+    if (ok && !(have_eye && have_target)) {
+        fprintf(stderr, "pointnpr %s: %s: a camera file needs both 'eye' and 'target'\n", cmd, path);
+        ok = 0;
+    }
+    if (ok) v->have_eye = v->have_target = 1;
+    return ok;
+}
+
+int cli_write_camera_file(const char *path, const double eye[3], const double target[3], const double up[3], double fov)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) return 0;
+    int bad = fprintf(f, "# pointnpr camera (world coordinates; pointnpr render/lines --camera FILE)\n"
+                         "eye %.17g %.17g %.17g\ntarget %.17g %.17g %.17g\nup %.17g %.17g %.17g\nfov %.9g\n",
+                      eye[0], eye[1], eye[2], target[0], target[1], target[2], up[0], up[1], up[2], fov) < 0;
+    bad |= fclose(f) != 0;
+    return !bad;
+}
+
 int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i)
 {
     const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (!strcmp(a, "--camera") && val) {
+        (*i)++;
+        return read_camera_file(v, cmd, val) ? 1 : -1;
+    }
     double *vec = NULL;
     int *have = NULL;
     if (!strcmp(a, "--eye")) { vec = v->eye; have = &v->have_eye; }

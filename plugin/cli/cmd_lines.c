@@ -33,6 +33,7 @@ static void usage(FILE *f)
             "                       by a depth test against IN's points\n"
             "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fov DEG --size WxH\n"
             "                       the SVG's camera (as in 'pointnpr render'; default: fit the cloud)\n"
+            "  --camera FILE        the SVG's camera from a file (as written by render --save-camera)\n"
             "  --stroke-width PX    SVG stroke width (default 1.5)\n"
             "  --taper F            strokes narrow to a point over the fraction F of their length\n"
             "  --show-hidden        keep hidden parts in the SVG\n"

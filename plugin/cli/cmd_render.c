@@ -41,6 +41,8 @@ static void usage(FILE *f)
             "                       look-at camera in world coordinates (default: fit the cloud;\n"
             "                       up defaults to 0,0,1)\n"
             "  --fov DEG            vertical field of view (default 45)\n"
+            "  --camera FILE        the camera from a file (eye/target/up/fov lines, world coordinates)\n"
+            "  --save-camera FILE   write the camera used (e.g. the automatic one) to FILE, to edit\n"
             "  --budget N           at most N points per frame (default: all)\n"
             "  --density D          at most D points per covered screen pixel (default: no limit)\n"
             "  --seed S             continuous resolution queue seed (default 0)\n"
@@ -133,6 +135,7 @@ int cli_render(int argc, char **argv)
     pnpr_upload_options uopt;
     memset(&uopt, 0, sizeof uopt);
     int quiet = 0, alpha = 0, max_tile = 0;
+    const char *save_camera = NULL;
     cli_view view;
     cli_view_init(&view, 1024, 768);
     double bg[3] = {255, 255, 255};
@@ -147,6 +150,7 @@ int cli_render(int argc, char **argv)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--alpha")) alpha = 1;
+        else if (v && !strcmp(a, "--save-camera")) { save_camera = v; i++; }
         else if (v && !strcmp(a, "--max-tile")) {
             if (!cli_parse_number(v, 16, 1e6, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --max-tile wants an integer >= 16, got '%s'\n", v); return 2; }
             max_tile = (int)x; i++;
@@ -281,6 +285,11 @@ int cli_render(int argc, char **argv)
 
     pnpr_camera cam;
     const pnpr_camera *camp = cli_view_camera(&view, &cloud, &cam);
+    if (save_camera && camp &&
+        !cli_write_camera_file(save_camera, camp->eye, camp->target, camp->up, camp->fov_y_deg > 0 ? camp->fov_y_deg : 45)) {
+        fprintf(stderr, "pointnpr render: cannot write the camera file %s\n", save_camera);
+        goto done;
+    }
     size_t bytes = 0;
     st = pnpr_image_bytes(width, height, 0, &bytes, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }

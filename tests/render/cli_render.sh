@@ -123,6 +123,16 @@ printf '0 points sketchy\n' > "$dir/map-bad3.txt"
 check '[ $? -eq 2 ]' "--style-map: three words is an error"
 "$bin" render "$dir/cube_seg.ply" -o "$dir/x.png" --style-map "$dir/nonexistent.txt" > /dev/null 2>&1
 check '[ $? -eq 2 ]' "--style-map: missing file"
+# camera files: the automatic camera written and read back gives the same image; lines' SVG
+# takes the same file; a bad line is a usage error naming FILE:LINE
+"$bin" render "$dir/cube.ply" -o "$dir/cam_auto.png" --size 120x90 --save-camera "$dir/cam.txt" --quiet
+"$bin" render "$dir/cube.ply" -o "$dir/cam_file.png" --size 120x90 --camera "$dir/cam.txt" --quiet
+check 'grep -q "^eye " "$dir/cam.txt" && cmp -s "$dir/cam_auto.png" "$dir/cam_file.png"' "--save-camera then --camera: the same image"
+"$bin" lines "$dir/cube.ply" -o "$dir/cam_lines.obj" --svg "$dir/cam_lines.svg" --camera "$dir/cam.txt" --quiet
+check '[ $? -eq 0 ] && grep -q "<svg" "$dir/cam_lines.svg"' "lines --camera FILE"
+printf 'eye 1 2 3\ntarget 0 0\n' > "$dir/badcam.txt"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --camera "$dir/badcam.txt" 2> "$dir/badcam.log"
+check '[ $? -eq 2 ] && grep -q "badcam.txt:2" "$dir/badcam.log"' "bad camera file: exit 2 with FILE:LINE"
 "$bin" render --help | grep -q "usage: pointnpr render"
 check '[ $? -eq 0 ]' "--help"
 exit $fail
