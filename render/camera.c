@@ -68,9 +68,11 @@ pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float 
     return PNPR_OK;
 }
 
-pnpr_status pnpr_frame_camera_make(const pnpr_camera *cam, const double origin[3],
-                                   const float bmin[3], const float bmax[3], int have_box,
-                                   int width, int height, pnpr_frame_camera *r, pnpr_error *err)
+/* The look-at camera's view (relative to origin) and projection in double. */
+static pnpr_status lookat_matrices(const pnpr_camera *cam, const double origin[3], const float bmin[3],
+                                   const float bmax[3], int have_box, int width, int height,
+                                   double view_out[16], double proj_out[16], double *r_near,
+                                   double *r_far, pnpr_error *err)
 {
     double eye[3], f[3], up[3];
     for (int a = 0; a < 3; a++) {
@@ -124,10 +126,106 @@ pnpr_status pnpr_frame_camera_make(const pnpr_camera *cam, const double origin[3
     proj[10] = -(fa + n) / (fa - n);
     proj[11] = -1;
     proj[14] = -2 * fa * n / (fa - n);
+    memcpy(view_out, view, sizeof view);
+    memcpy(proj_out, proj, sizeof proj);
+    *r_near = n;
+    *r_far = fa;
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_frame_camera_make(const pnpr_camera *cam, const double origin[3],
+                                   const float bmin[3], const float bmax[3], int have_box,
+                                   int width, int height, pnpr_frame_camera *r, pnpr_error *err)
+{
+    double view[16], proj[16], n, fa;
+    pnpr_status st = lookat_matrices(cam, origin, bmin, bmax, have_box, width, height, view, proj, &n, &fa, err);
+    if (st != PNPR_OK) return st;
     for (int i = 0; i < 16; i++) { r->view[i] = (float)view[i]; r->proj[i] = (float)proj[i]; }
-    r->pixels_per_unit = (float)(t * height * 0.5);
+    r->pixels_per_unit = (float)(proj[5] * height * 0.5);
     r->near_plane = n;
     r->far_plane = fa;
+    r->ortho = 0;
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_camera_matrices_from_camera(const pnpr_camera *camera, const pnpr_cloud *cloud,
+                                             int width, int height, pnpr_camera_matrices *r_m,
+                                             pnpr_error *err)
+{
+    if (!camera || !r_m)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "camera matrices: camera and result are required");
+    if (width <= 0 || height <= 0)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "camera matrices: size %d x %d is not positive", width, height);
+    double origin[3] = {0, 0, 0};
+    float bmin[3] = {0, 0, 0}, bmax[3] = {0, 0, 0};
+    int have_box = 0;
+    if (cloud) {
+        memcpy(origin, cloud->origin, sizeof origin);
+        have_box = pnpr_cloud_bounds(cloud, bmin, bmax) > 0;
+    }
+    double view[16], proj[16], n, fa;
+    pnpr_status st = lookat_matrices(camera, origin, bmin, bmax, have_box, width, height, view, proj, &n, &fa, err);
+    if (st != PNPR_OK) return st;
+    /* world view = view_rel * translate(-origin) */
+    memcpy(r_m->view, view, sizeof view);
+    for (int row = 0; row < 4; row++)
+        r_m->view[12 + row] = view[12 + row] - (view[row] * origin[0] + view[4 + row] * origin[1] + view[8 + row] * origin[2]);
+    memcpy(r_m->projection, proj, sizeof proj);
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_frame_camera_from_matrices(const pnpr_camera_matrices *m, const double origin[3],
+                                            int width, int height, pnpr_frame_camera *r, pnpr_error *err)
+{
+    const double *V = m->view;
+    double P[16];
+    for (int i = 0; i < 16; i++) {
+        if (!isfinite(V[i]) || !isfinite(m->projection[i]))
+            return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera matrices: view and projection must be finite");
+        P[i] = m->projection[i];
+    }
+    if (V[3] != 0 || V[7] != 0 || V[11] != 0 || V[15] != 1)
+        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera matrices: the view must be affine (last row 0 0 0 1)");
+    double det = V[0] * (V[5] * V[10] - V[9] * V[6]) - V[4] * (V[1] * V[10] - V[9] * V[2]) +
+                 V[8] * (V[1] * V[6] - V[5] * V[2]);
+    if (!(fabs(det) > 1e-300) || !isfinite(det))
+        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera matrices: the view is not invertible");
+    double scale = cbrt(fabs(det));
+    if (fabs(scale - 1) < 1e-12) scale = 1;
+    /* the projection's last row (P[3], P[7], P[11], P[15]) picks the kind; normalise it so that
+     * w = -z_eye (perspective) or w = 1 (orthographic): the same image, GL's usual form */
+    int ortho;
+    double k;
+    if (P[3] != 0 || P[7] != 0)
+        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera matrices: the projection is neither perspective nor orthographic");
+    if (P[11] == 0 && P[15] > 0) { ortho = 1; k = P[15]; }
+    else if (P[11] < 0 && P[15] == 0) { ortho = 0; k = -P[11]; }
+    else
+        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera matrices: the projection is neither perspective nor orthographic");
+    for (int i = 0; i < 16; i++) P[i] /= k;
+    if (P[0] == 0 || P[5] == 0 || P[10] == 0)
+        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera matrices: the projection is degenerate");
+    double n, fa;
+    if (ortho) {
+        n = (P[14] + 1) / P[10];
+        fa = (P[14] - 1) / P[10];
+    } else {
+        n = P[14] / (P[10] - 1);
+        fa = P[14] / (P[10] + 1);
+        if (!(n > 0) || !isfinite(n))
+            return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera matrices: the perspective near plane is not in front of the eye");
+    }
+    /* rebase on the cloud's origin in double: view * translate(origin) */
+    double view[16];
+    memcpy(view, V, sizeof view);
+    for (int row = 0; row < 4; row++)
+        view[12 + row] = V[row] * origin[0] + V[4 + row] * origin[1] + V[8 + row] * origin[2] + V[12 + row];
+    for (int i = 0; i < 16; i++) { r->view[i] = (float)view[i]; r->proj[i] = (float)P[i]; }
+    r->pixels_per_unit = (float)(fabs(P[5]) * height * 0.5 * scale);
+    r->near_plane = n;
+    r->far_plane = fa;
+    r->ortho = ortho;
+    (void)width;
     return PNPR_OK;
 }
 

@@ -879,7 +879,12 @@ static pnpr_status plan_frame(const pnpr_renderer *r, const pnpr_camera *camera,
                               int w, int h, frame_plan *p, pnpr_error *err)
 {
     pnpr_camera cam;
-    if (camera) cam = *camera;
+    memset(&cam, 0, sizeof cam);
+    pnpr_status st;
+    if (o->matrices) {
+        st = pnpr_frame_camera_from_matrices(o->matrices, r->origin, w, h, &p->fc, err);
+        if (st != PNPR_OK) return st;
+    } else if (camera) cam = *camera;
     else {
         memset(&cam, 0, sizeof cam);
         pnpr_cloud box;
@@ -891,8 +896,10 @@ static pnpr_status plan_frame(const pnpr_renderer *r, const pnpr_camera *camera,
         memcpy(box.origin, r->origin, sizeof box.origin);
         pnpr_camera_fit(&box, NULL, 45, (float)w / (float)h, &cam);
     }
-    pnpr_status st = pnpr_frame_camera_make(&cam, r->origin, r->bmin, r->bmax, r->count > 0, w, h, &p->fc, err);
-    if (st != PNPR_OK) return st;
+    if (!o->matrices) {
+        st = pnpr_frame_camera_make(&cam, r->origin, r->bmin, r->bmax, r->count > 0, w, h, &p->fc, err);
+        if (st != PNPR_OK) return st;
+    }
     /* continuous resolution queue: how many points this frame */
     size_t n_draw = r->count;
     p->coverage = r->count ? pnpr_box_coverage(&p->fc, r->bmin, r->bmax, w, h) : 0;
@@ -1113,7 +1120,8 @@ static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_camera *fc, const pn
     glUniformMatrix4fv(r->ul.proj, 1, GL_FALSE, fc->proj);
     glUniform2f(r->ul.viewport, (float)fw, (float)fh);
     glUniform1f(r->ul.width, o->line_width > 0 ? o->line_width : 2);
-    glUniform1f(r->ul.near_plane, (float)fc->near_plane);
+    /* orthographic: w = 1 everywhere, nothing to move onto the near plane (GL clips) */
+    glUniform1f(r->ul.near_plane, fc->ortho ? -1e30f : (float)fc->near_plane);
     glUniform4fv(r->ul.ink, 1, ink);
     glBindVertexArray(r->vao_lines);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)r->line_segments);
@@ -1569,6 +1577,7 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, 
         if (d < dmin) dmin = d;
     }
     if (!(dmin > plan.fc.near_plane)) dmin = plan.fc.near_plane;
+    if (plan.fc.ortho) dmin = 1; /* orthographic: clip w = 1, sprite sizes do not depend on depth */
     float ps = o.point_scale > 0 ? o.point_scale : 1, ms = o.mask_scale > 0 ? o.mask_scale : 2.0f;
     double grow = ps * plan.lod * (ms > PNPR_PAINT_MAX_BRUSH ? ms : PNPR_PAINT_MAX_BRUSH);
     double sprite = r->count ? 2.0 * r->max_radius * grow * plan.fc.pixels_per_unit / dmin : 0;

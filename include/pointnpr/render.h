@@ -48,6 +48,33 @@ typedef struct pnpr_camera {
     float near_plane, far_plane;     /* 0 = automatic from the cloud's bounds */
 } pnpr_camera;
 
+/* An explicit camera as OpenGL matrices (column-major, m[col * 4 + row], like glGetDoublev of
+ * GL_MODELVIEW_MATRIX / GL_PROJECTION_MATRIX), both in double and in world coordinates: `view`
+ * maps world positions (origin + offset) to eye space, `projection` eye space to clip space.
+ * It covers what pnpr_camera cannot: off-centre frusta (glFrustum with l != -r, e.g. one tile of
+ * a larger image) and orthographic projections (glOrtho). The renderer rebases the view on the
+ * cloud's origin in double (view * translate(origin)) before converting to float, so large
+ * origins keep their precision. Requirements (else PNPR_ERR_NUMERIC):
+ *   - view: finite, affine (row 3 = 0 0 0 1), invertible upper 3x3; a uniform scale is allowed
+ *     (MeshLab's trackball scales the scene): disk sizes follow it;
+ *   - projection: finite, either perspective (row 3 = 0 0 -k 0 with k > 0, near plane > 0) or
+ *     orthographic (row 3 = 0 0 0 k with k > 0), and projection[0], projection[5] != 0.
+ * Point sizes: pixels per world unit at clip w = 1 = |projection[5]| * height / 2 * view scale
+ * (perspective: divided by the eye depth as usual; orthographic: constant over the image).
+ * Used through pnpr_draw_options.matrices. */
+typedef struct pnpr_camera_matrices {
+    double view[16];
+    double projection[16];
+} pnpr_camera_matrices;
+
+/* The matrices of a look-at camera for a width x height frame, as the renderer builds them for
+ * `cloud` (automatic near/far from its bounds when the camera leaves them at 0): drawing with
+ * them through pnpr_draw_options.matrices gives the same frame as drawing with `camera`.
+ * cloud may be NULL (then near/far must be set, or a default range is used). */
+pnpr_status pnpr_camera_matrices_from_camera(const pnpr_camera *camera, const pnpr_cloud *cloud,
+                                             int width, int height, pnpr_camera_matrices *r_m,
+                                             pnpr_error *err);
+
 /* A camera that frames the cloud's finite bounding box from `dir` (world direction from the
  * target towards the eye; NULL = the default view (0, -1, 0.5), i.e. from the front, slightly
  * above, z up), with the vertical fov (0 = 45) and the image aspect width/height (0 = 1).
@@ -164,6 +191,10 @@ typedef struct pnpr_draw_options {
     int levels;            /* cartoon without segment labels: colour levels per channel (0 = 4, >= 2) */
     int paint_no_sky_mask; /* painterly: no stencil test in the large passes (paper fig. 8 left) */
     int paint_no_strokes;  /* painterly: no directional strokes on top */
+    /* An explicit camera (pnpr_camera_matrices, caller-owned, read during the call only) that
+     * replaces the `camera` argument of pnpr_renderer_draw / pnpr_renderer_snapshot; NULL = use
+     * `camera` (look-at + symmetric perspective). */
+    const struct pnpr_camera_matrices *matrices;
 } pnpr_draw_options;
 
 /* Where the frame goes: framebuffer object `framebuffer` (0 = the default framebuffer) and the

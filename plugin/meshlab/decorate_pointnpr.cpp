@@ -10,7 +10,8 @@
  *   3. takes feature classes/directions from the filter plugin's attributes (feature_class,
  *      feature_dir) when every layer has them, else runs pnpr_compute_features with only the
  *      PNPR_WANT_* bits the style needs, the first time a style needs them,
- *   4. turns MeshLab's GL_MODELVIEW/GL_PROJECTION into a pnpr_camera (look-at + vertical fov),
+ *   4. passes MeshLab's GL_MODELVIEW/GL_PROJECTION as they are (pnpr_camera_matrices: perspective,
+ *      orthographic and the off-centre tiles of MeshLab's "Save snapshot"),
  *   5. draws into MeshLab's bound framebuffer and viewport (composite REPLACE) and restores state.
  * No C++ exception leaves the plugin: every entry point catches everything. */
 #include "decorate_pointnpr.h"
@@ -425,84 +426,6 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
     return st;
 }
 
-/* Modelview (view x trackball) and projection -> look-at camera. Perspective: eye = MV^-1 * 0,
- * view and up directions through MV^-1, vertical fov from P[5]. Orthographic (MeshLab's fov 5):
- * a 1 degree perspective from far behind with the same visible height at the cloud's centre. */
-bool cameraFromGL(const double mv[16], const double P[16], const pnpr_cloud &cloud, pnpr_camera &cam)
-{
-    /* A = upper 3x3 (column-major: A[r][c] = mv[c*4+r]), t = translation */
-    double A[3][3], t[3];
-    for (int r = 0; r < 3; r++) {
-        for (int c = 0; c < 3; c++) A[r][c] = mv[c * 4 + r];
-        t[r] = mv[12 + r];
-    }
-    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-    if (!(std::fabs(det) > 1e-300) || !std::isfinite(det)) return false;
-    double I[3][3];
-    I[0][0] = (A[1][1] * A[2][2] - A[1][2] * A[2][1]) / det;
-    I[0][1] = (A[0][2] * A[2][1] - A[0][1] * A[2][2]) / det;
-    I[0][2] = (A[0][1] * A[1][2] - A[0][2] * A[1][1]) / det;
-    I[1][0] = (A[1][2] * A[2][0] - A[1][0] * A[2][2]) / det;
-    I[1][1] = (A[0][0] * A[2][2] - A[0][2] * A[2][0]) / det;
-    I[1][2] = (A[0][2] * A[1][0] - A[0][0] * A[1][2]) / det;
-    I[2][0] = (A[1][0] * A[2][1] - A[1][1] * A[2][0]) / det;
-    I[2][1] = (A[0][1] * A[2][0] - A[0][0] * A[2][1]) / det;
-    I[2][2] = (A[0][0] * A[1][1] - A[0][1] * A[1][0]) / det;
-    double eye[3], fwd[3], up[3];
-    for (int r = 0; r < 3; r++) {
-        eye[r] = -(I[r][0] * t[0] + I[r][1] * t[1] + I[r][2] * t[2]);
-        fwd[r] = -I[r][2];
-        up[r] = I[r][1];
-    }
-    double nf = std::sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]);
-    double scale = std::cbrt(std::fabs(det)); /* world -> eye units (uniform scale) */
-    if (!(nf > 0) || !(scale > 0)) return false;
-    for (double &f : fwd) f /= nf;
-    double d = up[0] * fwd[0] + up[1] * fwd[1] + up[2] * fwd[2];
-    for (int r = 0; r < 3; r++) up[r] -= d * fwd[r];
-    double nu = std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
-    if (!(nu > 0)) return false;
-    for (double &u : up) u /= nu;
-    /* the cloud's bounding-box centre and size, for the target distance */
-    float lo[3], hi[3];
-    double centre[3] = {0, 0, 0}, diag = 1;
-    if (pnpr_cloud_bounds(&cloud, lo, hi) > 0) {
-        diag = 0;
-        for (int r = 0; r < 3; r++) {
-            centre[r] = cloud.origin[r] + 0.5 * ((double)lo[r] + (double)hi[r]);
-            diag += ((double)hi[r] - lo[r]) * ((double)hi[r] - lo[r]);
-        }
-        diag = std::sqrt(diag);
-        if (!(diag > 0)) diag = 1;
-    }
-    double depth = (centre[0] - eye[0]) * fwd[0] + (centre[1] - eye[1]) * fwd[1] + (centre[2] - eye[2]) * fwd[2];
-    std::memset(&cam, 0, sizeof cam);
-    bool ortho = std::fabs(P[15] - 1.0) < 1e-9 && std::fabs(P[11]) < 1e-9;
-    if (!ortho) {
-        if (!(P[5] > 0)) return false;
-        cam.fov_y_deg = (float)(2.0 * std::atan(1.0 / P[5]) * 180.0 / M_PI);
-        if (!(depth > 1e-6 * diag)) depth = diag; /* the target only fixes the view direction */
-        for (int r = 0; r < 3; r++) {
-            cam.eye[r] = eye[r];
-            cam.target[r] = eye[r] + depth * fwd[r];
-            cam.up[r] = up[r];
-        }
-    } else {
-        if (!(P[5] > 0)) return false;
-        double half = 1.0 / P[5] / scale; /* visible half-height in world units */
-        const double fov = 1.0;
-        double dist = half / std::tan(0.5 * fov * M_PI / 180.0);
-        cam.fov_y_deg = (float)fov;
-        for (int r = 0; r < 3; r++) {
-            cam.target[r] = eye[r] + depth * fwd[r];
-            cam.eye[r] = cam.target[r] - dist * fwd[r];
-            cam.up[r] = up[r];
-        }
-    }
-    return true;
-}
-
 /* test-only: PNPR_MESHLAB_SNAPSHOT=PREFIX writes PREFIX-plain.{png,pgm} (MeshLab's own frame,
  * read before drawing), PREFIX-npr.{png,pgm} (after) and PREFIX-camera.txt (MV, P, viewport). */
 bool readViewport(const GLint vp[4], std::vector<unsigned char> &rgba)
@@ -640,8 +563,13 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     std::memcpy(s->lastMV, mv, sizeof mv);
     std::memcpy(s->lastP, P, sizeof P);
     s->haveLast = true;
-    pnpr_camera cam;
-    if (!cameraFromGL(mv, P, s->cloud, cam)) { report("degenerate view matrices: nothing drawn", true); return; }
+    /* MeshLab's matrices as they are (the cloud is in scene coordinates, the layers' Tr already
+     * applied, and the modelview holds view x trackball): perspective, orthographic and the
+     * off-centre frusta of the tiled "Save snapshot" alike. The renderer rebases the view on the
+     * cloud's origin in double and refuses matrices it cannot use (PNPR_ERR_NUMERIC). */
+    pnpr_camera_matrices cm;
+    std::memcpy(cm.view, mv, sizeof mv);
+    std::memcpy(cm.projection, P, sizeof P);
     if (vp[2] <= 0 || vp[3] <= 0) return;
 
     pnpr_draw_options o;
@@ -658,6 +586,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     o.line_width = prm.lineWidth;
     o.stroke_width = prm.lineWidth;
     o.composite = PNPR_COMPOSITE_REPLACE;
+    o.matrices = &cm;
     pnpr_target tg;
     std::memset(&tg, 0, sizeof tg);
     tg.framebuffer = (uint32_t)fb;
@@ -678,7 +607,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (takeSnap) readViewport(vp, plain);
     glEnable(GL_POINT_SPRITE);
     pnpr_render_stats stats;
-    pnpr_status st = pnpr_renderer_draw(s->renderer, &cam, &o, &tg, &stats, &err);
+    pnpr_status st = pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, &stats, &err);
     if (takeSnap && st == PNPR_OK) readViewport(vp, npr);
     glPopClientAttrib();
     glPopAttrib();
