@@ -27,6 +27,9 @@
 #include <QElapsedTimer>
 #include <QFile>
 #include <QImage>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSpinBox>
 #include <QPointer>
 #include <QTimer>
 #include <QWidget>
@@ -437,6 +440,57 @@ bool readViewport(const GLint vp[4], std::vector<unsigned char> &rgba)
     return true;
 }
 
+/* test-only (tests/meshlab/run.sh, case snapshot): PNPR_MESHLAB_TEST_SAVE_SNAPSHOT=FOLDER drives
+ * MeshLab's own File > Save snapshot: its QAction ("Save snapsho&t") is triggered and its modal
+ * dialog (SaveSnapshotDialog, object name SSDialog) gets output folder FOLDER, base name
+ * meshlab_snapshot and screen multiplier PNPR_MESHLAB_TEST_SNAPSHOT_FACTOR (default 2), then its
+ * Save button is clicked. MeshLab then renders the tiles (off-centre frusta) and writes
+ * FOLDER/meshlab_snapshot00.png itself. */
+void testSaveSnapshot()
+{
+    const char *dir = std::getenv("PNPR_MESHLAB_TEST_SAVE_SNAPSHOT");
+    if (!dir) return;
+    int factor = 2;
+    if (const char *f = std::getenv("PNPR_MESHLAB_TEST_SNAPSHOT_FACTOR")) factor = std::max(1, std::atoi(f));
+    QAction *act = nullptr;
+    for (QWidget *w : QApplication::topLevelWidgets())
+        for (QAction *a : w->findChildren<QAction *>())
+            if (!act && a->text() == "Save snapsho&t") act = a;
+    if (!act) { std::fprintf(stderr, "pointnpr decorator: test: no 'Save snapshot' action\n"); return; }
+    QTimer *poll = new QTimer(qApp);
+    int *ticks = new int(0);
+    QString folder = QString::fromLocal8Bit(dir);
+    QObject::connect(poll, &QTimer::timeout, poll, [poll, ticks, folder, factor] {
+        QWidget *dlg = nullptr;
+        for (QWidget *w : QApplication::topLevelWidgets())
+            if (w->objectName() == "SSDialog" && w->isVisible()) dlg = w;
+        if (!dlg) {
+            if (++*ticks > 200) { poll->stop(); poll->deleteLater(); delete ticks; }
+            return;
+        }
+        poll->stop();
+        poll->deleteLater();
+        delete ticks;
+        QLineEdit *out = dlg->findChild<QLineEdit *>("outDirLineEdit");
+        QLineEdit *base = dlg->findChild<QLineEdit *>("baseNameLineEdit");
+        QSpinBox *res = dlg->findChild<QSpinBox *>("resolutionSpinBox");
+        QPushButton *save = dlg->findChild<QPushButton *>("saveButton");
+        if (!out || !base || !res || !save) {
+            std::fprintf(stderr, "pointnpr decorator: test: Save snapshot dialog has unexpected widgets\n");
+            return;
+        }
+        out->setText(folder);
+        base->setText("meshlab_snapshot");
+        res->setValue(factor);
+        std::fprintf(stderr, "pointnpr decorator: test: Save snapshot dialog accepted (folder %s, multiplier %d)\n",
+                     folder.toLocal8Bit().constData(), res->value());
+        save->click();
+    });
+    poll->start(100);
+    std::fprintf(stderr, "pointnpr decorator: test: triggering File > Save snapshot\n");
+    act->trigger(); /* MainWindow::saveSnapshot: dialog.exec() runs the poll above */
+}
+
 bool writeImages(const QString &prefix, const std::vector<unsigned char> &rgba, int w, int h)
 {
     QImage img(w, h, QImage::Format_RGB888);
@@ -632,6 +686,8 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
                 f.close();
             }
             std::fprintf(stderr, "pointnpr decorator: snapshot %s %s\n", snap, ok ? "written" : "FAILED");
+            if (ok && std::getenv("PNPR_MESHLAB_TEST_SAVE_SNAPSHOT"))
+                QTimer::singleShot(300, qApp, [] { try { testSaveSnapshot(); } catch (...) {} });
         } else if (s->widget) {
             QPointer<QWidget> w = s->widget;
             QTimer::singleShot(200, w.data(), [w] { if (w) w->update(); }); /* more frames until it is taken */

@@ -2,7 +2,7 @@
 # MeshLab plugin tests: runs the filters of libfilter_pointnpr.so inside Debian's meshlabserver.
 #
 #   tests/meshlab/run.sh TEST PLUGIN_SO POINTNPR_CLI WORKDIR [DECORATE_SO]
-#     TEST: load | cube | offset | select | robust | lion | lines | segment | decorate
+#     TEST: load | cube | offset | select | robust | lion | lines | segment | decorate | snapshot
 #     DECORATE_SO: libdecorate_pointnpr.so ("NPR render"), also put into the host's plugins/;
 #     the decorate test runs the MeshLab GUI (/usr/bin/meshlab) under Xvfb.
 #
@@ -779,6 +779,83 @@ decorate)
   expect_log sketchy "features computed for the sketchy style \\(15002 points"
   gui lines lines
   expect_log lines "pointnpr decorator: [0-9]+ profile lines"
+  ;;
+
+snapshot)
+  # MeshLab's own File > Save snapshot with the decorator on, on the sample scan (the lion case's
+  # cached WORKDIR/lion.ply, fetched + converted once): the GUI opens the lion, the plugin turns
+  # "NPR render" on (sketchy, PNPR_MESHLAB_DECORATE_AT_START), takes its own frame pair
+  # (PNPR_MESHLAB_SNAPSHOT: MeshLab's plain frame + the NPR frame, camera), then
+  # (PNPR_MESHLAB_TEST_SAVE_SNAPSHOT) triggers MeshLab's "Save snapshot" action, fills its dialog
+  # (folder, base name, screen multiplier 2) and clicks Save: MeshLab renders 2x2 tiles with
+  # off-centre frusta and writes meshlab_snapshot00.png itself (kept in the work folder).
+  [[ -n "$DECORATE" ]] || die "no decorate plugin given (5th argument)"
+  [[ -x "$GUI_BIN" ]] || die "$GUI_BIN not found (packaging/install-deps.sh installs meshlab)"
+  command -v convert > /dev/null || die "ImageMagick convert not found (reads the PNG snapshot)"
+  ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
+  CACHE="$WORK/sample-cache"
+  LION="$WORK/lion.ply"
+  if [[ ! -s "$LION" ]]; then
+    tiles=$(bash "$SRC/scripts/fetch-sample.sh" "$CACHE" | tail -n 1) ||
+      die "could not fetch the sample scan (scripts/fetch-sample.sh $CACHE): this test needs it"
+    "$CLI" convert "$tiles" -o "$LION.tmp" --quiet && mv "$LION.tmp" "$LION" || die "pointnpr convert of $tiles failed"
+  fi
+  SNAP="$T/meshlab_snapshot00.png"
+  rm -f "$SNAP" "$T"/lion-*
+  mkdir -p "$T/home"
+  (cd "$T" && HOME="$T/home" XDG_RUNTIME_DIR="$T/home" PNPR_MESHLAB_DECORATE_AT_START=1 \
+    PNPR_MESHLAB_SNAPSHOT="$T/lion" PNPR_MESHLAB_TEST_STYLE=sketchy PNPR_MESHLAB_TEST_SAVE_SNAPSHOT="$T" \
+    PNPR_MESHLAB_TEST_SNAPSHOT_FACTOR=2 \
+    LD_LIBRARY_PATH="$MLLIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" exec timeout 170 "$T/host/meshlab" "$LION") \
+    > "$T/gui.log" 2>&1 &
+  pid=$!
+  prev=-1
+  for i in $(seq 1 1500); do
+    if [[ -s "$SNAP" ]]; then # written by QImage::save: wait until its size is stable
+      sz=$(stat -c %s "$SNAP"); [[ "$sz" == "$prev" ]] && break; prev=$sz
+    fi
+    kill -0 "$pid" 2> /dev/null || break
+    sleep 0.1
+  done
+  sleep 0.5
+  if kill -0 "$pid" 2> /dev/null; then
+    kill "$pid"; wait "$pid" 2> /dev/null
+  else
+    wait "$pid"; fail "MeshLab exited by itself (status $?) before it was stopped"
+  fi
+  grep -qE "Segmentation fault|Aborted|core dumped|terminate called|Assertion .* failed" "$T/gui.log" && { fail "MeshLab crashed:"; tail -n 20 "$T/gui.log"; }
+  no_plugin_errors gui
+  expect_log gui "Enabled Decorate mode NPR render"
+  expect_log gui "pointnpr decorator: uploaded [0-9]+ points from 1 layer"
+  expect_log gui "pointnpr decorator: snapshot .* written"
+  expect_log gui "pointnpr decorator: test: Save snapshot dialog accepted \\(folder .*, multiplier 2\\)"
+  grep "pointnpr decorator:" "$T/gui.log"
+  [[ -s "$SNAP" ]] || die "MeshLab's Save snapshot wrote no $SNAP (log: $T/gui.log)"
+  [[ -f "$T/lion-camera.txt" && -f "$T/lion-plain.pgm" ]] || die "no decorator frame pair (log: $T/gui.log)"
+  read -r _ _ _ vw vh < <(grep '^viewport' "$T/lion-camera.txt")
+  convert "$SNAP" -colorspace gray -depth 8 -compress none pgm:"$T/snapshot.pgm" || die "convert $SNAP failed"
+  # the snapshot: exactly 2x the viewport; paper-white corners; >= 50% light (> 200) pixels and
+  # >= 1% dark (< 110) stroke pixels; >= 25% of its pixels differ by > 40 grey levels from MeshLab's
+  # own (undecorated) frame scaled 2x (the plain frame's background is MeshLab's gradient)
+  awk -v vw="$vw" -v vh="$vh" '
+    FNR == 1 { f++ }
+    f == 1 { if (FNR == 2) { PW = $1; PH = $2 } if (FNR > 3) for (c = 1; c <= NF; c++) pl[n1++] = $c; next }
+    { for (c = 1; c <= NF; c++) { k++
+        if (k == 2) W = $c + 0; if (k == 3) H = $c + 0
+        if (k > 4) { v = $c; i = k - 5; x = i % W; y = int(i / W); n++
+          if (v < 110) dark++; if (v > 200) light++
+          p = pl[int(y / 2) * PW + int(x / 2)]; d = v - p; if (d > 40 || d < -40) differ++
+          if ((x == 0 || x == W - 1) && (y == 0 || y == H - 1)) { corners++; if (v == 255) white++ } } } }
+    END {
+      printf "snapshot %dx%d (viewport %dx%d, plain frame %dx%d): %.1f%% dark, %.1f%% light, %.1f%% differ from the plain frame, %d of %d corners white\n",
+             W, H, vw, vh, PW, PH, 100 * dark / n, 100 * light / n, 100 * differ / n, white, corners
+      bad = 0
+      if (W != 2 * vw || H != 2 * vh || n != W * H) { print "wrong size"; bad++ }
+      if (PW != vw || PH != vh) { print "plain frame size differs from the viewport"; bad++ }
+      if (dark < 0.01 * n || light < 0.5 * n) { print "not dark strokes on light paper"; bad++ }
+      if (differ < 0.25 * n) { print "too close to the plain frame"; bad++ }
+      if (white != 4) { print "corners are not paper white"; bad++ }
+      exit bad ? 1 : 0 }' "$T/lion-plain.pgm" "$T/snapshot.pgm" || fail "snapshot checks (see above)"
   ;;
 
 *) die "unknown test '$TEST'" ;;
