@@ -543,6 +543,39 @@ lion)
                   near(pf, cf) && near(pd, cd) && near(pdi, cdi) && pd > 0 && pdi > 0) ? 0 : 1 }' \
       "$T/lion-cli.ply" "$T/lion-out-a.ply" || fail "lion results"
   fi
+  # profile lines of the sample scan as a new polyline layer (OBJ keeps it): as many polylines as
+  # the CLI finds on the same file (within 10%), every vertex inside the scan's bounding box
+  mlx "$T/ll.mlx" "$(lines_xml)"
+  if mlserver lionlines -i "$LION" -o "$T/lion-lines.obj" -s "$T/ll.mlx"; then
+    expect_rc lionlines 0
+    expect_log lionlines "new layer 'lion.ply profile lines'"
+    "$CLI" lines "$LION" -o "$T/lion-lines-cli.obj" --quiet || fail "pointnpr lines failed"
+    # MeshLab writes one `l a b` per edge, the CLI one `l` per polyline: compare total lengths
+    objlen() { awk '/^v / { n++; x[n] = $2; y[n] = $3; z[n] = $4 }
+                    /^l / { for (i = 3; i <= NF; i++) { a = $(i - 1); b = $i; sub(/\/.*/, "", a); sub(/\/.*/, "", b)
+                            t += sqrt((x[a] - x[b]) ^ 2 + (y[a] - y[b]) ^ 2 + (z[a] - z[b]) ^ 2) } }
+                    END { printf "%.4f", t }' "$1"; }
+    pl=$(objlen "$T/lion-lines.obj")
+    cl=$(objlen "$T/lion-lines-cli.obj")
+    log "lion lines: plugin total length $pl, CLI $cl"
+    awk -v p="$pl" -v c="$cl" 'BEGIN { exit (c > 5 && p >= 0.9 * c && p <= 1.1 * c) ? 0 : 1 }' || fail "lion lines: total length $pl vs $cl from the CLI"
+    awk '/^v / { if ($2 < -5.1 || $2 > -0.7 || $3 < 0.9 || $3 > 6.9 || $4 < -3.6 || $4 > 1.3) bad++; n++ }
+         END { printf "lion lines: %d vertices, %d outside the scan box\n", n, bad; exit (n > 0 && bad == 0) ? 0 : 1 }' \
+      "$T/lion-lines.obj" || fail "lion line vertices"
+  fi
+  # JSEG segment labels of the sample scan (label to quality): as many segments as the CLI finds
+  mlx "$T/lj.mlx" "$(jseg_xml)"
+  if mlserver lionjseg -i "$LION" -o "$T/lion-jseg.ply" -m vq vc -s "$T/lj.mlx"; then
+    expect_rc lionjseg 0
+    "$CLI" segment "$LION" -o "$T/lion-jseg-cli.ply" --ascii --quiet || fail "pointnpr segment failed"
+    to_ascii "$T/lion-jseg.ply" "$T/lion-jseg-a.ply"
+    ps=$(awk '/^property/ && !b { col[$NF] = np++ } /^end_header/ { b = 1; next } b { seen[$(col["quality"] + 1)] = 1 }
+              END { for (s in seen) n++; print n + 0 }' "$T/lion-jseg-a.ply")
+    cs=$(awk '/^property/ && !b { col[$NF] = np++ } /^end_header/ { b = 1; next } b { seen[$(col["segment"] + 1)] = 1 }
+              END { for (s in seen) n++; print n + 0 }' "$T/lion-jseg-cli.ply")
+    log "lion JSEG: plugin $ps segments, CLI $cs"
+    awk -v p="$ps" -v c="$cs" 'BEGIN { exit (p >= 20 && p >= 0.8 * c && p <= 1.2 * c) ? 0 : 1 }' || fail "lion JSEG: $ps segments vs $cs from the CLI"
+  fi
   ;;
 
 lines)
