@@ -303,6 +303,7 @@ static pnpr_status las_read_points(const unsigned char *d, const las_header *h, 
             }
     }
     cloud->src_coord_type = PNPR_TYPE_FLOAT64;
+    cloud->up_hint = 3; /* LAS (ASPRS): projected coordinates, z is elevation */
     if ((st = pnpr_cloud_set_world(cloud, cloud->src_xyz)) != PNPR_OK)
         return las_fail(err, st, -1, "cannot set world coordinates");
     if (pnpr_progress_report(progress, "read las", 1.0))

@@ -68,6 +68,11 @@ typedef struct pnpr_cloud {
     size_t prop_count;
     pnpr_property *props;
     pnpr_faces faces;
+    /* What the file says about how it was captured (0 = unknown); used by the default view
+     * (pnpr_scene_frame) and kept by writers that can store it. */
+    int has_viewpoint;  /* viewpoint holds the scanner position (world), e.g. PCD VIEWPOINT */
+    double viewpoint[3];
+    int up_hint;        /* the format's up axis: +-1, +-2, +-3 = +-x, +-y, +-z (LAS: +3) */
 } pnpr_cloud;
 
 void pnpr_cloud_free(pnpr_cloud *cloud); /* frees everything, leaves a zeroed cloud; NULL ok */
