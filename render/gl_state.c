@@ -1,5 +1,7 @@
 #include "gl_state.h"
 
+#include <pointnpr/core.h>
+
 const GLenum pnpr_gl_state_enables[PNPR_GL_STATE_ENABLES] = {
     GL_SCISSOR_TEST, GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_STENCIL_TEST,
     GL_PROGRAM_POINT_SIZE, GL_FRAMEBUFFER_SRGB, GL_POLYGON_OFFSET_FILL,
@@ -36,6 +38,10 @@ void pnpr_gl_state_save(pnpr_gl_state *s)
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->tex_2d);
     glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &s->tex_2d_array);
     glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler);
+    glActiveTexture(GL_TEXTURE1);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->tex_2d_unit1);
+    glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler_unit1);
+    glActiveTexture(GL_TEXTURE0);
     glGetIntegerv(GL_PACK_ALIGNMENT, &s->pack[0]);
     glGetIntegerv(GL_PACK_ROW_LENGTH, &s->pack[1]);
     glGetIntegerv(GL_PACK_SKIP_PIXELS, &s->pack[2]);
@@ -71,6 +77,7 @@ void pnpr_gl_state_neutral(void)
     glBlendEquation(GL_FUNC_ADD);
     glActiveTexture(GL_TEXTURE0);
     glBindSampler(0, 0);
+    glBindSampler(1, 0);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -116,6 +123,9 @@ void pnpr_gl_state_restore(const pnpr_gl_state *s)
     glBindTexture(GL_TEXTURE_2D, (GLuint)s->tex_2d);
     glBindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)s->tex_2d_array);
     glBindSampler(0, (GLuint)s->sampler);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)s->tex_2d_unit1);
+    glBindSampler(1, (GLuint)s->sampler_unit1);
     glActiveTexture((GLenum)s->active_texture);
     glPixelStorei(GL_PACK_ALIGNMENT, s->pack[0]);
     glPixelStorei(GL_PACK_ROW_LENGTH, s->pack[1]);
@@ -137,4 +147,47 @@ void pnpr_gl_state_restore(const pnpr_gl_state *s)
         glStencilMaskSeparate(face, (GLuint)v[6]);
     }
     glClearStencil(s->stencil_clear);
+}
+
+/* ---- shader programs ---- */
+
+static GLuint compile(GLenum type, const char *src, const char *name, pnpr_error *err)
+{
+    GLuint sh = glCreateShader(type);
+    glShaderSource(sh, 1, &src, NULL);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[400] = {0};
+        glGetShaderInfoLog(sh, sizeof log - 1, NULL, log);
+        pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "shader %s does not compile: %s", name, log);
+        glDeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+GLuint pnpr_gl_link_program(const char *vs, const char *fs, const char *name, pnpr_error *err)
+{
+    GLuint v = compile(GL_VERTEX_SHADER, vs, name, err);
+    if (!v) return 0;
+    GLuint f = compile(GL_FRAGMENT_SHADER, fs, name, err);
+    if (!f) { glDeleteShader(v); return 0; }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, v);
+    glAttachShader(p, f);
+    glLinkProgram(p);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[400] = {0};
+        glGetProgramInfoLog(p, sizeof log - 1, NULL, log);
+        pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "program %s does not link: %s", name, log);
+        glDeleteProgram(p);
+        return 0;
+    }
+    return p;
 }

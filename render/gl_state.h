@@ -21,6 +21,7 @@ typedef struct pnpr_gl_state {
     GLint polygon_mode[2];
     GLint program, vao, array_buffer;
     GLint active_texture, tex_2d, tex_2d_array, sampler;
+    GLint tex_2d_unit1, sampler_unit1; /* texture unit 1 (the outline passes read two textures) */
     GLint pack[5];   /* alignment, row length, skip pixels, skip rows, pixel pack buffer */
     GLint unpack[7];
     GLint stencil[2][7]; /* front, back: func, ref, value mask, fail, depth fail, depth pass, write mask */
@@ -35,5 +36,9 @@ void pnpr_gl_state_restore(const pnpr_gl_state *s);
 /* Known state for the renderer's own work: no scissor/stencil/cull/etc., fill mode, texture
  * unit 0 without sampler object, client-memory pixel transfers with alignment 1. */
 void pnpr_gl_state_neutral(void);
+
+/* Compiles and links a program from GLSL sources; 0 with the compiler's log in err. */
+#include <pointnpr/core.h>
+GLuint pnpr_gl_link_program(const char *vs, const char *fs, const char *name, pnpr_error *err);
 
 #endif

@@ -3,6 +3,7 @@
  * style maps (intermingled styles, figure 12). See docs/rendering.md. */
 #include "render_internal.h"
 #include "gl_state.h"
+#include "edges.h"
 #include "pnpr_shaders.h"
 
 #include <pointnpr/features.h>
@@ -28,10 +29,11 @@ typedef struct pnpr_vertex {
     uint8_t rgba[4];
     float dir[3];
     uint8_t flat[4]; /* cartoon: the segment's mean colour (the point colour without labels) */
+    int8_t normal[4]; /* unit normal * 127 (orientation does not matter); all 0 = unknown */
 } pnpr_vertex;
 
-typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels; } splat_uniforms;
-typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink; } line_uniforms;
+typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho; } splat_uniforms;
+typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho; } line_uniforms;
 typedef struct stroke_uniforms {
     GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points;
 } stroke_uniforms;
@@ -56,10 +58,13 @@ struct pnpr_renderer {
     GLuint line_vbo, vao_lines;
     GLuint stroke_tex;
     GLuint fbo, color_tex, depth_rb;
+    GLuint info_tex;     /* attachment 1: the mask's surface info (eye distance, depth extent, radius) */
+    pnpr_edges edges;    /* outlines from it (edges.c) */
     int fb_w, fb_h;
     float max_point_size;
     GLint max_size;      /* min of GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS */
     float max_radius;    /* largest disk radius of the uploaded cloud (tile guard bands) */
+    float mean_radius;   /* mean disk radius (the lines' depth tolerance) */
     /* the uploaded cloud */
     size_t count;
     size_t group_start[GROUP_MAX + 2];
@@ -79,49 +84,6 @@ struct pnpr_renderer {
     size_t line_segments;
     double line_origin[3];
 };
-
-/* ---- shaders -------------------------------------------------------------------------------- */
-
-static GLuint compile(GLenum type, const char *src, const char *name, pnpr_error *err)
-{
-    GLuint sh = glCreateShader(type);
-    glShaderSource(sh, 1, &src, NULL);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[400] = {0};
-        glGetShaderInfoLog(sh, sizeof log - 1, NULL, log);
-        pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "shader %s does not compile: %s", name, log);
-        glDeleteShader(sh);
-        return 0;
-    }
-    return sh;
-}
-
-static GLuint link_program(const char *vs, const char *fs, const char *name, pnpr_error *err)
-{
-    GLuint v = compile(GL_VERTEX_SHADER, vs, name, err);
-    if (!v) return 0;
-    GLuint f = compile(GL_FRAGMENT_SHADER, fs, name, err);
-    if (!f) { glDeleteShader(v); return 0; }
-    GLuint p = glCreateProgram();
-    glAttachShader(p, v);
-    glAttachShader(p, f);
-    glLinkProgram(p);
-    glDeleteShader(v);
-    glDeleteShader(f);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[400] = {0};
-        glGetProgramInfoLog(p, sizeof log - 1, NULL, log);
-        pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "program %s does not link: %s", name, log);
-        glDeleteProgram(p);
-        return 0;
-    }
-    return p;
-}
 
 /* ---- stroke textures (paper figure 5 a-c, plus the hatch), generated once ------------------- */
 
@@ -210,6 +172,8 @@ static void release_gl(pnpr_renderer *r)
     if (r->stroke_tex) glDeleteTextures(1, &r->stroke_tex);
     if (r->color_tex) glDeleteTextures(1, &r->color_tex);
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
+    if (r->info_tex) glDeleteTextures(1, &r->info_tex);
+    pnpr_edges_release(&r->edges);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
 }
 
@@ -226,10 +190,13 @@ static void set_attribs(GLuint vao, GLuint vbo, GLuint sbo, size_t first, int in
     glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, stride, PNPR_ATTR_OFFSET(radius));
     glEnableVertexAttribArray(2);
     glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, flat ? PNPR_ATTR_OFFSET(flat) : PNPR_ATTR_OFFSET(rgba));
+    glEnableVertexAttribArray(5);
+    glVertexAttribPointer(5, 4, GL_BYTE, GL_TRUE, stride, PNPR_ATTR_OFFSET(normal));
     if (instanced) {
         glEnableVertexAttribArray(3);
         glVertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, stride, PNPR_ATTR_OFFSET(dir));
         for (GLuint a = 0; a < 4; a++) glVertexAttribDivisor(a, 1);
+        glVertexAttribDivisor(5, 1);
     }
 #undef PNPR_ATTR_OFFSET
     /* attribute 4: the style byte of a style map (one byte per vertex in `sbo`) */
@@ -259,12 +226,12 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     pnpr_gl_state_save(&saved);
     pnpr_gl_state_neutral();
     pnpr_status st = PNPR_OK;
-    r->prog_splat = link_program(pnpr_shader_splat_vert, pnpr_shader_splat_frag, "splat", err);
-    r->prog_stroke = r->prog_splat ? link_program(pnpr_shader_stroke_vert, pnpr_shader_stroke_frag, "stroke", err) : 0;
-    r->prog_composite = r->prog_stroke ? link_program(pnpr_shader_composite_vert, pnpr_shader_composite_frag, "composite", err) : 0;
-    r->prog_line = r->prog_composite ? link_program(pnpr_shader_line_vert, pnpr_shader_line_frag, "line", err) : 0;
-    r->prog_paint = r->prog_line ? link_program(pnpr_shader_paint_vert, pnpr_shader_paint_frag, "paint", err) : 0;
-    if (!r->prog_paint) { st = PNPR_ERR_UNSUPPORTED; goto done; }
+    r->prog_splat = pnpr_gl_link_program(pnpr_shader_splat_vert, pnpr_shader_splat_frag, "splat", err);
+    r->prog_stroke = r->prog_splat ? pnpr_gl_link_program(pnpr_shader_stroke_vert, pnpr_shader_stroke_frag, "stroke", err) : 0;
+    r->prog_composite = r->prog_stroke ? pnpr_gl_link_program(pnpr_shader_composite_vert, pnpr_shader_composite_frag, "composite", err) : 0;
+    r->prog_line = r->prog_composite ? pnpr_gl_link_program(pnpr_shader_line_vert, pnpr_shader_line_frag, "line", err) : 0;
+    r->prog_paint = r->prog_line ? pnpr_gl_link_program(pnpr_shader_paint_vert, pnpr_shader_paint_frag, "paint", err) : 0;
+    if (!r->prog_paint || pnpr_edges_create(&r->edges, err) != PNPR_OK) { st = PNPR_ERR_UNSUPPORTED; goto done; }
     r->up.view = glGetUniformLocation(r->prog_paint, "u_view");
     r->up.proj = glGetUniformLocation(r->prog_paint, "u_proj");
     r->up.ppu = glGetUniformLocation(r->prog_paint, "u_pixels_per_unit");
@@ -283,6 +250,7 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->us.fade_color = glGetUniformLocation(p, "u_fade_color");
     r->us.fixed_size = glGetUniformLocation(p, "u_fixed_size");
     r->us.levels = glGetUniformLocation(p, "u_levels");
+    r->us.ortho = glGetUniformLocation(p, "u_ortho");
     p = r->prog_line;
     r->ul.view = glGetUniformLocation(p, "u_view");
     r->ul.proj = glGetUniformLocation(p, "u_proj");
@@ -290,6 +258,8 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->ul.width = glGetUniformLocation(p, "u_width");
     r->ul.near_plane = glGetUniformLocation(p, "u_near");
     r->ul.ink = glGetUniformLocation(p, "u_ink");
+    r->ul.pull = glGetUniformLocation(p, "u_pull");
+    r->ul.ortho = glGetUniformLocation(p, "u_ortho");
     p = r->prog_stroke;
     r->ut.view = glGetUniformLocation(p, "u_view");
     r->ut.proj = glGetUniformLocation(p, "u_proj");
@@ -569,6 +539,16 @@ static pnpr_status paint_data(const pnpr_cloud *cloud, const pnpr_property *pdeg
     return PNPR_OK;
 }
 
+/* A unit normal as 4 signed bytes (x, y, z * 127, 0); unknown, zero or non-finite: all 0. */
+static void pack_normal(const float *n, int8_t r[4])
+{
+    memset(r, 0, 4);
+    if (!n) return;
+    double l = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+    if (!(l > 1e-12) || !isfinite(l)) return;
+    for (int a = 0; a < 3; a++) r[a] = (int8_t)lrint(127.0 * n[a] / l);
+}
+
 static int group_of_class(double c)
 {
     switch ((int)c) {
@@ -660,6 +640,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
         if (cloud->label) memcpy(v->flat, flat + 3 * (size_t)j, 3);
         else memcpy(v->flat, v->rgba, 3);
         v->flat[3] = 255;
+        pack_normal(cloud->normal ? cloud->normal + 3 * i : NULL, v->normal);
         v->dir[0] = v->dir[1] = v->dir[2] = 0;
         if (features) {
             float d[3];
@@ -716,7 +697,12 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     r->has_features = features;
     r->has_labels = cloud->label != NULL;
     r->max_radius = 0;
-    for (size_t j = 0; j < n; j++) if (radius[j] > r->max_radius) r->max_radius = radius[j];
+    double rsum = 0;
+    for (size_t j = 0; j < n; j++) {
+        if (radius[j] > r->max_radius) r->max_radius = radius[j];
+        rsum += radius[j];
+    }
+    r->mean_radius = n ? (float)(rsum / (double)n) : 0;
     memcpy(r->origin, cloud->origin, sizeof r->origin);
     if (pnpr_cloud_bounds(cloud, r->bmin, r->bmax) == 0) {
         memset(r->bmin, 0, sizeof r->bmin);
@@ -784,6 +770,14 @@ pnpr_status pnpr_renderer_set_lines(pnpr_renderer *r, const pnpr_polylines *line
 
 /* ---- draw ----------------------------------------------------------------------------------- */
 
+/* Which of the frame's attachments the fragment outputs reach: colour (0) and the mask's surface
+ * info (1). Draw-buffer state belongs to the bound framebuffer object (ours), not to the host. */
+static void set_draw_buffers(int info, int color)
+{
+    GLenum bufs[2] = {color ? GL_COLOR_ATTACHMENT0 : GL_NONE, info ? GL_COLOR_ATTACHMENT1 : GL_NONE};
+    glDrawBuffers(2, bufs);
+}
+
 static pnpr_status ensure_framebuffer(pnpr_renderer *r, int w, int h, pnpr_error *err)
 {
     if (r->fbo && r->fb_w == w && r->fb_h == h) return PNPR_OK;
@@ -791,7 +785,13 @@ static pnpr_status ensure_framebuffer(pnpr_renderer *r, int w, int h, pnpr_error
         glGenFramebuffers(1, &r->fbo);
         glGenTextures(1, &r->color_tex);
         glGenRenderbuffers(1, &r->depth_rb);
+        glGenTextures(1, &r->info_tex);
     }
+    glBindTexture(GL_TEXTURE_2D, r->info_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
     glBindTexture(GL_TEXTURE_2D, r->color_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -802,6 +802,8 @@ static pnpr_status ensure_framebuffer(pnpr_renderer *r, int w, int h, pnpr_error
     glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->color_tex, 0);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, r->depth_rb);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, r->info_tex, 0);
+    set_draw_buffers(0, 1);
     GLenum fs = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (fs != GL_FRAMEBUFFER_COMPLETE) {
         r->fb_w = r->fb_h = 0;
@@ -844,8 +846,12 @@ static pnpr_status check_options(const pnpr_renderer *r, const pnpr_draw_options
         !isfinite(o->point_scale) || o->point_scale < 0 || !isfinite(o->mask_scale) || o->mask_scale < 0 ||
         !isfinite(o->stroke_length) || o->stroke_length < 0 || !isfinite(o->stroke_width) || o->stroke_width < 0 ||
         !isfinite(o->line_width) || o->line_width < 0 || !(o->faint >= 0 && o->faint <= 1) ||
-        !isfinite(o->dot_size) || o->dot_size < 0 || o->levels < 0 || o->levels == 1 || o->levels > 256)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative");
+        !isfinite(o->dot_size) || o->dot_size < 0 || o->levels < 0 || o->levels == 1 || o->levels > 256 ||
+        !isfinite(o->outline_width) || o->outline_width < 0 || o->outline_width > 64 ||
+        !isfinite(o->outline_jump) || o->outline_jump < 0 || !isfinite(o->outline_hole) || o->outline_hole < 0)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative (outline width at most 64 px)");
+    if (o->outline < -1 || o->outline > 1)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: outline %d is not -1, 0 or 1", o->outline);
     if (pnpr_style_needs_features(o->style) && o->style != PNPR_STYLE_PAINTERLY && r->count > 0 && !r->has_features)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style '%s' needs the feature properties feature_class and feature_dir_x/y/z (pnpr_compute_features)",
@@ -971,6 +977,7 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, cons
         glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc->view);
         glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc->proj);
         glUniform1f(r->us.ppu, fc->pixels_per_unit);
+        glUniform1i(r->us.ortho, fc->ortho);
         glUniform1f(r->us.max_size, r->max_point_size);
         glUniform1f(r->us.fade, 0.0f);
         glUniform1f(r->us.fixed_size, 0.0f);
@@ -1101,7 +1108,7 @@ static size_t draw_stipple(pnpr_renderer *r, const pnpr_draw_options *o, const s
 /* Pass 2 of `lines`: the segments, depth-tested against the mask (no mask when the cloud is
  * empty: nothing hides them), no depth writes, blended. Returns the segments drawn. */
 static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_camera *fc, const pnpr_draw_options *o, int fw, int fh,
-                         const float ink[4])
+                         float lod, const float ink[4])
 {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_FALSE);
@@ -1123,6 +1130,11 @@ static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_camera *fc, const pn
     /* orthographic: w = 1 everywhere, nothing to move onto the near plane (GL clips) */
     glUniform1f(r->ul.near_plane, fc->ortho ? -1e30f : (float)fc->near_plane);
     glUniform4fv(r->ul.ink, 1, ink);
+    /* lines lie on the surface the mask is made of: pulled towards the eye by two mean disk
+     * radii so that the mask's disks do not cut them into dashes (docs/rendering.md) */
+    float ps = o->point_scale > 0 ? o->point_scale : 1;
+    glUniform1f(r->ul.pull, 2.0f * r->mean_radius * ps * lod);
+    glUniform1i(r->ul.ortho, fc->ortho);
     glBindVertexArray(r->vao_lines);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)r->line_segments);
     return r->line_segments;
@@ -1210,6 +1222,7 @@ static size_t draw_mapped(pnpr_renderer *r, const pnpr_frame_camera *fc, const p
     glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc->view);
     glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc->proj);
     glUniform1f(r->us.ppu, fc->pixels_per_unit);
+    glUniform1i(r->us.ortho, fc->ortho);
     glUniform1f(r->us.max_size, r->max_point_size);
     glUniform1f(r->us.fade, 0.0f);
     glUniform1f(r->us.fixed_size, 0.0f);
@@ -1299,7 +1312,7 @@ static size_t draw_mapped(pnpr_renderer *r, const pnpr_frame_camera *fc, const p
     if (used[PNPR_STYLE_LINES] && r->line_segments > 0) {
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(GL_EQUAL, PNPR_STYLE_LINES + 1, 0xFF);
-        strokes += draw_lines(r, fc, o, fw, fh, ink);
+        strokes += draw_lines(r, fc, o, fw, fh, lod, ink);
         glDisable(GL_STENCIL_TEST);
     }
     glStencilMask(0xFF);
@@ -1373,7 +1386,11 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
     glClearDepth(1.0);
     glDepthMask(GL_TRUE);
     glClearStencil(0);
+    set_draw_buffers(1, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    const float no_surface[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 1, no_surface);
+    set_draw_buffers(0, 1);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
 
@@ -1395,6 +1412,7 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
         glUniformMatrix4fv(r->us.view, 1, GL_FALSE, fc.view);
         glUniformMatrix4fv(r->us.proj, 1, GL_FALSE, fc.proj);
         glUniform1f(r->us.ppu, fc.pixels_per_unit);
+        glUniform1i(r->us.ortho, fc.ortho);
         glUniform1f(r->us.max_size, r->max_point_size);
         glUniform1f(r->us.fade, 0.0f);
         glUniform1f(r->us.fixed_size, 0.0f);
@@ -1414,24 +1432,21 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
             glClear(GL_DEPTH_BUFFER_BIT);
             glUniform1f(r->us.fade, 0.0f);
         }
-        /* pass 1 (mask) / the only pass (points): round disks of the prefixes. Cartoon: the
-         * enlarged disks go into depth AND colour, in the outline colour */
+        /* pass 1 (mask) / the only pass (points): round disks of the prefixes; the mask writes
+         * the surface info (attachment 1) for the outlines. Cartoon: the enlarged disks go into
+         * depth AND colour, in the flat colours (they close the gaps between the splats) */
         glUniform1f(r->us.radius_scale, point_scale * lod * (masked || cartoon ? mask_scale : 1));
         glUniform1f(r->us.depth_push, masked || cartoon ? 1.0f : 0.0f);
-        if (masked) glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        if (cartoon) {
-            glUniform1f(r->us.fade, 1.0f);
-            glUniform4f(r->us.fade_color, ink[0], ink[1], ink[2], 1.0f);
-        }
+        if (masked || cartoon) set_draw_buffers(1, cartoon);
+        if (cartoon) glUniform1f(r->us.levels, r->has_labels ? 0.0f : (float)(o.levels ? o.levels : 4));
+        glBindVertexArray(cartoon ? r->vao_flat : r->vao_points);
         for (size_t g = 0; g < ng; g++)
             if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        set_draw_buffers(0, 1);
         if (cartoon) {
             /* pass 2: the same points as regular-size opaque splats in flat colours, depth-tested
-             * against the enlarged disks, no depth writes, the frame not cleared: the outline
-             * colour stays where no splat covers an enlarged disk (silhouettes) */
+             * against the enlarged disks, no depth writes, the frame not cleared */
             glDepthMask(GL_FALSE);
-            glUniform1f(r->us.fade, 0.0f);
             glUniform1f(r->us.radius_scale, point_scale * lod);
             glUniform1f(r->us.depth_push, 0.0f);
             glUniform1f(r->us.levels, r->has_labels ? 0.0f : (float)(o.levels ? o.levels : 4));
@@ -1444,7 +1459,17 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
         if (sketchy) strokes += draw_sketchy(r, &fc, &o, fw, fh, gdraw, point_scale, ink);
     }
     if (stipple && n_draw > 0) strokes += draw_stipple(r, &o, gdraw, point_scale, lod, ink);
-    if (lines && r->line_segments > 0) strokes = draw_lines(r, &fc, &o, fw, fh, ink);
+    if (lines && r->line_segments > 0) strokes = draw_lines(r, &fc, &o, fw, fh, lod, ink);
+    float outline_width = 0;
+    int outline = o.outline ? o.outline > 0 : pnpr_style_outline_default(o.style, &outline_width);
+    if (o.outline_width > 0) outline_width = o.outline_width;
+    if (outline && !mapped && !painterly && o.style != PNPR_STYLE_POINTS && n_draw > 0) {
+        pnpr_edge_params ep = {outline_width > 0 ? outline_width : 2, o.outline_jump > 0 ? o.outline_jump : 2,
+                               o.outline_hole > 0 ? o.outline_hole : 4, PNPR_EDGE_MAX_REACH, fc.pixels_per_unit,
+                               fc.ortho, {ink[0], ink[1], ink[2], ink[3]}};
+        st = pnpr_edges_draw(&r->edges, r->info_tex, r->fbo, fw, fh, &ep, err);
+        if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
+    }
 
     if (!target->offscreen && !tile) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)target->framebuffer);
@@ -1582,7 +1607,8 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, 
     double grow = ps * plan.lod * (ms > PNPR_PAINT_MAX_BRUSH ? ms : PNPR_PAINT_MAX_BRUSH);
     double sprite = r->count ? 2.0 * r->max_radius * grow * plan.fc.pixels_per_unit / dmin : 0;
     if (!(sprite <= r->max_point_size)) sprite = r->max_point_size;
-    double extra = (o.dot_size > 0 ? o.dot_size : 2.5) + (o.line_width > 0 ? o.line_width : 2);
+    double extra = (o.dot_size > 0 ? o.dot_size : 2.5) + (o.line_width > 0 ? o.line_width : 2) +
+                   PNPR_EDGE_MAX_REACH + 1 + (o.outline_width > 0 ? o.outline_width : 4);
     int margin = (int)ceil(0.5 * sprite + extra) + 1;
     if (margin > tmax / 4) margin = tmax / 4;
     int inner = tmax - 2 * margin;
@@ -1643,4 +1669,14 @@ pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style)
 int pnpr_style_needs_features(pnpr_style s)
 {
     return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE || s == PNPR_STYLE_PAINTERLY;
+}
+
+/* Outlines by default: the line drawing and the cartoon are first of all outlines; the pencil
+ * sketch gets a lighter one; points, stipple and painterly none (docs/rendering.md). */
+int pnpr_style_outline_default(pnpr_style s, float *r_width)
+{
+    static const float width[PNPR_STYLE_COUNT_] = {0, 1.5f, 2.5f, 0, 2.5f, 0};
+    float w = (unsigned)s < PNPR_STYLE_COUNT_ ? width[s] : 0;
+    if (r_width) *r_width = w;
+    return w > 0;
 }

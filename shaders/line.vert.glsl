@@ -11,6 +11,8 @@ uniform mat4 u_proj;
 uniform vec2 u_viewport; // frame size in pixels
 uniform float u_width;   // stroke width in pixels
 uniform float u_near;    // near plane distance (> 0)
+uniform float u_pull;    // world units the ends move towards the eye along their view rays
+uniform int u_ortho;     // orthographic: the view rays are parallel to -z
 
 out float v_across;      // signed distance from the centre line in pixels
 
@@ -21,6 +23,14 @@ void main()
     float side = (corner & 2) != 0 ? 1.0 : -1.0;
     vec4 e0 = u_view * vec4(a_p0, 1.0);
     vec4 e1 = u_view * vec4(a_p1, 1.0);
+    // depth tolerance: along the view ray, so that the ends keep their screen positions
+    if (u_ortho != 0) {
+        e0.z += u_pull;
+        e1.z += u_pull;
+    } else {
+        e0.xyz *= max(1.0 - u_pull / max(length(e0.xyz), 1e-30), 0.05);
+        e1.xyz *= max(1.0 - u_pull / max(length(e1.xyz), 1e-30), 0.05);
+    }
     float lim = -u_near * 1.001; // eye z of points in front of the near plane is below this
     if (e0.z > lim && e1.z > lim) { // wholly behind: a degenerate quad outside the clip volume
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);

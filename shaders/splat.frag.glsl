@@ -2,7 +2,9 @@
 in vec4 v_color;
 in float v_sprite_px;
 in float v_dot_radius_px;
-out vec4 o_color;
+in vec3 v_info;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec4 o_info; // the visibility mask's surface info (outlines), when bound
 
 void main()
 {
@@ -13,4 +15,5 @@ void main()
     if (v_dot_radius_px > 0.0) // antialiased dot: coverage from the distance to its edge
         a *= clamp(v_dot_radius_px + 0.5 - length(d) * 0.5 * v_sprite_px, 0.0, 1.0);
     o_color = vec4(v_color.rgb * a, a); // premultiplied
+    o_info = vec4(v_info, 0.0);
 }

@@ -6,6 +6,7 @@ layout(location = 0) in vec3 a_pos;
 layout(location = 1) in float a_radius;
 layout(location = 2) in vec4 a_color;
 layout(location = 4) in uint a_style; // the point's style under a style map
+layout(location = 5) in vec4 a_normal; // unit normal (either orientation); zero = unknown
 
 uniform int u_style_filter;      // >= 0: draw only points whose a_style equals it (style maps)
 uniform mat4 u_view;
@@ -18,10 +19,13 @@ uniform float u_fade;            // 0..1: the colour is mix(a_color, u_fade_colo
 uniform vec4 u_fade_color;
 uniform float u_fixed_size;      // > 0: a dot of this diameter in pixels (stipple), antialiased
 uniform float u_levels;          // >= 2: colour quantised to this many levels per channel (cartoon)
+uniform int u_ortho;             // orthographic projection: view rays along -z
 
 out vec4 v_color;
 out float v_sprite_px;           // the sprite's size in pixels
 out float v_dot_radius_px;       // > 0: antialiased dot of this radius; 0: hard disk
+out vec3 v_info;                 // the mask's surface info: eye distance, the disk's depth extent
+                                 // (radius / |cos| of the angle between normal and view ray), radius
 
 void main()
 {
@@ -31,6 +35,7 @@ void main()
         v_color = vec4(0.0);
         v_sprite_px = 1.0;
         v_dot_radius_px = 0.0;
+        v_info = vec3(0.0);
         return;
     }
     float r = a_radius * u_radius_scale;
@@ -44,6 +49,13 @@ void main()
         v_dot_radius_px = 0.5 * u_fixed_size;
     }
     v_sprite_px = gl_PointSize;
+    // the depth extent of the disk: its radius over the cosine between normal and view ray
+    // (at least 0.1); without a normal, 2.5 radii (a typical oblique view)
+    float cosv = 0.4;
+    vec3 ne = mat3(u_view) * a_normal.xyz;
+    if (dot(ne, ne) > 0.25)
+        cosv = max(abs(dot(normalize(ne), u_ortho != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eye.xyz))), 0.1);
+    v_info = vec3(-eye.z, max(r / cosv, 1e-30), r);
     eye.z -= u_depth_push * r; // the camera looks down -z
     vec4 pushed = u_proj * eye;
     // keep the disk's screen position, take the pushed depth

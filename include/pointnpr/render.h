@@ -189,6 +189,14 @@ typedef struct pnpr_draw_options {
                             * mixed with the background, this much of the point colour); 0 = none */
     float dot_size;        /* stipple: dot diameter in pixels (0 = 2.5) */
     int levels;            /* cartoon without segment labels: colour levels per channel (0 = 4, >= 2) */
+    /* Outlines (silhouettes and occluding contours) found in image space on the visibility mask,
+     * sampling holes closed first (docs/rendering.md, "Silhouettes and contours"); drawn in `ink`
+     * over the style. Defaults per style: pnpr_style_outline_default. */
+    int outline;           /* 0 = the style's default, 1 = on, -1 = off */
+    float outline_width;   /* px; 0 = the style's default */
+    float outline_jump;    /* a contour is a depth jump of more than this many mask-disk radii (0 = 2) */
+    float outline_hole;    /* gaps enclosed on all sides within this many projected mask-disk radii
+                            * are sampling holes, not outlines (0 = 4; at most 32 px) */
     int paint_no_sky_mask; /* painterly: no stencil test in the large passes (paper fig. 8 left) */
     int paint_no_strokes;  /* painterly: no directional strokes on top */
     /* An explicit camera (pnpr_camera_matrices, caller-owned, read during the call only) that
@@ -291,6 +299,8 @@ int pnpr_renderer_has_labels(const pnpr_renderer *renderer);
 const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly"; "" if invalid */
 pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 int pnpr_style_needs_features(pnpr_style style);
+/* The outline a style draws by default: 1 on / 0 off, and its width in px (r_width may be NULL). */
+int pnpr_style_outline_default(pnpr_style style, float *r_width);
 
 /* ---- headless context and PNG (CLI, tests, snapshots) --------------------------------------- */
 

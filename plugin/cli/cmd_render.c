@@ -52,6 +52,12 @@ static void usage(FILE *f)
             "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
             "                       (PLY property segment or label, pointnpr segment; default 4)\n"
             "  --outline-scale F    cartoon: outline disks are F times the splats (default 2)\n"
+            "  --outline on|off     silhouettes and occluding contours (default: on for lines, cartoon\n"
+            "                       and sketchy, off for the others)\n"
+            "  --outline-width PX   their width in pixels (default: lines and cartoon 2.5, sketchy 1.5)\n"
+            "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default 2)\n"
+            "  --outline-hole F     gaps enclosed within F projected disk extents are sampling holes,\n"
+            "                       not outlines (default 4)\n"
             "  --paint-bins N       painterly: feature-degree bins = passes, 1..16 (default 4)\n"
             "  --faint F            lines: draw the cloud faintly under the lines, F in (0,1]\n"
             "                       of the point colour (default: lines only)\n"
@@ -198,6 +204,18 @@ int cli_render(int argc, char **argv)
         } else if (v && !strcmp(a, "--outline-scale")) {
             if (!cli_parse_number(v, 1, 100, &x)) { fprintf(stderr, "pointnpr render: --outline-scale wants a number >= 1, got '%s'\n", v); return 2; }
             dopt.mask_scale = (float)x; i++;
+        } else if (v && !strcmp(a, "--outline")) {
+            if (strcmp(v, "on") && strcmp(v, "off")) { fprintf(stderr, "pointnpr render: --outline wants on or off, got '%s'\n", v); return 2; }
+            dopt.outline = !strcmp(v, "on") ? 1 : -1; i++;
+        } else if (v && !strcmp(a, "--outline-width")) {
+            if (!cli_parse_number(v, 0.1, 64, &x)) { fprintf(stderr, "pointnpr render: --outline-width wants pixels in [0.1, 64], got '%s'\n", v); return 2; }
+            dopt.outline_width = (float)x; i++;
+        } else if (v && !strcmp(a, "--outline-jump")) {
+            if (!cli_parse_number(v, 0.01, 1e3, &x)) { fprintf(stderr, "pointnpr render: --outline-jump wants a positive number, got '%s'\n", v); return 2; }
+            dopt.outline_jump = (float)x; i++;
+        } else if (v && !strcmp(a, "--outline-hole")) {
+            if (!cli_parse_number(v, 0.01, 1e3, &x)) { fprintf(stderr, "pointnpr render: --outline-hole wants a positive number, got '%s'\n", v); return 2; }
+            dopt.outline_hole = (float)x; i++;
         } else if (v && !strcmp(a, "--paint-bins")) {
             if (!cli_parse_number(v, 1, 16, &x) || x != floor(x)) { fprintf(stderr, "pointnpr render: --paint-bins wants an integer in 1..16, got '%s'\n", v); return 2; }
             uopt.painterly_bins = (uint32_t)x; i++;

@@ -150,6 +150,7 @@ static void test_lines_cube(pnpr_renderer *r)
     pnpr_draw_options o;
     memset(&o, 0, sizeof o);
     o.style = PNPR_STYLE_LINES;
+    o.outline = -1; /* the profile lines alone (outlines: test_render_outline) */
     o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
     uint8_t *px = malloc(W * H * 4), *px2 = malloc(W * H * 4);
     pnpr_render_stats st;

@@ -1,0 +1,53 @@
+#version 330 core
+// Outlines, step 1 (docs/rendering.md, "Silhouettes and contours"): closes sampling holes in the
+// visibility mask's per-pixel surface info (x = eye distance; y = the mask disk's depth extent:
+// its radius over |cos| of the normal to the view ray, 0 = no surface; z = its radius). A pixel
+// is a hole when, in all 8 directions, the march meets a surface nearer than itself by more than
+// u_jump times the smaller depth extent of the two (an empty pixel: any surface) within u_hole
+// of that surface's projected disk radii (at most u_reach px). A hole takes the
+// mean info of the 8 surfaces that close it; every other pixel keeps its own. Narrow gaps open on
+// one side (between two legs, a notch) are not closed: their outlines are real.
+uniform sampler2D u_info;
+uniform int u_reach;      // longest march in pixels
+uniform float u_jump;     // depth jump in depth extents
+uniform float u_hole;     // largest hole in projected disk radii
+uniform float u_ppu;      // pixels per world unit at eye distance 1 (orthographic: at any distance)
+uniform int u_ortho;
+out vec2 o_info;
+
+float radius_px(vec3 s)
+{
+    return s.z * u_ppu / (u_ortho != 0 ? 1.0 : max(s.x, 1e-6));
+}
+
+void main()
+{
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 size = textureSize(u_info, 0);
+    vec2 me = texelFetch(u_info, p, 0).xy;
+    float z = me.y > 0.0 ? me.x : 3.0e38;
+    float extent = me.y > 0.0 ? me.y : 3.0e38;
+    vec2 sum = vec2(0.0);
+    for (int d = 0; d < 8; d++) {
+        ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
+                           d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);
+        float unit = d >= 4 ? 1.41421356 : 1.0;
+        bool closed = false;
+        for (int s = 1; s <= u_reach; s++) {
+            ivec2 q = p + step * s;
+            if (q.x < 0 || q.y < 0 || q.x >= size.x || q.y >= size.y)
+                break;
+            vec3 v = texelFetch(u_info, q, 0).xyz;
+            if (v.y > 0.0 && v.x < z - u_jump * min(v.y, extent)) {
+                closed = float(s) * unit <= u_hole * radius_px(v);
+                sum += v.xy;
+                break;
+            }
+        }
+        if (!closed) {
+            o_info = me;
+            return;
+        }
+    }
+    o_info = sum * 0.125;
+}
