@@ -110,8 +110,8 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     const int need_dither = (want & PNPR_WANT_DITHER) != 0;
     const int need_classify = need_dither || (want & PNPR_WANT_CLASSES);
     const int need_degree = need_classify || (want & PNPR_WANT_DEGREE);
-    /* dithering reads the tone from the normals' orientation when there are no colours */
-    const int need_oriented = (want & PNPR_WANT_NORMALS) || (need_dither && !cloud->rgb);
+    /* the tone's lighting is two-sided (tone.h): dithering needs no oriented normals */
+    const int need_oriented = (want & PNPR_WANT_NORMALS) != 0;
 
     /* outputs (allocated first: a cloud that cannot hold them fails before the work) */
     static const char *const fnames[5] = {"feature_degree", "feature_confidence", "feature_dir_x",
@@ -258,8 +258,12 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     }
     if (need_dither) {
         if (stage_begin(&r, PNPR_STAGE_DITHER)) { st = PNPR_ERR_CANCELLED; goto done; }
-        st = stage_end(&r, pnpr_dither(xyz, cloud->rgb, normals, NULL, m, knn, k, opts->dither_scale, cls,
-                                       &r_stats->dither_points));
+        float *tone = malloc((m ? m : 1) * sizeof *tone);
+        st = tone ? pnpr_tone(cloud->rgb, normals, m, &opts->tone, tone) : PNPR_ERR_OUT_OF_MEMORY;
+        if (st == PNPR_OK)
+            st = pnpr_dither(xyz, cloud->rgb, normals, tone, m, knn, k, opts->dither_scale, cls, &r_stats->dither_points);
+        free(tone);
+        st = stage_end(&r, st);
     }
 done:
     free(knn);

@@ -68,6 +68,94 @@ pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float 
     return PNPR_OK;
 }
 
+/* The tightest symmetric frustum along the fixed basis (s right, u up, d towards the eye) around
+ * every point inside the robust bounds: a point at
+ * (x, y, z) relative to the centre is inside when |x - dx| <= (dist - z) tan_x (and alike in y),
+ * which gives dist and the lateral shift (dx, dy) in closed form. r_zmax: the largest z. */
+static void fit_frustum(const pnpr_cloud *cloud, const pnpr_view_info *info, const double c[3],
+                        const double s[3], const double u[3], const double d[3], double tan_x,
+                        double tan_y, double r_fit[3], double *r_zmax)
+{
+    double px = -INFINITY, mx = INFINITY, py = -INFINITY, my = INFINITY, zmax = -INFINITY;
+    for (size_t i = 0; i < cloud->count; i++) {
+        const float *q = cloud->xyz + 3 * i;
+        int in = 1;
+        for (int a = 0; a < 3; a++) in &= q[a] >= info->lo[a] && q[a] <= info->hi[a]; /* NaN: out */
+        if (!in) continue;
+        double p[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
+        double x = dot3(p, s), y = dot3(p, u), z = dot3(p, d);
+        if (x + z * tan_x > px) px = x + z * tan_x;
+        if (x - z * tan_x < mx) mx = x - z * tan_x;
+        if (y + z * tan_y > py) py = y + z * tan_y;
+        if (y - z * tan_y < my) my = y - z * tan_y;
+        if (z > zmax) zmax = z;
+    }
+    if (!(zmax > -INFINITY)) { px = mx = py = my = zmax = 0; } /* no point inside (not reached) */
+    double dist_x = (px - mx) / (2 * tan_x), dist_y = (py - my) / (2 * tan_y);
+    r_fit[0] = 0.5 * (px + mx);
+    r_fit[1] = 0.5 * (py + my);
+    r_fit[2] = dist_x > dist_y ? dist_x : dist_y;
+    *r_zmax = zmax;
+}
+
+/* near/far around the robust bounds (widened by a quarter diagonal), for clouds with far outliers. */
+static void robust_depth_range(const pnpr_view_info *info, const double eye[3], const double f[3],
+                               pnpr_camera *cam)
+{
+    double dmin = INFINITY, dmax = -INFINITY, e[3];
+    for (int a = 0; a < 3; a++) e[a] = (double)info->hi[a] - (double)info->lo[a];
+    double diag = sqrt(dot3(e, e));
+    for (int k = 0; k < 8; k++) {
+        double p[3] = {((k & 1) ? info->hi[0] : info->lo[0]) - eye[0], ((k & 2) ? info->hi[1] : info->lo[1]) - eye[1],
+                       ((k & 4) ? info->hi[2] : info->lo[2]) - eye[2]};
+        dmin = fmin(dmin, dot3(p, f));
+        dmax = fmax(dmax, dot3(p, f));
+    }
+    double fa = dmax + 0.25 * diag, n = dmin - 0.25 * diag;
+    if (n < fa * 1e-3) n = fa * 1e-3;
+    if (!(fa > 0) || !isfinite(fa) || !(n > 0)) return; /* leave them automatic */
+    cam->near_plane = (float)n;
+    cam->far_plane = (float)fa;
+}
+
+pnpr_status pnpr_camera_default(const pnpr_cloud *cloud, const pnpr_view_options *opts,
+                                float fov_y_deg, float aspect, pnpr_camera *r_camera,
+                                pnpr_view_info *r_info)
+{
+    if (!cloud || !r_camera) return PNPR_ERR_INVALID_ARGUMENT;
+    pnpr_view_info info;
+    pnpr_status st = pnpr_scene_frame(cloud, opts, &info);
+    if (st != PNPR_OK) return st;
+    if (!(fov_y_deg > 0 && fov_y_deg < 179)) fov_y_deg = 45;
+    if (!(aspect > 0) || !isfinite(aspect)) aspect = 1;
+    const double *d = info.view_dir;
+    double f[3] = {-d[0], -d[1], -d[2]}, s[3], u[3], c[3], fit[3], zmax, e[3];
+    cross3(f, info.up, s);
+    normalize3(s);
+    cross3(s, f, u);
+    for (int a = 0; a < 3; a++) {
+        c[a] = 0.5 * ((double)info.lo[a] + (double)info.hi[a]);
+        e[a] = (double)info.hi[a] - (double)info.lo[a];
+    }
+    double tan_y = tan(0.5 * fov_y_deg * PNPR_PI / 180.0), diag = sqrt(dot3(e, e));
+    fit_frustum(cloud, &info, c, s, u, d, tan_y * aspect / 1.05, tan_y / 1.05, fit, &zmax); /* 5% margin */
+    double dist = fit[2], min_dist = diag > 0 ? zmax + 0.02 * diag : 1 / tan_y; /* eye outside the content */
+    if (!(dist >= min_dist)) dist = min_dist;
+    memset(r_camera, 0, sizeof *r_camera);
+    double eye[3];
+    for (int a = 0; a < 3; a++) {
+        double t = c[a] + s[a] * fit[0] + u[a] * fit[1];
+        eye[a] = t + d[a] * dist;
+        r_camera->target[a] = cloud->origin[a] + t;
+        r_camera->eye[a] = cloud->origin[a] + eye[a];
+        r_camera->up[a] = info.up[a];
+    }
+    r_camera->fov_y_deg = fov_y_deg;
+    if (info.outliers > 0) robust_depth_range(&info, eye, f, r_camera);
+    if (r_info) *r_info = info;
+    return PNPR_OK;
+}
+
 /* The look-at camera's view (relative to origin) and projection in double. */
 static pnpr_status lookat_matrices(const pnpr_camera *cam, const double origin[3], const float bmin[3],
                                    const float bmax[3], int have_box, int width, int height,

@@ -32,10 +32,10 @@ typedef struct pnpr_vertex {
     int8_t normal[4]; /* unit normal * 127 (orientation does not matter); all 0 = unknown */
 } pnpr_vertex;
 
-typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho; } splat_uniforms;
+typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin; } splat_uniforms;
 typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho; } line_uniforms;
 typedef struct stroke_uniforms {
-    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points;
+    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin;
 } stroke_uniforms;
 
 typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
@@ -251,6 +251,7 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->us.fixed_size = glGetUniformLocation(p, "u_fixed_size");
     r->us.levels = glGetUniformLocation(p, "u_levels");
     r->us.ortho = glGetUniformLocation(p, "u_ortho");
+    r->us.thin = glGetUniformLocation(p, "u_thin");
     p = r->prog_line;
     r->ul.view = glGetUniformLocation(p, "u_view");
     r->ul.proj = glGetUniformLocation(p, "u_proj");
@@ -273,6 +274,7 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->ut.layer = glGetUniformLocation(p, "u_layer");
     r->ut.ink = glGetUniformLocation(p, "u_ink");
     r->ut.ink_from_points = glGetUniformLocation(p, "u_ink_from_points");
+    r->ut.thin = glGetUniformLocation(p, "u_thin");
     r->us_filter = glGetUniformLocation(r->prog_splat, "u_style_filter");
     r->ut_filter = glGetUniformLocation(r->prog_stroke, "u_style_filter");
     /* no style filter unless a style map is drawn (uniforms are program state) */
@@ -539,6 +541,27 @@ static pnpr_status paint_data(const pnpr_cloud *cloud, const pnpr_property *pdeg
     return PNPR_OK;
 }
 
+/* Colourless clouds: the key light's darkness of every finite point j (cloud index src[j]) from
+ * its normal (tone.h, light source, no curve); unknown normals give 0.5. */
+static pnpr_status shade_greys(const pnpr_cloud *cloud, const uint32_t *src, size_t n, const pnpr_tone_options *tone,
+                               float **r_shade)
+{
+    float *nrm = cloud->normal ? malloc(3 * n * sizeof *nrm) : NULL;
+    float *shade = malloc(n * sizeof *shade);
+    pnpr_status st = !shade || (cloud->normal && !nrm) ? PNPR_ERR_OUT_OF_MEMORY : PNPR_OK;
+    if (st == PNPR_OK && nrm)
+        for (size_t j = 0; j < n; j++) memcpy(nrm + 3 * j, cloud->normal + 3 * (size_t)src[j], 3 * sizeof *nrm);
+    pnpr_tone_options o = *tone;
+    o.source = PNPR_TONE_LIGHT;
+    o.contrast = 1;
+    o.gamma = 1;
+    if (st == PNPR_OK) st = pnpr_tone(NULL, nrm, n, &o, shade);
+    free(nrm);
+    if (st != PNPR_OK) { free(shade); shade = NULL; }
+    *r_shade = shade;
+    return st;
+}
+
 /* A unit normal as 4 signed bytes (x, y, z * 127, 0); unknown, zero or non-finite: all 0. */
 static void pack_normal(const float *n, int8_t r[4])
 {
@@ -590,6 +613,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     size_t pstarts[PAINT_MAX_BINS + 2];
     uint32_t *vlabel = NULL, *paint_src = NULL;
     uint8_t *zeros = NULL;
+    float *shade = NULL;
 
     /* the finite points */
     size_t n = 0;
@@ -628,6 +652,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
         st = segment_means(cloud, src, n, flat);
         if (st != PNPR_OK) goto done;
     }
+    if (!cloud->rgb && n > 0 && (st = shade_greys(cloud, src, n, &o.tone, &shade)) != PNPR_OK) goto done;
     for (size_t q = 0; q < n; q++) {
         uint32_t j = order[q];
         size_t i = src[j];
@@ -635,7 +660,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
         memcpy(v->pos, xyz + 3 * (size_t)j, sizeof v->pos);
         v->radius = radius[j];
         if (cloud->rgb) memcpy(v->rgba, cloud->rgb + 3 * i, 3);
-        else v->rgba[0] = v->rgba[1] = v->rgba[2] = 160;
+        else v->rgba[0] = v->rgba[1] = v->rgba[2] = (uint8_t)lrintf(240.0f - 170.0f * shade[j]);
         v->rgba[3] = 255;
         if (cloud->label) memcpy(v->flat, flat + 3 * (size_t)j, 3);
         else memcpy(v->flat, v->rgba, 3);
@@ -711,7 +736,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
 done:
     free(src); free(xyz); free(radius); free(group); free(order); free(verts); free(flat);
     free(nidx); free(nd2); free(porder); free(inv); free(pbin); free(pcol); free(pverts);
-    free(vlabel); free(paint_src); free(zeros);
+    free(vlabel); free(paint_src); free(zeros); free(shade);
     return st;
 }
 
@@ -1072,10 +1097,12 @@ static size_t draw_sketchy(pnpr_renderer *r, const pnpr_frame_camera *fc, const 
         glUniform1i(r->ut.mode, directional ? 0 : 1);
         glUniform1f(r->ut.layer, directional ? (float)o->stroke_texture : (float)STROKE_LAYER_HATCH);
         glUniform1f(r->ut.length, directional ? stroke_length : 0.5f * stroke_length);
+        glUniform1i(r->ut.thin, g == GROUP_DITHER);
         set_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->group_start[g], 1, 0);
         glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)gdraw[g]);
         strokes += gdraw[g];
     }
+    glUniform1i(r->ut.thin, 0);
     return strokes;
 }
 
@@ -1097,9 +1124,11 @@ static size_t draw_stipple(pnpr_renderer *r, const pnpr_draw_options *o, const s
     glBindVertexArray(r->vao_points);
     for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
         if (!gdraw[g]) continue;
+        glUniform1i(r->us.thin, g == GROUP_DITHER);
         glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
         dots += gdraw[g];
     }
+    glUniform1i(r->us.thin, 0);
     glUniform1f(r->us.fade, 0.0f);
     glUniform1f(r->us.fixed_size, 0.0f);
     return dots;
@@ -1647,36 +1676,4 @@ void pnpr_renderer_frame_size(const pnpr_renderer *r, int *w, int *h)
 {
     if (w) *w = r ? r->fb_w : 0;
     if (h) *h = r ? r->fb_h : 0;
-}
-
-/* ---- styles --------------------------------------------------------------------------------- */
-
-static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon", "painterly"};
-
-const char *pnpr_style_name(pnpr_style s)
-{
-    return (unsigned)s < PNPR_STYLE_COUNT_ ? style_names[s] : "";
-}
-
-pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style)
-{
-    if (!name || !r_style) return PNPR_ERR_INVALID_ARGUMENT;
-    for (int i = 0; i < PNPR_STYLE_COUNT_; i++)
-        if (!strcmp(name, style_names[i])) { *r_style = (pnpr_style)i; return PNPR_OK; }
-    return PNPR_ERR_NOT_FOUND;
-}
-
-int pnpr_style_needs_features(pnpr_style s)
-{
-    return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE || s == PNPR_STYLE_PAINTERLY;
-}
-
-/* Outlines by default: the line drawing and the cartoon are first of all outlines; the pencil
- * sketch gets a lighter one; points, stipple and painterly none (docs/rendering.md). */
-int pnpr_style_outline_default(pnpr_style s, float *r_width)
-{
-    static const float width[PNPR_STYLE_COUNT_] = {0, 1.5f, 2.5f, 0, 2.5f, 0};
-    float w = (unsigned)s < PNPR_STYLE_COUNT_ ? width[s] : 0;
-    if (r_width) *r_width = w;
-    return w > 0;
 }

@@ -20,6 +20,7 @@ uniform vec4 u_fade_color;
 uniform float u_fixed_size;      // > 0: a dot of this diameter in pixels (stipple), antialiased
 uniform float u_levels;          // >= 2: colour quantised to this many levels per channel (cartoon)
 uniform int u_ortho;             // orthographic projection: view rays along -z
+uniform int u_thin;              // 1: tone dots, thinned so that ink coverage follows the tone
 
 out vec4 v_color;
 out float v_sprite_px;           // the sprite's size in pixels
@@ -47,6 +48,17 @@ void main()
     if (u_fixed_size > 0.0) {
         gl_PointSize = clamp(u_fixed_size + 1.0, 1.0, u_max_size); // + a fringe pixel
         v_dot_radius_px = 0.5 * u_fixed_size;
+        // a dithering point stands for one sample's area (about r^2 with r the distance to the
+        // 4th neighbour): keep the fraction sample / dot of them (stable per-point hash)
+        float r_px = a_radius * u_pixels_per_unit / max(clip.w, 1e-6);
+        uint h = uint(gl_VertexID) * 2654435761u;
+        h ^= h >> 15; h *= 2246822519u; h ^= h >> 13;
+        if (u_thin != 0 && float(h & 65535u) / 65536.0 >= r_px * r_px / (0.785 * u_fixed_size * u_fixed_size)) {
+            gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+            v_color = vec4(0.0);
+            v_info = vec3(0.0);
+            return;
+        }
     }
     v_sprite_px = gl_PointSize;
     // the depth extent of the disk: its radius over the cosine between normal and view ray

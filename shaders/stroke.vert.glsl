@@ -17,6 +17,7 @@ uniform float u_length;           // stroke length in disk radii
 uniform float u_width;            // stroke width in pixels
 uniform float u_radius_scale;
 uniform int u_mode;
+uniform int u_thin;               // 1: tone hatches, thinned so that ink coverage follows the tone
 
 out vec2 v_uv;
 out vec4 v_color;
@@ -46,6 +47,22 @@ void main()
     float r = a_radius * u_radius_scale;
     float half_len = max(0.5 * u_length * r * u_pixels_per_unit / w, 1.5);
     float half_wid = 0.5 * u_width;
+    if (u_thin != 0) {
+        // a dithering point stands for the area of one sample (about r^2, r the distance to the
+        // 4th neighbour); a hatch inks about half of its 2 half_len x 2 half_wid quad (the
+        // texture's soft profile): keep the fraction sample / ink of them (a per-point hash,
+        // stable from frame to frame), so that the inked area follows the tone
+        float r_px = r * u_pixels_per_unit / w;
+        float keep = r_px * r_px / (2.0 * half_len * half_wid);
+        uint h = uint(gl_InstanceID) * 2654435761u;
+        h ^= h >> 15; h *= 2246822519u; h ^= h >> 13;
+        if (float(h & 65535u) / 65536.0 >= keep) {
+            gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+            v_color = vec4(0.0);
+            v_uv = vec2(0.0);
+            return;
+        }
+    }
     vec2 side = vec2(-axis.y, axis.x);
     vec2 off_px = axis * (q.x * half_len) + side * (q.y * half_wid);
     gl_Position = clip + vec4(off_px * 2.0 / u_viewport * clip.w, 0.0, 0.0);

@@ -17,6 +17,7 @@
 #define POINTNPR_FEATURES_H
 
 #include "cloud.h"
+#include "tone.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -54,6 +55,7 @@ typedef struct pnpr_features_options {
     float weight_color;      /*   they are normalised to sum 1; colourless clouds use geometry only */
     float direction_confidence; /* min line-fit confidence of a directional point; 0 = 0.6 */
     float dither_scale;      /* multiplies the tone before dithering (density); 0 = 1 */
+    pnpr_tone_options tone;  /* the tone the dithering points follow (tone.h); zero = automatic */
     int has_viewpoint;       /* orient normals towards `viewpoint` (world coordinates) */
     double viewpoint[3];
     int recompute_normals;   /* recompute even when the cloud carries normals */

@@ -19,6 +19,9 @@
 
 #include "cloud.h"
 #include "lines.h"
+#include "style.h"
+#include "tone.h"
+#include "view.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -82,6 +85,17 @@ pnpr_status pnpr_camera_matrices_from_camera(const pnpr_camera *camera, const pn
 pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float fov_y_deg,
                             float aspect, pnpr_camera *r_camera);
 
+/* The default camera (docs/view.md): looks along pnpr_scene_frame's suggested direction (from
+ * above the detected ground, from the scanner's side when known, the wide side across the
+ * screen) with its up vector, and frames the content inside the robust bounds as tightly as the
+ * frustum allows (target centred on the projected extent, 5% margin on the tighter axis). When
+ * the cloud has far outliers, near/far are set from the robust bounds so that the automatic
+ * depth range does not stretch to them. fov_y_deg 0 = 45, aspect 0 = 1; opts may be NULL;
+ * r_info (may be NULL) receives the analysis. PNPR_ERR_EMPTY without a finite point. */
+pnpr_status pnpr_camera_default(const pnpr_cloud *cloud, const pnpr_view_options *opts,
+                                float fov_y_deg, float aspect, pnpr_camera *r_camera,
+                                pnpr_view_info *r_info);
+
 /* ---- SVG line drawings ---------------------------------------------------------------------- */
 
 /* Profile lines (include/pointnpr/lines.h) as an SVG drawing through a camera. Hidden parts are
@@ -111,27 +125,6 @@ pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
 
 typedef struct pnpr_renderer pnpr_renderer;
 
-typedef enum pnpr_style {
-    PNPR_STYLE_POINTS = 0, /* plain round splats in the point colour (baseline, single pass) */
-    PNPR_STYLE_SKETCHY,    /* PointWorks sketch: strokes along feature directions + hatches */
-    PNPR_STYLE_LINES,      /* profile lines (pnpr_renderer_set_lines) as dark strokes, hidden parts
-                            * removed by the visibility mask of the cloud (section 5.2) */
-    PNPR_STYLE_STIPPLE,    /* small dark round dots on the feature and dithering points */
-    PNPR_STYLE_CARTOON,    /* flat colours per segment (cloud->label) or quantised, dark silhouettes
-                            * from enlarged pass-1 disks (section 5.4) */
-    PNPR_STYLE_PAINTERLY,  /* brush dabs in blended colours, large to small over feature-degree bins,
-                            * a stencil sky mask, directional strokes on top (section 5.3) */
-    PNPR_STYLE_COUNT_
-} pnpr_style;
-
-/* The sketchy variants of the paper's figure 9. */
-typedef enum pnpr_sketch_variant {
-    PNPR_SKETCH_ALL = 0,            /* (c) directional strokes + non-directional + dithering hatches */
-    PNPR_SKETCH_DIRECTIONAL,        /* (a) directional strokes only */
-    PNPR_SKETCH_NONDIRECTIONAL,     /* (b) directional strokes + non-directional hatches */
-    PNPR_SKETCH_COUNT_
-} pnpr_sketch_variant;
-
 typedef enum pnpr_composite {
     PNPR_COMPOSITE_REPLACE = 0, /* the target's pixels in the viewport become the frame's */
     PNPR_COMPOSITE_OVER,        /* the frame (premultiplied alpha) over the target's pixels */
@@ -150,6 +143,9 @@ typedef struct pnpr_upload_options {
     int threads;        /* kNN threads; 0 = all cores */
     uint32_t painterly_bins; /* painterly: feature-degree bins = passes (0 = 4, at most 16); the
                               * painterly data are built when the cloud has feature_degree */
+    pnpr_tone_options tone;  /* clouds without colours are drawn in greys shaded by this tone's
+                              * key light on their normals (tone.h; the source is always the
+                              * light, the curve is not applied): grey = 240 - 170 * darkness */
 } pnpr_upload_options;
 
 /* One entry of a per-segment style map: points whose segment label (cloud->label) is `label`
@@ -296,11 +292,7 @@ int pnpr_renderer_has_features(const pnpr_renderer *renderer);
  * colour (computed at upload over the segment's finite points). */
 int pnpr_renderer_has_labels(const pnpr_renderer *renderer);
 
-const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly"; "" if invalid */
-pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
-int pnpr_style_needs_features(pnpr_style style);
-/* The outline a style draws by default: 1 on / 0 off, and its width in px (r_width may be NULL). */
-int pnpr_style_outline_default(pnpr_style style, float *r_width);
+/* Styles by name, their needs and defaults: style.h. */
 
 /* ---- headless context and PNG (CLI, tests, snapshots) --------------------------------------- */
 

@@ -4,6 +4,7 @@
 #define PNPR_CLI_H
 
 #include <pointnpr/io.h>
+#include <pointnpr/view.h>
 
 int cli_info(int argc, char **argv);
 int cli_convert(int argc, char **argv);
@@ -12,6 +13,7 @@ int cli_render(int argc, char **argv);
 int cli_lines(int argc, char **argv);
 int cli_segment(int argc, char **argv);
 int cli_bench(int argc, char **argv);
+int cli_bench_quality(int argc, char **argv); /* `bench quality`, argv[1] = "quality" */
 int cli_explain(int argc, char **argv);
 
 /* Progress on stderr; never cancels. user: a cli_progress_state (zeroed before first use).
@@ -29,21 +31,27 @@ int cli_parse_list(const char *s, int n, double *r);
 
 /* The view options shared by render and lines: --eye X,Y,Z --target X,Y,Z --up X,Y,Z (look-at,
  * world coordinates), --fov DEG, --size WxH, or --camera FILE (the same look-at camera as text:
- * "eye X Y Z", "target X Y Z", "up X Y Z", "fov DEG" lines; cli_write_camera_file writes one). */
+ * "eye X Y Z", "target X Y Z", "up X Y Z", "fov DEG" lines; cli_write_camera_file writes one).
+ * --up also takes auto|x|y|z|-x|-y|-z (docs/view.md); without --eye/--target either form picks
+ * the up of the default camera (pnpr_camera_default). */
 typedef struct cli_view {
-    int have_eye, have_target, have_up;
+    int have_eye, have_target, have_up; /* have_up: the vector form (up) */
     double eye[3], target[3], up[3], fov;
     int width, height;
+    int have_up_mode;                   /* the axis form (up_mode) */
+    pnpr_up_mode up_mode;
 } cli_view;
 void cli_view_init(cli_view *v, int width, int height);
 /* argv[*i] is a view option: parses it (advancing *i past its value) and returns 1; not a view
  * option (or no value follows): 0; a bad value: prints why and returns -1. */
 int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i);
-/* --eye and --target given together (and --up only with them); prints why and returns 0 if not. */
+/* --eye and --target given together; prints why and returns 0 if not. */
 int cli_view_check(const cli_view *v, const char *cmd);
 int cli_write_camera_file(const char *path, const double eye[3], const double target[3], const double up[3], double fov);
 #ifdef PNPR_HAVE_RENDER
-/* The look-at camera of the options, else one that fits the cloud (NULL when neither can be made). */
+/* The look-at camera of the options (its up from --up: the vector, the axis, or the detected one
+ * for auto; +z without --up), else the default camera of the cloud (pnpr_camera_default with the
+ * --up choice); NULL when neither can be made. */
 #include <pointnpr/render.h>
 const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam);
 #endif

@@ -93,6 +93,25 @@ int cli_write_camera_file(const char *path, const double eye[3], const double ta
     return !bad;
 }
 
+/* --up auto|x|y|z|-x|-y|-z (up_mode) or X,Y,Z (a non-zero vector); 1 or -1 as cli_view_option. */
+static int parse_up(cli_view *v, const char *cmd, const char *val)
+{
+    double u[3];
+    if (pnpr_up_mode_parse(val, &v->up_mode)) {
+        v->have_up_mode = 1;
+        v->have_up = 0;
+        return 1;
+    }
+    if (cli_parse_list(val, 3, u) && (u[0] != 0 || u[1] != 0 || u[2] != 0)) {
+        memcpy(v->up, u, sizeof u);
+        v->have_up = 1;
+        v->have_up_mode = 0;
+        return 1;
+    }
+    fprintf(stderr, "pointnpr %s: --up wants auto, x, y, z, -x, -y, -z or a non-zero vector X,Y,Z, got '%s'\n", cmd, val);
+    return -1;
+}
+
 int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i)
 {
     const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
@@ -104,10 +123,10 @@ int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i)
     int *have = NULL;
     if (!strcmp(a, "--eye")) { vec = v->eye; have = &v->have_eye; }
     else if (!strcmp(a, "--target")) { vec = v->target; have = &v->have_target; }
-    else if (!strcmp(a, "--up")) { vec = v->up; have = &v->have_up; }
-    else if (strcmp(a, "--fov") && strcmp(a, "--size")) return 0;
+    else if (strcmp(a, "--up") && strcmp(a, "--fov") && strcmp(a, "--size")) return 0;
     if (!val) return 0; /* "missing value" is reported by the caller's unknown-option path */
     (*i)++;
+    if (!strcmp(a, "--up")) return parse_up(v, cmd, val);
     if (vec) {
         if (!cli_parse_list(val, 3, vec)) { fprintf(stderr, "pointnpr %s: %s wants X,Y,Z, got '%s'\n", cmd, a, val); return -1; }
         *have = 1;
@@ -129,26 +148,42 @@ int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i)
 
 int cli_view_check(const cli_view *v, const char *cmd)
 {
-    if (v->have_eye != v->have_target || (v->have_up && !v->have_eye)) {
-        fprintf(stderr, "pointnpr %s: --eye and --target go together (--up needs them too)\n", cmd);
+    if (v->have_eye != v->have_target) {
+        fprintf(stderr, "pointnpr %s: --eye and --target go together\n", cmd);
         return 0;
     }
     return 1;
 }
 
 #ifdef PNPR_HAVE_RENDER
+static pnpr_view_options view_up_options(const cli_view *v)
+{
+    pnpr_view_options o = {0};
+    if (v->have_up_mode) o.up_mode = v->up_mode;
+    else if (v->have_up) {
+        o.up_mode = PNPR_UP_VECTOR;
+        memcpy(o.up, v->up, sizeof o.up);
+    }
+    return o;
+}
+
 const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam)
 {
     memset(r_cam, 0, sizeof *r_cam);
+    pnpr_view_options o = view_up_options(v);
     if (v->have_eye) {
         memcpy(r_cam->eye, v->eye, sizeof r_cam->eye);
         memcpy(r_cam->target, v->target, sizeof r_cam->target);
-        memcpy(r_cam->up, v->up, sizeof r_cam->up);
+        memcpy(r_cam->up, v->up, sizeof r_cam->up); /* the vector form, else +z */
+        pnpr_view_info info; /* an axis as given; auto: the detected up (+z without a point) */
+        if (v->have_up_mode && !pnpr_up_mode_axis(v->up_mode, r_cam->up) && cloud &&
+            pnpr_scene_frame(cloud, &o, &info) == PNPR_OK)
+            memcpy(r_cam->up, info.up, sizeof r_cam->up);
         r_cam->fov_y_deg = (float)v->fov;
         return r_cam;
     }
     if (cloud && cloud->count > 0 &&
-        pnpr_camera_fit(cloud, NULL, (float)v->fov, (float)v->width / (float)v->height, r_cam) == PNPR_OK)
+        pnpr_camera_default(cloud, &o, (float)v->fov, (float)v->width / (float)v->height, r_cam, NULL) == PNPR_OK)
         return r_cam;
     return NULL;
 }

@@ -15,7 +15,9 @@ int cli_render(int argc, char **argv)
 
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/plan.h>
 #include <pointnpr/render.h>
+#include <pointnpr/segment.h>
 
 #include <errno.h>
 #include <math.h>
@@ -52,6 +54,12 @@ static void usage(FILE *f)
             "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
             "                       (PLY property segment or label, pointnpr segment; default 4)\n"
             "  --outline-scale F    cartoon: outline disks are F times the splats (default 2)\n"
+            "  --tone S             what sets how dark a point is drawn (hatch and stipple density,\n"
+            "                       the shading of colourless clouds): auto | color | light (a key light\n"
+            "                       on the normals) | both (default auto: both when IN has colours)\n"
+            "  --tone-gamma G       tone curve: darkness^G, > 1 keeps mid tones light (default 1.8)\n"
+            "  --tone-contrast C    tone curve: contrast around mid grey (default 1)\n"
+            "  --light X,Y,Z        direction towards the key light (default: from above, front left)\n"
             "  --outline on|off     silhouettes and occluding contours (default: on for lines, cartoon\n"
             "                       and sketchy, off for the others)\n"
             "  --outline-width PX   their width in pixels (default: lines and cartoon 2.5, sketchy 1.5)\n"
@@ -66,8 +74,9 @@ static void usage(FILE *f)
             "  --max-tile PX        render in tiles of at most PX pixels (default: the GL limit;\n"
             "                       larger images are always tiled, progress per tile on stderr)\n"
             "  --quiet              no progress on stderr\n"
-            "  Styles that need features (sketchy, stipple, painterly, lines) compute them when IN lacks them;\n"
-            "  lines computes the profile lines (pointnpr lines) from them.\n");
+            "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
+            "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
+            "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n");
 }
 
 /* Reads a style map file: lines "LABEL STYLE" and "* STYLE" (the default), '#' comments, blank
@@ -133,6 +142,59 @@ static int tile_progress(void *user, const char *stage, double fraction)
     return 0;
 }
 
+/* Runs the stage plan (pnpr_plan_make, the one `pointnpr explain` prints) for the styles this
+ * frame draws: features (only the outputs the styles need, the dithering following `tone`) and
+ * the cartoon's segments. Returns 0 after printing why. */
+static int run_plan(const char *in, pnpr_cloud *cloud, const pnpr_draw_options *dopt, const int *uses,
+                    const pnpr_tone_options *tone, int quiet, pnpr_progress prog)
+{
+    pnpr_plan_request req = {0};
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
+        if (uses[s]) req.styles |= 1u << s;
+    req.sketch_variant = dopt->sketch_variant;
+    req.outline = dopt->outline;
+    pnpr_plan plan;
+    pnpr_status st = pnpr_plan_make(&req, cloud, &plan);
+    if (st == PNPR_OK && plan.want) {
+        if (!quiet) fprintf(stderr, "%s: computing %s (pointnpr explain shows the plan; pointnpr features saves them)\n", in,
+                            plan.want == PNPR_WANT_NORMALS ? "normals" : "features");
+        pnpr_features_options fo = {0};
+        fo.progress = prog;
+        fo.want = plan.want;
+        fo.tone = *tone;
+        st = pnpr_compute_features(cloud, &fo, NULL);
+    }
+    if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: features: %s\n", in, pnpr_status_string(st)); return 0; }
+    if (plan.segments != PNPR_PLAN_SEGMENTS_JSEG || cloud->count == 0) return 1;
+    if (!quiet) fprintf(stderr, "%s: segmenting the colours (JSEG) for the cartoon's flat regions (pointnpr segment saves them)\n", in);
+    if ((st = pnpr_cloud_alloc_labels(cloud)) == PNPR_OK) {
+        pnpr_jseg_options jo = {0};
+        jo.progress = prog;
+        pnpr_segment_info info;
+        st = pnpr_segment_jseg(cloud->xyz, cloud->rgb, cloud->count, &jo, cloud->label, &info);
+        if (st == PNPR_OK && !quiet) fprintf(stderr, "%s: %u segments\n", in, (unsigned)info.segment_count);
+    }
+    if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: segments: %s\n", in, pnpr_status_string(st)); return 0; }
+    return 1;
+}
+
+/* The profile lines of the lines style, handed to the renderer. Returns 0 after printing why. */
+static int set_profile_lines(const char *in, const pnpr_cloud *cloud, pnpr_renderer *ren, int quiet, pnpr_progress prog)
+{
+    pnpr_polylines lines = {0};
+    pnpr_lines_options lo = {0};
+    lo.progress = prog;
+    pnpr_lines_stats ls;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_profile_lines(cloud, &lo, &lines, &ls);
+    if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: profile lines: %s\n", in, pnpr_status_string(st)); return 0; }
+    if (!quiet) fprintf(stderr, "%s: %zu profile lines, total length %.6g\n", in, lines.count, ls.total_length);
+    st = pnpr_renderer_set_lines(ren, &lines, &err);
+    pnpr_lines_free(&lines);
+    if (st != PNPR_OK) { cli_report_error("render", st, &err); return 0; }
+    return 1;
+}
+
 int cli_render(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
@@ -140,6 +202,8 @@ int cli_render(int argc, char **argv)
     memset(&dopt, 0, sizeof dopt);
     pnpr_upload_options uopt;
     memset(&uopt, 0, sizeof uopt);
+    pnpr_tone_options tone;
+    memset(&tone, 0, sizeof tone);
     int quiet = 0, alpha = 0, max_tile = 0;
     const char *save_camera = NULL;
     cli_view view;
@@ -204,6 +268,23 @@ int cli_render(int argc, char **argv)
         } else if (v && !strcmp(a, "--outline-scale")) {
             if (!cli_parse_number(v, 1, 100, &x)) { fprintf(stderr, "pointnpr render: --outline-scale wants a number >= 1, got '%s'\n", v); return 2; }
             dopt.mask_scale = (float)x; i++;
+        } else if (v && !strcmp(a, "--tone")) {
+            static const char *const names[] = {"auto", "color", "light", "both"};
+            int t = 0;
+            while (t < 4 && strcmp(v, names[t])) t++;
+            if (t == 4) { fprintf(stderr, "pointnpr render: --tone wants auto, color, light or both, got '%s'\n", v); return 2; }
+            tone.source = (pnpr_tone_source)t; i++;
+        } else if (v && !strcmp(a, "--tone-gamma")) {
+            if (!cli_parse_number(v, 0.05, 20, &x)) { fprintf(stderr, "pointnpr render: --tone-gamma wants a number in [0.05, 20], got '%s'\n", v); return 2; }
+            tone.gamma = (float)x; i++;
+        } else if (v && !strcmp(a, "--tone-contrast")) {
+            if (!cli_parse_number(v, 0.01, 100, &x)) { fprintf(stderr, "pointnpr render: --tone-contrast wants a number in [0.01, 100], got '%s'\n", v); return 2; }
+            tone.contrast = (float)x; i++;
+        } else if (v && !strcmp(a, "--light")) {
+            if (!cli_parse_list(v, 3, tone.light) || (tone.light[0] == 0 && tone.light[1] == 0 && tone.light[2] == 0)) {
+                fprintf(stderr, "pointnpr render: --light wants a non-zero direction X,Y,Z, got '%s'\n", v); return 2;
+            }
+            i++;
         } else if (v && !strcmp(a, "--outline")) {
             if (strcmp(v, "on") && strcmp(v, "off")) { fprintf(stderr, "pointnpr render: --outline wants on or off, got '%s'\n", v); return 2; }
             dopt.outline = !strcmp(v, "on") ? 1 : -1; i++;
@@ -266,21 +347,12 @@ int cli_render(int argc, char **argv)
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
 
-    int want_lines = uses[PNPR_STYLE_LINES], need_features = want_lines;
-    for (int s = 0; s < PNPR_STYLE_COUNT_; s++) need_features |= uses[s] && pnpr_style_needs_features((pnpr_style)s);
-    if (need_features &&
-        (!pnpr_cloud_find_property(&cloud, "feature_class") || !pnpr_cloud_find_property(&cloud, "feature_dir_x") ||
-         !pnpr_cloud_find_property(&cloud, "feature_dir_y") || !pnpr_cloud_find_property(&cloud, "feature_dir_z"))) {
-        if (!quiet) fprintf(stderr, "%s has no features: computing them (pointnpr features saves them)\n", in);
-        pnpr_features_options fo = {0};
-        fo.progress = prog;
-        /* only what the style draws (the plan `pointnpr explain --style S` prints): dithering
-         * points for stipple and sketchy (c), feature classes for the others */
-        int dither = uses[PNPR_STYLE_STIPPLE] || (uses[PNPR_STYLE_SKETCHY] && dopt.sketch_variant == PNPR_SKETCH_ALL);
-        fo.want = dither ? PNPR_WANT_DITHER : PNPR_WANT_CLASSES;
-        st = pnpr_compute_features(&cloud, &fo, NULL);
-        if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: features: %s\n", in, pnpr_status_string(st)); goto done; }
-    }
+    /* the camera first: its up vector is the tone's "above" (the key light comes from there) */
+    pnpr_camera cam;
+    const pnpr_camera *camp = cli_view_camera(&view, &cloud, &cam);
+    if (camp) memcpy(tone.up, camp->up, sizeof tone.up);
+    uopt.tone = tone;
+    if (!run_plan(in, &cloud, &dopt, uses, &tone, quiet, prog)) goto done;
 
     st = pnpr_gl_context_create(&ctx, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
@@ -288,21 +360,8 @@ int cli_render(int argc, char **argv)
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
     st = pnpr_renderer_set_cloud(ren, &cloud, &uopt, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
-    if (want_lines) {
-        pnpr_polylines lines = {0};
-        pnpr_lines_options lo = {0};
-        lo.progress = prog;
-        pnpr_lines_stats ls;
-        st = pnpr_profile_lines(&cloud, &lo, &lines, &ls);
-        if (st != PNPR_OK) { fprintf(stderr, "pointnpr render: %s: profile lines: %s\n", in, pnpr_status_string(st)); goto done; }
-        if (!quiet) fprintf(stderr, "%s: %zu profile lines, total length %.6g\n", in, lines.count, ls.total_length);
-        st = pnpr_renderer_set_lines(ren, &lines, &err);
-        pnpr_lines_free(&lines);
-        if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
-    }
+    if (uses[PNPR_STYLE_LINES] && !set_profile_lines(in, &cloud, ren, quiet, prog)) goto done;
 
-    pnpr_camera cam;
-    const pnpr_camera *camp = cli_view_camera(&view, &cloud, &cam);
     if (save_camera && camp &&
         !cli_write_camera_file(save_camera, camp->eye, camp->target, camp->up, camp->fov_y_deg > 0 ? camp->fov_y_deg : 45)) {
         fprintf(stderr, "pointnpr render: cannot write the camera file %s\n", save_camera);

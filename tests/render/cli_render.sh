@@ -42,7 +42,7 @@ check 'grep -q "points drawn" "$dir/log.txt"' "summary on stderr"
 # sketchy on a cloud without features: computed on the fly
 "$bin" render "$dir/cube.ply" -o "$dir/sketchy.png" --style sketchy --sketch b --size 160x120 --alpha 2> "$dir/log2.txt"
 check '[ $? -eq 0 ]' "sketchy render exits 0 ($(cat "$dir/log2.txt"))"
-check 'grep -q "computing them" "$dir/log2.txt"' "features computed for sketchy"
+check 'grep -q "computing features" "$dir/log2.txt"' "features computed for sketchy"
 check '[ "$(png_type "$dir/sketchy.png")" -eq 6 ]' "PNG is RGBA with --alpha"
 
 # lines on a cloud without features: features and profile lines computed on the fly
@@ -108,10 +108,10 @@ awk '/^end_header/ { print "property int segment" } { print }' "$dir/cube.ply" |
   awk 'BEGIN { body = 0 } body { split($0, f, " "); print $0, (f[1] < 5123457.289 ? 0 : 1); next } { print } /^end_header/ { body = 1 }' > "$dir/cube_seg.ply"
 printf '# intermingled\n0 points\n* sketchy   # the rest\n\n' > "$dir/map.txt"
 "$bin" render "$dir/cube_seg.ply" -o "$dir/map.png" --size 200x150 --style-map "$dir/map.txt" 2> "$dir/map-log.txt"
-check '[ $? -eq 0 ] && [ "$(png_w "$dir/map.png")" -eq 200 ] && grep -q "computing them" "$dir/map-log.txt" && grep -q "style map" "$dir/map-log.txt"' "--style-map renders (features computed for the mapped sketchy)"
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/map.png")" -eq 200 ] && grep -q "computing features" "$dir/map-log.txt" && grep -q "style map" "$dir/map-log.txt"' "--style-map renders (features computed for the mapped sketchy)"
 printf '0 points\n1 points\n' > "$dir/map-pts.txt"
 "$bin" render "$dir/cube_seg.ply" -o "$dir/map-pts.png" --size 200x150 --style-map "$dir/map-pts.txt" 2> "$dir/map-pts-log.txt"
-check '[ $? -eq 0 ] && ! grep -q "computing them" "$dir/map-pts-log.txt"' "--style-map with points only computes no features"
+check '[ $? -eq 0 ] && ! grep -q "computing" "$dir/map-pts-log.txt"' "--style-map with points only computes no features"
 printf '0 points\n1 nosuch\n' > "$dir/map-bad.txt"
 "$bin" render "$dir/cube_seg.ply" -o "$dir/x.png" --style-map "$dir/map-bad.txt" 2> "$dir/map-bad-log.txt"
 check '[ $? -eq 2 ] && grep -q "map-bad.txt:2: unknown style .nosuch." "$dir/map-bad-log.txt"' "--style-map: unknown style names its line"

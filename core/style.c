@@ -1,0 +1,34 @@
+/* Styles: names, needs and defaults (include/pointnpr/style.h). */
+#include <pointnpr/style.h>
+
+#include <string.h>
+
+static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon", "painterly"};
+
+const char *pnpr_style_name(pnpr_style s)
+{
+    return (unsigned)s < PNPR_STYLE_COUNT_ ? style_names[s] : "";
+}
+
+pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style)
+{
+    if (!name || !r_style) return PNPR_ERR_INVALID_ARGUMENT;
+    for (int i = 0; i < PNPR_STYLE_COUNT_; i++)
+        if (!strcmp(name, style_names[i])) { *r_style = (pnpr_style)i; return PNPR_OK; }
+    return PNPR_ERR_NOT_FOUND;
+}
+
+int pnpr_style_needs_features(pnpr_style s)
+{
+    return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE || s == PNPR_STYLE_PAINTERLY;
+}
+
+/* Outlines by default: the line drawing and the cartoon are first of all outlines; the pencil
+ * sketch gets a lighter one; points, stipple and painterly none (docs/rendering.md). */
+int pnpr_style_outline_default(pnpr_style s, float *r_width)
+{
+    static const float width[PNPR_STYLE_COUNT_] = {0, 1.5f, 2.5f, 0, 2.5f, 0};
+    float w = (unsigned)s < PNPR_STYLE_COUNT_ ? width[s] : 0;
+    if (r_width) *r_width = w;
+    return w > 0;
+}

@@ -1,0 +1,43 @@
+/* pointnpr — style.h: the drawing styles, their names and what each needs by default (GL-free,
+ * core library: the stage planner (plan.h), the renderer, the CLI and MeshLab read them here). */
+#ifndef POINTNPR_STYLE_H
+#define POINTNPR_STYLE_H
+
+#include "core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum pnpr_style {
+    PNPR_STYLE_POINTS = 0, /* plain round splats in the point colour (baseline, single pass) */
+    PNPR_STYLE_SKETCHY,    /* PointWorks sketch: strokes along feature directions + hatches */
+    PNPR_STYLE_LINES,      /* profile lines (pnpr_renderer_set_lines) as dark strokes, hidden parts
+                            * removed by the visibility mask of the cloud (section 5.2) */
+    PNPR_STYLE_STIPPLE,    /* small dark round dots on the feature and dithering points */
+    PNPR_STYLE_CARTOON,    /* flat colours per segment (cloud->label) or quantised, dark silhouettes
+                            * from enlarged pass-1 disks (section 5.4) */
+    PNPR_STYLE_PAINTERLY,  /* brush dabs in blended colours, large to small over feature-degree bins,
+                            * a stencil sky mask, directional strokes on top (section 5.3) */
+    PNPR_STYLE_COUNT_
+} pnpr_style;
+
+/* The sketchy variants of the paper's figure 9. */
+typedef enum pnpr_sketch_variant {
+    PNPR_SKETCH_ALL = 0,            /* (c) directional strokes + non-directional + dithering hatches */
+    PNPR_SKETCH_DIRECTIONAL,        /* (a) directional strokes only */
+    PNPR_SKETCH_NONDIRECTIONAL,     /* (b) directional strokes + non-directional hatches */
+    PNPR_SKETCH_COUNT_
+} pnpr_sketch_variant;
+
+const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly"; "" if invalid */
+pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
+/* Styles drawn from the feature classes (sketchy, stipple, painterly). */
+int pnpr_style_needs_features(pnpr_style style);
+/* The outline a style draws by default: 1 on / 0 off, and its width in px (r_width may be NULL). */
+int pnpr_style_outline_default(pnpr_style style, float *r_width);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
