@@ -15,7 +15,7 @@ static void need(pnpr_plan *p, uint32_t bit, const char *why)
 int pnpr_plan_cloud_has(const pnpr_cloud *c, uint32_t want)
 {
     if (!c) return 0;
-    if ((want & PNPR_WANT_NORMALS) && !c->normal) return 0;
+    if ((want & (PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) && !c->normal) return 0;
     if ((want & PNPR_WANT_DEGREE) && !pnpr_cloud_find_property(c, "feature_degree")) return 0;
     if (want & (PNPR_WANT_CLASSES | PNPR_WANT_DITHER)) {
         static const char *const names[] = {"feature_class", "feature_dir_x", "feature_dir_y", "feature_dir_z"};
@@ -54,7 +54,7 @@ static void style_needs(pnpr_plan *p, pnpr_style s, pnpr_sketch_variant v, int c
         } else {
             p->segments = PNPR_PLAN_SEGMENTS_SHADE;
             p->segments_why = "no colours: cartoon draws bands of the key light's tone";
-            need(p, PNPR_WANT_NORMALS, "cartoon shades a colourless cloud from its normals");
+            need(p, PNPR_WANT_NORMALS_ANY, "cartoon shades a colourless cloud from its normals");
         }
         break;
     default:
@@ -67,7 +67,7 @@ pnpr_status pnpr_plan_make(const pnpr_plan_request *req, const pnpr_cloud *cloud
     if (!req || !r_plan) return PNPR_ERR_INVALID_ARGUMENT;
     memset(r_plan, 0, sizeof *r_plan);
     if ((req->styles >> PNPR_STYLE_COUNT_) != 0 || (unsigned)req->sketch_variant >= PNPR_SKETCH_COUNT_ ||
-        req->outline < -1 || req->outline > 1 || (req->want & ~(uint32_t)PNPR_WANT_ALL))
+        req->outline < -1 || req->outline > 1 || (req->want & ~(uint32_t)(PNPR_WANT_ALL | PNPR_WANT_NORMALS_ANY)))
         return PNPR_ERR_INVALID_ARGUMENT;
     pnpr_plan *p = r_plan;
     int colours = !cloud || cloud->rgb, labels = cloud && cloud->label;
@@ -77,22 +77,25 @@ pnpr_status pnpr_plan_make(const pnpr_plan_request *req, const pnpr_cloud *cloud
         style_needs(p, (pnpr_style)s, req->sketch_variant, colours, labels);
         outlines |= req->outline > 0 || (req->outline == 0 && pnpr_style_outline_default((pnpr_style)s, NULL));
         if (!colours && s != PNPR_STYLE_LINES)
-            need(p, PNPR_WANT_NORMALS, "no colours: the points are shaded by a key light on their normals");
+            need(p, PNPR_WANT_NORMALS_ANY, "no colours: the points are shaded by a key light on their normals");
     }
-    if (outlines) need(p, PNPR_WANT_NORMALS, "outlines weigh depth jumps by the surface's slant (normals)");
+    if (outlines) need(p, PNPR_WANT_NORMALS_ANY, "outlines weigh depth jumps by the surface's slant (normals)");
     if (req->lines && !p->lines) { p->lines = 1; p->lines_why = "requested"; }
     if (p->lines) need(p, PNPR_WANT_CLASSES, "profile lines connect directional points along their directions");
-    for (int b = 0; b < 4; b++)
+    for (int b = 0; b < 5; b++)
         if (req->want & (1u << b)) need(p, 1u << b, "requested");
     /* wants imply their prerequisites */
     if (p->needed & PNPR_WANT_DITHER) need(p, PNPR_WANT_CLASSES, "dithering runs over the non-feature points");
     if (p->needed & PNPR_WANT_CLASSES) need(p, PNPR_WANT_DEGREE, "feature points are those above the degree threshold");
     /* what the cloud carries is reused */
-    uint32_t features = p->needed & ~(uint32_t)PNPR_WANT_NORMALS;
+    const uint32_t normal_bits = PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY;
+    uint32_t features = p->needed & ~normal_bits;
     p->reused_features = features && pnpr_plan_cloud_has(cloud, features);
     p->reused_normals = cloud && cloud->normal;
     p->want = p->needed;
-    if (p->reused_features) p->want &= (uint32_t)PNPR_WANT_NORMALS;
-    if (p->reused_normals) p->want &= ~(uint32_t)PNPR_WANT_NORMALS;
+    if (p->reused_features) p->want &= normal_bits;
+    if (p->reused_normals) p->want &= ~normal_bits;
+    /* any orientation is enough when oriented normals come anyway */
+    if (p->want & PNPR_WANT_NORMALS) p->want &= ~(uint32_t)PNPR_WANT_NORMALS_ANY;
     return PNPR_OK;
 }

@@ -106,7 +106,7 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
 
     /* the stages the wanted outputs need (docs/features.md, "Computing only what is needed") */
     const uint32_t want = opts->want ? opts->want : PNPR_WANT_ALL;
-    if (want & ~(uint32_t)PNPR_WANT_ALL) return PNPR_ERR_INVALID_ARGUMENT;
+    if (want & ~(uint32_t)(PNPR_WANT_ALL | PNPR_WANT_NORMALS_ANY)) return PNPR_ERR_INVALID_ARGUMENT;
     const int need_dither = (want & PNPR_WANT_DITHER) != 0;
     const int need_classify = need_dither || (want & PNPR_WANT_CLASSES);
     const int need_degree = need_classify || (want & PNPR_WANT_DEGREE);
@@ -139,7 +139,7 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     }
     /* unoriented normals are not handed out: when nobody wants normals, they live in a scratch
      * array (the colour term needs the tangent plane) and the cloud gets none */
-    const int normals_to_cloud = keep_normals || need_oriented || cloud->normal;
+    const int normals_to_cloud = keep_normals || need_oriented || cloud->normal || (want & PNPR_WANT_NORMALS_ANY);
     float *normals = NULL;
     if (normals_to_cloud) {
         if ((st = pnpr_cloud_alloc_normals(cloud)) != PNPR_OK) return st;

@@ -1,6 +1,7 @@
 /* Outlines in image space: silhouettes and occluding contours from the visibility mask (see
- * edges.h and docs/rendering.md). Three fullscreen passes: hole closing and a minimum filter
- * into textures of their own, then the ink band on the near side of every depth discontinuity. */
+ * edges.h and docs/rendering.md). Fullscreen passes: hole closing, then a minimum filter with the
+ * distance to no surface, into textures of their own; then the mask disks' overhang beyond the
+ * silhouettes erased and the ink band drawn on the near side of every depth discontinuity. */
 #include "edges.h"
 #include "gl_state.h"
 #include "pnpr_shaders.h"
@@ -16,11 +17,19 @@ static void edge_uniforms(pnpr_edges *e)
     e->uf_ppu = glGetUniformLocation(e->prog_fill, "u_ppu");
     e->uf_ortho = glGetUniformLocation(e->prog_fill, "u_ortho");
     e->ue_filled = glGetUniformLocation(e->prog_erode, "u_filled");
+    e->ue_ppu = glGetUniformLocation(e->prog_erode, "u_ppu");
+    e->ue_ortho = glGetUniformLocation(e->prog_erode, "u_ortho");
+    e->ue_inset = glGetUniformLocation(e->prog_erode, "u_inset");
+    e->ue_inset_max = glGetUniformLocation(e->prog_erode, "u_inset_max");
+    e->ue_limit = glGetUniformLocation(e->prog_erode, "u_limit");
+    e->ue_radius = glGetUniformLocation(e->prog_erode, "u_radius");
     e->ui_filled = glGetUniformLocation(e->prog_ink, "u_filled");
     e->ui_eroded = glGetUniformLocation(e->prog_ink, "u_eroded");
     e->ui_width = glGetUniformLocation(e->prog_ink, "u_width");
     e->ui_jump = glGetUniformLocation(e->prog_ink, "u_jump");
     e->ui_ink = glGetUniformLocation(e->prog_ink, "u_ink");
+    e->ui_erase = glGetUniformLocation(e->prog_ink, "u_erase");
+    e->ui_background = glGetUniformLocation(e->prog_ink, "u_background");
 }
 
 pnpr_status pnpr_edges_create(pnpr_edges *e, pnpr_error *err)
@@ -56,7 +65,7 @@ static pnpr_status ensure_targets(pnpr_edges *e, int w, int h, pnpr_error *err)
     }
     for (int i = 0; i < 2; i++) {
         glBindTexture(GL_TEXTURE_2D, e->tex[i]);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, w, h, 0, GL_RG, GL_FLOAT, NULL);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
@@ -99,21 +108,35 @@ pnpr_status pnpr_edges_draw(pnpr_edges *e, GLuint info_tex, GLuint frame_fbo, in
     glBindFramebuffer(GL_FRAMEBUFFER, e->fbo[1]);
     glUseProgram(e->prog_erode);
     glUniform1i(e->ue_filled, 0);
+    glUniform1f(e->ue_ppu, p->ppu);
+    glUniform1i(e->ue_ortho, p->ortho != 0);
+    glUniform1f(e->ue_inset, p->inset);
+    glUniform1f(e->ue_radius, p->radius);
+    glUniform1f(glGetUniformLocation(e->prog_erode, "u_inset_floor"), 0.0f);
+    glUniform1f(e->ue_inset_max, (float)PNPR_EDGE_MAX_INSET);
+    glUniform1f(e->ue_limit, (float)PNPR_EDGE_MAX_INSET + p->width + 2.0f);
     glBindTexture(GL_TEXTURE_2D, e->tex[0]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    /* pass 3: the ink band, blended into the frame (texture units 0 and 1) */
+    /* pass 3: the overhang erased (replaced), then the ink band blended into the frame
+     * (texture units 0 and 1) */
     glBindFramebuffer(GL_FRAMEBUFFER, frame_fbo);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(e->prog_ink);
     glUniform1i(e->ui_filled, 0);
     glUniform1i(e->ui_eroded, 1);
     glUniform1f(e->ui_width, p->width);
     glUniform1f(e->ui_jump, p->jump);
     glUniform4fv(e->ui_ink, 1, p->ink);
+    glUniform4fv(e->ui_background, 1, p->background);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, e->tex[1]);
     glActiveTexture(GL_TEXTURE0);
+    if (p->inset > 0) {
+        glUniform1i(e->ui_erase, 1);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUniform1i(e->ui_erase, 0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, 0);

@@ -10,8 +10,9 @@
 
 typedef struct pnpr_edges {
     GLuint prog_fill, prog_erode, prog_ink, vao;
-    GLint uf_info, uf_reach, uf_jump, uf_hole, uf_ppu, uf_ortho, ue_filled;
-    GLint ui_filled, ui_eroded, ui_width, ui_jump, ui_ink;
+    GLint uf_info, uf_reach, uf_jump, uf_hole, uf_ppu, uf_ortho;
+    GLint ue_filled, ue_ppu, ue_ortho, ue_inset, ue_inset_max, ue_limit, ue_radius;
+    GLint ui_filled, ui_eroded, ui_width, ui_jump, ui_ink, ui_erase, ui_background;
     GLuint fbo[2], tex[2]; /* the hole-closed info and its minimum filter, frame-sized */
     int w, h;
 } pnpr_edges;
@@ -25,7 +26,14 @@ typedef struct pnpr_edge_params {
     float ppu;           /* pixels per world unit at eye distance 1 */
     int ortho;
     float ink[4];        /* straight alpha */
+    float inset;         /* silhouettes lie this fraction of the projected mask-disk radius inside
+                          * the mask's boundary; the overhang is painted in `background` */
+    float background[4]; /* premultiplied */
+    float radius;        /* the mean mask-disk radius (world): sets the inset */
 } pnpr_edge_params;
+
+/* Largest inset in px (the overhang of very large disks is not erased beyond it). */
+enum { PNPR_EDGE_MAX_INSET = 8 };
 
 /* Longest march of the hole closing, in pixels (tiles add it to their guard band). */
 enum { PNPR_EDGE_MAX_REACH = 32 };

@@ -1493,9 +1493,15 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
     int outline = o.outline ? o.outline > 0 : pnpr_style_outline_default(o.style, &outline_width);
     if (o.outline_width > 0) outline_width = o.outline_width;
     if (outline && !mapped && !painterly && o.style != PNPR_STYLE_POINTS && n_draw > 0) {
+        /* the mask's boundary is drawn by the largest disks of the outermost points: about 1.1
+         * mean mask radii beyond them (measured on random samplings, docs/rendering.md); the
+         * silhouette is drawn that far inside it */
+        float inset = 1.1f;
         pnpr_edge_params ep = {outline_width > 0 ? outline_width : 2, o.outline_jump > 0 ? o.outline_jump : 2,
                                o.outline_hole > 0 ? o.outline_hole : 4, PNPR_EDGE_MAX_REACH, fc.pixels_per_unit,
-                               fc.ortho, {ink[0], ink[1], ink[2], ink[3]}};
+                               fc.ortho, {ink[0], ink[1], ink[2], ink[3]}, inset,
+                               {o.background[0] * a, o.background[1] * a, o.background[2] * a, a},
+                               r->mean_radius * point_scale * lod * mask_scale};
         st = pnpr_edges_draw(&r->edges, r->info_tex, r->fbo, fw, fh, &ep, err);
         if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     }
@@ -1637,7 +1643,7 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, 
     double sprite = r->count ? 2.0 * r->max_radius * grow * plan.fc.pixels_per_unit / dmin : 0;
     if (!(sprite <= r->max_point_size)) sprite = r->max_point_size;
     double extra = (o.dot_size > 0 ? o.dot_size : 2.5) + (o.line_width > 0 ? o.line_width : 2) +
-                   PNPR_EDGE_MAX_REACH + 1 + (o.outline_width > 0 ? o.outline_width : 4);
+                   PNPR_EDGE_MAX_REACH + PNPR_EDGE_MAX_INSET + 3 + (o.outline_width > 0 ? o.outline_width : 4);
     int margin = (int)ceil(0.5 * sprite + extra) + 1;
     if (margin > tmax / 4) margin = tmax / 4;
     int inner = tmax - 2 * margin;

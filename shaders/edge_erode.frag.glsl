@@ -1,26 +1,63 @@
 #version 330 core
-// Outlines, step 2: the far side of a contour must be far over more than one pixel. Each surface
-// pixel takes the nearest surface of its 3x3 neighbourhood (a minimum filter on eye distance; the
-// depth extent comes with it); pixels without a surface stay without. A single pixel that a
-// neighbouring disk's depth noise makes "far" is thereby not a contour (docs/rendering.md).
+// Outlines, step 2, on the hole-closed info (edge_fill.frag):
+//   x, y: the far side of a contour must be far over more than one pixel: each surface pixel
+//         takes the nearest surface of its 3x3 neighbourhood (a minimum filter on eye distance,
+//         the depth extent comes with it); pixels without a surface stay without;
+//   z:    the distance to the nearest pixel without a surface along the 8 directions (at most
+//         u_limit px; the frame border is no such pixel);
+//   w:    the inset: the mask disks reach about u_inset of their projected radius beyond the
+//         outermost points; the silhouette is drawn that far inside the mask's boundary and the
+//         overhang is erased (edge_ink.frag), at most u_inset_max px. The radius is the mean of
+//         the 3x3 neighbourhood's disks (one disk's radius varies from point to point: a ragged
+//         band), at least the cloud's mean radius u_radius times u_inset_floor.
 uniform sampler2D u_filled;
-out vec2 o_info;
+uniform float u_ppu;      // pixels per world unit at eye distance 1
+uniform int u_ortho;
+uniform float u_inset;
+uniform float u_radius;  // mean mask-disk radius (world)
+uniform float u_inset_floor;
+uniform float u_inset_max;
+uniform float u_limit;
+out vec4 o_info;
 
 void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
     ivec2 size = textureSize(u_filled, 0);
-    vec2 best = texelFetch(u_filled, p, 0).xy;
-    if (best.y <= 0.0) {
-        o_info = best;
+    vec4 me = texelFetch(u_filled, p, 0);
+    if (me.y <= 0.0) {
+        o_info = vec4(0.0);
         return;
     }
+    vec2 best = me.xy;
+    float rsum = 0.0, rn = 0.0;
     for (int dy = -1; dy <= 1; dy++) {
         for (int dx = -1; dx <= 1; dx++) {
-            vec2 v = texelFetch(u_filled, clamp(p + ivec2(dx, dy), ivec2(0), size - 1), 0).xy;
-            if (v.y > 0.0 && v.x < best.x)
-                best = v;
+            vec3 v = texelFetch(u_filled, clamp(p + ivec2(dx, dy), ivec2(0), size - 1), 0).xyz;
+            if (v.y <= 0.0)
+                continue;
+            if (v.x < best.x)
+                best = v.xy;
+            rsum += v.z;
+            rn += 1.0;
         }
     }
-    o_info = best;
+    float dist = u_limit;
+    int steps = int(u_limit);
+    for (int d = 0; d < 8; d++) {
+        ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
+                           d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);
+        float unit = d >= 4 ? 1.41421356 : 1.0;
+        for (int s = 1; s <= steps && float(s) * unit < dist; s++) {
+            ivec2 q = p + step * s;
+            if (q.x < 0 || q.y < 0 || q.x >= size.x || q.y >= size.y)
+                break;
+            if (texelFetch(u_filled, q, 0).y <= 0.0) {
+                dist = float(s) * unit;
+                break;
+            }
+        }
+    }
+    float r_px = max(rsum / rn, u_radius * u_inset_floor) * u_ppu / (u_ortho != 0 ? 1.0 : max(me.x, 1e-6));
+    o_info = vec4(best, dist, clamp(u_inset * r_px - 0.5, 0.0, u_inset_max));
 }

@@ -13,7 +13,7 @@ uniform float u_jump;     // depth jump in depth extents
 uniform float u_hole;     // largest hole in projected disk radii
 uniform float u_ppu;      // pixels per world unit at eye distance 1 (orthographic: at any distance)
 uniform int u_ortho;
-out vec2 o_info;
+out vec4 o_info;      // eye distance, depth extent, radius (holes: the mean of their closers)
 
 float radius_px(vec3 s)
 {
@@ -24,10 +24,10 @@ void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
     ivec2 size = textureSize(u_info, 0);
-    vec2 me = texelFetch(u_info, p, 0).xy;
+    vec3 me = texelFetch(u_info, p, 0).xyz;
     float z = me.y > 0.0 ? me.x : 3.0e38;
     float extent = me.y > 0.0 ? me.y : 3.0e38;
-    vec2 sum = vec2(0.0);
+    vec3 sum = vec3(0.0);
     for (int d = 0; d < 8; d++) {
         ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
                            d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);
@@ -40,14 +40,14 @@ void main()
             vec3 v = texelFetch(u_info, q, 0).xyz;
             if (v.y > 0.0 && v.x < z - u_jump * min(v.y, extent)) {
                 closed = float(s) * unit <= u_hole * radius_px(v);
-                sum += v.xy;
+                sum += v;
                 break;
             }
         }
         if (!closed) {
-            o_info = me;
+            o_info = vec4(me, 0.0);
             return;
         }
     }
-    o_info = sum * 0.125;
+    o_info = vec4(sum * 0.125, 0.0);
 }

@@ -1,15 +1,21 @@
 #version 330 core
 // Outlines, step 3: ink on the near side of every silhouette and occluding contour of the
-// hole-closed surface info. A surface pixel is inked when a pixel within u_width px shows no
-// surface or, after the minimum filter (edge_erode.frag), one farther than u_jump times the
-// smaller depth extent of the two (edge_fill.frag); the ink's coverage falls off
-// over the last pixel (antialiased band u_width px wide). Beyond the frame border the border
+// hole-closed surface info (edge_fill.frag, edge_erode.frag).
+//   Silhouettes (against no surface): a band u_width px wide whose outer edge is the inset (the
+//   mask disks' overhang) inside the mask's boundary; u_erase: the overhang itself is painted in
+//   the background (a separate draw, without blending).
+//   Contours (against a farther surface): a pixel is inked when a neighbour within u_width + 1 px
+//   (the minimum filter moved the far side one pixel away) lies farther than u_jump times the
+//   smaller depth extent of the two.
+// Coverage falls off over the band's last pixel (antialiased). Beyond the frame border the border
 // pixels repeat: the frame's edge is no outline.
 uniform sampler2D u_filled;  // hole-closed info (this pixel)
-uniform sampler2D u_eroded;  // its minimum filter (the neighbours)
-uniform float u_width;    // outline width in pixels
-uniform float u_jump;     // depth jump in depth extents
-uniform vec4 u_ink;       // straight alpha
+uniform sampler2D u_eroded;  // minimum filter, distance to no surface, inset
+uniform float u_width;       // outline width in pixels
+uniform float u_jump;        // depth jump in depth extents
+uniform vec4 u_ink;          // straight alpha
+uniform int u_erase;         // 1: paint the overhang in u_background instead
+uniform vec4 u_background;   // premultiplied
 out vec4 o_color;
 
 void main()
@@ -19,20 +25,23 @@ void main()
     vec2 me = texelFetch(u_filled, p, 0).xy;
     if (me.y <= 0.0)
         discard;
+    vec4 e = texelFetch(u_eroded, p, 0);
+    float beyond = e.z - e.w; // distance past the inset to no surface
+    if (u_erase != 0) {
+        if (beyond > 0.5)
+            discard;
+        o_color = u_background;
+        return;
+    }
+    float cover = beyond > 0.5 ? clamp(u_width + 0.5 - beyond, 0.0, 1.0) : 0.0;
     int reach = int(ceil(u_width + 1.5));
-    float cover = 0.0;
-    for (int dy = -reach; dy <= reach; dy++) {
+    for (int dy = -reach; dy <= reach && cover < 1.0; dy++) {
         for (int dx = -reach; dx <= reach; dx++) {
-            float d = length(vec2(dx, dy));
-            // the minimum filter moved a far surface one pixel away: one pixel more reach
-            float c = clamp(u_width + 1.5 - d, 0.0, 1.0);
+            float c = clamp(u_width + 1.5 - length(vec2(dx, dy)), 0.0, 1.0);
             if (c <= cover)
                 continue;
-            ivec2 q = clamp(p + ivec2(dx, dy), ivec2(0), size - 1);
-            vec2 v = texelFetch(u_eroded, q, 0).xy;
-            if (v.y <= 0.0)
-                cover = max(cover, clamp(u_width + 0.5 - d, 0.0, 1.0));
-            else if (v.x > me.x + u_jump * min(me.y, v.y))
+            vec2 v = texelFetch(u_eroded, clamp(p + ivec2(dx, dy), ivec2(0), size - 1), 0).xy;
+            if (v.y > 0.0 && v.x > me.x + u_jump * min(me.y, v.y))
                 cover = c;
         }
     }

@@ -44,7 +44,9 @@ enum {
     PNPR_WANT_DEGREE = 2,
     PNPR_WANT_CLASSES = 4,
     PNPR_WANT_DITHER = 8,
-    PNPR_WANT_ALL = 15
+    PNPR_WANT_ALL = 15,          /* everything `pointnpr features` writes */
+    PNPR_WANT_NORMALS_ANY = 16   /* normals in cloud->normal, either orientation (outlines and the
+                                  * two-sided shading need no more): no orientation stage */
 };
 
 typedef struct pnpr_features_options {

@@ -31,7 +31,7 @@ typedef struct pnpr_plan_request {
 typedef struct pnpr_plan {
     uint32_t want;          /* PNPR_WANT_* bits pnpr_compute_features must compute (0: none) */
     uint32_t needed;        /* the bits the output needs, before what the cloud carries is taken off */
-    const char *why[4];     /* why each bit is needed (index = bit number), NULL if not */
+    const char *why[5];     /* why each bit is needed (index = bit number), NULL if not */
     int lines;              /* compute the profile lines */
     const char *lines_why;
     pnpr_plan_segments segments;
@@ -44,7 +44,7 @@ typedef struct pnpr_plan {
  * and nothing else). PNPR_ERR_INVALID_ARGUMENT for an unknown style bit or variant. */
 pnpr_status pnpr_plan_make(const pnpr_plan_request *req, const pnpr_cloud *cloud, pnpr_plan *r_plan);
 
-/* Whether the cloud carries the outputs of the PNPR_WANT_* bits (normals, feature_degree,
+/* Whether the cloud carries the outputs of the PNPR_WANT_* bits (normals of either kind, feature_degree,
  * feature_class + feature_dir_x/y/z; dithering points cannot be told apart from classes: a
  * cloud with classes counts as carrying them). */
 int pnpr_plan_cloud_has(const pnpr_cloud *cloud, uint32_t want);

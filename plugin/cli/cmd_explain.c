@@ -1,144 +1,98 @@
 /* pointnpr explain: the stage plan for a requested output — which analysis stages run and why,
  * which are skipped, and which the input already carries (reused, not recomputed).
- *   pointnpr explain [IN] [--style S [--sketch a|b|c]] [--lines] [--segment METHOD] [--features]
- * The plan is the one the commands follow: `render` computes features only for styles that need
- * them (and only when IN lacks them), `lines` asks for classes only (PNPR_WANT_CLASSES), `segment`
- * needs no features. */
+ *   pointnpr explain [IN] [--style S [--sketch a|b|c]] [--outline on|off] [--lines]
+ *                         [--segment METHOD] [--features]
+ * It prints the library's plan (pnpr_plan_make, plan.h): the one `render` and `lines` execute. */
 #include "cli.h"
 
 #include <pointnpr/features.h>
+#include <pointnpr/plan.h>
 
 #include <stdio.h>
 #include <string.h>
 
-typedef struct plan {
-    uint32_t want;        /* PNPR_WANT_* bits of the feature analysis */
-    const char *why[5];   /* reason per want bit (index = bit number) */
-    int lines, segments;
-    const char *segment_method, *segment_why;
-} plan;
+typedef struct row { const char *stage; int run; const char *why; } row;
 
-static void need(plan *p, uint32_t bit, const char *why)
+/* The rows of the plan, in pipeline order. */
+static int plan_rows(const pnpr_plan *p, int have_in, const char *segment_method, row *r)
 {
-    int b = 0;
-    while ((1u << b) != bit) b++;
-    if (!(p->want & bit)) p->why[b] = why;
-    p->want |= bit;
-}
-
-/* What each style needs (PointWorks section 5; docs/rendering.md). */
-static int style_plan(plan *p, const char *style, const char *sketch)
-{
-    if (!strcmp(style, "points")) return 1;
-    if (!strcmp(style, "sketchy")) {
-        need(p, PNPR_WANT_CLASSES, "sketchy draws directional points as strokes along their direction");
-        if (!sketch || !strcmp(sketch, "c")) need(p, PNPR_WANT_DITHER, "sketchy variant c draws dithering points as hatches");
-        return 1;
-    }
-    if (!strcmp(style, "stipple")) {
-        need(p, PNPR_WANT_DITHER, "stipple draws dithering and feature points as dots");
-        return 1;
-    }
-    if (!strcmp(style, "painterly")) {
-        need(p, PNPR_WANT_DEGREE, "painterly sorts points into feature-degree bins");
-        need(p, PNPR_WANT_CLASSES, "painterly puts directional strokes on top");
-        return 1;
-    }
-    if (!strcmp(style, "cartoon")) {
-        p->segments = 1;
-        p->segment_method = "jseg";
-        p->segment_why = "cartoon fills each segment with its mean colour";
-        return 1;
-    }
-    if (!strcmp(style, "lines")) {
-        p->lines = 1;
-        return 1;
-    }
-    return 0;
-}
-
-static int has_props(const pnpr_cloud *c, const char *const *names)
-{
-    for (; *names; names++)
-        if (!pnpr_cloud_find_property(c, *names)) return 0;
-    return 1;
+    const uint32_t w = p->want, n = p->needed;
+    const int oriented = (w & PNPR_WANT_NORMALS) != 0, normals = (w & (PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) != 0;
+    const char *reuse = "the input carries what is needed: reused";
+    int k = 0;
+    r[k++] = (row){"kd-tree + knn", w != 0, w ? "neighbourhoods for every stage below" : (n && have_in ? reuse : "no analysis needed")};
+    r[k++] = (row){"normals (PCA)", w != 0,
+                   w ? (normals ? (p->why[0] ? p->why[0] : p->why[4]) : "its plane-fit error drives the feature degree")
+                     : (n && have_in ? reuse : "not needed")};
+    r[k++] = (row){"orient", oriented, oriented ? p->why[0] : "no output needs oriented normals"};
+    r[k++] = (row){"feature degree", (w & PNPR_WANT_DEGREE) != 0, w & PNPR_WANT_DEGREE ? p->why[1] : (n & PNPR_WANT_DEGREE && have_in ? reuse : "not needed")};
+    r[k++] = (row){"classify", (w & PNPR_WANT_CLASSES) != 0, w & PNPR_WANT_CLASSES ? p->why[2] : (n & PNPR_WANT_CLASSES && have_in ? reuse : "not needed")};
+    r[k++] = (row){"dither", (w & PNPR_WANT_DITHER) != 0,
+                   w & PNPR_WANT_DITHER ? p->why[3] : (n & PNPR_WANT_DITHER && have_in ? reuse : "no output draws dithering points")};
+    r[k++] = (row){"profile lines", p->lines, p->lines ? p->lines_why : "not requested"};
+    int seg = segment_method ? 1 : p->segments == PNPR_PLAN_SEGMENTS_JSEG;
+    r[k++] = (row){"segments", seg,
+                   segment_method ? "requested (--segment)" : p->segments != PNPR_PLAN_SEGMENTS_NONE ? p->segments_why : "not requested"};
+    return k;
 }
 
 int cli_explain(int argc, char **argv)
 {
-    plan p;
-    memset(&p, 0, sizeof p);
-    const char *in = NULL, *style = NULL, *sketch = NULL;
+    pnpr_plan_request req = {0};
+    const char *in = NULL, *style = NULL, *segment_method = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             printf("usage: pointnpr explain [IN] [--style points|sketchy|stipple|painterly|cartoon|lines]\n"
-                   "                        [--sketch a|b|c] [--lines] [--segment METHOD] [--features]\n"
+                   "                        [--sketch a|b|c] [--outline on|off] [--lines] [--segment METHOD]\n"
+                   "                        [--features]\n"
                    "  prints the analysis stages the requested outputs need, and why; with IN, which of\n"
-                   "  them the file already carries (reused, not recomputed)\n");
+                   "  them the file already carries (reused, not recomputed). `render` and `lines` follow\n"
+                   "  this plan.\n");
             return 0;
-        } else if (v && !strcmp(a, "--style")) { style = v; i++; }
-        else if (v && !strcmp(a, "--sketch")) { sketch = v; i++; }
-        else if (v && !strcmp(a, "--segment")) { p.segments = 1; p.segment_method = v; p.segment_why = "requested (--segment)"; i++; }
-        else if (!strcmp(a, "--lines")) p.lines = 1;
-        else if (!strcmp(a, "--features")) {
-            need(&p, PNPR_WANT_NORMALS, "requested (--features: everything `pointnpr features` writes)");
-            need(&p, PNPR_WANT_DITHER, "requested (--features)");
-        }
+        } else if (v && !strcmp(a, "--style")) {
+            pnpr_style s;
+            if (pnpr_style_from_name(v, &s) != PNPR_OK) {
+                fprintf(stderr, "pointnpr explain: unknown style '%s' (points, sketchy, stipple, painterly, cartoon, lines)\n", v);
+                return 2;
+            }
+            req.styles |= 1u << s;
+            style = v;
+            i++;
+        } else if (v && !strcmp(a, "--sketch")) {
+            if (strlen(v) != 1 || v[0] < 'a' || v[0] > 'c') { fprintf(stderr, "pointnpr explain: --sketch wants a, b or c, got '%s'\n", v); return 2; }
+            req.sketch_variant = v[0] == 'a' ? PNPR_SKETCH_DIRECTIONAL : v[0] == 'b' ? PNPR_SKETCH_NONDIRECTIONAL : PNPR_SKETCH_ALL;
+            i++;
+        } else if (v && !strcmp(a, "--outline")) {
+            if (strcmp(v, "on") && strcmp(v, "off")) { fprintf(stderr, "pointnpr explain: --outline wants on or off, got '%s'\n", v); return 2; }
+            req.outline = !strcmp(v, "on") ? 1 : -1;
+            i++;
+        } else if (v && !strcmp(a, "--segment")) { segment_method = v; i++; }
+        else if (!strcmp(a, "--lines")) req.lines = 1;
+        else if (!strcmp(a, "--features")) req.want |= PNPR_WANT_ALL;
         else if (a[0] == '-' && a[1]) { fprintf(stderr, "pointnpr explain: unknown option or missing value: %s\n", a); return 2; }
         else if (!in) in = a;
         else { fprintf(stderr, "pointnpr explain: more than one input given ('%s')\n", a); return 2; }
     }
-    if (style && !style_plan(&p, style, sketch)) {
-        fprintf(stderr, "pointnpr explain: unknown style '%s' (points, sketchy, stipple, painterly, cartoon, lines)\n", style);
-        return 2;
-    }
-    if (p.lines) need(&p, PNPR_WANT_CLASSES, "profile lines connect directional points along their directions");
-    /* wants imply their prerequisites */
-    if (p.want & PNPR_WANT_DITHER) need(&p, PNPR_WANT_CLASSES, "dithering runs over the non-feature points");
-    if (p.want & PNPR_WANT_CLASSES) need(&p, PNPR_WANT_DEGREE, "feature points are those above the degree threshold");
-
-    int have_normals = 0, have_degree = 0, have_classes = 0, have_labels = 0, have_rgb = 0;
+    pnpr_cloud c = {0};
     if (in) {
-        pnpr_cloud c = {0};
         pnpr_error err = {0};
         pnpr_status st = pnpr_read_file(in, NULL, &c, &err);
         if (st != PNPR_OK) { cli_report_error("explain", st, &err); return 1; }
-        static const char *const deg[] = {"feature_degree", NULL};
-        static const char *const cls[] = {"feature_class", "feature_dir_x", "feature_dir_y", "feature_dir_z", NULL};
-        have_normals = c.normal != NULL;
-        have_degree = has_props(&c, deg);
-        have_classes = has_props(&c, cls);
-        have_labels = c.label != NULL;
-        have_rgb = c.rgb != NULL;
-        printf("%s: %zu points%s%s%s%s%s\n", in, c.count, have_rgb ? ", colours" : "", have_normals ? ", normals" : "",
-               have_degree ? ", feature_degree" : "", have_classes ? ", feature classes" : "", have_labels ? ", segment labels" : "");
-        pnpr_cloud_free(&c);
+        printf("%s: %zu points%s%s%s%s%s\n", in, c.count, c.rgb ? ", colours" : "", c.normal ? ", normals" : "",
+               pnpr_plan_cloud_has(&c, PNPR_WANT_DEGREE) ? ", feature_degree" : "",
+               pnpr_plan_cloud_has(&c, PNPR_WANT_CLASSES) ? ", feature classes" : "", c.label ? ", segment labels" : "");
     }
-    int features_in_input = have_classes && have_degree;
-    uint32_t want = p.want;
-    if (in && features_in_input && !(want & PNPR_WANT_NORMALS)) want = 0; /* all reused */
-    if (in && want == PNPR_WANT_NORMALS && have_normals) want = 0;
-    int dither_needs_orient = (want & PNPR_WANT_DITHER) && !have_rgb;
-    struct { const char *stage; int run; const char *why; } rows[9];
-    int nr = 0;
-#define ROW(s, r, w) do { rows[nr].stage = (s); rows[nr].run = (r); rows[nr].why = (w); nr++; } while (0)
-    const char *reuse = "the input carries the features: reused";
-    ROW("kd-tree + knn", want != 0, want ? "neighbourhoods for every stage below" : (p.want && in ? reuse : "no analysis requested"));
-    ROW("normals (PCA)", want != 0, want ? (want & PNPR_WANT_NORMALS ? p.why[0] : "its plane-fit error drives the feature degree") : (p.want && in ? reuse : "not needed"));
-    ROW("orient", (want & PNPR_WANT_NORMALS) || dither_needs_orient,
-        (want & PNPR_WANT_NORMALS) ? p.why[0] : (dither_needs_orient ? "no colours: dithering takes the tone from oriented normals" : "no output needs oriented normals"));
-    ROW("feature degree", (want & PNPR_WANT_DEGREE) != 0, want & PNPR_WANT_DEGREE ? p.why[1] : (p.want && in ? reuse : "not needed"));
-    ROW("classify", (want & PNPR_WANT_CLASSES) != 0, want & PNPR_WANT_CLASSES ? p.why[2] : (p.want && in ? reuse : "not needed"));
-    ROW("dither", (want & PNPR_WANT_DITHER) != 0,
-        want & PNPR_WANT_DITHER ? p.why[3] : (p.want & PNPR_WANT_DITHER && in ? reuse : "no output draws dithering points"));
-    ROW("profile lines", p.lines, p.lines ? (style && !strcmp(style, "lines") ? "the lines style draws them" : "requested (--lines)") : "not requested");
-    ROW("segments", p.segments && !(have_labels && in), p.segments ? (have_labels && in ? "the input carries segment labels: reused" : p.segment_why) : "not requested");
-#undef ROW
+    pnpr_plan p;
+    pnpr_status st = pnpr_plan_make(&req, in ? &c : NULL, &p);
+    pnpr_cloud_free(&c);
+    if (st != PNPR_OK) { fprintf(stderr, "pointnpr explain: %s\n", pnpr_status_string(st)); return 2; }
+    row rows[8];
+    int nr = plan_rows(&p, in != NULL, segment_method, rows);
     printf("plan%s%s%s:\n", style ? " for --style " : "", style ? style : "", p.lines && !(style && !strcmp(style, "lines")) ? " + lines" : "");
     for (int r = 0; r < nr; r++) {
         printf("  %-16s %-5s %s", rows[r].stage, rows[r].run ? "run" : "skip", rows[r].why);
-        if (r == nr - 1 && rows[r].run) printf(" (method %s)", p.segment_method);
+        if (r == nr - 1 && rows[r].run) printf(" (method %s)", segment_method ? segment_method : "jseg");
         printf("\n");
     }
     return 0;

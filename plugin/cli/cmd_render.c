@@ -157,7 +157,7 @@ static int run_plan(const char *in, pnpr_cloud *cloud, const pnpr_draw_options *
     pnpr_status st = pnpr_plan_make(&req, cloud, &plan);
     if (st == PNPR_OK && plan.want) {
         if (!quiet) fprintf(stderr, "%s: computing %s (pointnpr explain shows the plan; pointnpr features saves them)\n", in,
-                            plan.want == PNPR_WANT_NORMALS ? "normals" : "features");
+                            (plan.want & ~(uint32_t)(PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) ? "features" : "normals");
         pnpr_features_options fo = {0};
         fo.progress = prog;
         fo.want = plan.want;

@@ -80,6 +80,7 @@ typedef struct ring_stats {
     size_t inner;        /* pixels inside 0.75 rs */
     size_t outer_non_bg; /* non-background pixels outside rs + 8 + grow */
     size_t ink;          /* all ink pixels */
+    double offset;       /* mean over the rays of the ink's centre minus rs (px) */
 } ring_stats;
 
 /* The outline lies on the visibility mask's boundary: up to one mask disk (1.5 times the
@@ -94,16 +95,18 @@ static ring_stats ring(const uint8_t *px, double rs, double grow, int check_oute
 {
     ring_stats s;
     memset(&s, 0, sizeof s);
-    double cx = 0.5 * W, cy = 0.5 * H;
+    double cx = 0.5 * W, cy = 0.5 * H, off_sum = 0;
     for (int k = 0; k < 90; k++) {
-        double a = 2 * PI * k / 90;
+        double a = 2 * PI * k / 90, tsum = 0;
         int found = 0;
-        for (double t = rs - 3; t <= rs + 3 + grow && !found; t += 0.5) {
+        for (double t = rs - 3; t <= rs + 3 + grow; t += 0.25) {
             int x = (int)floor(cx + t * cos(a)), y = (int)floor(cy + t * sin(a));
-            if (x >= 0 && y >= 0 && x < W && y < H) found = inked(px + 4 * ((size_t)y * W + x));
+            if (x >= 0 && y >= 0 && x < W && y < H && inked(px + 4 * ((size_t)y * W + x))) { found++; tsum += t; }
         }
-        s.rays += found;
+        s.rays += found > 0;
+        if (found) off_sum += tsum / found - rs;
     }
+    s.offset = s.rays ? off_sum / s.rays : 0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             const uint8_t *p = px + 4 * ((size_t)y * W + x);
@@ -135,8 +138,11 @@ static void test_sphere_silhouette(pnpr_renderer *r, uint8_t *px)
         CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
         CHECK_STATUS(draw(r, &o, 0, px), PNPR_OK);
         ring_stats s = ring(px, rs, mask_grow_px(cases[t].n, rs), 1);
-        fprintf(stderr, "lines sphere, %s: %d/90 rays inked at r = %.1f px, %zu of %zu inner px inked, %zu outside\n",
-                cases[t].what, s.rays, rs, s.inner_ink, s.inner, s.outer_non_bg);
+        fprintf(stderr, "lines sphere, %s: %d/90 rays inked at r = %.1f px (ink centred %+.2f px from it), %zu of %zu inner px inked, %zu outside\n",
+                cases[t].what, s.rays, rs, s.offset, s.inner_ink, s.inner, s.outer_non_bg);
+        /* the silhouette where the sphere's outline is, at any density: the band (2.5 px) is
+         * centred on it within 1.5 px */
+        CHECK_MSG(fabs(s.offset) <= 1.5, "%s: the ink is centred %+.2f px from the silhouette", cases[t].what, s.offset);
         CHECK_MSG(s.rays >= 86, "%s: %d of 90 rays find the silhouette", cases[t].what, s.rays);
         CHECK_MSG(s.inner > 5000 && s.inner_ink * 200 <= s.inner, "%s: %zu ink pixels inside", cases[t].what, s.inner_ink);
         CHECK_MSG(s.outer_non_bg == 0, "%s: %zu pixels outside the silhouette", cases[t].what, s.outer_non_bg);
