@@ -65,8 +65,8 @@ pnpr_status pnpr_tone(const uint8_t *rgb, const float *normals, size_t count,
     if (src == PNPR_TONE_BOTH && !(rgb && normals)) src = rgb ? PNPR_TONE_COLOR : PNPR_TONE_LIGHT;
     if (src == PNPR_TONE_COLOR && !rgb) src = normals ? PNPR_TONE_LIGHT : PNPR_TONE_SOURCE_COUNT_;
     if (src == PNPR_TONE_LIGHT && !normals) src = rgb ? PNPR_TONE_COLOR : PNPR_TONE_SOURCE_COUNT_;
-    double ambient = o.ambient > 0 ? o.ambient : 0.3, cw = o.colour_weight > 0 ? o.colour_weight : 0.6;
-    double contrast = o.contrast > 0 ? o.contrast : 1, gamma = o.gamma > 0 ? o.gamma : 1.8;
+    double ambient = o.ambient > 0 ? o.ambient : 0.3, cw = o.colour_weight > 0 ? o.colour_weight : 0.45;
+    double contrast = o.contrast > 0 ? o.contrast : 1, gamma = o.gamma > 0 ? o.gamma : 2.8;
     double l[3];
     pnpr_tone_light(&o, l);
     for (size_t i = 0; i < count; i++) {

@@ -1010,12 +1010,15 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, cons
         glUniform1f(r->us.radius_scale, point_scale * lod * mask_scale);
         glUniform1f(r->us.depth_push, 1.0f);
         glDisable(GL_BLEND);
-        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(GL_ALWAYS, 1, 0xFF);
         glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
         glStencilMask(0xFF);
+        /* the mask doubles as the underpainting: its disks in the coarsest pass's blended colours,
+         * so that no paper shows between the dabs inside the painted area (docs/rendering.md) */
         set_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
+        glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
+        glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, 4, (const void *)0);
         for (size_t b = 0; b < nb; b++)
             if (mdraw[b]) glDrawArrays(GL_POINTS, (GLint)r->paint_start[b], (GLsizei)mdraw[b]);
     }
@@ -1062,8 +1065,11 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, cons
         if (!o->paint_no_sky_mask) glEnable(GL_STENCIL_TEST);
         else glDisable(GL_STENCIL_TEST);
         float ink[4] = {0.08f, 0.08f, 0.1f, 1};
-        if (o->ink[0] != 0 || o->ink[1] != 0 || o->ink[2] != 0 || o->ink[3] != 0) memcpy(ink, o->ink, sizeof ink);
-        stroke_program(r, fc, fw, fh, o->stroke_width > 0 ? o->stroke_width : 2, point_scale, ink, o->ink_from_points);
+        int ink_given = o->ink[0] != 0 || o->ink[1] != 0 || o->ink[2] != 0 || o->ink[3] != 0;
+        if (ink_given) memcpy(ink, o->ink, sizeof ink);
+        /* brush strokes in the points' own colours unless an ink is asked for: no dark scratches */
+        stroke_program(r, fc, fw, fh, o->stroke_width > 0 ? o->stroke_width : 2, point_scale, ink,
+                       o->ink_from_points || !ink_given);
         glUniform1i(r->ut_filter, filter);
         glUniform1i(r->ut.mode, 0);
         glUniform1f(r->ut.layer, (float)o->stroke_texture);

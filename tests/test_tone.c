@@ -19,9 +19,9 @@ static void test_colour_and_curve(void)
     CHECK_NEAR(t[0], 0, 1e-6);
     CHECK_NEAR(t[1], 1, 1e-6);
     CHECK_NEAR(t[2], 1 - 128 / 255.0, 1e-5);
-    o.gamma = 0; /* default curve: gamma 1.8 */
+    o.gamma = 0; /* default curve: gamma 2.8 */
     CHECK_STATUS(pnpr_tone(rgb, NULL, 3, &o, t), PNPR_OK);
-    CHECK_NEAR(t[2], pow(1 - 128 / 255.0, 1.8), 1e-5);
+    CHECK_NEAR(t[2], pow(1 - 128 / 255.0, 2.8), 1e-5);
     o.gamma = 1;
     o.contrast = 2; /* (t - 0.5) * 2 + 0.5, clamped */
     CHECK_STATUS(pnpr_tone(rgb, NULL, 3, &o, t), PNPR_OK);
@@ -49,13 +49,13 @@ static void test_light(void)
     CHECK_NEAR(t[2], 1 - 0.3, 1e-6);       /* edge-on: ambient only */
     CHECK_NEAR(t[3], 1 - (0.3 + 0.35), 1e-6); /* unknown normal: ambient + half */
     CHECK_NEAR(t[4], 1 - (0.3 + 0.7 * 0.8), 1e-6);
-    /* both: 1 - shade * (1 - 0.6 * colour darkness) */
+    /* both: 1 - shade * (1 - 0.45 * colour darkness) */
     const uint8_t rgb[15] = {0, 0, 0, 255, 255, 255, 0, 0, 0, 255, 255, 255, 0, 0, 0};
     o.source = PNPR_TONE_BOTH;
     CHECK_STATUS(pnpr_tone(rgb, n, 5, &o, t), PNPR_OK);
-    CHECK_NEAR(t[0], 1 - 1 * (1 - 0.6), 1e-6);
+    CHECK_NEAR(t[0], 1 - 1 * (1 - 0.45), 1e-6);
     CHECK_NEAR(t[1], 0, 1e-6);
-    CHECK_NEAR(t[2], 1 - 0.3 * 0.4, 1e-6);
+    CHECK_NEAR(t[2], 1 - 0.3 * 0.55, 1e-6);
     /* auto with both arrays = both; light without normals falls back to colour */
     o.source = PNPR_TONE_AUTO;
     float t2[5];

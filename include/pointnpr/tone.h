@@ -40,9 +40,9 @@ typedef struct pnpr_tone_options {
     double light[3];     /* direction towards the key light; zero = from above, tilted towards
                           * the scene's -y side and to the left (pnpr_tone_light) */
     float ambient;       /* 0 = 0.3 */
-    float colour_weight; /* both: 0 = 0.6 */
+    float colour_weight; /* both: 0 = 0.45 */
     float contrast;      /* 0 = 1 */
-    float gamma;         /* 0 = 1.8 */
+    float gamma;         /* 0 = 2.8 */
 } pnpr_tone_options;
 
 /* The effective light direction (unit) of the options. */
