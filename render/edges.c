@@ -16,6 +16,9 @@ static void edge_uniforms(pnpr_edges *e)
     e->uf_hole = glGetUniformLocation(e->prog_fill, "u_hole");
     e->uf_ppu = glGetUniformLocation(e->prog_fill, "u_ppu");
     e->uf_ortho = glGetUniformLocation(e->prog_fill, "u_ortho");
+    e->uf_surface_reach = glGetUniformLocation(e->prog_fill, "u_surface_reach");
+    e->uf_skip_level = glGetUniformLocation(e->prog_fill, "u_skip_level");
+    e->ue_skip_level = glGetUniformLocation(e->prog_erode, "u_skip_level");
     e->ue_filled = glGetUniformLocation(e->prog_erode, "u_filled");
     e->ue_ppu = glGetUniformLocation(e->prog_erode, "u_ppu");
     e->ue_ortho = glGetUniformLocation(e->prog_erode, "u_ortho");
@@ -68,7 +71,7 @@ static pnpr_status ensure_targets(pnpr_edges *e, int w, int h, pnpr_error *err)
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, i == 0 ? PNPR_EDGE_MIP_LEVELS - 1 : 0);
         glBindFramebuffer(GL_FRAMEBUFFER, e->fbo[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, e->tex[i], 0);
         GLenum fs = glCheckFramebufferStatus(GL_FRAMEBUFFER);
@@ -102,7 +105,11 @@ pnpr_status pnpr_edges_draw(pnpr_edges *e, GLuint info_tex, GLuint frame_fbo, in
     glUniform1f(e->uf_hole, p->hole);
     glUniform1f(e->uf_ppu, p->ppu);
     glUniform1i(e->uf_ortho, p->ortho != 0);
+    int fill_skip = (w >> PNPR_EDGE_SKIP_FILL) > 0 && (h >> PNPR_EDGE_SKIP_FILL) > 0 && p->reach <= (1 << PNPR_EDGE_SKIP_FILL);
+    glUniform1i(e->uf_skip_level, fill_skip ? PNPR_EDGE_SKIP_FILL : 0);
+    glUniform1i(e->uf_surface_reach, PNPR_EDGE_SURFACE_REACH);
     glBindTexture(GL_TEXTURE_2D, info_tex);
+    if (fill_skip) glGenerateMipmap(GL_TEXTURE_2D);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     /* pass 2: minimum filter, tex[0] -> tex[1] */
     glBindFramebuffer(GL_FRAMEBUFFER, e->fbo[1]);
@@ -114,8 +121,12 @@ pnpr_status pnpr_edges_draw(pnpr_edges *e, GLuint info_tex, GLuint frame_fbo, in
     glUniform1f(e->ue_radius, p->radius);
     glUniform1f(glGetUniformLocation(e->prog_erode, "u_inset_floor"), 0.0f);
     glUniform1f(e->ue_inset_max, (float)PNPR_EDGE_MAX_INSET);
-    glUniform1f(e->ue_limit, (float)PNPR_EDGE_MAX_INSET + p->width + 2.0f);
+    float limit = (float)PNPR_EDGE_MAX_INSET + p->width + 2.0f;
+    glUniform1f(e->ue_limit, limit);
+    int erode_skip = (w >> PNPR_EDGE_SKIP_ERODE) > 0 && (h >> PNPR_EDGE_SKIP_ERODE) > 0 && limit <= (float)(1 << PNPR_EDGE_SKIP_ERODE);
+    glUniform1i(e->ue_skip_level, erode_skip ? PNPR_EDGE_SKIP_ERODE : 0);
     glBindTexture(GL_TEXTURE_2D, e->tex[0]);
+    if (erode_skip) glGenerateMipmap(GL_TEXTURE_2D);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     /* pass 3: the overhang erased (replaced), then the ink band blended into the frame
      * (texture units 0 and 1) */

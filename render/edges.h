@@ -10,8 +10,8 @@
 
 typedef struct pnpr_edges {
     GLuint prog_fill, prog_erode, prog_ink, vao;
-    GLint uf_info, uf_reach, uf_jump, uf_hole, uf_ppu, uf_ortho;
-    GLint ue_filled, ue_ppu, ue_ortho, ue_inset, ue_inset_max, ue_limit, ue_radius;
+    GLint uf_info, uf_reach, uf_jump, uf_hole, uf_ppu, uf_ortho, uf_surface_reach, uf_skip_level;
+    GLint ue_filled, ue_ppu, ue_ortho, ue_inset, ue_inset_max, ue_limit, ue_radius, ue_skip_level;
     GLint ui_filled, ui_eroded, ui_width, ui_jump, ui_ink, ui_erase, ui_background;
     GLuint fbo[2], tex[2]; /* the hole-closed info and its minimum filter, frame-sized */
     int w, h;
@@ -37,6 +37,10 @@ enum { PNPR_EDGE_MAX_INSET = 8 };
 
 /* Longest march of the hole closing, in pixels (tiles add it to their guard band). */
 enum { PNPR_EDGE_MAX_REACH = 32 };
+/* Longest hole march from a pixel that shows a surface (holes through which a farther surface is
+ * seen), and the mipmap levels of the shortcuts: 2^5 = 32 px (the reach), 2^4 = 16 px (the
+ * distance to no surface). The mask's info texture needs PNPR_EDGE_MIP_LEVELS levels. */
+enum { PNPR_EDGE_SURFACE_REACH = 8, PNPR_EDGE_SKIP_FILL = 5, PNPR_EDGE_SKIP_ERODE = 4, PNPR_EDGE_MIP_LEVELS = 6 };
 
 /* Programs and the fullscreen VAO; PNPR_ERR_UNSUPPORTED (message in err) when a shader fails. */
 pnpr_status pnpr_edges_create(pnpr_edges *e, pnpr_error *err);

@@ -816,7 +816,7 @@ static pnpr_status ensure_framebuffer(pnpr_renderer *r, int w, int h, pnpr_error
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, PNPR_EDGE_MIP_LEVELS - 1); /* edges.c's shortcuts */
     glBindTexture(GL_TEXTURE_2D, r->color_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -1431,6 +1431,12 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
 
     size_t strokes = 0;
     int mapped = vstyle != NULL;
+    /* outlines: after the style's passes, from the mask's surface info (written only then) */
+    float outline_width = 0;
+    int outline = o.outline ? o.outline > 0 : pnpr_style_outline_default(o.style, &outline_width);
+    pnpr_style_outline_default(o.style, &outline_width);
+    if (o.outline_width > 0) outline_width = o.outline_width;
+    outline = outline && !mapped && o.style != PNPR_STYLE_PAINTERLY && o.style != PNPR_STYLE_POINTS && n_draw > 0;
     int sketchy = o.style == PNPR_STYLE_SKETCHY, lines = o.style == PNPR_STYLE_LINES;
     int stipple = o.style == PNPR_STYLE_STIPPLE, cartoon = o.style == PNPR_STYLE_CARTOON;
     int masked = sketchy || lines || stipple; /* pass 1 is a depth-only visibility mask */
@@ -1472,7 +1478,7 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
          * depth AND colour, in the flat colours (they close the gaps between the splats) */
         glUniform1f(r->us.radius_scale, point_scale * lod * (masked || cartoon ? mask_scale : 1));
         glUniform1f(r->us.depth_push, masked || cartoon ? 1.0f : 0.0f);
-        if (masked || cartoon) set_draw_buffers(1, cartoon);
+        if (masked || cartoon) set_draw_buffers(outline, cartoon);
         if (cartoon) glUniform1f(r->us.levels, r->has_labels ? 0.0f : (float)(o.levels ? o.levels : 4));
         glBindVertexArray(cartoon ? r->vao_flat : r->vao_points);
         for (size_t g = 0; g < ng; g++)
@@ -1495,10 +1501,7 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
     }
     if (stipple && n_draw > 0) strokes += draw_stipple(r, &o, gdraw, point_scale, lod, ink);
     if (lines && r->line_segments > 0) strokes = draw_lines(r, &fc, &o, fw, fh, lod, ink);
-    float outline_width = 0;
-    int outline = o.outline ? o.outline > 0 : pnpr_style_outline_default(o.style, &outline_width);
-    if (o.outline_width > 0) outline_width = o.outline_width;
-    if (outline && !mapped && !painterly && o.style != PNPR_STYLE_POINTS && n_draw > 0) {
+    if (outline) {
         /* the mask's boundary is drawn by the largest disks of the outermost points: about 1.1
          * mean mask radii beyond them (measured on random samplings, docs/rendering.md); the
          * silhouette is drawn that far inside it */

@@ -18,6 +18,8 @@ uniform float u_radius;  // mean mask-disk radius (world)
 uniform float u_inset_floor;
 uniform float u_inset_max;
 uniform float u_limit;
+uniform int u_skip_level;  // a mipmap level of u_filled whose 3x3 texels around a pixel span at
+                           // least u_limit px: all covered (w = 1), no empty pixel is that near
 out vec4 o_info;
 
 void main()
@@ -44,6 +46,15 @@ void main()
     }
     float dist = u_limit;
     int steps = int(u_limit);
+    if (u_skip_level > 0) {
+        ivec2 b = p >> u_skip_level, bs = textureSize(u_filled, u_skip_level);
+        float cover = 0.0;
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++)
+                cover += texelFetch(u_filled, clamp(b + ivec2(dx, dy), ivec2(0), bs - 1), u_skip_level).w;
+        if (cover >= 8.9999)
+            steps = 0;
+    }
     for (int d = 0; d < 8; d++) {
         ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
                            d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);

@@ -15,5 +15,5 @@ void main()
     if (v_dot_radius_px > 0.0) // antialiased dot: coverage from the distance to its edge
         a *= clamp(v_dot_radius_px + 0.5 - length(d) * 0.5 * v_sprite_px, 0.0, 1.0);
     o_color = vec4(v_color.rgb * a, a); // premultiplied
-    o_info = vec4(v_info, 0.0);
+    o_info = vec4(v_info, 1.0); // w: coverage (its mipmaps: the covered fraction of a block)
 }

@@ -81,16 +81,20 @@ int main(int argc, char **argv)
     printf("read %.2f s, features %.2f s, upload (kNN spacing + queue) %.2f s, profile lines + upload %.2f s\n",
            t_read, t_feat, t_upload, t_lines);
     printf("| style | points drawn | strokes | ms/frame | x points |\n|---|---:|---:|---:|---:|\n");
-    struct { const char *name; pnpr_style style; pnpr_sketch_variant v; float faint; } runs[] = {
-        {"points", PNPR_STYLE_POINTS, PNPR_SKETCH_ALL, 0},
-        {"sketchy (a) directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL, 0},
-        {"sketchy (b) + non-directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_NONDIRECTIONAL, 0},
-        {"sketchy (c) + dithering", PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL, 0},
-        {"lines", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0},
-        {"lines --faint 0.3", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0.3f},
-        {"stipple", PNPR_STYLE_STIPPLE, PNPR_SKETCH_ALL, 0},
-        {"cartoon", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0},
-        {"painterly", PNPR_STYLE_PAINTERLY, PNPR_SKETCH_ALL, 0},
+    /* outline: 0 = the style's default, -1 = off (the cost of the outline passes) */
+    struct { const char *name; pnpr_style style; pnpr_sketch_variant v; float faint; int outline; } runs[] = {
+        {"points", PNPR_STYLE_POINTS, PNPR_SKETCH_ALL, 0, 0},
+        {"sketchy (a) directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL, 0, 0},
+        {"sketchy (a), outline off", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL, 0, -1},
+        {"sketchy (b) + non-directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_NONDIRECTIONAL, 0, 0},
+        {"sketchy (c) + dithering", PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL, 0, 0},
+        {"lines", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0, 0},
+        {"lines, outline off", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0, -1},
+        {"lines --faint 0.3", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0.3f, 0},
+        {"stipple", PNPR_STYLE_STIPPLE, PNPR_SKETCH_ALL, 0, 0},
+        {"cartoon", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0, 0},
+        {"cartoon, outline off", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0, -1},
+        {"painterly", PNPR_STYLE_PAINTERLY, PNPR_SKETCH_ALL, 0, 0},
     };
     double base = 0;
     double *ms = malloc(sizeof(double) * (size_t)frames);
@@ -100,6 +104,7 @@ int main(int argc, char **argv)
         o.style = runs[k].style;
         o.sketch_variant = runs[k].v;
         o.faint = runs[k].faint;
+        o.outline = runs[k].outline;
         o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
         pnpr_target t = {0, 0, 0, w, h, 1};
         pnpr_render_stats st;
