@@ -76,7 +76,7 @@ pnpr_status pnpr_plan_make(const pnpr_plan_request *req, const pnpr_cloud *cloud
         if (!(req->styles & (1u << s))) continue;
         style_needs(p, (pnpr_style)s, req->sketch_variant, colours, labels);
         outlines |= req->outline > 0 || (req->outline == 0 && pnpr_style_outline_default((pnpr_style)s, NULL));
-        if (!colours && s != PNPR_STYLE_LINES)
+        if (!colours && (s == PNPR_STYLE_POINTS || s == PNPR_STYLE_PAINTERLY))
             need(p, PNPR_WANT_NORMALS_ANY, "no colours: the points are shaded by a key light on their normals");
     }
     if (outlines) need(p, PNPR_WANT_NORMALS_ANY, "outlines weigh depth jumps by the surface's slant (normals)");

@@ -135,4 +135,20 @@ printf 'eye 1 2 3\ntarget 0 0\n' > "$dir/badcam.txt"
 check '[ $? -eq 2 ] && grep -q "badcam.txt:2" "$dir/badcam.log"' "bad camera file: exit 2 with FILE:LINE"
 "$bin" render --help | grep -q "usage: pointnpr render"
 check '[ $? -eq 0 ]' "--help"
+# the plan: cartoon on a coloured cloud without labels segments it (JSEG), as explain says
+"$bin" explain "$dir/cube.ply" --style cartoon > "$dir/explain-cartoon.txt"
+check 'grep -Eq "^  segments +run .*method jseg" "$dir/explain-cartoon.txt"' "explain: cartoon runs JSEG on a coloured cloud"
+"$bin" render "$dir/cube.ply" -o "$dir/cartoon.png" --style cartoon --size 160x120 2> "$dir/cartoon-log.txt"
+check '[ $? -eq 0 ] && grep -q "segmenting the colours (JSEG)" "$dir/cartoon-log.txt" && grep -q "computing normals" "$dir/cartoon-log.txt"' "render cartoon: JSEG segments and normals for the outline, as planned"
+"$bin" render "$dir/cube.ply" -o "$dir/cartoon-off.png" --style cartoon --outline off --size 160x120 2> "$dir/cartoon-off-log.txt"
+check '[ $? -eq 0 ] && ! grep -q "computing normals" "$dir/cartoon-off-log.txt"' "cartoon --outline off: no normals needed"
+"$bin" explain "$dir/cube.ply" --style cartoon --outline off > "$dir/explain-off.txt"
+check 'grep -Eq "^  normals \(PCA\) +skip" "$dir/explain-off.txt"' "explain --outline off: no normals"
+# new options: bad values are usage errors naming the option
+for bad in "--outline maybe" "--outline-width 0" "--outline-width 100" "--outline-jump -1" "--tone sepia" "--tone-gamma 0" "--light 0,0,0" "--light 1,2"; do
+  "$bin" render "$dir/cube.ply" -o "$dir/x.png" $bad 2> "$dir/bad-opt.log"
+  check '[ $? -eq 2 ] && grep -q -- "${bad%% *}" "$dir/bad-opt.log"' "render $bad: exit 2 naming the option"
+done
+"$bin" render "$dir/cube.ply" -o "$dir/light.png" --style sketchy --tone light --tone-gamma 1.5 --light 1,0,1 --outline-width 3 --size 120x90 --quiet
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/light.png")" -eq 120 ]' "tone and outline options render"
 exit $fail
