@@ -30,6 +30,8 @@
 #define PURE_PLANE 0.02         /* fewer off-plane points than this share: no side information */
 #define SNAP_DEG 10.0
 #define ORIGIN_DIAGS 3.0        /* world origin this close to the bounds: a likely RGB-D camera */
+#define X_GROUND_COS 0.64      /* a plane whose normal is within 50 degrees of +-x is taken for a
+                                 * facade, not a ground (x-up scenes are rare; --up x for them) */
 #define FACING_DEG 30.0         /* a plane whose normal is this close to the camera's direction is
                                  * a wall in front of it; a second plane is tried */
 #define ELEV_TALL 30.0
@@ -321,7 +323,10 @@ static int accept_ground(plane *pl, size_t m, double min_share, const scanner *s
     if ((double)pl->on < min_share * (double)m) return 0;
     size_t off = pl->above + pl->below, minority = pl->above < pl->below ? pl->above : pl->below;
     int flip;
-    if ((double)off < PURE_PLANE * (double)m) { /* no content off the plane: who sees it? */
+    if (sc->have_vp && fabs(dot3(pl->n, sc->vp) + pl->d) > 0) {
+        /* a stored scanner position (PCD VIEWPOINT): scanners see the ground from above */
+        flip = dot3(pl->n, sc->vp) + pl->d < 0;
+    } else if ((double)off < PURE_PLANE * (double)m) { /* no content off the plane: who sees it? */
         const double *eye = scanner_eye(sc);
         double s = eye ? dot3(pl->n, eye) + pl->d : 0;
         flip = s != 0 ? s < 0 : prior_flip(pl->n);
@@ -358,7 +363,8 @@ static int find_ground(const double *pts, size_t m, double diag, uint64_t seed, 
     double tol = PLANE_TOL * diag;
     if (!(diag > 0) || m < 3 || !ransac_plane(pts, m, tol, diag, seed, r_pl) || !accept_ground(r_pl, m, GROUND_MIN, sc))
         return 0;
-    if (!faces_camera(r_pl, sc, FACING_DEG)) return 1;
+    int implausible = fabs(r_pl->n[0]) > X_GROUND_COS; /* an x-up scene is rare: a facade */
+    if (!implausible && !faces_camera(r_pl, sc, FACING_DEG)) return 1;
     double *rest = malloc(3 * m * sizeof *rest);
     size_t k = 0;
     for (size_t i = 0; rest && i < m; i++)
@@ -366,10 +372,13 @@ static int find_ground(const double *pts, size_t m, double diag, uint64_t seed, 
     plane p2;
     int found = k >= 3 && ransac_plane(rest, k, tol, diag, seed + 1, &p2);
     free(rest);
-    if (!found) return 1;
+    if (!found) return !implausible;
     plane_count(pts, m, tol, &p2);
-    if (accept_ground(&p2, m, GROUND_MIN_SECOND, sc) && !faces_camera(&p2, sc, FACING_DEG)) *r_pl = p2;
-    return 1;
+    if (accept_ground(&p2, m, GROUND_MIN_SECOND, sc) && !faces_camera(&p2, sc, FACING_DEG) && !(fabs(p2.n[0]) > X_GROUND_COS)) {
+        *r_pl = p2;
+        return 1;
+    }
+    return !implausible;
 }
 
 /* ---- view direction --------------------------------------------------------------------------- */

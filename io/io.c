@@ -1,5 +1,5 @@
 /* File-level I/O: picks the format (explicit option, extension, then magic bytes) and hands
- * over to the format readers/writers. Only PLY is written. */
+ * over to the format readers/writers. PLY and PCD are written. */
 #include <pointnpr/io.h>
 
 #include <errno.h>
@@ -11,6 +11,10 @@
 extern pnpr_status pnpr_read_ply_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
                                       pnpr_error *err);
 extern pnpr_status pnpr_write_ply_file(const char *path, const pnpr_cloud *cloud,
+                                       const pnpr_write_options *opts, pnpr_error *err);
+extern pnpr_status pnpr_read_pcd_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                                      pnpr_error *err);
+extern pnpr_status pnpr_write_pcd_file(const char *path, const pnpr_cloud *cloud,
                                        const pnpr_write_options *opts, pnpr_error *err);
 extern pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
                                       pnpr_error *err);
@@ -39,13 +43,23 @@ pnpr_file_format pnpr_format_from_path(const char *path)
     if (io_ext_is(dot, "las")) return PNPR_FORMAT_LAS;
     if (io_ext_is(dot, "obj")) return PNPR_FORMAT_OBJ;
     if (io_ext_is(dot, "off")) return PNPR_FORMAT_OFF;
+    if (io_ext_is(dot, "pcd")) return PNPR_FORMAT_PCD;
     return PNPR_FORMAT_AUTO;
 }
 
-/* Magic bytes: "ply\n" / "ply\r\n", "LASF", or an OFF keyword ([ST][C][N][4][n]OFF followed by
- * white space or the end). OBJ has no magic. */
+/* PCD: PCL's comment line "# .PCD" or a first "VERSION " line. */
+static int io_is_pcd(const unsigned char *b, size_t n)
+{
+    return (n >= 6 && memcmp(b, "# .PCD", 6) == 0) ||
+           (n >= 8 && memcmp(b, "VERSION", 7) == 0 && (b[7] == ' ' || b[7] == '\t'));
+}
+
+/* Magic bytes: "ply\n" / "ply\r\n", "LASF", PCD (above), or an OFF keyword ([ST][C][N][4][n]OFF
+ * followed by white space or the end). OBJ has no magic. */
 static pnpr_file_format io_sniff(const unsigned char *b, size_t n)
 {
+    if (io_is_pcd(b, n))
+        return PNPR_FORMAT_PCD;
     if ((n >= 4 && memcmp(b, "ply\n", 4) == 0) || (n >= 5 && memcmp(b, "ply\r\n", 5) == 0))
         return PNPR_FORMAT_PLY;
     if (n >= 4 && memcmp(b, "LASF", 4) == 0)
@@ -108,11 +122,12 @@ pnpr_status pnpr_read_file(const char *path, const pnpr_read_options *opts, pnpr
     switch (o.format) {
     case PNPR_FORMAT_PLY: st = pnpr_read_ply_file(path, &o, cloud, err); break;
     case PNPR_FORMAT_LAS: st = pnpr_read_las_file(path, &o, cloud, err); break;
+    case PNPR_FORMAT_PCD: st = pnpr_read_pcd_file(path, &o, cloud, err); break;
     case PNPR_FORMAT_OBJ:
     case PNPR_FORMAT_OFF: st = pnpr_read_mesh_file(path, &o, cloud, err); break;
     default:
         st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
-                            "%s: cannot tell the file format (expected .ply, .las, .obj or .off)", path);
+                            "%s: cannot tell the file format (expected .ply, .las, .obj, .off or .pcd)", path);
         break;
     }
     if (st != PNPR_OK) pnpr_cloud_free(cloud);
@@ -134,13 +149,15 @@ pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud, const pnp
     switch (o.format) {
     case PNPR_FORMAT_PLY:
         return pnpr_write_ply_file(path, cloud, &o, err);
+    case PNPR_FORMAT_PCD:
+        return pnpr_write_pcd_file(path, cloud, &o, err);
     case PNPR_FORMAT_LAS:
     case PNPR_FORMAT_OBJ:
     case PNPR_FORMAT_OFF:
-        return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: writing %s is not supported (only PLY is written)",
+        return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: writing %s is not supported (PLY and PCD are written)",
                               path, o.format == PNPR_FORMAT_LAS ? "LAS" : o.format == PNPR_FORMAT_OBJ ? "OBJ" : "OFF");
     default:
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
-                              "%s: cannot tell the output format from the name (use a .ply extension)", path);
+                              "%s: cannot tell the output format from the name (use a .ply or .pcd extension)", path);
     }
 }

@@ -69,7 +69,7 @@ struct pnpr_renderer {
     size_t count;
     size_t group_start[GROUP_MAX + 2];
     size_t group_count;
-    int has_features, has_labels;
+    int has_features, has_labels, has_rgb;
     double origin[3];
     float bmin[3], bmax[3];
     /* style maps (intermingled styles): one style byte per vertex (attribute 4) in the main
@@ -451,8 +451,10 @@ static int cmp_label(const void *a, const void *b)
 
 /* Mean colour (rounded) of each segment over its finite points: r_flat[3 j] for finite point j
  * (cloud index src[j]). Sorting (label, j) pairs handles any label values, PNPR_LABEL_NONE
- * included (one more segment). Without colours every point is grey 160. */
-static pnpr_status segment_means(const pnpr_cloud *cloud, const uint32_t *src, size_t n, uint8_t *r_flat)
+ * included (one more segment). Without colours the points' shaded greys grey[j] are averaged
+ * (each segment a flat grey by its mean lighting: faceted planes). */
+static pnpr_status segment_means(const pnpr_cloud *cloud, const uint32_t *src, const uint8_t *grey, size_t n,
+                                 uint8_t *r_flat)
 {
     label_index *li = malloc(n * sizeof *li);
     if (!li) return PNPR_ERR_OUT_OF_MEMORY;
@@ -462,7 +464,7 @@ static pnpr_status segment_means(const pnpr_cloud *cloud, const uint32_t *src, s
         size_t b = a;
         double sum[3] = {0, 0, 0};
         while (b < n && li[b].label == li[a].label) {
-            for (int c = 0; c < 3; c++) sum[c] += cloud->rgb ? cloud->rgb[3 * (size_t)src[li[b].j] + c] : 160;
+            for (int c = 0; c < 3; c++) sum[c] += cloud->rgb ? cloud->rgb[3 * (size_t)src[li[b].j] + c] : grey[li[b].j];
             b++;
         }
         uint8_t mean[3];
@@ -542,10 +544,12 @@ static pnpr_status paint_data(const pnpr_cloud *cloud, const pnpr_property *pdeg
 }
 
 /* Colourless clouds: the key light's darkness of every finite point j (cloud index src[j]) from
- * its normal (tone.h, light source, no curve); unknown normals give 0.5. */
+ * its normal (tone.h, light source, no curve; unknown normals give 0.5) and its grey,
+ * 240 - 170 x darkness. */
 static pnpr_status shade_greys(const pnpr_cloud *cloud, const uint32_t *src, size_t n, const pnpr_tone_options *tone,
-                               float **r_shade)
+                               float **r_shade, uint8_t **r_grey)
 {
+    *r_grey = NULL;
     float *nrm = cloud->normal ? malloc(3 * n * sizeof *nrm) : NULL;
     float *shade = malloc(n * sizeof *shade);
     pnpr_status st = !shade || (cloud->normal && !nrm) ? PNPR_ERR_OUT_OF_MEMORY : PNPR_OK;
@@ -557,9 +561,20 @@ static pnpr_status shade_greys(const pnpr_cloud *cloud, const uint32_t *src, siz
     o.gamma = 1;
     if (st == PNPR_OK) st = pnpr_tone(NULL, nrm, n, &o, shade);
     free(nrm);
+    uint8_t *grey = st == PNPR_OK ? malloc(n) : NULL;
+    if (st == PNPR_OK && !grey) st = PNPR_ERR_OUT_OF_MEMORY;
     if (st != PNPR_OK) { free(shade); shade = NULL; }
+    else for (size_t j = 0; j < n; j++) grey[j] = (uint8_t)lrintf(240.0f - 170.0f * shade[j]);
     *r_shade = shade;
+    *r_grey = grey;
     return st;
+}
+
+/* The cartoon's cel bands of a colourless cloud: three greys by the key light's darkness (lit,
+ * half-lit, in shadow), all darker than white paper so that no band vanishes into it. */
+static uint8_t shade_band(float darkness)
+{
+    return darkness < 0.3f ? 226 : darkness < 0.55f ? 178 : 128;
 }
 
 /* A unit normal as 4 signed bytes (x, y, z * 127, 0); unknown, zero or non-finite: all 0. */
@@ -614,6 +629,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     uint32_t *vlabel = NULL, *paint_src = NULL;
     uint8_t *zeros = NULL;
     float *shade = NULL;
+    uint8_t *grey = NULL;
 
     /* the finite points */
     size_t n = 0;
@@ -648,11 +664,11 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     size_t starts[GROUP_MAX + 2];
     st = pnpr_crq_order(n, group, (uint32_t)ngroups, o.seed, order, starts);
     if (st != PNPR_OK) goto done;
+    if (!cloud->rgb && n > 0 && (st = shade_greys(cloud, src, n, &o.tone, &shade, &grey)) != PNPR_OK) goto done;
     if (cloud->label && n > 0) {
-        st = segment_means(cloud, src, n, flat);
+        st = segment_means(cloud, src, grey, n, flat);
         if (st != PNPR_OK) goto done;
     }
-    if (!cloud->rgb && n > 0 && (st = shade_greys(cloud, src, n, &o.tone, &shade)) != PNPR_OK) goto done;
     for (size_t q = 0; q < n; q++) {
         uint32_t j = order[q];
         size_t i = src[j];
@@ -660,9 +676,10 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
         memcpy(v->pos, xyz + 3 * (size_t)j, sizeof v->pos);
         v->radius = radius[j];
         if (cloud->rgb) memcpy(v->rgba, cloud->rgb + 3 * i, 3);
-        else v->rgba[0] = v->rgba[1] = v->rgba[2] = (uint8_t)lrintf(240.0f - 170.0f * shade[j]);
+        else v->rgba[0] = v->rgba[1] = v->rgba[2] = grey[j];
         v->rgba[3] = 255;
         if (cloud->label) memcpy(v->flat, flat + 3 * (size_t)j, 3);
+        else if (!cloud->rgb) v->flat[0] = v->flat[1] = v->flat[2] = shade_band(shade[j]);
         else memcpy(v->flat, v->rgba, 3);
         v->flat[3] = 255;
         pack_normal(cloud->normal ? cloud->normal + 3 * i : NULL, v->normal);
@@ -721,6 +738,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     for (size_t g = 0; g <= ngroups + 1; g++) r->group_start[g] = starts[g];
     r->has_features = features;
     r->has_labels = cloud->label != NULL;
+    r->has_rgb = cloud->rgb != NULL;
     r->max_radius = 0;
     double rsum = 0;
     for (size_t j = 0; j < n; j++) {
@@ -736,7 +754,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
 done:
     free(src); free(xyz); free(radius); free(group); free(order); free(verts); free(flat);
     free(nidx); free(nd2); free(porder); free(inv); free(pbin); free(pcol); free(pverts);
-    free(vlabel); free(paint_src); free(zeros); free(shade);
+    free(vlabel); free(paint_src); free(zeros); free(shade); free(grey);
     return st;
 }
 
@@ -1479,7 +1497,7 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
         glUniform1f(r->us.radius_scale, point_scale * lod * (masked || cartoon ? mask_scale : 1));
         glUniform1f(r->us.depth_push, masked || cartoon ? 1.0f : 0.0f);
         if (masked || cartoon) set_draw_buffers(outline, cartoon);
-        if (cartoon) glUniform1f(r->us.levels, r->has_labels ? 0.0f : (float)(o.levels ? o.levels : 4));
+        if (cartoon) glUniform1f(r->us.levels, r->has_labels || !r->has_rgb ? 0.0f : (float)(o.levels ? o.levels : 4));
         glBindVertexArray(cartoon ? r->vao_flat : r->vao_points);
         for (size_t g = 0; g < ng; g++)
             if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
@@ -1490,7 +1508,7 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
             glDepthMask(GL_FALSE);
             glUniform1f(r->us.radius_scale, point_scale * lod);
             glUniform1f(r->us.depth_push, 0.0f);
-            glUniform1f(r->us.levels, r->has_labels ? 0.0f : (float)(o.levels ? o.levels : 4));
+            glUniform1f(r->us.levels, r->has_labels || !r->has_rgb ? 0.0f : (float)(o.levels ? o.levels : 4));
             glBindVertexArray(r->vao_flat);
             for (size_t g = 0; g < ng; g++)
                 if (gdraw[g]) glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);

@@ -552,7 +552,7 @@ static void test_read_file(void)
         pnpr_cloud c = {0};
         pnpr_error err;
         CHECK_STATUS(pnpr_read_file(path, NULL, &c, &err), PNPR_ERR_UNSUPPORTED);
-        CHECK_MSG(strstr(err.message, "cannot tell the file format (expected .ply, .las, .obj or .off)") != NULL,
+        CHECK_MSG(strstr(err.message, "cannot tell the file format (expected .ply, .las, .obj, .off or .pcd)") != NULL,
                   "%s", err.message);
     }
     /* missing file, directory */
@@ -569,12 +569,12 @@ static void test_read_file(void)
         CHECK_STATUS(pnpr_read_file(NULL, NULL, &c, &err), PNPR_ERR_INVALID_ARGUMENT);
         CHECK_STATUS(pnpr_read_file(path, NULL, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
     }
-    /* writing: only PLY */
+    /* writing: only PLY and PCD */
     {
         pnpr_cloud c = {0};
         pnpr_error err;
         CHECK_STATUS(pnpr_write_file(PNPR_TEST_SCRATCH "/las_out.las", &c, NULL, &err), PNPR_ERR_UNSUPPORTED);
-        CHECK_MSG(strstr(err.message, "only PLY") != NULL, "%s", err.message);
+        CHECK_MSG(strstr(err.message, "PLY and PCD are written") != NULL, "%s", err.message);
         CHECK_STATUS(pnpr_write_file(PNPR_TEST_SCRATCH "/las_out.xyz", &c, NULL, &err), PNPR_ERR_UNSUPPORTED);
     }
 }

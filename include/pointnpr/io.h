@@ -10,6 +10,12 @@
  *      X*scale + offset; 16-bit RGB reduced to 8 bit (values that never exceed 255 are taken
  *      as 8-bit); intensity and classification kept as extra properties.
  * OBJ/OFF vertices (io/mesh_openmesh.cpp) through OpenMesh.
+ * PCD  (io/pcd.c): PCL's format, header versions 0.5-0.7, DATA ascii, binary and
+ *      binary_compressed (LZF); x y z (float or double, double kept exactly as for PLY),
+ *      rgb/rgba (packed 0x00RRGGBB) -> colours, normal_x/y/z -> normals, integer label ->
+ *      labels, every other field kept as an extra property (COUNT > 1: NAME_0, NAME_1 ...);
+ *      NaN points of organised clouds are kept; VIEWPOINT -> has_viewpoint / viewpoint.
+ *      Written as binary PCD (pnpr_write_pcd_stream, or pnpr_write_file with a .pcd name).
  *
  * Errors are precise: pnpr_error says which file, which line or byte offset, what was expected. */
 #ifndef POINTNPR_IO_H
@@ -27,6 +33,7 @@ typedef enum pnpr_file_format {
     PNPR_FORMAT_LAS,
     PNPR_FORMAT_OBJ,
     PNPR_FORMAT_OFF,
+    PNPR_FORMAT_PCD,
     PNPR_FORMAT_COUNT_
 } pnpr_file_format;
 
@@ -42,8 +49,8 @@ typedef struct pnpr_read_options {
 } pnpr_read_options;
 
 typedef struct pnpr_write_options {
-    pnpr_file_format format;     /* 0 = auto from extension; only PLY is written for now */
-    pnpr_ply_encoding encoding;  /* 0 = binary little endian */
+    pnpr_file_format format;     /* 0 = auto from extension; PLY and PCD are written */
+    pnpr_ply_encoding encoding;  /* PLY: 0 = binary little endian (PCD is always binary) */
     /* Coordinates are written in the source type: double when cloud->src_xyz or
      * src_coord_type == FLOAT64, float otherwise (but double when src_coord_type is NONE and
      * origin + offset is not exactly a float). force_double writes doubles always. */
@@ -60,6 +67,8 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
                                  pnpr_cloud *cloud, pnpr_error *err);
 pnpr_status pnpr_read_las_memory(const void *data, size_t size, const pnpr_read_options *opts,
                                  pnpr_cloud *cloud, pnpr_error *err);
+pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_options *opts,
+                                 pnpr_cloud *cloud, pnpr_error *err);
 /* OBJ/OFF through OpenMesh (vertices, vertex colours and normals when present, faces). */
 pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_options *opts,
                                 pnpr_cloud *cloud, pnpr_error *err);
@@ -70,6 +79,10 @@ pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud,
 /* Writes PLY to a caller-provided sink (fn returns 0 on success). */
 typedef int (*pnpr_write_fn)(void *user, const void *data, size_t size);
 pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
+                                  const pnpr_write_options *opts, pnpr_error *err);
+
+/* Writes binary PCD to a caller-provided sink (x y z, normals, rgb, label, extra properties). */
+pnpr_status pnpr_write_pcd_stream(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
                                   const pnpr_write_options *opts, pnpr_error *err);
 
 pnpr_file_format pnpr_format_from_path(const char *path);

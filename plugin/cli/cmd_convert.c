@@ -1,5 +1,6 @@
-/* pointnpr convert IN... -o OUT.ply: reads every input (PLY, LAS, OBJ, OFF; a directory stands
- * for the supported files in it, sorted by name), merges them into one cloud and writes PLY.
+/* pointnpr convert IN... -o OUT.ply|OUT.pcd: reads every input (PLY, LAS, OBJ, OFF, PCD; a directory
+ * stands for the supported files in it, sorted by name), merges them into one cloud and writes PLY
+ * (or binary PCD for a .pcd name).
  * Nothing is written unless every input was read: the output goes to a temporary file next to
  * OUT that is renamed over OUT only when it is complete. */
 #include "cli.h"
@@ -17,11 +18,11 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: pointnpr convert IN... -o OUT.ply [options]\n"
-            "  Reads every input (.ply, .las, .obj, .off; a directory stands for all such files\n"
-            "  in it, sorted by name), merges them into one cloud and writes it as PLY.\n"
-            "  Nothing is written if any input cannot be read.\n"
+            "  Reads every input (.ply, .las, .obj, .off, .pcd; a directory stands for all such\n"
+            "  files in it, sorted by name), merges them into one cloud and writes it as PLY\n"
+            "  (binary PCD when OUT ends in .pcd). Nothing is written if any input cannot be read.\n"
             "options:\n"
-            "  -o, --output OUT.ply  output file (required)\n"
+            "  -o, --output OUT.ply  output file (required; OUT.pcd writes binary PCD)\n"
             "  --binary              binary little endian PLY (default)\n"
             "  --ascii               ascii PLY\n"
             "  --big-endian          binary big endian PLY\n"
@@ -87,7 +88,7 @@ static int expand_dir(const char *dir, path_list *out)
         return 0;
     }
     if (names.count == 0) {
-        fprintf(stderr, "pointnpr convert: %s: no .ply, .las, .obj or .off files in this directory\n", dir);
+        fprintf(stderr, "pointnpr convert: %s: no .ply, .las, .obj, .off or .pcd files in this directory\n", dir);
         list_free(&names);
         return 0;
     }
@@ -146,7 +147,8 @@ static pnpr_status write_atomically(const char *out, const pnpr_cloud *cloud, co
     }
     close(fd);
     pnpr_write_options o = *wo;
-    o.format = PNPR_FORMAT_PLY; /* the temporary name has no .ply extension */
+    /* the temporary name has no extension: the format comes from OUT's */
+    o.format = pnpr_format_from_path(out) == PNPR_FORMAT_PCD ? PNPR_FORMAT_PCD : PNPR_FORMAT_PLY;
     pnpr_status st = pnpr_write_file(tmp, cloud, &o, err);
     if (st == PNPR_OK && rename(tmp, out) != 0)
         st = pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot rename the finished temporary file to it: %s", out,
@@ -202,8 +204,11 @@ int cli_convert(int argc, char **argv)
     }
     if (rc == 0) {
         pnpr_file_format of = pnpr_format_from_path(out);
-        if (of != PNPR_FORMAT_AUTO && of != PNPR_FORMAT_PLY) {
-            fprintf(stderr, "pointnpr convert: %s: only PLY output is supported (use a .ply name)\n", out);
+        if (of != PNPR_FORMAT_AUTO && of != PNPR_FORMAT_PLY && of != PNPR_FORMAT_PCD) {
+            fprintf(stderr, "pointnpr convert: %s: only PLY and PCD output are supported (use a .ply or .pcd name)\n", out);
+            rc = 2;
+        } else if (of == PNPR_FORMAT_PCD && wo.encoding != PNPR_PLY_BINARY_LE) {
+            fprintf(stderr, "pointnpr convert: %s: PCD is written binary only (--ascii and --big-endian are for PLY)\n", out);
             rc = 2;
         }
     }

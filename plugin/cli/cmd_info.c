@@ -10,9 +10,9 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: pointnpr info IN\n"
-            "  Describes a point cloud file (PLY, LAS, OBJ, OFF): format, point count, origin,\n"
+            "  Describes a point cloud file (PLY, LAS, OBJ, OFF, PCD): format, point count, origin,\n"
             "  bounding box in world coordinates, colour/normals/labels, exact source\n"
-            "  coordinates, extra properties with their types, face count.\n");
+            "  coordinates, extra properties with their types, face count, scanner viewpoint.\n");
 }
 
 static const char *format_name(pnpr_file_format f)
@@ -22,12 +22,13 @@ static const char *format_name(pnpr_file_format f)
     case PNPR_FORMAT_LAS: return "LAS";
     case PNPR_FORMAT_OBJ: return "OBJ";
     case PNPR_FORMAT_OFF: return "OFF";
+    case PNPR_FORMAT_PCD: return "PCD";
     default: return "unknown";
     }
 }
 
 /* The format pnpr_read_file used for a file it read: the extension, else the first bytes
- * (PLY and LAS by their signature; OFF is the only other format recognised by content). */
+ * (PLY, LAS and PCD by their signature; OFF is the only other format recognised by content). */
 static pnpr_file_format detect_format(const char *path, const char **r_how)
 {
     pnpr_file_format f = pnpr_format_from_path(path);
@@ -43,6 +44,8 @@ static pnpr_file_format detect_format(const char *path, const char **r_how)
     }
     if ((n >= 4 && !memcmp(b, "ply\n", 4)) || (n >= 5 && !memcmp(b, "ply\r\n", 5))) return PNPR_FORMAT_PLY;
     if (n >= 4 && !memcmp(b, "LASF", 4)) return PNPR_FORMAT_LAS;
+    if ((n >= 6 && !memcmp(b, "# .PCD", 6)) || (n >= 8 && !memcmp(b, "VERSION", 7) && (b[7] == ' ' || b[7] == '\t')))
+        return PNPR_FORMAT_PCD;
     return PNPR_FORMAT_OFF;
 }
 
@@ -123,6 +126,8 @@ int cli_info(int argc, char **argv)
         printf("\n");
     }
     printf("faces:       %zu\n", c.faces.count);
+    if (c.has_viewpoint)
+        printf("viewpoint:   %.3f %.3f %.3f\n", c.viewpoint[0], c.viewpoint[1], c.viewpoint[2]);
     pnpr_cloud_free(&c);
     return 0;
 }
