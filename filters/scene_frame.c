@@ -32,6 +32,8 @@
 #define ORIGIN_DIAGS 3.0        /* world origin this close to the bounds: a likely RGB-D camera */
 #define X_GROUND_COS 0.64      /* a plane whose normal is within 50 degrees of +-x is taken for a
                                  * facade, not a ground (x-up scenes are rare; --up x for them) */
+#define SCANNER_ELEV_MIN 20.0   /* the scanner's own elevation, kept within these (degrees) */
+#define SCANNER_ELEV_MAX 65.0
 #define FACING_DEG 30.0         /* a plane whose normal is this close to the camera's direction is
                                  * a wall in front of it; a second plane is tried */
 #define ELEV_TALL 30.0
@@ -471,13 +473,26 @@ static void view_direction(const double *pts, size_t m, const scanner *sc, doubl
         horizontal(u, front, 0, h);
         info->azimuth_source = PNPR_AZIMUTH_FRONT;
     }
-    if (horizontal_axis(pts, m, u, info->wide_axis) > ANISOTROPY) {
+    /* without a stored scanner position, the wide side faces the viewer; with one (PCD
+     * VIEWPOINT), the view is the scanner's azimuth and elevation (an RGB-D frame or a scan from
+     * outside reads best from where it was taken), the elevation kept within 20..65 degrees */
+    int anisotropic = horizontal_axis(pts, m, u, info->wide_axis) > ANISOTROPY;
+    if (anisotropic && info->azimuth_source != PNPR_AZIMUTH_VIEWPOINT) {
         cross3(u, info->wide_axis, narrow);
         double s = dot3(narrow, h) < 0 ? -1 : 1;
         for (int a = 0; a < 3; a++) h[a] = s * narrow[a];
     }
     view_extents(pts, m, h, info);
     info->elevation_deg = elevation_for(info);
+    const double *eye = info->azimuth_source == PNPR_AZIMUTH_VIEWPOINT ? sc->vp : NULL;
+    double to_eye[3];
+    if (eye) {
+        memcpy(to_eye, eye, sizeof to_eye);
+        if (normalize3(to_eye) > 0) {
+            double e = asin(fmax(-1.0, fmin(1.0, dot3(to_eye, u)))) / DEG;
+            info->elevation_deg = fmax(SCANNER_ELEV_MIN, fmin(SCANNER_ELEV_MAX, e));
+        }
+    }
     double ce = cos(info->elevation_deg * DEG), se = sin(info->elevation_deg * DEG);
     for (int a = 0; a < 3; a++) info->view_dir[a] = ce * h[a] + se * u[a];
     normalize3(info->view_dir);

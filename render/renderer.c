@@ -532,7 +532,7 @@ static pnpr_status paint_data(const pnpr_cloud *cloud, const pnpr_property *pdeg
             for (size_t t = 0; t < kk && nidx; t++) {
                 uint32_t m = nidx[j * kk + t];
                 if (m == PNPR_INDEX_NONE || !((double)nd2[j * kk + t] <= lim * lim)) continue;
-                for (int c = 0; c < 3; c++) sum[c] += cloud->rgb ? cloud->rgb[3 * (size_t)src[m] + c] : 160;
+                for (int c = 0; c < 3; c++) sum[c] += verts[inv[m]].rgba[c]; /* colours, or the shaded greys */
                 cnt++;
             }
             uint8_t *o = col + 4 * (L * n + q);
