@@ -123,6 +123,7 @@ pnpr_status pnpr_edges_draw(pnpr_edges *e, GLuint info_tex, GLuint frame_fbo, in
     glUniform1f(e->ue_inset_max, (float)PNPR_EDGE_MAX_INSET);
     float limit = (float)PNPR_EDGE_MAX_INSET + p->width + 2.0f;
     glUniform1f(e->ue_limit, limit);
+    glUniform1f(glGetUniformLocation(e->prog_erode, "u_width"), p->width);
     int erode_skip = (w >> PNPR_EDGE_SKIP_ERODE) > 0 && (h >> PNPR_EDGE_SKIP_ERODE) > 0 && limit <= (float)(1 << PNPR_EDGE_SKIP_ERODE);
     glUniform1i(e->ue_skip_level, erode_skip ? PNPR_EDGE_SKIP_ERODE : 0);
     glBindTexture(GL_TEXTURE_2D, e->tex[0]);

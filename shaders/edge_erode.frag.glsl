@@ -5,7 +5,8 @@
 //         the depth extent comes with it); pixels without a surface stay without;
 //   z:    the distance to the nearest pixel without a surface along the 8 directions (at most
 //         u_limit px; the frame border is no such pixel);
-//   w:    the inset: the mask disks reach about u_inset of their projected radius beyond the
+//   w:    the inset (negative, -1 - inset: a speck, thick() below): the mask disks reach about
+//         u_inset of their projected radius beyond the
 //         outermost points; the silhouette is drawn that far inside the mask's boundary and the
 //         overhang is erased (edge_ink.frag), at most u_inset_max px. The radius is the mean of
 //         the 3x3 neighbourhood's disks (one disk's radius varies from point to point: a ragged
@@ -18,9 +19,35 @@ uniform float u_radius;  // mean mask-disk radius (world)
 uniform float u_inset_floor;
 uniform float u_inset_max;
 uniform float u_limit;
+uniform float u_width;   // the outline width (px)
 uniform int u_skip_level;  // a mipmap level of u_filled whose 3x3 texels around a pixel span at
                            // least u_limit px: all covered (w = 1), no empty pixel is that near
 out vec4 o_info;
+
+// Near a silhouette: is the surface here more than a speck? Some run of surface pixels from p
+// (along one of 8 directions) must be longer than the ink band on both sides of a blob (inset and
+// width twice, plus 2 px, at most 48 px); a lone disk or a few sparse disks fail it and get no
+// silhouette of their own (an isolated point would otherwise be drawn as a ring).
+bool thick(ivec2 p, ivec2 size, float dist, float inset)
+{
+    if (dist >= u_limit)
+        return true; // no empty pixel near: not a silhouette pixel
+    float need = min(2.0 * (inset + u_width) + 2.0, 48.0);
+    for (int d = 0; d < 8; d++) {
+        ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
+                           d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);
+        float unit = d >= 4 ? 1.41421356 : 1.0;
+        int s = 1;
+        for (; float(s) * unit < need; s++) {
+            ivec2 q = clamp(p + step * s, ivec2(0), size - 1);
+            if (texelFetch(u_filled, q, 0).y <= 0.0)
+                break;
+        }
+        if (float(s) * unit >= need)
+            return true;
+    }
+    return false;
+}
 
 void main()
 {
@@ -70,5 +97,6 @@ void main()
         }
     }
     float r_px = max(rsum / rn, u_radius * u_inset_floor) * u_ppu / (u_ortho != 0 ? 1.0 : max(me.x, 1e-6));
-    o_info = vec4(best, dist, clamp(u_inset * r_px - 0.5, 0.0, u_inset_max));
+    float inset = clamp(u_inset * r_px - 0.5, 0.0, u_inset_max);
+    o_info = vec4(best, dist, thick(p, size, dist, inset) ? inset : -1.0 - inset);
 }

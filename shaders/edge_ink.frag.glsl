@@ -26,14 +26,16 @@ void main()
     if (me.y <= 0.0)
         discard;
     vec4 e = texelFetch(u_eroded, p, 0);
-    float beyond = e.z - e.w; // distance past the inset to no surface
+    bool speck = e.w < 0.0; // too small a blob for a silhouette of its own (edge_erode.frag)
+    float inset = speck ? -1.0 - e.w : e.w;
+    float beyond = e.z - inset; // distance past the inset to no surface
     if (u_erase != 0) {
         if (beyond > 0.5)
             discard;
         o_color = u_background;
         return;
     }
-    float cover = beyond > 0.5 ? clamp(u_width + 0.5 - beyond, 0.0, 1.0) : 0.0;
+    float cover = beyond > 0.5 && !speck ? clamp(u_width + 0.5 - beyond, 0.0, 1.0) : 0.0;
     // the contours: along 8 rays (a disk of radius u_width + 1 sampled by its 8 spokes)
     int reach = int(ceil(u_width + 1.5));
     for (int d = 0; d < 8 && cover < 1.0; d++) {

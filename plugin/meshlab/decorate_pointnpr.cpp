@@ -6,21 +6,30 @@
  *      owned by this plugin instance, dropped when the context goes away),
  *   2. merges the visible point layers (vertices, no faces, no edges) into one pnpr_cloud in
  *      scene coordinates (each layer's Tr applied in double; origin = bounding-box centre) when
- *      the layers changed (a signature of ids, counts, Tr and sampled vertices),
- *   3. takes feature classes/directions from the filter plugin's attributes (feature_class,
- *      feature_dir) when every layer has them, else runs pnpr_compute_features with only the
- *      PNPR_WANT_* bits the style needs, the first time a style needs them,
+ *      the layers changed (a signature of ids, counts, Tr and sampled vertices), with the layers'
+ *      colours, meaningful normals, segment labels and the features filter's classes/directions,
+ *   3. follows the library's stage planner (pnpr_plan_make, plan.h) for the chosen style and
+ *      outline: pnpr_compute_features with plan.want, 3D JSEG into cloud->label when
+ *      plan.segments says so, profile lines when plan.lines — each once per cloud (the results
+ *      stay in the cloud, so the next frame's plan wants nothing), then uploads the cloud,
  *   4. passes MeshLab's GL_MODELVIEW/GL_PROJECTION as they are (pnpr_camera_matrices: perspective,
  *      orthographic and the off-centre tiles of MeshLab's "Save snapshot"),
  *   5. draws into MeshLab's bound framebuffer and viewport (composite REPLACE) and restores state.
- * No C++ exception leaves the plugin: every entry point catches everything. */
+ * The plugin holds no rendering decisions of its own: styles, their outline defaults, the plan
+ * and the tone defaults come from the library. No C++ exception leaves the plugin: every entry
+ * point catches everything. */
 #include "decorate_pointnpr.h"
 #include "decorate_glcontext.h"
 #include "vcg_attributes.h"
 
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/plan.h>
 #include <pointnpr/render.h>
+#include <pointnpr/segment.h>
+#include <pointnpr/style.h>
+#include <pointnpr/tone.h>
+#include <pointnpr/view.h>
 
 #include <QApplication>
 #include <QColor>
@@ -46,32 +55,36 @@
 namespace {
 using pnpr_meshlab::findAttribute;
 
-const char *const kStyle = "PointNPR::Style";
+/* Settings names. The style list grew (painterly): MeshLab keeps a saved RichEnum with its old
+ * entries, so the style is stored under a new name (the old "PointNPR::Style" is ignored). */
+const char *const kStyle = "PointNPR::DrawStyle";
 const char *const kVariant = "PointNPR::SketchVariant";
 const char *const kBudget = "PointNPR::PointBudget";
 const char *const kMotionBudget = "PointNPR::MotionBudget";
 const char *const kPaper = "PointNPR::PaperColor";
 const char *const kLineWidth = "PointNPR::LineWidth";
+const char *const kOutline = "PointNPR::Outline";
+const char *const kOutlineWidth = "PointNPR::OutlineWidth";
+const char *const kToneSource = "PointNPR::ToneSource";
+const char *const kToneGamma = "PointNPR::ToneGamma";
 
-/* enum index -> renderer style (the order shown in the dialog) */
+/* enum index -> renderer style (the order shown in the dialog; new styles go at the end so that
+ * saved indices keep their meaning). The labels are the library's names (pnpr_style_name). */
 const pnpr_style kStyles[] = {PNPR_STYLE_POINTS, PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE,
-                              PNPR_STYLE_CARTOON, PNPR_STYLE_LINES};
-const int kStyleCount = 5;
+                              PNPR_STYLE_CARTOON, PNPR_STYLE_LINES, PNPR_STYLE_PAINTERLY};
+const int kStyleCount = (int)(sizeof kStyles / sizeof kStyles[0]);
+static_assert(sizeof kStyles / sizeof kStyles[0] == PNPR_STYLE_COUNT_, "every library style is offered");
 
-/* PNPR_WANT_* bits a style needs (docs/rendering.md): classes + directions for strokes and
- * lines, dithering points for hatches and stipple dots. */
-uint32_t wantFor(pnpr_style style, pnpr_sketch_variant variant)
-{
-    switch (style) {
-    case PNPR_STYLE_SKETCHY:
-        return variant == PNPR_SKETCH_DIRECTIONAL ? (uint32_t)PNPR_WANT_CLASSES
-                                                  : (uint32_t)(PNPR_WANT_CLASSES | PNPR_WANT_DITHER);
-    case PNPR_STYLE_STIPPLE: return PNPR_WANT_CLASSES | PNPR_WANT_DITHER;
-    case PNPR_STYLE_LINES: return PNPR_WANT_CLASSES;
-    default: return 0;
-    }
-}
+/* enum index -> pnpr_draw_options.outline */
+const int kOutlines[] = {0, 1, -1};
+/* enum index = pnpr_tone_source (auto, colour, light, both) */
+static_assert(PNPR_TONE_AUTO == 0 && PNPR_TONE_COLOR == 1 && PNPR_TONE_LIGHT == 2 && PNPR_TONE_BOTH == 3 &&
+                  PNPR_TONE_SOURCE_COUNT_ == 4,
+              "the tone source list of the dialog follows pnpr_tone_source");
 
+/* What the PNPR_WANT_* bits of a plan are, for the log (index = bit number). */
+const char *const kWantNames[5] = {"oriented normals", "feature degree", "feature classes", "dithering points",
+                                   "normals"};
 
 bool isPointLayer(const MeshModel *mm)
 {
@@ -89,7 +102,7 @@ struct Hash {
 };
 
 /* Which layers are drawn and what they hold: ids, counts, array address, Tr, colour/attribute
- * presence and up to 1024 sampled vertices (positions, colours, feature classes). A change
+ * presence and up to 1024 sampled vertices (positions, normals, colours, feature classes). A change
  * inside a large layer that touches none of the samples is not seen (docs/meshlab.md). */
 uint64_t layerSignature(MeshDocument &md)
 {
@@ -117,6 +130,7 @@ uint64_t layerSignature(MeshDocument &md)
             const CVertexO &v = m.vert[i];
             h.add(v.IsD());
             h.add(v.cP()[0]); h.add(v.cP()[1]); h.add(v.cP()[2]);
+            h.add(v.cN()[0]); h.add(v.cN()[1]); h.add(v.cN()[2]);
             if (colour) h.add(v.cC());
             if (hasClass) h.add(hc[i]);
             if (hasSeg) h.add(hs[i]);
@@ -136,13 +150,28 @@ QString status(pnpr_status st, const pnpr_error &err)
 struct DecorateContextState {
     pnpr_renderer *renderer = nullptr;
     bool failed = false;          /* renderer could not be created: logged once, nothing drawn */
-    pnpr_cloud cloud;             /* the merged layers as uploaded (kept for lazy features) */
+    pnpr_cloud cloud;             /* the merged layers plus what the plans computed on them: the
+                                   * cache of features, normals and segments (the next plan sees
+                                   * them and wants nothing more) */
     pnpr_polylines lines;         /* profile lines for the lines style */
     bool linesReady = false;
     uint64_t signature = 0;
-    bool uploaded = false;
+    bool built = false;           /* cloud holds the layers of `signature` */
+    bool needUpload = false;      /* the renderer does not have the cloud as it is now */
+    bool uploadFailed = false;    /* not retried until the layers change */
+    QString layersNote;           /* what buildCloud found, for the upload message */
+    qint64 layersMs = 0;          /* how long reading the layers took */
     bool layerFeatures = false;   /* classes/directions came from the layers' attributes */
-    uint32_t have = 0;            /* PNPR_WANT_* bits computed (or taken from the layers) */
+    bool ownFeatures = false;     /* feature properties computed here (not from the layers) */
+    bool ownDither = false;       /*   ... with dithering points, */
+    int ditherToneSource = 0;     /*   ... for this tone */
+    float ditherToneGamma = 0;
+    uint32_t failedWant = 0;      /* a feature computation that failed (not retried every frame, */
+    int failedToneSource = 0;     /*   only when the tone changes: a bad gamma fails it) */
+    float failedToneGamma = 0;
+    bool jsegFailed = false;
+    double up[3] = {0, 0, 1};     /* the scene's up (pnpr_scene_frame): where the tone's key light is */
+    QString lastPlan;             /* the request whose plan was logged last */
     QString lastError;            /* the last message logged (not repeated every frame) */
     double lastMV[16] = {0}, lastP[16] = {0};
     bool haveLast = false;
@@ -216,10 +245,14 @@ QString DecoratePointnprPlugin::decorationName(FilterIDType id) const
 QString DecoratePointnprPlugin::decorationInfo(FilterIDType id) const
 {
     if (id != DP_NPR_RENDER) return QString();
+    QStringList names;
+    for (pnpr_style st : kStyles) names << QString::fromUtf8(pnpr_style_name(st));
     return tr("Draws the visible point layers (no faces, no edges) as a non-photorealistic rendering "
-              "(pointnpr: points, sketchy, stipple, cartoon, profile lines) over the viewport. Feature "
-              "classes come from 'NPR: Compute feature degree and classify points' when every layer "
-              "has them, else they are computed the first time a style needs them.");
+              "(pointnpr: %1) over the viewport. What a style needs (features, normals for outlines and "
+              "shading, JSEG segments for the cartoon, profile lines) is computed once per layer change, "
+              "as the library's stage planner says; feature classes from 'NPR: Compute feature degree and "
+              "classify points' and segments from the segmentation filters are used when every layer has "
+              "them.").arg(names.join(", "));
 }
 
 int DecoratePointnprPlugin::getDecorationClass(QAction *) const
@@ -227,17 +260,55 @@ int DecoratePointnprPlugin::getDecorationClass(QAction *) const
     return MeshDecorateInterface::PerDocument; /* GLArea::updateDecorator compares with ==: no other bits */
 }
 
+namespace {
+
+/* "sketchy 1.5 px, lines 2.5 px, cartoon 2.5 px": the styles with an outline by default and its
+ * width, as the library says (pnpr_style_outline_default). */
+QString outlineDefaults()
+{
+    QStringList on;
+    for (pnpr_style st : kStyles) {
+        float w = 0;
+        if (pnpr_style_outline_default(st, &w)) on << QString("%1 %2 px").arg(pnpr_style_name(st)).arg(w);
+    }
+    return on.join(", ");
+}
+
+} // namespace
+
 void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList &par)
 {
     try {
-        if (!par.hasParameter(kStyle))
-            par.addParam(RichEnum(kStyle, 1, QStringList() << "points" << "sketchy" << "stipple" << "cartoon" << "lines",
-                                  "Style", "points: plain splats; sketchy: strokes along feature directions and hatches; "
-                                  "stipple: ink dots; cartoon: flat colours and outlines; lines: profile lines"));
+        if (!par.hasParameter(kStyle)) {
+            QStringList names;
+            for (pnpr_style st : kStyles) names << QString::fromUtf8(pnpr_style_name(st));
+            par.addParam(RichEnum(kStyle, 1, names, "Style",
+                                  "points: plain splats; sketchy: strokes along feature directions and hatches; "
+                                  "stipple: ink dots; cartoon: flat colours (segments) and outlines; lines: profile "
+                                  "lines and outlines; painterly: brush dabs in the points' colours"));
+        }
         if (!par.hasParameter(kVariant))
             par.addParam(RichEnum(kVariant, 0, QStringList() << "all (strokes + hatches)" << "directional strokes only"
                                                              << "strokes + non-directional hatches",
                                   "Sketch variant", "sketchy style: which primitives are drawn"));
+        if (!par.hasParameter(kOutline))
+            par.addParam(RichEnum(kOutline, 0, QStringList() << "style default" << "on" << "off", "Outline",
+                                  QString("silhouettes and occluding contours, drawn in image space (normals are "
+                                          "computed for them when the layers have none). Style default: on for %1; "
+                                          "off for the others (points and painterly draw none)")
+                                      .arg(outlineDefaults())));
+        if (!par.hasParameter(kOutlineWidth))
+            par.addParam(RichFloat(kOutlineWidth, 0.0f, "Outline width (px)",
+                                   QString("outline width in pixels; 0 = the style's default (%1)").arg(outlineDefaults())));
+        if (!par.hasParameter(kToneSource))
+            par.addParam(RichEnum(kToneSource, 0, QStringList() << "auto" << "colour" << "light" << "both", "Tone source",
+                                  "what makes a point dark (density of the dithering points: sketchy hatches, stipple "
+                                  "dots): its colour, a key light from above on its normals, or both; auto = both "
+                                  "with colours and normals, light without colours"));
+        if (!par.hasParameter(kToneGamma))
+            par.addParam(RichFloat(kToneGamma, 0.0f, "Tone gamma",
+                                   "tone curve exponent (> 1 keeps large mid-tone areas light, the darkest parts "
+                                   "dark); 0 = library default"));
         if (!par.hasParameter(kBudget))
             par.addParam(RichInt(kBudget, 0, "Point budget", "at most this many points per frame (continuous "
                                  "resolution queue prefix); 0 = all"));
@@ -299,6 +370,10 @@ struct Params {
     int budget = 0, motionBudget = 200000;
     QColor paper = QColor(255, 255, 255);
     float lineWidth = 2;
+    int outline = 0;          /* pnpr_draw_options.outline */
+    float outlineWidth = 0;   /* 0 = the style's default */
+    pnpr_tone_source toneSource = PNPR_TONE_AUTO;
+    float toneGamma = 0;      /* 0 = the library's default */
 };
 
 Params readParams(const RichParameterList *par)
@@ -317,6 +392,17 @@ Params readParams(const RichParameterList *par)
         if (par->hasParameter(kMotionBudget)) p.motionBudget = std::max(0, par->getInt(kMotionBudget));
         if (par->hasParameter(kPaper)) p.paper = par->getColor(kPaper);
         if (par->hasParameter(kLineWidth)) p.lineWidth = par->getFloat(kLineWidth);
+        if (par->hasParameter(kOutline)) {
+            int i = par->getEnum(kOutline);
+            if (i >= 0 && i < 3) p.outline = kOutlines[i];
+        }
+        /* out-of-range values go to the library, which refuses them with its own message */
+        if (par->hasParameter(kOutlineWidth)) p.outlineWidth = par->getFloat(kOutlineWidth);
+        if (par->hasParameter(kToneSource)) {
+            int i = par->getEnum(kToneSource);
+            if (i >= 0 && i < (int)PNPR_TONE_SOURCE_COUNT_) p.toneSource = (pnpr_tone_source)i;
+        }
+        if (par->hasParameter(kToneGamma)) p.toneGamma = par->getFloat(kToneGamma);
     }
     if (!(p.lineWidth > 0 && p.lineWidth < 100)) p.lineWidth = 2;
     /* test-only override (tests/meshlab/run.sh): the style by name */
@@ -327,18 +413,36 @@ Params readParams(const RichParameterList *par)
     return p;
 }
 
+/* Whether a layer's normals mean something: at least 99% of its finite vertices carry a finite,
+ * non-zero normal (the features filter's rule; a point cloud read without normals holds zeros). */
+bool meaningfulNormals(MeshModel *mm)
+{
+    if (!mm->hasDataMask(MeshModel::MM_VERTNORMAL)) return false;
+    size_t finite = 0, good = 0;
+    for (const CVertexO &v : mm->cm.vert) {
+        if (v.IsD()) continue;
+        if (!(std::isfinite(v.cP()[0]) && std::isfinite(v.cP()[1]) && std::isfinite(v.cP()[2]))) continue;
+        finite++;
+        const Point3m &n = v.cN();
+        double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+        good += (std::isfinite(len) && len > 1e-12);
+    }
+    return good > 0 && good >= finite - finite / 100;
+}
+
 /* The visible point layers merged into `cloud` in scene coordinates (Tr applied). */
 pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures, QString &note)
 {
     pnpr_cloud_free(&cloud);
     std::vector<MeshModel *> layers;
     size_t total = 0;
-    bool anyColour = false, allClass = true, allSeg = true;
+    bool anyColour = false, allClass = true, allSeg = true, allNormals = true;
     for (MeshModel *mm : md.meshList) {
         if (!isPointLayer(mm)) continue;
         layers.push_back(mm);
         total += (size_t)mm->cm.vn;
         anyColour |= mm->hasDataMask(MeshModel::MM_VERTCOLOR);
+        if (allNormals && !meaningfulNormals(mm)) allNormals = false;
         CMeshO::PerVertexAttributeHandle<float> hc;
         CMeshO::PerVertexAttributeHandle<Point3m> hd;
         if (!findAttribute<float>(mm->cm, "feature_class", hc) || !findAttribute<Point3m>(mm->cm, "feature_dir", hd))
@@ -353,6 +457,7 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
     std::vector<uint8_t> cls(allClass ? total : 0);
     std::vector<float> dir(allClass ? 3 * total : 0);
     std::vector<uint32_t> label(allSeg ? total : 0);
+    std::vector<float> normal(allNormals ? 3 * total : 0);
     size_t j = 0;
     uint32_t labelBase = 0;
     for (MeshModel *mm : layers) {
@@ -360,6 +465,12 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         double T[4][4];
         for (int r = 0; r < 4; r++)
             for (int c = 0; c < 4; c++) T[r][c] = m.Tr[r][c];
+        /* normals turn with the cofactor matrix of Tr's upper 3x3 (= det * inverse transpose) */
+        double C[3][3];
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                C[r][c] = T[(r + 1) % 3][(c + 1) % 3] * T[(r + 2) % 3][(c + 2) % 3] -
+                          T[(r + 1) % 3][(c + 2) % 3] * T[(r + 2) % 3][(c + 1) % 3];
         bool colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
         CMeshO::PerVertexAttributeHandle<float> hc, hs;
         CMeshO::PerVertexAttributeHandle<Point3m> hd;
@@ -384,6 +495,12 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
                 n = std::sqrt(n);
                 for (int r = 0; r < 3; r++) dir[3 * j + r] = n > 0 && std::isfinite(n) ? (float)(t[r] / n) : 0.0f;
             }
+            if (allNormals) {
+                double n[3] = {v.cN()[0], v.cN()[1], v.cN()[2]}, t[3], len = 0;
+                for (int r = 0; r < 3; r++) { t[r] = C[r][0] * n[0] + C[r][1] * n[1] + C[r][2] * n[2]; len += t[r] * t[r]; }
+                len = std::sqrt(len);
+                for (int r = 0; r < 3; r++) normal[3 * j + r] = len > 0 && std::isfinite(len) ? (float)(t[r] / len) : 0.0f;
+            }
             if (allSeg) {
                 float s = hs[i];
                 uint32_t l = (s >= 0 && s < 16777216.0f) ? (uint32_t)s : 0;
@@ -400,6 +517,8 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         std::memcpy(cloud.rgb, rgb.data(), 3 * j);
     if (st == PNPR_OK && allSeg && (st = pnpr_cloud_alloc_labels(&cloud)) == PNPR_OK)
         std::memcpy(cloud.label, label.data(), j * sizeof(uint32_t));
+    if (st == PNPR_OK && allNormals && (st = pnpr_cloud_alloc_normals(&cloud)) == PNPR_OK)
+        std::memcpy(cloud.normal, normal.data(), 3 * j * sizeof(float));
     if (st == PNPR_OK && allClass) {
         pnpr_property *pc = nullptr, *px = nullptr, *py = nullptr, *pz = nullptr;
         st = pnpr_cloud_add_property(&cloud, "feature_class", PNPR_TYPE_UINT8, &pc);
@@ -421,9 +540,10 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
             layerFeatures = true;
         }
     }
-    note = QString("%1 points from %2 layer(s)%3%4%5")
+    note = QString("%1 points from %2 layer(s)%3%4%5%6")
                .arg(j).arg(layers.size())
                .arg(anyColour ? ", colours" : "")
+               .arg(allNormals ? ", normals" : "")
                .arg(allClass ? ", feature classes from the layers' attributes" : "")
                .arg(allSeg ? ", segment labels" : "");
     return st;
@@ -552,49 +672,149 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         std::fprintf(stderr, "pointnpr decorator: %s\n", qUtf8Printable(msg));
     };
 
-    /* 1. the cloud, re-uploaded when the layers changed */
+    /* 1. the cloud, rebuilt from the layers when they changed */
     uint64_t sig = layerSignature(md);
     pnpr_error err{};
-    if (!s->uploaded || sig != s->signature) {
+    if (!s->built || sig != s->signature) {
         QElapsedTimer t;
         t.start();
-        QString note;
-        pnpr_status st = buildCloud(md, s->cloud, s->layerFeatures, note);
-        s->have = s->layerFeatures ? (uint32_t)PNPR_WANT_CLASSES : 0u;
-        /* the filter's attributes carry classes incl. dithering points (class 3) */
-        if (s->layerFeatures) s->have |= PNPR_WANT_DITHER;
+        pnpr_status st = buildCloud(md, s->cloud, s->layerFeatures, s->layersNote);
+        s->built = true;
+        s->signature = sig;
+        s->needUpload = true;
+        s->uploadFailed = false;
+        s->ownFeatures = s->ownDither = false;
+        s->failedWant = 0;
+        s->jsegFailed = false;
+        s->lastPlan.clear();
         pnpr_lines_free(&s->lines);
         s->linesReady = false;
-        if (st == PNPR_OK) st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, nullptr, &err);
-        if (st != PNPR_OK) { report("cannot upload the layers: " + status(st, err), true); return; }
-        s->uploaded = true;
-        s->signature = sig;
-        report(QString("uploaded %1 (%2 ms)").arg(note).arg(t.elapsed()), false);
+        /* the scene's up, as the CLI's default view finds it: the tone's key light comes from there */
+        s->up[0] = 0; s->up[1] = 0; s->up[2] = 1;
+        pnpr_view_info vi;
+        if (st == PNPR_OK && s->cloud.count > 0 && pnpr_scene_frame(&s->cloud, nullptr, &vi) == PNPR_OK)
+            std::memcpy(s->up, vi.up, sizeof s->up);
+        if (st != PNPR_OK) {
+            s->uploadFailed = true;
+            report("cannot read the layers: " + status(st, err), true);
+            return;
+        }
+        s->layersMs = t.elapsed();
     }
-    if (s->cloud.count == 0) return; /* nothing to draw over MeshLab's own frame */
+    if (s->uploadFailed || s->cloud.count == 0) return; /* nothing to draw over MeshLab's own frame */
 
-    /* 2. features the style needs, computed once */
-    uint32_t want = wantFor(prm.style, prm.variant);
-    if ((want & ~s->have) != 0) {
+    /* 2. the library's plan for this style on this cloud; what it computes stays in the cloud */
+    pnpr_tone_options tone;
+    std::memset(&tone, 0, sizeof tone);
+    tone.source = prm.toneSource;
+    tone.gamma = prm.toneGamma;
+    std::memcpy(tone.up, s->up, sizeof tone.up);
+    pnpr_plan_request req;
+    std::memset(&req, 0, sizeof req);
+    req.styles = 1u << prm.style;
+    req.sketch_variant = prm.variant;
+    req.outline = prm.outline;
+    pnpr_plan plan;
+    pnpr_status pst = pnpr_plan_make(&req, &s->cloud, &plan);
+    /* Dithering points follow the tone (and exist only when they were asked for); the plan cannot
+     * tell them apart from the classes, so features this plugin computed without them, or for
+     * another tone, are dropped when dithering is needed: the plan then computes them anew. */
+    if (pst == PNPR_OK && s->ownFeatures && (plan.needed & PNPR_WANT_DITHER) &&
+        (!s->ownDither || s->ditherToneSource != (int)tone.source || s->ditherToneGamma != tone.gamma)) {
+        static const char *const props[] = {"feature_degree", "feature_class", "feature_confidence",
+                                            "feature_dir_x", "feature_dir_y", "feature_dir_z"};
+        for (const char *name : props)
+            if (pnpr_cloud_find_property(&s->cloud, name)) pnpr_cloud_remove_property(&s->cloud, name);
+        s->ownFeatures = s->ownDither = false;
+        s->failedWant = 0;
+        pst = pnpr_plan_make(&req, &s->cloud, &plan);
+    }
+    if (pst != PNPR_OK) { report(QString("no plan for the %1 style: %2").arg(pnpr_style_name(prm.style)).arg(pnpr_status_string(pst)), true); return; }
+    {
+        QStringList parts;
+        for (int b = 0; b < 5; b++)
+            if (plan.want & (1u << b)) parts << QString("compute %1 (%2)").arg(kWantNames[b]).arg(plan.why[b] ? plan.why[b] : "");
+        if (plan.reused_features) parts << QString("features from the %1").arg(s->ownFeatures ? "earlier computation" : "layers");
+        if (plan.reused_normals && (plan.needed & (PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY))) parts << "normals reused";
+        if (plan.segments == PNPR_PLAN_SEGMENTS_JSEG) parts << QString("segments by JSEG (%1)").arg(plan.segments_why);
+        else if (plan.segments == PNPR_PLAN_SEGMENTS_INPUT) parts << QString("segment labels reused (%1)").arg(plan.segments_why);
+        else if (plan.segments == PNPR_PLAN_SEGMENTS_SHADE) parts << QString("shading bands (%1)").arg(plan.segments_why);
+        if (plan.lines) parts << QString("profile lines (%1)").arg(plan.lines_why ? plan.lines_why : "");
+        /* logged once per request and cloud (not again when its own results arrive) */
+        QString key = QString("%1 %2 %3 %4").arg(s->signature).arg((int)prm.style).arg((int)prm.variant).arg(prm.outline);
+        if (key != s->lastPlan) {
+            s->lastPlan = key;
+            report(QString("plan for the %1 style: %2").arg(pnpr_style_name(prm.style))
+                       .arg(parts.isEmpty() ? QString("nothing to compute") : parts.join("; ")), false);
+        }
+    }
+    bool failedBefore = plan.want == s->failedWant && s->failedToneSource == (int)tone.source &&
+                        s->failedToneGamma == tone.gamma;
+    if (plan.want != 0 && !failedBefore) {
         QElapsedTimer t;
         t.start();
         pnpr_features_options fo;
         std::memset(&fo, 0, sizeof fo);
-        fo.want = want | (s->have & (uint32_t)PNPR_WANT_DITHER);
+        fo.want = plan.want;
+        fo.tone = tone;
         pnpr_status st = pnpr_compute_features(&s->cloud, &fo, nullptr);
-        if (st == PNPR_OK) st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, nullptr, &err);
+        QStringList what;
+        for (int b = 0; b < 5; b++)
+            if (plan.want & (1u << b)) what << kWantNames[b];
         if (st != PNPR_OK) {
-            report("feature analysis failed: " + status(st, err), true);
-            s->have |= want; /* do not retry every frame; the style then reports NOT_FOUND */
+            s->failedWant = plan.want; /* not retried every frame; the style then reports what is missing */
+            s->failedToneSource = (int)tone.source;
+            s->failedToneGamma = tone.gamma;
+            report(QString("feature analysis (%1) failed: %2").arg(what.join(", ")).arg(pnpr_status_string(st)), true);
         } else {
-            s->have |= fo.want;
-            report(QString("features computed for the %1 style (%2 points, %3 ms)")
-                       .arg(pnpr_style_name(prm.style)).arg(s->cloud.count).arg(t.elapsed()), false);
+            if (plan.want & ~(uint32_t)(PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) s->ownFeatures = true;
+            if (plan.want & PNPR_WANT_DITHER) {
+                s->ownDither = true;
+                s->ditherToneSource = (int)tone.source;
+                s->ditherToneGamma = tone.gamma;
+            }
+            s->needUpload = true;
+            pnpr_lines_free(&s->lines);
+            s->linesReady = false;
+            report(QString("features computed for the %1 style (%2 points, %3 ms): %4")
+                       .arg(pnpr_style_name(prm.style)).arg(s->cloud.count).arg(t.elapsed()).arg(what.join(", ")), false);
         }
-        pnpr_lines_free(&s->lines);
-        s->linesReady = false;
     }
-    if (prm.style == PNPR_STYLE_LINES && !s->linesReady) {
+    if (plan.segments == PNPR_PLAN_SEGMENTS_JSEG && !s->jsegFailed && s->cloud.rgb) {
+        QElapsedTimer t;
+        t.start();
+        std::vector<uint32_t> labels(s->cloud.count);
+        pnpr_jseg_options jo;
+        std::memset(&jo, 0, sizeof jo);
+        pnpr_segment_info info;
+        pnpr_status st = pnpr_segment_jseg(s->cloud.xyz, s->cloud.rgb, s->cloud.count, &jo, labels.data(), &info);
+        if (st == PNPR_OK && (st = pnpr_cloud_alloc_labels(&s->cloud)) == PNPR_OK)
+            std::memcpy(s->cloud.label, labels.data(), labels.size() * sizeof(uint32_t));
+        if (st != PNPR_OK) {
+            s->jsegFailed = true;
+            report(QString("segmentation (JSEG) failed: %1").arg(pnpr_status_string(st)), true);
+        } else {
+            s->needUpload = true;
+            report(QString("%1 segments (JSEG, %2 points, %3 ms) for the %4 style")
+                       .arg(info.segment_count).arg(s->cloud.count).arg(t.elapsed()).arg(pnpr_style_name(prm.style)), false);
+        }
+    }
+    if (s->needUpload) {
+        QElapsedTimer t;
+        t.start();
+        pnpr_upload_options uo;
+        std::memset(&uo, 0, sizeof uo);
+        uo.tone = tone; /* colourless clouds: greys lit from the scene's up */
+        pnpr_status st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, &uo, &err);
+        s->needUpload = false;
+        if (st != PNPR_OK) {
+            s->uploadFailed = true;
+            report("cannot upload the layers: " + status(st, err), true);
+            return;
+        }
+        report(QString("uploaded %1 (layers read in %2 ms, upload %3 ms)").arg(s->layersNote).arg(s->layersMs).arg(t.elapsed()), false);
+    }
+    if (plan.lines && !s->linesReady) {
         QElapsedTimer t;
         t.start();
         pnpr_lines_options lo;
@@ -639,6 +859,8 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         o.budget = (size_t)prm.motionBudget;
     o.line_width = prm.lineWidth;
     o.stroke_width = prm.lineWidth;
+    o.outline = prm.outline;
+    o.outline_width = prm.outlineWidth;
     o.composite = PNPR_COMPOSITE_REPLACE;
     o.matrices = &cm;
     pnpr_target tg;

@@ -2,7 +2,7 @@
 # MeshLab plugin tests: runs the filters of libfilter_pointnpr.so inside Debian's meshlabserver.
 #
 #   tests/meshlab/run.sh TEST PLUGIN_SO POINTNPR_CLI WORKDIR [DECORATE_SO]
-#     TEST: load | cube | offset | select | robust | lion | lines | segment | decorate | snapshot
+#     TEST: load | cube | offset | select | robust | lion | lines | segment | decorate | decorate_styles | snapshot
 #     DECORATE_SO: libdecorate_pointnpr.so ("NPR render"), also put into the host's plugins/;
 #     the decorate test runs the MeshLab GUI (/usr/bin/meshlab) under Xvfb.
 #
@@ -350,6 +350,226 @@ no_plugin_errors() {
     fail "'$1': plugin load error:"; grep -iE "pointnpr" "$T/$1.log" | head -5
   fi
 }
+
+# ---- the decorator in the MeshLab GUI (cases decorate, decorate_styles) ----
+# gui NAME STYLE INPUT [SETTING=VALUE ...]: one run of the MeshLab GUI (private host, fresh HOME)
+# on INPUT until the decorator's frame pair is written (or 120 s), then MeshLab is stopped.
+# Without settings the style comes from the test hook PNPR_MESHLAB_TEST_STYLE=STYLE and MeshLab
+# starts with its defaults; with settings the style and every other parameter come from MeshLab's
+# settings file as the decorator dialog saves them: BASECONF (an earlier run's file, every
+# parameter at its default) with each PointNPR::SETTING's value replaced (enum index or number),
+# and the frame must then be drawn in STYLE. Checks: no crash, no plugin load error, the
+# decoration enabled, renderer created, 15002 points uploaded, frame pair written.
+gui() {
+  local name=$1 style=$2 input=$3 pid i kv key val conf
+  shift 3
+  local -a extra=(PNPR_MESHLAB_TEST_STYLE="$style")
+  mkdir -p "$T/home-$name"
+  if (($# > 0)); then
+    [[ -f "$BASECONF" ]] || { fail "'$name': no base settings file $BASECONF"; return 1; }
+    extra=()
+    conf="$T/home-$name/.config/VCG/$(basename "$BASECONF")"
+    mkdir -p "$(dirname "$conf")" && cp "$BASECONF" "$conf"
+    for kv in "$@"; do
+      key=${kv%%=*}; val=${kv#*=}
+      sed -i "/^PointNPR%3A%3A${key}=/ s/ value=\\\\\"[^\\\\]*\\\\\"/ value=\\\\\"${val}\\\\\"/" "$conf"
+      grep -q "^PointNPR%3A%3A${key}=.* value=\\\\\"${val}\\\\\"" "$conf" ||
+        { fail "'$name': cannot set PointNPR::$key = $val in $conf"; return 1; }
+    done
+  fi
+  (cd "$T" && exec env HOME="$T/home-$name" XDG_RUNTIME_DIR="$T/home-$name" PNPR_MESHLAB_DECORATE_AT_START=1 \
+    PNPR_MESHLAB_SNAPSHOT="$T/$name" "${extra[@]}" \
+    LD_LIBRARY_PATH="$MLLIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 150 "$T/host/meshlab" "$input") \
+    > "$T/$name.log" 2>&1 &
+  pid=$!
+  for i in $(seq 1 1200); do
+    [[ -f "$T/$name-camera.txt" ]] && break
+    kill -0 "$pid" 2> /dev/null || break
+    sleep 0.1
+  done
+  sleep 0.5 # a few more frames after the snapshot (a crash there fails too)
+  if kill -0 "$pid" 2> /dev/null; then
+    kill "$pid"; wait "$pid" 2> /dev/null
+  else
+    wait "$pid"; fail "'$name': MeshLab exited by itself (status $?) before it was stopped"
+  fi
+  if grep -qE "Segmentation fault|Aborted|core dumped|terminate called|Assertion .* failed" "$T/$name.log"; then
+    fail "'$name': MeshLab crashed:"; tail -n 20 "$T/$name.log"
+  fi
+  no_plugin_errors "$name"
+  expect_log "$name" "Enabled Decorate mode NPR render"
+  expect_log "$name" "NPR render: renderer created \\(OpenGL"
+  expect_log "$name" "pointnpr decorator: uploaded 15002 points from 1 layer"
+  expect_log "$name" "pointnpr decorator: snapshot .* written"
+  grep "pointnpr decorator:" "$T/$name.log"
+  [[ -f "$T/$name-camera.txt" && -f "$T/$name-npr.pgm" && -f "$T/$name-plain.pgm" ]] || { fail "'$name': no snapshot"; return 1; }
+  grep -q "^style $style\$" "$T/$name-camera.txt" || { fail "'$name': style in $name-camera.txt is not $style"; return 1; }
+  return 0
+}
+
+# check_snapshot CAMERA PLAIN NPR NAME: the cube's 4 front edges (z = 1) projected with MeshLab's
+# own matrices: on each edge with >= 20 samples in the viewport, >= 80% of the samples have a
+# dark pixel (< 110) within 3 px of the edge moved 0..h into the face; >= 2 edges checked. The 4 back edges (z = 0, hidden behind the
+# front face in MeshLab's default view): <= 10% dark samples. Front face inside [0.3,0.7]^2:
+# <= 5% dark. Background (top-left pixel) exactly paper white in the NPR frame, not in the
+# plain one; >= 25% of the pixels differ by more than 40 grey levels from the plain frame.
+check_snapshot() {
+  awk -v name="$4" '
+    FILENAME == ARGV[1] { if ($1 == "modelview") for (i = 0; i < 16; i++) M[i] = $(i + 2)
+                          if ($1 == "projection") for (i = 0; i < 16; i++) P[i] = $(i + 2)
+                          if ($1 == "viewport") { vx = $2; vy = $3; vw = $4; vh = $5 }
+                          next }
+    FNR == 1 { f++; row = -3 }
+    { row++ }
+    row == -1 { W = $1; H = $2; next }
+    row < 1 { next }
+    { for (c = 1; c <= NF; c++) { if (f == 1) pl[(row - 1) * W + c - 1] = $c; else np[(row - 1) * W + c - 1] = $c } }
+    function project(x, y, z,   e, i, cl) {
+      for (i = 0; i < 4; i++) e[i] = M[i] * x + M[4 + i] * y + M[8 + i] * z + M[12 + i]
+      for (i = 0; i < 4; i++) cl[i] = P[i] * e[0] + P[4 + i] * e[1] + P[8 + i] * e[2] + P[12 + i] * e[3]
+      if (cl[3] <= 0) return 0
+      PX = (cl[0] / cl[3] + 1) / 2 * vw; PY = vh - 1 - (cl[1] / cl[3] + 1) / 2 * vh
+      return PX >= 4 && PX < vw - 4 && PY >= 4 && PY < vh - 4
+    }
+    function darkNear(px, py, r,   dx, dy, v) {
+      for (dy = -r; dy <= r; dy++) for (dx = -r; dx <= r; dx++) { v = np[(int(py + 0.5) + dy) * W + int(px + 0.5) + dx]; if (v < 110) return 1 }
+      return 0
+    }
+    # edge k of the face z: 0 bottom (y=0), 1 top (y=1), 2 left (x=0), 3 right (x=1)
+    function edge(k, z, t) { if (k < 2) { EX = t; EY = k } else { EX = k - 2; EY = t } EZ = z }
+    END {
+      if (W != vw || H != vh) { printf "%s: image %dx%d, viewport %dx%d\n", name, W, H, vw, vh; exit 1 }
+      bad = 0; checked = 0
+      for (k = 0; k < 4; k++) {
+        n = 0; d = 0; nb = 0; db = 0
+        for (t = 0.1; t <= 0.9; t += 0.01) {
+          # profile lines run through the edge points up to ~0.7h inside the face (docs/lines.md):
+          # a dark pixel within 3 px of the edge moved 0..h (h = 0.02) into the front face
+          edge(k, 1, t); if (project(EX, EY, EZ)) { n++; hit = 0
+            for (s = 0; s <= 0.0201 && !hit; s += 0.004) {
+              ix = (k == 2) ? s : (k == 3) ? -s : 0; iy = (k == 0) ? s : (k == 1) ? -s : 0
+              if (project(EX + ix, EY + iy, EZ)) hit = darkNear(PX, PY, 3) }
+            d += hit }
+          edge(k, 0, t); if (project(EX, EY, EZ)) { nb++; db += darkNear(PX, PY, 1) }
+        }
+        printf "%s: front edge %d: %d of %d samples dark; back edge %d: %d of %d\n", name, k, d, n, k, db, nb
+        if (n >= 20) { checked++; if (d < 0.8 * n) bad++ }
+        if (nb > 0 && db > 0.1 * nb) bad++
+      }
+      if (checked < 2) { printf "%s: only %d front edges inside the viewport\n", name, checked; bad++ }
+      ni = 0; di = 0
+      for (x = 0.3; x <= 0.7; x += 0.02) for (y = 0.3; y <= 0.7; y += 0.02)
+        if (project(x, y, 1)) { ni++; if (np[int(PY + 0.5) * W + int(PX + 0.5)] < 110) di++ }
+      differ = 0
+      for (i = 0; i < W * H; i++) { dv = np[i] - pl[i]; if (dv > 40 || dv < -40) differ++ }
+      printf "%s: front face inside: %d of %d samples dark; background npr %d plain %d; %.1f%% of the pixels differ from the plain frame\n", name, di, ni, np[0], pl[0], 100 * differ / (W * H)
+      if (ni < 20 || di > 0.05 * ni) bad++
+      if (np[0] != 255 || pl[0] == 255) bad++
+      if (differ < 0.25 * W * H) bad++
+      exit bad ? 1 : 0
+    }' "$1" "$2" "$3"
+}
+
+# colour_cube_ply OUT: the cube [0,1]^3 grid of cube_ply (50 steps, 15 002 points) with colours:
+# the front face (z = 1) yellow (240,200,120) for x < 0.5 and light blue (110,150,230) for
+# x >= 0.5, the other faces grey-green (150,190,150); every channel plus uniform integer noise in
+# [-30,30] (Park-Miller generator, seed 1: the same file with any awk).
+colour_cube_ply() {
+  awk -v n=50 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
+    function ch(v,   c) { c = v + int(rnd() * 61) - 30; return c < 0 ? 0 : (c > 255 ? 255 : c) }
+    BEGIN { S = 1
+    c = (n + 1) ^ 3 - (n - 1) ^ 3
+    printf "ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n", c
+    for (i = 0; i <= n; i++) for (j = 0; j <= n; j++) for (k = 0; k <= n; k++) {
+      if (i > 0 && i < n && j > 0 && j < n && k > 0 && k < n) continue
+      if (k == n && 2 * i < n) { r = 240; g = 200; b = 120 } else if (k == n) { r = 110; g = 150; b = 230 } else { r = 150; g = 190; b = 150 }
+      printf "%.10g %.10g %.10g %d %d %d\n", i / n, j / n, k / n, ch(r), ch(g), ch(b)
+    } }' > "$1"
+}
+
+# colour_stats PLY: mean and standard deviation of the grey level (the decorator'"'"'s PGM formula)
+# of the front-face points inside the yellow (x in [0.1,0.4]) and blue (x in [0.6,0.9]) halves,
+# y in [0.3,0.7]: "meanY sdY meanB sdB"
+colour_stats() {
+  awk '/^end_header/ { b = 1; next } b && $3 == 1 && $2 >= 0.3 && $2 <= 0.7 {
+      g = int((299 * $4 + 587 * $5 + 114 * $6 + 500) / 1000)
+      if ($1 >= 0.1 && $1 <= 0.4) { n[0]++; s[0] += g; q[0] += g * g }
+      if ($1 >= 0.6 && $1 <= 0.9) { n[1]++; s[1] += g; q[1] += g * g } }
+    END { for (h = 0; h < 2; h++) { m = s[h] / n[h]; printf "%.2f %.2f ", m, sqrt(q[h] / n[h] - m * m) } print "" }' "$1"
+}
+
+# measure_colour CAMERA PLAIN NPR NAME: figures of a frame of the coloured cube in MeshLab's
+# default view (front face z = 1 towards the eye; its top and bottom edges are the silhouette
+# inside the viewport), projected with MeshLab's own matrices. Prints a readable line on stderr
+# and shell assignments on stdout:
+#   EDGE  fraction of samples (t = 0.1..0.9 along the front edges inside the viewport) with a dark
+#         pixel (< 110) in the image column from one grid spacing h inside the face to 2.5 h
+#         outside it (the drawn surface overhangs the true edge by about one disk radius = h)
+#   BAND  dark pixels in those columns (the outline ink)
+#   MY SY / MB SB  grey mean and standard deviation inside the yellow / blue half (x in
+#         [0.1,0.4] / [0.6,0.9], y in [0.3,0.7], steps of 0.01)
+#   SEAM  fraction of samples along the colour boundary x = 0.5 (y in [0.2,0.8]) with a dark pixel
+#         within 2 px;  DARKIN  fraction of dark pixels among the two halves' samples
+#   DIFFER fraction of pixels differing by > 40 grey levels from MeshLab's frame; BG top-left pixel
+measure_colour() {
+  awk -v name="$4" '
+    FILENAME == ARGV[1] { if ($1 == "modelview") for (i = 0; i < 16; i++) M[i] = $(i + 2)
+                          if ($1 == "projection") for (i = 0; i < 16; i++) P[i] = $(i + 2)
+                          if ($1 == "viewport") { vw = $4; vh = $5 }
+                          next }
+    FNR == 1 { f++; row = -3 }
+    { row++ }
+    row == -1 { W = $1; H = $2; next }
+    row < 1 { next }
+    { for (c = 1; c <= NF; c++) { if (f == 1) pl[(row - 1) * W + c - 1] = $c; else np[(row - 1) * W + c - 1] = $c } }
+    function project(x, y, z,   e, i, cl) {
+      for (i = 0; i < 4; i++) e[i] = M[i] * x + M[4 + i] * y + M[8 + i] * z + M[12 + i]
+      for (i = 0; i < 4; i++) cl[i] = P[i] * e[0] + P[4 + i] * e[1] + P[8 + i] * e[2] + P[12 + i] * e[3]
+      if (cl[3] <= 0) return 0
+      PX = (cl[0] / cl[3] + 1) / 2 * vw; PY = vh - 1 - (cl[1] / cl[3] + 1) / 2 * vh
+      return PX >= 12 && PX < vw - 12 && PY >= 12 && PY < vh - 12
+    }
+    function px(x, y) { return np[int(y + 0.5) * W + int(x + 0.5)] }
+    function darkNear(x, y, r,   dx, dy) {
+      for (dy = -r; dy <= r; dy++) for (dx = -r; dx <= r; dx++) if (px(x + dx, y + dy) < 110) return 1
+      return 0
+    }
+    END {
+      if (W != vw || H != vh) { printf "%s: image %dx%d, viewport %dx%d\n", name, W, H, vw, vh > "/dev/stderr"; exit 1 }
+      n = 0; d = 0; band = 0; hsum = 0
+      for (k = 0; k < 2; k++) for (t = 0.1; t <= 0.9001; t += 0.01) {
+        if (!project(t, k ? 1 - 0.02 : 0.02, 1)) continue
+        iy = PY
+        if (!project(t, k, 1)) continue
+        n++; ex = PX; ey = PY; hit = 0
+        # the column from one spacing inside the face to 2.5 spacings outside it (the drawn
+        # surface, disks of about one spacing, overhangs the true edge)
+        hp = ey - iy; dir = hp < 0 ? -1 : 1; hp = hp * dir; hsum += hp
+        for (o = -hp; o <= 2.5 * hp; o++) if (px(ex, ey + dir * o) < 110) { band++; hit = 1 }
+        d += hit
+      }
+      for (h = 0; h < 2; h++) { cnt[h] = 0; sum[h] = 0; sq[h] = 0 }
+      dark = 0
+      for (x = 0.1; x <= 0.9001; x += 0.01) {
+        if (x > 0.4001 && x < 0.5999) continue
+        h = x < 0.5 ? 0 : 1
+        for (y = 0.3; y <= 0.7001; y += 0.01) if (project(x, y, 1)) {
+          v = px(PX, PY); cnt[h]++; sum[h] += v; sq[h] += v * v; dark += v < 110 }
+      }
+      ns = 0; ds = 0
+      for (y = 0.2; y <= 0.8001; y += 0.01) if (project(0.5, y, 1)) { ns++; ds += darkNear(PX, PY, 2) }
+      differ = 0
+      for (i = 0; i < W * H; i++) { dv = np[i] - pl[i]; if (dv > 40 || dv < -40) differ++ }
+      for (h = 0; h < 2; h++) { m[h] = cnt[h] ? sum[h] / cnt[h] : -1; sd[h] = cnt[h] ? sqrt(sq[h] / cnt[h] - m[h] * m[h]) : -1 }
+      printf "%s: silhouette (front top/bottom edges, spacing %.1f px): %d of %d samples dark, %d dark pixels in their bands; yellow half grey %.1f sd %.2f (%d samples), blue half %.1f sd %.2f (%d); colour boundary: %d of %d samples dark; %d of %d inside samples dark; %.1f%% of the pixels differ from MeshLab'"'"'s frame; background %d\n",
+             name, n ? hsum / n : 0, d, n, band, m[0], sd[0], cnt[0], m[1], sd[1], cnt[1], ds, ns, dark, cnt[0] + cnt[1], 100 * differ / (W * H), np[0] > "/dev/stderr"
+      printf "EDGE=%.4f BAND=%d MY=%.2f SY=%.3f MB=%.2f SB=%.3f SEAM=%.4f DARKIN=%.4f DIFFER=%.4f BG=%d NEDGE=%d NIN=%d\n",
+             n ? d / n : 0, band, m[0], sd[0], m[1], sd[1], ns ? ds / ns : 1, (cnt[0] + cnt[1]) ? dark / (cnt[0] + cnt[1]) : 1, differ / (W * H), np[0], n, cnt[0] + cnt[1]
+    }' "$1" "$2" "$3"
+}
+
+# holds NAME "DESCRIPTION" AWK-CONDITION: fails NAME when the condition on the figures is false
+holds() { awk "BEGIN { exit ($3) ? 0 : 1 }" || fail "'$1': $2 (figures: $3)"; }
 
 setup_host
 start_xvfb
@@ -713,105 +933,112 @@ decorate)
   [[ -x "$GUI_BIN" ]] || die "$GUI_BIN not found (packaging/install-deps.sh installs meshlab)"
   ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
   cube_ply "$T/cube.ply" 1 50 0 0 0
-  # gui NAME STYLE: one GUI run until the snapshot is written (or 120 s), then MeshLab is stopped
-  gui() {
-    local name=$1 style=$2 pid i
-    mkdir -p "$T/home-$name"
-    (cd "$T" && HOME="$T/home-$name" XDG_RUNTIME_DIR="$T/home-$name" PNPR_MESHLAB_DECORATE_AT_START=1 \
-      PNPR_MESHLAB_SNAPSHOT="$T/$name" PNPR_MESHLAB_TEST_STYLE="$style" \
-      LD_LIBRARY_PATH="$MLLIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" exec timeout 150 "$T/host/meshlab" "$T/cube.ply") \
-      > "$T/$name.log" 2>&1 &
-    pid=$!
-    for i in $(seq 1 1200); do
-      [[ -f "$T/$name-camera.txt" ]] && break
-      kill -0 "$pid" 2> /dev/null || break
-      sleep 0.1
-    done
-    sleep 0.5 # a few more frames after the snapshot (a crash there fails too)
-    if kill -0 "$pid" 2> /dev/null; then
-      kill "$pid"; wait "$pid" 2> /dev/null
-    else
-      wait "$pid"; fail "'$name': MeshLab exited by itself (status $?) before it was stopped"
-    fi
-    if grep -qE "Segmentation fault|Aborted|core dumped|terminate called|Assertion .* failed" "$T/$name.log"; then
-      fail "'$name': MeshLab crashed:"; tail -n 20 "$T/$name.log"
-    fi
-    no_plugin_errors "$name"
-    expect_log "$name" "Enabled Decorate mode NPR render"
-    expect_log "$name" "NPR render: renderer created \\(OpenGL"
-    expect_log "$name" "pointnpr decorator: uploaded 15002 points from 1 layer"
-    expect_log "$name" "pointnpr decorator: snapshot .* written"
-    grep "pointnpr decorator:" "$T/$name.log"
-    [[ -f "$T/$name-camera.txt" && -f "$T/$name-npr.pgm" && -f "$T/$name-plain.pgm" ]] || { fail "'$name': no snapshot"; return 1; }
-    grep -q "^style $style\$" "$T/$name-camera.txt" || fail "'$name': style in $name-camera.txt is not $style"
-    check_snapshot "$T/$name-camera.txt" "$T/$name-plain.pgm" "$T/$name-npr.pgm" "$name" || fail "'$name': snapshot checks (see above)"
+  geometry() { # gui + the cube's edge checks
+    gui "$1" "$2" "$T/cube.ply" || return 1
+    check_snapshot "$T/$1-camera.txt" "$T/$1-plain.pgm" "$T/$1-npr.pgm" "$1" || fail "'$1': snapshot checks (see above)"
   }
-  # check_snapshot CAMERA PLAIN NPR NAME: the cube's 4 front edges (z = 1) projected with MeshLab's
-  # own matrices: on each edge with >= 20 samples in the viewport, >= 80% of the samples have a
-  # dark pixel (< 110) within 3 px of the edge moved 0..h into the face; >= 2 edges checked. The 4 back edges (z = 0, hidden behind the
-  # front face in MeshLab's default view): <= 10% dark samples. Front face inside [0.3,0.7]^2:
-  # <= 5% dark. Background (top-left pixel) exactly paper white in the NPR frame, not in the
-  # plain one; >= 25% of the pixels differ by more than 40 grey levels from the plain frame.
-  check_snapshot() {
-    awk -v name="$4" '
-      FILENAME == ARGV[1] { if ($1 == "modelview") for (i = 0; i < 16; i++) M[i] = $(i + 2)
-                            if ($1 == "projection") for (i = 0; i < 16; i++) P[i] = $(i + 2)
-                            if ($1 == "viewport") { vx = $2; vy = $3; vw = $4; vh = $5 }
-                            next }
-      FNR == 1 { f++; row = -3 }
-      { row++ }
-      row == -1 { W = $1; H = $2; next }
-      row < 1 { next }
-      { for (c = 1; c <= NF; c++) { if (f == 1) pl[(row - 1) * W + c - 1] = $c; else np[(row - 1) * W + c - 1] = $c } }
-      function project(x, y, z,   e, i, cl) {
-        for (i = 0; i < 4; i++) e[i] = M[i] * x + M[4 + i] * y + M[8 + i] * z + M[12 + i]
-        for (i = 0; i < 4; i++) cl[i] = P[i] * e[0] + P[4 + i] * e[1] + P[8 + i] * e[2] + P[12 + i] * e[3]
-        if (cl[3] <= 0) return 0
-        PX = (cl[0] / cl[3] + 1) / 2 * vw; PY = vh - 1 - (cl[1] / cl[3] + 1) / 2 * vh
-        return PX >= 4 && PX < vw - 4 && PY >= 4 && PY < vh - 4
-      }
-      function darkNear(px, py, r,   dx, dy, v) {
-        for (dy = -r; dy <= r; dy++) for (dx = -r; dx <= r; dx++) { v = np[(int(py + 0.5) + dy) * W + int(px + 0.5) + dx]; if (v < 110) return 1 }
-        return 0
-      }
-      # edge k of the face z: 0 bottom (y=0), 1 top (y=1), 2 left (x=0), 3 right (x=1)
-      function edge(k, z, t) { if (k < 2) { EX = t; EY = k } else { EX = k - 2; EY = t } EZ = z }
-      END {
-        if (W != vw || H != vh) { printf "%s: image %dx%d, viewport %dx%d\n", name, W, H, vw, vh; exit 1 }
-        bad = 0; checked = 0
-        for (k = 0; k < 4; k++) {
-          n = 0; d = 0; nb = 0; db = 0
-          for (t = 0.1; t <= 0.9; t += 0.01) {
-            # profile lines run through the edge points up to ~0.7h inside the face (docs/lines.md):
-            # a dark pixel within 3 px of the edge moved 0..h (h = 0.02) into the front face
-            edge(k, 1, t); if (project(EX, EY, EZ)) { n++; hit = 0
-              for (s = 0; s <= 0.0201 && !hit; s += 0.004) {
-                ix = (k == 2) ? s : (k == 3) ? -s : 0; iy = (k == 0) ? s : (k == 1) ? -s : 0
-                if (project(EX + ix, EY + iy, EZ)) hit = darkNear(PX, PY, 3) }
-              d += hit }
-            edge(k, 0, t); if (project(EX, EY, EZ)) { nb++; db += darkNear(PX, PY, 1) }
-          }
-          printf "%s: front edge %d: %d of %d samples dark; back edge %d: %d of %d\n", name, k, d, n, k, db, nb
-          if (n >= 20) { checked++; if (d < 0.8 * n) bad++ }
-          if (nb > 0 && db > 0.1 * nb) bad++
-        }
-        if (checked < 2) { printf "%s: only %d front edges inside the viewport\n", name, checked; bad++ }
-        ni = 0; di = 0
-        for (x = 0.3; x <= 0.7; x += 0.02) for (y = 0.3; y <= 0.7; y += 0.02)
-          if (project(x, y, 1)) { ni++; if (np[int(PY + 0.5) * W + int(PX + 0.5)] < 110) di++ }
-        differ = 0
-        for (i = 0; i < W * H; i++) { dv = np[i] - pl[i]; if (dv > 40 || dv < -40) differ++ }
-        printf "%s: front face inside: %d of %d samples dark; background npr %d plain %d; %.1f%% of the pixels differ from the plain frame\n", name, di, ni, np[0], pl[0], 100 * differ / (W * H)
-        if (ni < 20 || di > 0.05 * ni) bad++
-        if (np[0] != 255 || pl[0] == 255) bad++
-        if (differ < 0.25 * W * H) bad++
-        exit bad ? 1 : 0
-      }' "$1" "$2" "$3"
-  }
-  gui sketchy sketchy
+  geometry sketchy sketchy
   expect_log sketchy "features computed for the sketchy style \\(15002 points"
-  gui lines lines
+  geometry lines lines
   expect_log lines "pointnpr decorator: [0-9]+ profile lines"
+  ;;
+
+decorate_styles)
+  # The decorator's style and outline controls in the MeshLab GUI on a coloured cube
+  # (colour_cube_ply: front face in a yellow and a blue half, colour noise +-30 per channel, no
+  # normals, no segments): the stage plan of the library decides what is computed (cartoon on a
+  # coloured cloud without labels: JSEG segments and, for the outline, normals). Runs: cartoon
+  # with the defaults (style from the test hook; its settings file is the base of the others),
+  # then from MeshLab's settings as the dialog saves them: cartoon with Outline = off, cartoon
+  # with Outline width = 6 px, painterly; and sketchy of the colourless cube with the default tone
+  # and with Tone gamma = 0.25. Frames stay in the work folder.
+  [[ -n "$DECORATE" ]] || die "no decorate plugin given (5th argument)"
+  [[ -x "$GUI_BIN" ]] || die "$GUI_BIN not found (packaging/install-deps.sh installs meshlab)"
+  ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
+  colour_cube_ply "$T/colour.ply"
+  read -r INMY INSY INMB INSB < <(colour_stats "$T/colour.ply")
+  log "input: yellow half grey $INMY sd $INSY, blue half grey $INMB sd $INSB (front-face points)"
+  # measure NAME: the figures of run NAME into N_<NAME>_<FIGURE>
+  measure() {
+    local out
+    out=$(measure_colour "$T/$1-camera.txt" "$T/$1-plain.pgm" "$T/$1-npr.pgm" "$1") || { fail "'$1': cannot measure the frame"; return 1; }
+    eval "$(sed "s/\([A-Z]*\)=/N_$1_\1=/g" <<< "$out")"
+  }
+
+  # 1. cartoon, defaults: JSEG segments planned and computed, outlines along the silhouette, each
+  #    half one flat colour (its mean), no ink at the colour boundary or inside
+  gui cartoon cartoon "$T/colour.ply" && measure cartoon
+  expect_log cartoon "pointnpr decorator: plan for the cartoon style: .*compute normals \\(outlines .*segments by JSEG \\(cartoon fills each colour segment"
+  expect_log cartoon "pointnpr decorator: features computed for the cartoon style \\(15002 points, [0-9]+ ms\\): normals\$"
+  expect_log cartoon "pointnpr decorator: [0-9]+ segments \\(JSEG, 15002 points"
+  expect_log cartoon "pointnpr decorator: uploaded 15002 points from 1 layer\\(s\\), colours \\("
+  nseg=$(sed -n 's/.*pointnpr decorator: \([0-9]*\) segments (JSEG.*/\1/p' "$T/cartoon.log" | head -n 1)
+  log "cartoon: ${nseg:-no} JSEG segments"
+  holds cartoon "JSEG finds the 3 colour regions (2 halves + the grey-green faces)" "${nseg:-0} == 3"
+  holds cartoon ">= 90% of the silhouette samples inked" "${N_cartoon_EDGE:-0} >= 0.9 && ${N_cartoon_NEDGE:-0} >= 100"
+  holds cartoon "yellow half flat (sd <= 1.5, input sd $INSY) at its mean colour (input $INMY +- 4)" \
+    "${N_cartoon_SY:-99} <= 1.5 && ${N_cartoon_MY:-0} >= $INMY - 4 && ${N_cartoon_MY:-0} <= $INMY + 4"
+  holds cartoon "blue half flat (sd <= 1.5, input sd $INSB) at its mean colour (input $INMB +- 4)" \
+    "${N_cartoon_SB:-99} <= 1.5 && ${N_cartoon_MB:-0} >= $INMB - 4 && ${N_cartoon_MB:-0} <= $INMB + 4"
+  holds cartoon "no outline at the colour boundary (<= 10% of its samples dark), no ink inside (<= 1%)" \
+    "${N_cartoon_SEAM:-1} <= 0.1 && ${N_cartoon_DARKIN:-1} <= 0.01 && ${N_cartoon_NIN:-0} >= 500"
+  holds cartoon "paper-white background, >= 25% of the pixels restyled" "${N_cartoon_BG:-0} == 255 && ${N_cartoon_DIFFER:-0} >= 0.25"
+
+  # the dialog's parameters as MeshLab saved them (the base of the runs below)
+  BASECONF=$(find "$T/home-cartoon/.config" -name '*.conf' | head -n 1)
+  [[ -f "$BASECONF" ]] || die "MeshLab wrote no settings file under $T/home-cartoon/.config"
+  conf_has() { grep -q "^PointNPR%3A%3A$1=.*$2" "$BASECONF" || fail "settings: PointNPR::$1 lacks /$2/"; }
+  conf_has DrawStyle 'enum_cardinality=\\"6\\"'
+  conf_has DrawStyle 'enum_val5=\\"painterly\\"'
+  conf_has DrawStyle ' value=\\"1\\"'
+  conf_has Outline 'enum_cardinality=\\"3\\"'
+  conf_has Outline 'enum_val2=\\"off\\"'
+  conf_has Outline 'on for sketchy 1.5 px, cartoon 2.5 px, lines 2.5 px'
+  conf_has OutlineWidth 'type=\\"RichFloat\\"'
+  conf_has OutlineWidth ' value=\\"0\\"'
+  conf_has OutlineWidth "0 = the style's default (sketchy 1.5 px, cartoon 2.5 px, lines 2.5 px)"
+  conf_has ToneSource 'enum_cardinality=\\"4\\"'
+  conf_has ToneSource 'enum_val3=\\"both\\"'
+  conf_has ToneGamma ' value=\\"0\\"'
+  conf_has ToneGamma '0 = library default'
+  grep "^PointNPR%3A%3A" "$BASECONF" | sed 's/=.* description=\\"\([^\\]*\)\\".*/: \1/'
+
+  # 2. Outline = off (settings): the silhouette loses its ink, the fills stay
+  gui nooutline cartoon "$T/colour.ply" DrawStyle=3 Outline=2 && measure nooutline
+  expect_log nooutline "pointnpr decorator: plan for the cartoon style: segments by JSEG"
+  holds nooutline "<= 10% of the silhouette samples dark (outline on: ${N_cartoon_EDGE:-?})" "${N_nooutline_EDGE:-1} <= 0.1"
+  holds nooutline "the outline bands lose >= 90% of their dark pixels (${N_cartoon_BAND:-?} with the outline)" \
+    "${N_nooutline_BAND:-1e9} <= 0.1 * ${N_cartoon_BAND:-0} && ${N_cartoon_BAND:-0} >= 200"
+  holds nooutline "the same flat fills (means within 2 grey levels of the outlined frame's)" \
+    "${N_nooutline_SY:-99} <= 1.5 && ${N_nooutline_SB:-99} <= 1.5 && (${N_nooutline_MY:-0} - ${N_cartoon_MY:-0})^2 <= 4 && (${N_nooutline_MB:-0} - ${N_cartoon_MB:-0})^2 <= 4"
+
+  # 3. Outline width = 6 px (settings) against the style's default (2.5 px)
+  gui wide cartoon "$T/colour.ply" DrawStyle=3 OutlineWidth=6 && measure wide
+  holds wide "silhouette inked (>= 90%)" "${N_wide_EDGE:-0} >= 0.9"
+  holds wide "6 px outline bands hold 1.8..3.6 x the dark pixels of the default width (${N_cartoon_BAND:-?})" \
+    "${N_wide_BAND:-0} >= 1.8 * ${N_cartoon_BAND:-1e9} && ${N_wide_BAND:-1e9} <= 3.6 * ${N_cartoon_BAND:-0}"
+
+  # 4. painterly (settings): features planned and computed, dabs in the points' colours
+  gui painterly painterly "$T/colour.ply" DrawStyle=5 && measure painterly
+  expect_log painterly "pointnpr decorator: plan for the painterly style: compute feature degree .*compute feature classes"
+  expect_log painterly "pointnpr decorator: features computed for the painterly style \\(15002 points, [0-9]+ ms\\): feature degree, feature classes\$"
+  grep -q "pointnpr decorator: draw (painterly) failed" "$T/painterly.log" && fail "'painterly': the draw failed"
+  holds painterly "yellow half painted near its colour (grey $INMY +- 20), blue half too ($INMB +- 20)" \
+    "(${N_painterly_MY:-0} - $INMY)^2 <= 400 && (${N_painterly_MB:-0} - $INMB)^2 <= 400"
+  holds painterly "no paper or ink inside: <= 2% dark samples" "${N_painterly_DARKIN:-1} <= 0.02 && ${N_painterly_NIN:-0} >= 500"
+  holds painterly "paper-white background, >= 25% of the pixels restyled" "${N_painterly_BG:-0} == 255 && ${N_painterly_DIFFER:-0} >= 0.25"
+
+  # 5. Tone gamma (settings) reaches the dithering points: sketchy on the colourless cube, whose
+  #    front face is lit (light tone: few hatches at the library's default curve); gamma 0.25
+  #    lifts the light tones (t^0.25), so many more dithering points hatch the face
+  cube_ply "$T/cube.ply" 1 50 0 0 0
+  gui sketchy sketchy "$T/cube.ply" DrawStyle=1 && measure sketchy
+  gui darktone sketchy "$T/cube.ply" DrawStyle=1 ToneGamma=0.25 && measure darktone
+  expect_log sketchy "pointnpr decorator: features computed for the sketchy style \\(15002 points, [0-9]+ ms\\): feature degree, feature classes, dithering points, normals\$"
+  expect_log darktone "pointnpr decorator: features computed for the sketchy style \\(15002 points, [0-9]+ ms\\): feature degree, feature classes, dithering points, normals\$"
+  holds sketchy "default tone: <= 5% of the front face's samples dark" "${N_sketchy_DARKIN:-1} <= 0.05 && ${N_sketchy_NIN:-0} >= 500"
+  holds darktone "tone gamma 0.25: >= 10% of the front face's samples dark and >= 4x the default tone's (${N_sketchy_DARKIN:-?})" \
+    "${N_darktone_DARKIN:-0} >= 0.1 && ${N_darktone_DARKIN:-0} >= 4 * ${N_sketchy_DARKIN:-1}"
   ;;
 
 snapshot)
