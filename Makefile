@@ -15,7 +15,7 @@ deps:
 	bash packaging/install-deps.sh
 
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPNPR_WERROR=ON
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPNPR_WERROR=ON -DPNPR_QUALITY_GATE=ON
 	cmake --build $(BUILD) -j $(JOBS)
 
 test-release: build

@@ -21,6 +21,7 @@
 enum { GROUP_DIRECTIONAL = 0, GROUP_NONDIRECTIONAL, GROUP_DITHER, GROUP_NONE, GROUP_MAX };
 
 enum { PNPR_PAINT_MAX_BRUSH = 4 }; /* painterly: the largest brush, in disk radii */
+enum { LINE_FLOATS = 7 }; /* a line segment: its two ends and its polyline's length */
 enum { STROKE_TEX_W = 128, STROKE_TEX_H = 32, STROKE_LAYERS = 4, STROKE_LAYER_HATCH = 3 };
 
 typedef struct pnpr_vertex {
@@ -33,7 +34,7 @@ typedef struct pnpr_vertex {
 } pnpr_vertex;
 
 typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin; } splat_uniforms;
-typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho; } line_uniforms;
+typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho, ppu, min_px; } line_uniforms;
 typedef struct stroke_uniforms {
     GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin;
 } stroke_uniforms;
@@ -261,6 +262,8 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->ul.ink = glGetUniformLocation(p, "u_ink");
     r->ul.pull = glGetUniformLocation(p, "u_pull");
     r->ul.ortho = glGetUniformLocation(p, "u_ortho");
+    r->ul.ppu = glGetUniformLocation(p, "u_pixels_per_unit");
+    r->ul.min_px = glGetUniformLocation(p, "u_min_px");
     p = r->prog_stroke;
     r->ut.view = glGetUniformLocation(p, "u_view");
     r->ut.proj = glGetUniformLocation(p, "u_proj");
@@ -304,9 +307,12 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     glBindVertexArray(r->vao_lines);
     glBindBuffer(GL_ARRAY_BUFFER, r->line_vbo);
     glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), (const void *)0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, LINE_FLOATS * sizeof(float), (const void *)0);
     glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), (const void *)(uintptr_t)(3 * sizeof(float)));
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, LINE_FLOATS * sizeof(float), (const void *)(uintptr_t)(3 * sizeof(float)));
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, LINE_FLOATS * sizeof(float), (const void *)(uintptr_t)(6 * sizeof(float)));
+    glVertexAttribDivisor(2, 1);
     glVertexAttribDivisor(0, 1);
     glVertexAttribDivisor(1, 1);
 
@@ -782,28 +788,32 @@ pnpr_status pnpr_renderer_set_lines(pnpr_renderer *r, const pnpr_polylines *line
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines: non-finite origin");
         if (lines->offset[lines->count] > 0 && !lines->xyz)
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines have vertices but no coordinates");
-        if (segs > (size_t)0x7FFFFFFF / 6)
+        if (segs > (size_t)0x7FFFFFFF / LINE_FLOATS)
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: too many line segments (%zu)", segs);
     }
-    float *buf = malloc((segs ? segs : 1) * 6 * sizeof *buf);
+    float *buf = malloc((segs ? segs : 1) * LINE_FLOATS * sizeof *buf);
     if (!buf) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "renderer: lines: out of memory");
     size_t m = 0;
     for (size_t i = 0; segs && i < lines->count; i++) {
         size_t a = lines->offset[i], b = lines->offset[i + 1];
         if (b - a < 2) continue;
-        size_t n = b - a, nseg = (n - 1) + (lines->closed && lines->closed[i] && n >= 3);
+        size_t n = b - a, nseg = (n - 1) + (lines->closed && lines->closed[i] && n >= 3), first = m;
+        double length = 0;
         for (size_t k = 0; k < nseg; k++) {
             const float *p = lines->xyz + 3 * (a + k), *q = lines->xyz + 3 * (a + (k + 1) % n);
             if (!finite3(p) || !finite3(q)) continue;
-            memcpy(buf + 6 * m, p, 3 * sizeof *p);
-            memcpy(buf + 6 * m + 3, q, 3 * sizeof *q);
+            memcpy(buf + LINE_FLOATS * m, p, 3 * sizeof *p);
+            memcpy(buf + LINE_FLOATS * m + 3, q, 3 * sizeof *q);
+            length += sqrt(((double)q[0] - p[0]) * (q[0] - p[0]) + ((double)q[1] - p[1]) * (q[1] - p[1]) +
+                           ((double)q[2] - p[2]) * (q[2] - p[2]));
             m++;
         }
+        for (size_t k = first; k < m; k++) buf[LINE_FLOATS * k + 6] = (float)length; /* the polyline's */
     }
     pnpr_gl_state saved;
     pnpr_gl_state_save(&saved);
     glBindBuffer(GL_ARRAY_BUFFER, r->line_vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m * 6 * sizeof *buf), m ? buf : NULL, GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m * LINE_FLOATS * sizeof *buf), m ? buf : NULL, GL_STATIC_DRAW);
     pnpr_gl_state_restore(&saved);
     free(buf);
     r->line_segments = m;
@@ -891,6 +901,7 @@ static pnpr_status check_options(const pnpr_renderer *r, const pnpr_draw_options
         !isfinite(o->line_width) || o->line_width < 0 || !(o->faint >= 0 && o->faint <= 1) ||
         !isfinite(o->dot_size) || o->dot_size < 0 || o->levels < 0 || o->levels == 1 || o->levels > 256 ||
         !isfinite(o->outline_width) || o->outline_width < 0 || o->outline_width > 64 ||
+        !isfinite(o->line_min_px) || o->line_min_px < 0 ||
         !isfinite(o->outline_jump) || o->outline_jump < 0 || !isfinite(o->outline_hole) || o->outline_hole < 0)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative (outline width at most 64 px)");
     if (o->outline < -1 || o->outline > 1)
@@ -1188,6 +1199,8 @@ static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_camera *fc, const pn
     float ps = o->point_scale > 0 ? o->point_scale : 1;
     glUniform1f(r->ul.pull, 2.0f * r->mean_radius * ps * lod);
     glUniform1i(r->ul.ortho, fc->ortho);
+    glUniform1f(r->ul.ppu, fc->pixels_per_unit);
+    glUniform1f(r->ul.min_px, o->line_min_px > 0 ? o->line_min_px : 8.0f);
     glBindVertexArray(r->vao_lines);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)r->line_segments);
     return r->line_segments;
@@ -1524,8 +1537,8 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
          * mean mask radii beyond them (measured on random samplings, docs/rendering.md); the
          * silhouette is drawn that far inside it */
         float inset = 1.1f;
-        pnpr_edge_params ep = {outline_width > 0 ? outline_width : 2, o.outline_jump > 0 ? o.outline_jump : 2,
-                               o.outline_hole > 0 ? o.outline_hole : 4, PNPR_EDGE_MAX_REACH, fc.pixels_per_unit,
+        pnpr_edge_params ep = {outline_width > 0 ? outline_width : 2, o.outline_jump > 0 ? o.outline_jump : PNPR_OUTLINE_JUMP,
+                               o.outline_hole > 0 ? o.outline_hole : PNPR_OUTLINE_HOLE, PNPR_EDGE_MAX_REACH, fc.pixels_per_unit,
                                fc.ortho, {ink[0], ink[1], ink[2], ink[3]}, inset,
                                {o.background[0] * a, o.background[1] * a, o.background[2] * a, a},
                                r->mean_radius * point_scale * lod * mask_scale};

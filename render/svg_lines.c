@@ -10,8 +10,11 @@
  *   segment is drawn when both its ends are visible).
  * - Strokes: `<polyline>` with round caps and joins; with taper > 0 each run is a filled outline
  *   whose half-width grows linearly from 0 over the first `taper` fraction of its length and
- *   shrinks likewise at its end. Coordinates in px with 2 decimals. */
+ *   shrinks likewise at its end. Coordinates in px with 2 decimals.
+ * - Outlines (svg_outline.c): the occluders' silhouettes and contours as <path>s in
+ *   <g id="outlines">, written before the lines' group <g id="lines">. */
 #include "render_internal.h"
+#include "svg_outline.h"
 #include "../core/internal.h"
 
 #include <pointnpr/knn.h>
@@ -60,6 +63,7 @@ static void splat(float *zb, const proj *pr, const double p[3], double radius)
     double r = radius * pr->fc.pixels_per_unit / z;
     if (r < 0.5) r = 0.5;
     if (r > 64) r = 64;
+    if (!(x > -r - 1 && y > -r - 1 && x < pr->w + r + 1 && y < pr->h + r + 1)) return; /* off the drawing (or huge) */
     int x0 = (int)floor(x - r), x1 = (int)ceil(x + r), y0 = (int)floor(y - r), y1 = (int)ceil(y + r);
     if (x1 < 0 || y1 < 0 || x0 >= pr->w || y0 >= pr->h) return;
     for (int yy = y0 < 0 ? 0 : y0; yy <= y1 && yy < pr->h; yy++)
@@ -110,43 +114,68 @@ static int write_run(FILE *f, const double *xy, size_t a, size_t b, const pnpr_s
     return fprintf(f, " Z\"/>\n") < 0 ? -1 : 0;
 }
 
-pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
-                                 const pnpr_camera *camera, const pnpr_svg_options *opts,
-                                 pnpr_error *err)
+/* The outlines' group: one <path> per polyline (" Z" when closed). */
+static int write_outlines(FILE *f, const pnpr_outline_set *o, double width, const char *colour)
 {
-    static const pnpr_svg_options defaults;
-    if (!opts) opts = &defaults;
+    if (fprintf(f, "<g id=\"outlines\" fill=\"none\" stroke=\"%s\" stroke-width=\"%.2f\" stroke-linecap=\"round\" "
+                   "stroke-linejoin=\"round\">\n", colour, width) < 0)
+        return -1;
+    for (size_t k = 0; k < o->count; k++) {
+        if (fprintf(f, "<path d=\"") < 0) return -1;
+        for (size_t i = o->offset[k]; i < o->offset[k + 1]; i++)
+            if (fprintf(f, "%s%.2f,%.2f", i == o->offset[k] ? "M" : " L", o->xy[2 * i], o->xy[2 * i + 1]) < 0) return -1;
+        if (fprintf(f, "%s\"/>\n", o->closed[k] ? " Z" : "") < 0) return -1;
+    }
+    return fprintf(f, "</g>\n") < 0 ? -1 : 0;
+}
+
+static pnpr_status check_options(const char *path, const pnpr_polylines *lines, const pnpr_svg_options *opts,
+                                 int *r_w, int *r_h, pnpr_error *err)
+{
     if (!path || !lines || (lines->count && (!lines->offset || !lines->xyz || !lines->closed)))
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: invalid arguments");
     int w = opts->width ? opts->width : 1024, h = opts->height ? opts->height : 768;
     if (w < 1 || h < 1 || w > 32768 || h > 32768)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: size %dx%d is not in 1..32768", w, h);
-    const float fopts[4] = {opts->stroke_width, opts->taper, opts->point_radius, opts->depth_tolerance};
-    for (int i = 0; i < 4; i++)
+    const float fopts[6] = {opts->stroke_width, opts->taper, opts->point_radius, opts->depth_tolerance,
+                            opts->outline_width, opts->outline_jump};
+    for (int i = 0; i < 6; i++)
         if (!isfinite(fopts[i]) || fopts[i] < 0)
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: options must be finite and >= 0");
     const pnpr_cloud *occ = opts->occluders;
     if (occ && occ->count && !occ->xyz) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: occluders without points");
+    *r_w = w;
+    *r_h = h;
+    return PNPR_OK;
+}
 
-    /* camera and bounds in the lines' frame */
+/* Bounds of the line vertices and the finite occluder points (shifted into the frame). */
+static void frame_bounds(const pnpr_polylines *lines, const pnpr_cloud *occ, const double shift[3], float bmin[3],
+                         float bmax[3])
+{
     size_t nv = lines->count ? lines->offset[lines->count] : 0;
-    float bmin[3] = {INFINITY, INFINITY, INFINITY}, bmax[3] = {-INFINITY, -INFINITY, -INFINITY};
-    double shift[3] = {0, 0, 0};
-    if (occ) for (int a = 0; a < 3; a++) shift[a] = occ->origin[a] - lines->origin[a];
+    for (int a = 0; a < 3; a++) { bmin[a] = INFINITY; bmax[a] = -INFINITY; }
     for (size_t i = 0; i < nv; i++)
         for (int a = 0; a < 3; a++) {
             float v = lines->xyz[3 * i + a];
             if (v < bmin[a]) bmin[a] = v;
             if (v > bmax[a]) bmax[a] = v;
         }
-    if (occ)
-        for (size_t i = 0; i < occ->count; i++)
-            for (int a = 0; a < 3; a++) {
-                float v = (float)(shift[a] + occ->xyz[3 * i + a]);
-                if (!isfinite(v)) break;
-                if (v < bmin[a]) bmin[a] = v;
-                if (v > bmax[a]) bmax[a] = v;
-            }
+    for (size_t i = 0; occ && i < occ->count; i++) {
+        float v[3];
+        for (int a = 0; a < 3; a++) v[a] = (float)(shift[a] + occ->xyz[3 * i + a]);
+        if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) continue;
+        for (int a = 0; a < 3; a++) {
+            if (v[a] < bmin[a]) bmin[a] = v[a];
+            if (v[a] > bmax[a]) bmax[a] = v[a];
+        }
+    }
+}
+
+/* The drawing's projection: `camera`, or pnpr_camera_fit of the bounds. */
+static pnpr_status make_projection(const pnpr_camera *camera, const double org[3], const float bmin[3],
+                                   const float bmax[3], int w, int h, proj *pr, pnpr_error *err)
+{
     int have_box = bmin[0] <= bmax[0];
     pnpr_camera cam;
     if (camera) cam = *camera;
@@ -156,49 +185,44 @@ pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
         if (!have_box) return pnpr_error_set(err, PNPR_ERR_EMPTY, "svg: nothing to draw and no camera given");
         box.count = 2;
         box.xyz = corners;
-        memcpy(box.origin, lines->origin, sizeof box.origin);
+        memcpy(box.origin, org, sizeof box.origin);
         pnpr_status st = pnpr_camera_fit(&box, NULL, 0, (float)w / (float)h, &cam);
         if (st != PNPR_OK) return pnpr_error_set(err, st, "svg: cannot frame the drawing");
     }
-    proj pr;
-    pr.w = w;
-    pr.h = h;
-    pnpr_status st = pnpr_frame_camera_make(&cam, lines->origin, bmin, bmax, have_box, w, h, &pr.fc, err);
-    if (st != PNPR_OK) return st;
+    pr->w = w;
+    pr->h = h;
+    return pnpr_frame_camera_make(&cam, org, bmin, bmax, have_box, w, h, &pr->fc, err);
+}
 
-    /* depth buffer of the occluders */
-    float *zb = NULL;
-    double radius = 0, tol = 0;
-    if (occ && occ->count) {
-        zb = malloc((size_t)w * (size_t)h * sizeof *zb);
-        if (!zb) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "svg: no memory for a %dx%d depth buffer", w, h);
-        for (size_t i = 0; i < (size_t)w * (size_t)h; i++) zb[i] = INFINITY;
-        radius = opts->point_radius > 0 ? opts->point_radius : median_spacing(occ);
-        if (!(radius > 0)) radius = 1e-3 * sqrt((double)(bmax[0] - bmin[0]) * (bmax[0] - bmin[0]) + (double)(bmax[1] - bmin[1]) * (bmax[1] - bmin[1]));
-        tol = opts->depth_tolerance > 0 ? opts->depth_tolerance : 3 * radius;
-        for (size_t i = 0; i < occ->count; i++) {
-            double p[3] = {shift[0] + occ->xyz[3 * i], shift[1] + occ->xyz[3 * i + 1], shift[2] + occ->xyz[3 * i + 2]};
-            if (isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])) splat(zb, &pr, p, radius);
-        }
+/* The occluders' depth buffer (disks of point_radius) and the lines' depth tolerance; *r_zb stays
+ * NULL without occluders. */
+static pnpr_status depth_buffer(const pnpr_cloud *occ, const double shift[3], const proj *pr, const pnpr_svg_options *o,
+                                const float bmin[3], const float bmax[3], float **r_zb, double *r_tol, pnpr_error *err)
+{
+    *r_zb = NULL;
+    *r_tol = 0;
+    if (!occ || !occ->count) return PNPR_OK;
+    size_t npx = (size_t)pr->w * (size_t)pr->h;
+    float *zb = malloc(npx * sizeof *zb);
+    if (!zb) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "svg: no memory for a %dx%d depth buffer", pr->w, pr->h);
+    for (size_t i = 0; i < npx; i++) zb[i] = INFINITY;
+    double radius = o->point_radius > 0 ? o->point_radius : median_spacing(occ);
+    if (!(radius > 0)) radius = 1e-3 * sqrt((double)(bmax[0] - bmin[0]) * (bmax[0] - bmin[0]) + (double)(bmax[1] - bmin[1]) * (bmax[1] - bmin[1]));
+    *r_tol = o->depth_tolerance > 0 ? o->depth_tolerance : 3 * radius;
+    for (size_t i = 0; i < occ->count; i++) {
+        double p[3] = {shift[0] + occ->xyz[3 * i], shift[1] + occ->xyz[3 * i + 1], shift[2] + occ->xyz[3 * i + 2]};
+        if (isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])) splat(zb, pr, p, radius);
     }
+    *r_zb = zb;
+    return PNPR_OK;
+}
 
-    char tmp[4096];
-    FILE *f;
-    if ((st = pnpr_file_begin(path, tmp, sizeof tmp, &f, err)) != PNPR_OK) { free(zb); return st; }
-    const uint8_t *sc = opts->stroke_rgb;
-    char colour[16];
-    snprintf(colour, sizeof colour, "#%02x%02x%02x", sc[0], sc[1], sc[2]);
-    double width = opts->stroke_width > 0 ? opts->stroke_width : 1.5;
-    int bad = fprintf(f,
-                      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                      "<!-- profile lines by pointnpr %s -->\n"
-                      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\">\n",
-                      PNPR_VERSION_STRING, w, h, w, h) < 0;
-    if (opts->background)
-        bad |= fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"#%02x%02x%02x\"/>\n", opts->background_rgb[0],
-                       opts->background_rgb[1], opts->background_rgb[2]) < 0;
-    bad |= fprintf(f, "<g fill=\"none\" stroke=\"%s\" stroke-width=\"%.2f\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n",
-                   colour, width) < 0;
+/* The profile lines' group: the visible runs of every polyline. */
+static int write_lines(FILE *f, const pnpr_polylines *lines, const proj *pr, const float *zb, double tol,
+                       const pnpr_svg_options *o, double width, const char *colour)
+{
+    int bad = fprintf(f, "<g id=\"lines\" fill=\"none\" stroke=\"%s\" stroke-width=\"%.2f\" stroke-linecap=\"round\" "
+                         "stroke-linejoin=\"round\">\n", colour, width) < 0;
     size_t maxv = 0;
     for (size_t p = 0; p < lines->count; p++)
         if (lines->offset[p + 1] - lines->offset[p] > maxv) maxv = lines->offset[p + 1] - lines->offset[p];
@@ -210,20 +234,77 @@ pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
         for (size_t k = 0; k < m; k++) {
             size_t i = a + k % n;
             double q[3] = {lines->xyz[3 * i], lines->xyz[3 * i + 1], lines->xyz[3 * i + 2]}, z;
-            vis[k] = (uint8_t)project(&pr, q, &xy[2 * k], &xy[2 * k + 1], &z);
-            if (vis[k] && zb) {
-                int px = (int)floor(xy[2 * k]), py = (int)floor(xy[2 * k + 1]);
-                if (px >= 0 && py >= 0 && px < w && py < h) vis[k] = z <= zb[(size_t)py * (size_t)w + (size_t)px] + tol;
+            vis[k] = (uint8_t)project(pr, q, &xy[2 * k], &xy[2 * k + 1], &z);
+            if (vis[k] && zb && xy[2 * k] >= 0 && xy[2 * k + 1] >= 0 && xy[2 * k] < pr->w && xy[2 * k + 1] < pr->h) {
+                int px = (int)xy[2 * k], py = (int)xy[2 * k + 1];
+                vis[k] = z <= zb[(size_t)py * (size_t)pr->w + (size_t)px] + tol;
             }
         }
         for (size_t k = 0; k < m && !bad;) {
             while (k < m && !vis[k]) k++;
             size_t start = k;
             while (k < m && vis[k]) k++;
-            bad |= write_run(f, xy, start, k, opts, width, colour) < 0;
+            bad |= write_run(f, xy, start, k, o, width, colour) < 0;
         }
     }
-    bad |= fprintf(f, "</g>\n</svg>\n") < 0;
-    free(xy); free(vis); free(zb);
+    free(xy);
+    free(vis);
+    return bad ? -1 : fprintf(f, "</g>\n") < 0 ? -1 : 0;
+}
+
+/* The whole drawing: header, background, outlines (when `outl`), lines. */
+static pnpr_status write_drawing(const char *path, const pnpr_polylines *lines, const proj *pr, const float *zb,
+                                 double tol, const pnpr_outline_set *outl, const pnpr_svg_options *o, pnpr_error *err)
+{
+    char tmp[4096];
+    FILE *f;
+    pnpr_status st = pnpr_file_begin(path, tmp, sizeof tmp, &f, err);
+    if (st != PNPR_OK) return st;
+    const uint8_t *sc = o->stroke_rgb;
+    char colour[16];
+    snprintf(colour, sizeof colour, "#%02x%02x%02x", sc[0], sc[1], sc[2]);
+    int bad = fprintf(f,
+                      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                      "<!-- profile lines by pointnpr %s -->\n"
+                      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\">\n",
+                      PNPR_VERSION_STRING, pr->w, pr->h, pr->w, pr->h) < 0;
+    if (o->background)
+        bad |= fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"#%02x%02x%02x\"/>\n", o->background_rgb[0],
+                       o->background_rgb[1], o->background_rgb[2]) < 0;
+    if (outl) bad |= write_outlines(f, outl, o->outline_width > 0 ? o->outline_width : 2, colour) < 0;
+    bad |= write_lines(f, lines, pr, zb, tol, o, o->stroke_width > 0 ? o->stroke_width : 1.5, colour) < 0;
+    bad |= fprintf(f, "</svg>\n") < 0;
     return pnpr_file_commit(f, tmp, path, bad, err);
+}
+
+pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
+                                 const pnpr_camera *camera, const pnpr_svg_options *opts,
+                                 pnpr_error *err)
+{
+    static const pnpr_svg_options defaults;
+    if (!opts) opts = &defaults;
+    int w = 0, h = 0;
+    pnpr_status st = check_options(path, lines, opts, &w, &h, err);
+    if (st != PNPR_OK) return st;
+    /* the lines' frame (the occluders' when there are no line vertices: georeferenced origins
+     * stay out of the float matrices) */
+    const pnpr_cloud *occ = opts->occluders;
+    size_t nv = lines->count ? lines->offset[lines->count] : 0;
+    const double *org = nv == 0 && occ ? occ->origin : lines->origin;
+    double shift[3] = {0, 0, 0};
+    if (occ) for (int a = 0; a < 3; a++) shift[a] = occ->origin[a] - org[a];
+    float bmin[3], bmax[3];
+    frame_bounds(lines, occ, shift, bmin, bmax);
+    proj pr;
+    if ((st = make_projection(camera, org, bmin, bmax, w, h, &pr, err)) != PNPR_OK) return st;
+    float *zb;
+    double tol;
+    if ((st = depth_buffer(occ, shift, &pr, opts, bmin, bmax, &zb, &tol, err)) != PNPR_OK) return st;
+    pnpr_outline_set outl = {0};
+    int outlines = occ && occ->count && opts->outline >= 0;
+    if (outlines) st = pnpr_svg_outlines(occ, shift, &pr.fc, w, h, opts->outline_jump > 0 ? opts->outline_jump : PNPR_OUTLINE_JUMP, &outl, err);
+    if (st == PNPR_OK) st = write_drawing(path, lines, &pr, zb, tol, outlines ? &outl : NULL, opts, err);
+    pnpr_outline_set_free(&outl);
+    free(zb);
+    return st;
 }

@@ -4,9 +4,9 @@
 //   Silhouettes (against no surface): a band u_width px wide whose outer edge is the inset (the
 //   mask disks' overhang) inside the mask's boundary; u_erase: the overhang itself is painted in
 //   the background (a separate draw, without blending).
-//   Contours (against a farther surface): a pixel is inked when a pixel within u_width + 1 px
-//   along one of 8 rays (the minimum filter moved the far side one pixel away) lies farther than
-//   u_jump times the smaller depth extent of the two.
+//   Contours (against a farther surface): a pixel is inked when a pixel between the inset and
+//   the inset + u_width + 1 px along one of 8 rays (the minimum filter moved the far side one
+//   pixel away) lies farther than u_jump times the smaller depth extent of the two.
 // Coverage falls off over the band's last pixel (antialiased). Beyond the frame border the border
 // pixels repeat: the frame's edge is no outline.
 uniform sampler2D u_filled;  // hole-closed info (this pixel)
@@ -36,19 +36,25 @@ void main()
         return;
     }
     float cover = beyond > 0.5 && !speck ? clamp(u_width + 0.5 - beyond, 0.0, 1.0) : 0.0;
-    // the contours: along 8 rays (a disk of radius u_width + 1 sampled by its 8 spokes)
-    int reach = int(ceil(u_width + 1.5));
+    // the contours: along 8 rays (a disk of radius inset + u_width + 1 sampled by its 8 spokes);
+    // the near surface's disks overhang the far one by the inset too: the band lies inside it
+    int reach = int(ceil(inset + u_width + 1.5));
     for (int d = 0; d < 8 && cover < 1.0; d++) {
         ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
                            d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);
         float unit = d >= 4 ? 1.41421356 : 1.0;
         for (int s = 1; s <= reach; s++) {
-            float c = clamp(u_width + 1.5 - float(s) * unit, 0.0, 1.0);
-            if (c <= cover)
+            float past = float(s) * unit - inset;
+            float c = past > 0.5 ? clamp(u_width + 1.5 - past, 0.0, 1.0) : 0.0;
+            if (past > 0.5 && c <= cover)
                 break;
             vec2 v = texelFetch(u_eroded, clamp(p + step * s, ivec2(0), size - 1), 0).xy;
             if (v.y > 0.0 && v.x > me.x + u_jump * min(me.y, v.y)) {
-                cover = c;
+                // the far side must go on for two more pixels (depth noise makes specks)
+                vec2 w = texelFetch(u_eroded, clamp(p + step * (s + 1), ivec2(0), size - 1), 0).xy;
+                vec2 w2 = texelFetch(u_eroded, clamp(p + step * (s + 2), ivec2(0), size - 1), 0).xy;
+                if (w.y > 0.0 && w.x > me.x + u_jump * min(me.y, w.y) && w2.y > 0.0 && w2.x > me.x + u_jump * min(me.y, w2.y))
+                    cover = max(cover, c); // c = 0: this pixel is in the overhang along this ray
                 break;
             }
         }

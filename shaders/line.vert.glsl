@@ -5,6 +5,7 @@
 // are moved onto it in eye space first; depth is interpolated along the segment.
 layout(location = 0) in vec3 a_p0;
 layout(location = 1) in vec3 a_p1;
+layout(location = 2) in float a_length; // the whole polyline's length (world units)
 
 uniform mat4 u_view;     // includes the translation from the lines' origin
 uniform mat4 u_proj;
@@ -13,6 +14,8 @@ uniform float u_width;   // stroke width in pixels
 uniform float u_near;    // near plane distance (> 0)
 uniform float u_pull;    // world units the ends move towards the eye along their view rays
 uniform int u_ortho;     // orthographic: the view rays are parallel to -z
+uniform float u_pixels_per_unit;
+uniform float u_min_px;  // polylines shorter than this on screen (at this segment) are not drawn
 
 out float v_across;      // signed distance from the centre line in pixels
 
@@ -30,6 +33,13 @@ void main()
     } else {
         e0.xyz *= max(1.0 - u_pull / max(length(e0.xyz), 1e-30), 0.05);
         e1.xyz *= max(1.0 - u_pull / max(length(e1.xyz), 1e-30), 0.05);
+    }
+    // an illustrator does not draw a stroke of a few pixels: such polylines are scan noise
+    float depth = u_ortho != 0 ? 1.0 : max(-0.5 * (e0.z + e1.z), 1e-6);
+    if (a_length * u_pixels_per_unit / depth < u_min_px) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        v_across = 0.0;
+        return;
     }
     float lim = -u_near * 1.001; // eye z of points in front of the near plane is below this
     if (e0.z > lim && e1.z > lim) { // wholly behind: a degenerate quad outside the clip volume

@@ -67,7 +67,11 @@ void main()
     vec3 ne = mat3(u_view) * a_normal.xyz;
     if (dot(ne, ne) > 0.25)
         cosv = max(abs(dot(normalize(ne), u_ortho != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eye.xyz))), 0.1);
-    v_info = vec3(-eye.z, max(r / cosv, 1e-30), r);
+    // at least the pixel's footprint: where the disks are about a pixel or smaller, depth steps
+    // between neighbouring pixels come from the surface's slant over a pixel (up to about one
+    // footprint at 45 degrees, more with noisy normals) and the points' range noise, not one disk
+    float footprint = (u_ortho != 0 ? 1.0 : max(clip.w, 1e-6)) / max(u_pixels_per_unit, 1e-30);
+    v_info = vec3(-eye.z, max(max(r / cosv, footprint), 1e-30), r);
     eye.z -= u_depth_push * r; // the camera looks down -z
     vec4 pushed = u_proj * eye;
     // keep the disk's screen position, take the pushed depth

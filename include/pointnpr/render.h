@@ -113,10 +113,22 @@ typedef struct pnpr_svg_options {
     float depth_tolerance;  /* world units; 0 = 3 point radii */
     uint8_t stroke_rgb[3];  /* stroke colour; all 0 = black */
     uint8_t background_rgb[3]; int background; /* background != 0: fill the page with it */
+    /* Outlines: the occluders' silhouettes and occluding contours as <path>s in their own group
+     * <g id="outlines">, before the profile lines (docs/lines.md, "Outlines in the SVG"). Found
+     * with the renderer's rules on a CPU surface buffer of the occluders (disks of 1.5 x the
+     * distance to each point's 4th nearest neighbour; depth extents from cloud->normal when
+     * present): sampling holes enclosed in 8 directions closed, a contour where the surface
+     * behind lies more than `outline_jump` depth extents farther, each line moved inside its
+     * near surface by the disks' overhang. Only what is visible is drawn. */
+    int outline;            /* 0 = on when there are occluders, 1 = on, -1 = off (no occluders:
+                             * no outlines either way) */
+    float outline_width;    /* px; 0 = 2 */
+    float outline_jump;     /* depth extents; 0 = PNPR_OUTLINE_JUMP (style.h) */
 } pnpr_svg_options;
 
 /* camera NULL = pnpr_camera_fit of the occluders (or of the lines when there are none).
- * Written to path + ".tmp" and renamed. */
+ * Written to path + ".tmp" and renamed. PNPR_ERR_INVALID_ARGUMENT for a size outside 1..32768
+ * or a negative / non-finite width, taper, radius, tolerance, outline width or jump. */
 pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
                                  const pnpr_camera *camera, const pnpr_svg_options *opts,
                                  pnpr_error *err);
@@ -181,6 +193,8 @@ typedef struct pnpr_draw_options {
     int ink_from_points;   /* strokes take the point colour instead of `ink` */
     pnpr_composite composite;
     float line_width;      /* lines: stroke width in pixels (0 = 2) */
+    float line_min_px;     /* lines: profile lines (whole polylines) shorter than this many pixels
+                            * on screen are not drawn: scan noise makes such scribbles (0 = 8) */
     float faint;           /* lines: 0..1, the cloud drawn faintly under the lines (its colours
                             * mixed with the background, this much of the point colour); 0 = none */
     float dot_size;        /* stipple: dot diameter in pixels (0 = 2.5) */
@@ -190,9 +204,9 @@ typedef struct pnpr_draw_options {
      * over the style. Defaults per style: pnpr_style_outline_default. */
     int outline;           /* 0 = the style's default, 1 = on, -1 = off */
     float outline_width;   /* px; 0 = the style's default */
-    float outline_jump;    /* a contour is a depth jump of more than this many mask-disk radii (0 = 2) */
+    float outline_jump;    /* a contour is a depth jump of more than this many depth extents (0 = PNPR_OUTLINE_JUMP) */
     float outline_hole;    /* gaps enclosed on all sides within this many projected mask-disk radii
-                            * are sampling holes, not outlines (0 = 4; at most 32 px) */
+                            * are sampling holes, not outlines (0 = PNPR_OUTLINE_HOLE; at most 32 px) */
     int paint_no_sky_mask; /* painterly: no stencil test in the large passes (paper fig. 8 left) */
     int paint_no_strokes;  /* painterly: no directional strokes on top */
     /* An explicit camera (pnpr_camera_matrices, caller-owned, read during the call only) that

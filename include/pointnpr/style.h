@@ -34,6 +34,13 @@ const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", 
 pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 /* Styles drawn from the feature classes (sketchy, stipple, painterly). */
 int pnpr_style_needs_features(pnpr_style style);
+/* Outline defaults shared by the renderer and the SVG export (docs/rendering.md, "Silhouettes and
+ * contours"): a contour is a depth jump of more than PNPR_OUTLINE_JUMP depth extents (3: chosen
+ * on the quality scene, where 2 let 8 mm range noise near a scanner ink the ground); sampling
+ * holes are closed within PNPR_OUTLINE_HOLE projected disk radii. */
+#define PNPR_OUTLINE_JUMP 3.0f
+#define PNPR_OUTLINE_HOLE 4.0f
+
 /* The outline a style draws by default: 1 on / 0 off, and its width in px (r_width may be NULL). */
 int pnpr_style_outline_default(pnpr_style style, float *r_width);
 

@@ -409,6 +409,7 @@ static int bench_accuracy(const char *dir, int quick)
 int cli_bench(int argc, char **argv)
 {
     const char *what = argc > 1 ? argv[1] : NULL, *dir = "bench-accuracy";
+    if (what && !strcmp(what, "quality")) return cli_bench_quality(argc, argv); /* cmd_bench_quality.c */
     int quick = 0;
     for (int i = 2; i < argc; i++) {
         if (!strcmp(argv[i], "--quick")) quick = 1;
@@ -417,7 +418,9 @@ int cli_bench(int argc, char **argv)
     }
     if (!what || strcmp(what, "accuracy")) {
         fprintf(stderr, "usage: pointnpr bench accuracy [--out DIR] [--quick]\n"
-                        "  error against run time of the feature analysis (docs/work-precision.md)\n");
+                        "  error against run time of the feature analysis (docs/work-precision.md)\n"
+                        "       pointnpr bench quality [--full | --sparse] [-o DIR] [--check]\n"
+                        "  picture-quality figures of every style on a generated scene (docs/quality.md)\n");
         return what && (!strcmp(what, "--help") || !strcmp(what, "-h")) ? 0 : 2;
     }
     return bench_accuracy(dir, quick);

@@ -3,6 +3,7 @@
 
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/plan.h>
 #ifdef PNPR_HAVE_RENDER
 #include <pointnpr/render.h>
 #endif
@@ -37,9 +38,13 @@ static void usage(FILE *f)
             "  --camera FILE        the SVG's camera from a file (as written by render --save-camera)\n"
             "  --stroke-width PX    SVG stroke width (default 1.5)\n"
             "  --taper F            strokes narrow to a point over the fraction F of their length\n"
-            "  --show-hidden        keep hidden parts in the SVG\n"
+            "  --show-hidden        keep hidden parts in the SVG (and draw no outlines)\n"
+            "  --outline on|off     the SVG gets IN's silhouettes and occluding contours as paths\n"
+            "                       (default on; docs/lines.md)\n"
+            "  --outline-width PX   their stroke width (default 2)\n"
+            "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default %g)\n"
             "  --k N, --threshold T feature options used when features are computed\n"
-            "  --quiet              no progress on stderr\n");
+            "  --quiet              no progress on stderr\n", (double)PNPR_OUTLINE_JUMP);
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -48,14 +53,98 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }
 
+/* The SVG drawing's options. */
+typedef struct svg_args {
+    const char *path;
+    int show_hidden, outline; /* outline: 0 default (on), 1 on, -1 off */
+    double stroke, taper, outline_width, outline_jump;
+} svg_args;
+
+/* Parses argv[*i] when it is an SVG option: 1 taken (*i advanced past its value), 0 not an SVG
+ * option, -1 a bad value (reported). */
+static int svg_option(svg_args *s, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    int ok = 1;
+    if (!strcmp(a, "--show-hidden")) { s->show_hidden = 1; return 1; }
+    if (!v) return 0;
+    if (!strcmp(a, "--svg")) s->path = v;
+    else if (!strcmp(a, "--stroke-width")) ok = cli_parse_number(v, 1e-3, 1e3, &s->stroke);
+    else if (!strcmp(a, "--taper")) ok = cli_parse_number(v, 0, 1, &s->taper);
+    else if (!strcmp(a, "--outline")) {
+        ok = !strcmp(v, "on") || !strcmp(v, "off");
+        s->outline = !strcmp(v, "on") ? 1 : -1;
+    } else if (!strcmp(a, "--outline-width")) ok = cli_parse_number(v, 0.1, 64, &s->outline_width);
+    else if (!strcmp(a, "--outline-jump")) ok = cli_parse_number(v, 0.01, 1e3, &s->outline_jump);
+    else return 0;
+    (*i)++;
+    if (ok) return 1;
+    const char *want = !strcmp(a, "--stroke-width") ? "a positive number of pixels"
+                       : !strcmp(a, "--taper")      ? "a fraction in [0,1]"
+                       : !strcmp(a, "--outline")    ? "on or off"
+                       : !strcmp(a, "--outline-width") ? "pixels in [0.1, 64]"
+                                                    : "a positive number";
+    fprintf(stderr, "pointnpr lines: %s wants %s, got '%s'\n", a, want, v);
+    return -1;
+}
+
+/* Runs the stage plan for profile lines (+ normals for the SVG's outlines, which weigh depth jumps
+ * by the surface's slant): computes only what the cloud does not carry. 0 on failure (reported). */
+static int run_plan(const char *in, pnpr_cloud *cloud, pnpr_features_options *fo, int outline_normals, int quiet)
+{
+    pnpr_plan_request req = {0};
+    req.lines = 1;
+    if (outline_normals) req.want = PNPR_WANT_NORMALS_ANY;
+    pnpr_plan plan;
+    pnpr_status st = pnpr_plan_make(&req, cloud, &plan);
+    if (st == PNPR_OK && plan.want) {
+        if (!quiet && (plan.want & PNPR_WANT_CLASSES)) fprintf(stderr, "%s has no feature properties: computing them\n", in);
+        else if (!quiet) fprintf(stderr, "%s has no normals: computing them for the outlines\n", in);
+        fo->want = plan.want;
+        st = pnpr_compute_features(cloud, fo, NULL);
+    }
+    if (st != PNPR_OK) fprintf(stderr, "pointnpr lines: %s: features: %s\n", in, pnpr_status_string(st));
+    return st == PNPR_OK;
+}
+
+/* Draws the lines (and the cloud's outlines) as SVG; 0 on failure (reported). */
+static int write_svg(const svg_args *sa, const cli_view *view, const pnpr_polylines *lines, const pnpr_cloud *cloud,
+                     int quiet)
+{
+#ifdef PNPR_HAVE_RENDER
+    pnpr_svg_options so = {0};
+    so.width = view->width;
+    so.height = view->height;
+    so.stroke_width = (float)sa->stroke;
+    so.taper = (float)sa->taper;
+    so.occluders = sa->show_hidden ? NULL : cloud;
+    so.outline = sa->outline;
+    so.outline_width = (float)sa->outline_width;
+    so.outline_jump = (float)sa->outline_jump;
+    pnpr_camera cam;
+    pnpr_error err = {0};
+    const pnpr_camera *camp = cli_view_camera(view, cloud, &cam);
+    pnpr_status st = pnpr_write_lines_svg(sa->path, lines, camp, &so, &err);
+    if (st != PNPR_OK) {
+        cli_report_error("lines", st, &err);
+        return 0;
+    }
+    if (!quiet) fprintf(stderr, "wrote %s\n", sa->path);
+    return 1;
+#else
+    (void)sa; (void)view; (void)lines; (void)cloud; (void)quiet;
+    return 0;
+#endif
+}
+
 int cli_lines(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
     pnpr_lines_options lo = {0};
     pnpr_features_options fo = {0};
-    int quiet = 0, show_hidden = 0;
-    const char *svg = NULL;
-    double stroke = 0, taper = 0;
+    int quiet = 0;
+    svg_args sa;
+    memset(&sa, 0, sizeof sa);
     cli_view view;
     cli_view_init(&view, 1024, 768);
     for (int i = 1; i < argc; i++) {
@@ -64,17 +153,11 @@ int cli_lines(int argc, char **argv)
         int vo = cli_view_option(&view, "lines", argc, argv, &i);
         if (vo < 0) return 2;
         if (vo > 0) continue;
+        int so = svg_option(&sa, argc, argv, &i);
+        if (so < 0) return 2;
+        if (so > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
-        else if (!strcmp(a, "--show-hidden")) show_hidden = 1;
-        else if (v && !strcmp(a, "--svg")) { svg = v; i++; }
-        else if (v && !strcmp(a, "--stroke-width")) {
-            if (!cli_parse_number(v, 1e-3, 1e3, &stroke)) { fprintf(stderr, "pointnpr lines: --stroke-width wants a positive number of pixels, got '%s'\n", v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--taper")) {
-            if (!cli_parse_number(v, 0, 1, &taper)) { fprintf(stderr, "pointnpr lines: --taper wants a fraction in [0,1], got '%s'\n", v); return 2; }
-            i++;
-        }
         else if (!strcmp(a, "--no-corners")) lo.no_corners = 1;
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
         else if (v && (!strcmp(a, "--spacing") || !strcmp(a, "--radius") || !strcmp(a, "--merge-tol") ||
@@ -104,7 +187,7 @@ int cli_lines(int argc, char **argv)
     if (!in || !out) { usage(stderr); return 2; }
     if (!cli_view_check(&view, "lines")) return 2;
 #ifndef PNPR_HAVE_RENDER
-    if (svg) { fprintf(stderr, "pointnpr lines: --svg needs the renderer, which this build does not have\n"); return 2; }
+    if (sa.path) { fprintf(stderr, "pointnpr lines: --svg needs the renderer, which this build does not have\n"); return 2; }
 #endif
     int as_ply = ends_with(out, ".ply");
     if (!as_ply && !ends_with(out, ".obj")) {
@@ -122,16 +205,9 @@ int cli_lines(int argc, char **argv)
     pnpr_error err = {0};
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("lines", st, &err); return 1; }
-    if (!pnpr_cloud_find_property(&cloud, "feature_class") || !pnpr_cloud_find_property(&cloud, "feature_dir_x") ||
-        !pnpr_cloud_find_property(&cloud, "feature_dir_y") || !pnpr_cloud_find_property(&cloud, "feature_dir_z")) {
-        if (!quiet) fprintf(stderr, "%s has no feature properties: computing them\n", in);
-        fo.want = PNPR_WANT_CLASSES; /* lines need directional points, not dithering or normals */
-        st = pnpr_compute_features(&cloud, &fo, NULL);
-        if (st != PNPR_OK) {
-            fprintf(stderr, "pointnpr lines: %s: features: %s\n", in, pnpr_status_string(st));
-            pnpr_cloud_free(&cloud);
-            return 1;
-        }
+    if (!run_plan(in, &cloud, &fo, sa.path && !sa.show_hidden && sa.outline >= 0, quiet)) {
+        pnpr_cloud_free(&cloud);
+        return 1;
     }
     pnpr_polylines lines = {0};
     pnpr_lines_stats stats;
@@ -141,28 +217,11 @@ int cli_lines(int argc, char **argv)
         pnpr_cloud_free(&cloud);
         return 1;
     }
-#ifdef PNPR_HAVE_RENDER
-    if (svg) {
-        pnpr_svg_options so = {0};
-        so.width = view.width;
-        so.height = view.height;
-        so.stroke_width = (float)stroke;
-        so.taper = (float)taper;
-        so.occluders = show_hidden ? NULL : &cloud;
-        pnpr_camera cam;
-        const pnpr_camera *camp = cli_view_camera(&view, &cloud, &cam);
-        st = pnpr_write_lines_svg(svg, &lines, camp, &so, &err);
-        if (st != PNPR_OK) {
-            cli_report_error("lines", st, &err);
-            pnpr_lines_free(&lines);
-            pnpr_cloud_free(&cloud);
-            return 1;
-        }
-        if (!quiet) fprintf(stderr, "wrote %s\n", svg);
+    if (sa.path && !write_svg(&sa, &view, &lines, &cloud, quiet)) {
+        pnpr_lines_free(&lines);
+        pnpr_cloud_free(&cloud);
+        return 1;
     }
-#else
-    (void)show_hidden; (void)stroke; (void)taper;
-#endif
     pnpr_cloud_free(&cloud);
     if (stats.directional_points == 0)
         fprintf(stderr, "pointnpr lines: %s has no directional feature points: no lines (the output is empty)\n", in);

@@ -53,6 +53,8 @@ static void usage(FILE *f)
             "  --seed S             continuous resolution queue seed (default 0)\n"
             "  --point-scale F      disk radius multiplier (default 1)\n"
             "  --line-width PX      lines: stroke width in pixels (default 2)\n"
+            "  --line-min PX        lines: profile lines shorter than PX on screen are left out (scan\n"
+            "                       noise scribbles; default 8)\n"
             "  --dot-size PX        stipple: dot diameter in pixels (default 2.5)\n"
             "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
             "                       (PLY property segment or label, pointnpr segment; default 4)\n"
@@ -67,9 +69,9 @@ static void usage(FILE *f)
             "  --outline on|off     silhouettes and occluding contours (default: on for lines, cartoon\n"
             "                       and sketchy, off for the others)\n"
             "  --outline-width PX   their width in pixels (default: lines and cartoon 2.5, sketchy 1.5)\n"
-            "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default 2)\n"
+            "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default %g)\n"
             "  --outline-hole F     gaps enclosed within F projected disk extents are sampling holes,\n"
-            "                       not outlines (default 4)\n"
+            "                       not outlines (default %g)\n"
             "  --paint-bins N       painterly: feature-degree bins = passes, 1..16 (default 4)\n"
             "  --faint F            lines: draw the cloud faintly under the lines, F in (0,1]\n"
             "                       of the point colour (default: lines only)\n"
@@ -80,7 +82,8 @@ static void usage(FILE *f)
             "  --quiet              no progress on stderr\n"
             "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
             "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
-            "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n");
+            "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n",
+            (double)PNPR_OUTLINE_JUMP, (double)PNPR_OUTLINE_HOLE);
 }
 
 /* Reads a style map file: lines "LABEL STYLE" and "* STYLE" (the default), '#' comments, blank
@@ -263,6 +266,9 @@ int cli_render(int argc, char **argv)
         } else if (v && !strcmp(a, "--line-width")) {
             if (!cli_parse_number(v, 1e-2, 1e3, &x)) { fprintf(stderr, "pointnpr render: --line-width wants a positive number of pixels, got '%s'\n", v); return 2; }
             dopt.line_width = (float)x; i++;
+        } else if (v && !strcmp(a, "--line-min")) {
+            if (!cli_parse_number(v, 0.01, 1e4, &x)) { fprintf(stderr, "pointnpr render: --line-min wants a positive number of pixels, got '%s'\n", v); return 2; }
+            dopt.line_min_px = (float)x; i++;
         } else if (v && !strcmp(a, "--dot-size")) {
             if (!cli_parse_number(v, 1e-2, 1e3, &x)) { fprintf(stderr, "pointnpr render: --dot-size wants a positive number of pixels, got '%s'\n", v); return 2; }
             dopt.dot_size = (float)x; i++;
