@@ -19,6 +19,9 @@ pnpr_status pnpr_parallel_for(size_t n, size_t chunk, int threads, pnpr_range_fn
 pnpr_status pnpr_file_begin(const char *path, char *tmp, size_t cap, FILE **r_f, pnpr_error *err);
 pnpr_status pnpr_file_commit(FILE *f, const char *tmp, const char *path, int write_failed, pnpr_error *err);
 
+/* Prefixes err->message with "path: " (truncating the message's end if needed). NULL err ok. */
+void pnpr_error_prefix_path(pnpr_error *err, const char *path);
+
 /* Monotonic clock in seconds. */
 double pnpr_now(void);
 

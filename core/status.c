@@ -1,9 +1,11 @@
 /* Status strings, error details, progress reporting, thread count. */
 #include <pointnpr/core.h>
+#include "internal.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 const char *pnpr_status_string(pnpr_status status)
@@ -58,4 +60,18 @@ int pnpr_default_threads(void)
 void pnpr_free(void *p)
 {
     free(p);
+}
+
+void pnpr_error_prefix_path(pnpr_error *err, const char *path)
+{
+    if (!err || !path) return;
+    char msg[sizeof err->message];
+    size_t np = strlen(path), nm = strnlen(err->message, sizeof err->message - 1);
+    if (np > sizeof msg - 3) np = sizeof msg - 3;
+    memcpy(msg, path, np);
+    memcpy(msg + np, ": ", 2);
+    if (nm > sizeof msg - 1 - (np + 2)) nm = sizeof msg - 1 - (np + 2);
+    memcpy(msg + np + 2, err->message, nm);
+    msg[np + 2 + nm] = '\0';
+    memcpy(err->message, msg, sizeof msg);
 }

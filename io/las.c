@@ -34,6 +34,7 @@
  * Errors are precise (PNPR_ERR_FORMAT / TRUNCATED / UNSUPPORTED with the byte offset in
  * pnpr_error.offset where it helps); the size of the point data is checked against the bytes
  * present before anything is allocated, and every size computation is overflow-checked. */
+#include "../core/internal.h"
 #include <pointnpr/io.h>
 
 #include <errno.h>
@@ -327,21 +328,6 @@ pnpr_status pnpr_read_las_memory(const void *data, size_t size, const pnpr_read_
     return st;
 }
 
-/* Prefixes err->message with "<path>: " (truncating at the end if needed). */
-static void las_prefix_path(pnpr_error *err, const char *path)
-{
-    if (!err) return;
-    const size_t cap = sizeof err->message;
-    size_t pl = strlen(path), ml = strlen(err->message);
-    if (pl > cap - 3) pl = cap - 3;
-    size_t keep = ml < cap - 1 - (pl + 2) ? ml : cap - 1 - (pl + 2);
-    memmove(err->message + pl + 2, err->message, keep);
-    memcpy(err->message, path, pl);
-    err->message[pl] = ':';
-    err->message[pl + 1] = ' ';
-    err->message[pl + 2 + keep] = '\0';
-}
-
 pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
                                pnpr_error *err)
 {
@@ -381,7 +367,7 @@ pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, 
     fclose(f);
     if (st == PNPR_OK) {
         st = pnpr_read_las_memory(buf, len, opts, cloud, err);
-        if (st != PNPR_OK) las_prefix_path(err, path);
+        if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
     }
     free(buf);
     return st;

@@ -954,20 +954,6 @@ pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_
     return PNPR_OK;
 }
 
-/* Prefixes err->message with "path: ". */
-static void prefix_path(pnpr_error *err, const char *path)
-{
-    if (!err) return;
-    char msg[sizeof err->message];
-    size_t np = strlen(path), nm = strnlen(err->message, sizeof err->message - 1);
-    if (np > sizeof msg - 3) np = sizeof msg - 3;
-    memcpy(msg, path, np);
-    memcpy(msg + np, ": ", 2);
-    if (nm > sizeof msg - 1 - (np + 2)) nm = sizeof msg - 1 - (np + 2);
-    memcpy(msg + np + 2, err->message, nm);
-    msg[np + 2 + nm] = '\0';
-    memcpy(err->message, msg, sizeof msg);
-}
 
 /* The whole file in memory (regular files and pipes). */
 static pnpr_status slurp(FILE *fp, const char *path, unsigned char **r_buf, size_t *r_len, pnpr_error *err)
@@ -1010,7 +996,7 @@ pnpr_status pnpr_read_pcd_file(const char *path, const pnpr_read_options *opts, 
     if (st != PNPR_OK) return st;
     st = pnpr_read_pcd_memory(buf, len, opts, cloud, err);
     free(buf);
-    if (st != PNPR_OK) prefix_path(err, path);
+    if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
     return st;
 }
 
@@ -1288,7 +1274,7 @@ pnpr_status pnpr_write_pcd_file(const char *path, const pnpr_cloud *cloud, const
     pnpr_status st = pnpr_file_begin(path, tmp, cap, &f, err);
     if (st == PNPR_OK) {
         st = pnpr_write_pcd_stream(file_sink, f, cloud, opts, err);
-        if (st != PNPR_OK) prefix_path(err, path);
+        if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
         pnpr_error cerr;
         pnpr_status cst = pnpr_file_commit(f, tmp, path, st != PNPR_OK, &cerr);
         if (st == PNPR_OK && cst != PNPR_OK) {

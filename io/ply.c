@@ -65,6 +65,7 @@
  *
  * Numbers are written and read in the "C" form whatever LC_NUMERIC says.
  */
+#include "../core/internal.h"
 #include <pointnpr/io.h>
 
 #include <errno.h>
@@ -1258,20 +1259,6 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
     return PNPR_OK;
 }
 
-/* Prefixes err->message with "path: ". */
-static void prefix_path(pnpr_error *err, const char *path)
-{
-    if (!err) return;
-    char msg[sizeof err->message];
-    size_t np = strlen(path), nm = strnlen(err->message, sizeof err->message - 1);
-    if (np > sizeof msg - 3) np = sizeof msg - 3;
-    memcpy(msg, path, np);
-    memcpy(msg + np, ": ", 2);
-    if (nm > sizeof msg - 1 - (np + 2)) nm = sizeof msg - 1 - (np + 2);
-    memcpy(msg + np + 2, err->message, nm);
-    msg[np + 2 + nm] = '\0';
-    memcpy(err->message, msg, sizeof msg);
-}
 
 pnpr_status pnpr_read_ply_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
                                pnpr_error *err)
@@ -1316,7 +1303,7 @@ pnpr_status pnpr_read_ply_file(const char *path, const pnpr_read_options *opts, 
     }
     pnpr_status st = pnpr_read_ply_memory(buf, len, opts, cloud, err);
     free(buf);
-    if (st != PNPR_OK) prefix_path(err, path);
+    if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
     return st;
 }
 
@@ -1842,7 +1829,7 @@ pnpr_status pnpr_write_ply_file(const char *path, const pnpr_cloud *cloud,
     pnpr_status st = pnpr_write_ply_stream(file_sink, fp, cloud, opts, err);
     if (st != PNPR_OK) {
         fclose(fp);
-        prefix_path(err, path);
+        pnpr_error_prefix_path(err, path);
     } else if (fclose(fp) != 0) {
         st = fail_at(err, PNPR_ERR_IO, 0, -1, "%s: cannot write %s: %s", path, tmp, strerror(errno));
     } else if (rename(tmp, path) != 0) {
