@@ -9,7 +9,9 @@
 #include <epoxy/gl.h>
 
 typedef struct pnpr_edges {
-    GLuint prog_fill, prog_erode, prog_ink, vao;
+    GLuint prog_fill, prog_erode, prog_ink, prog_cover, vao;
+    GLint uc_src, uc_block, uf_cover, ue_cover;
+    GLuint cover_fbo[2], cover_tex[2]; /* coarse coverage: 32-px blocks of the info, 16-px of tex[0] */
     GLint uf_info, uf_reach, uf_jump, uf_hole, uf_ppu, uf_ortho, uf_surface_reach, uf_skip_level;
     GLint ue_filled, ue_ppu, ue_ortho, ue_inset, ue_inset_max, ue_limit, ue_radius, ue_skip_level;
     GLint ui_filled, ui_eroded, ui_width, ui_jump, ui_ink, ui_erase, ui_background;
@@ -38,9 +40,9 @@ enum { PNPR_EDGE_MAX_INSET = 8 };
 /* Longest march of the hole closing, in pixels (tiles add it to their guard band). */
 enum { PNPR_EDGE_MAX_REACH = 32 };
 /* Longest hole march from a pixel that shows a surface (holes through which a farther surface is
- * seen), and the mipmap levels of the shortcuts: 2^5 = 32 px (the reach), 2^4 = 16 px (the
- * distance to no surface). The mask's info texture needs PNPR_EDGE_MIP_LEVELS levels. */
-enum { PNPR_EDGE_SURFACE_REACH = 8, PNPR_EDGE_SKIP_FILL = 5, PNPR_EDGE_SKIP_ERODE = 4, PNPR_EDGE_MIP_LEVELS = 6 };
+ * seen), and the block sizes (log2) of the shortcuts' coarse coverage: 2^5 = 32 px (the reach),
+ * 2^4 = 16 px (the distance to no surface). */
+enum { PNPR_EDGE_SURFACE_REACH = 8, PNPR_EDGE_SKIP_FILL = 5, PNPR_EDGE_SKIP_ERODE = 4 };
 
 /* Programs and the fullscreen VAO; PNPR_ERR_UNSUPPORTED (message in err) when a shader fails. */
 pnpr_status pnpr_edges_create(pnpr_edges *e, pnpr_error *err);

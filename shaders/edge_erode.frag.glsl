@@ -20,8 +20,9 @@ uniform float u_inset_floor;
 uniform float u_inset_max;
 uniform float u_limit;
 uniform float u_width;   // the outline width (px)
-uniform int u_skip_level;  // a mipmap level of u_filled whose 3x3 texels around a pixel span at
-                           // least u_limit px: all covered (w = 1), no empty pixel is that near
+uniform sampler2D u_cover; // coarse coverage of u_filled (edge_cover.frag), blocks of 2^u_skip_level px
+uniform int u_skip_level;  // its 3x3 texels around a pixel span at least u_limit px: all covered,
+                           // no empty pixel is that near (0 = no shortcut)
 out vec4 o_info;
 
 // Near a silhouette: is the surface here more than a speck? Some run of surface pixels from p
@@ -74,12 +75,12 @@ void main()
     float dist = u_limit;
     int steps = int(u_limit);
     if (u_skip_level > 0) {
-        ivec2 b = p >> u_skip_level, bs = textureSize(u_filled, u_skip_level);
+        ivec2 b = p >> u_skip_level, bs = textureSize(u_cover, 0);
         float cover = 0.0;
         for (int dy = -1; dy <= 1; dy++)
             for (int dx = -1; dx <= 1; dx++)
-                cover += texelFetch(u_filled, clamp(b + ivec2(dx, dy), ivec2(0), bs - 1), u_skip_level).w;
-        if (cover >= 8.9999)
+                cover += texelFetch(u_cover, clamp(b + ivec2(dx, dy), ivec2(0), bs - 1), 0).g;
+        if (cover >= 8.5)
             steps = 0;
     }
     for (int d = 0; d < 8; d++) {

@@ -20,9 +20,9 @@ uniform float u_hole;     // largest hole in projected disk radii
 uniform float u_ppu;      // pixels per world unit at eye distance 1 (orthographic: at any distance)
 uniform int u_ortho;
 uniform int u_surface_reach; // longest march from a pixel that shows a surface (see-through holes)
-uniform int u_skip_level;    // a mipmap level of u_info whose 3x3 texels around a pixel span at
-                             // least u_reach px (w = covered fraction): nothing covered there,
-                             // nothing closes an empty pixel (0 = no shortcut)
+uniform sampler2D u_cover;   // coarse coverage (edge_cover.frag): blocks of 2^u_skip_level px
+uniform int u_skip_level;    // its 3x3 texels around a pixel span at least u_reach px: nothing
+                             // covered there, nothing closes an empty pixel (0 = no shortcut)
 out vec4 o_info;      // eye distance, depth extent, radius (holes: the mean of their closers), coverage
 
 float radius_px(vec3 s)
@@ -72,11 +72,11 @@ void main()
     float z = empty ? 3.0e38 : me.x;
     float extent = empty ? 3.0e38 : me.y;
     if (empty && u_skip_level > 0) {
-        ivec2 b = p >> u_skip_level, bs = textureSize(u_info, u_skip_level);
+        ivec2 b = p >> u_skip_level, bs = textureSize(u_cover, 0);
         float cover = 0.0;
         for (int dy = -1; dy <= 1; dy++)
             for (int dx = -1; dx <= 1; dx++)
-                cover += texelFetch(u_info, clamp(b + ivec2(dx, dy), ivec2(0), bs - 1), u_skip_level).w;
+                cover += texelFetch(u_cover, clamp(b + ivec2(dx, dy), ivec2(0), bs - 1), 0).r;
         if (cover <= 0.0) {
             o_info = vec4(0.0);
             return;
@@ -88,6 +88,13 @@ void main()
     int slit_pairs = 0, failed_pairs = 0;
     for (int pair = 0; pair < 4 && (hole || failed_pairs < 2); pair++) {
         vec4 a = march(p, size, 2 * pair, reach, z, extent);
+        if (a.w <= 0.0) { // neither a hole nor this pair of a slit: the opposite side is not needed
+            hole = false;
+            failed_pairs++;
+            if (!empty)
+                break; // a surface pixel is only ever closed as a hole
+            continue;
+        }
         vec4 b = march(p, size, 2 * pair + 1, reach, z, extent);
         hole = hole && a.w > 0.0 && b.w > 0.0 && a.w <= u_hole * radius_px(a.xyz) && b.w <= u_hole * radius_px(b.xyz);
         hole_sum += a.xyz + b.xyz;
