@@ -23,12 +23,16 @@ int pnpr_style_needs_features(pnpr_style s)
     return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE || s == PNPR_STYLE_PAINTERLY;
 }
 
-/* Outlines by default: the line drawing and the cartoon are first of all outlines; the pencil
- * sketch gets a lighter one; points, stipple and painterly none (docs/rendering.md). */
+/* Outlines by default: the line drawing and the cartoon are first of all outlines; the other
+ * styles draw none unless asked (`outline` 1; the sketch reads well with a 1.5 px one, but the
+ * outline passes would cost it more than issue 11's frame-time budget on llvmpipe:
+ * docs/benchmarks.md). */
 int pnpr_style_outline_default(pnpr_style s, float *r_width)
 {
-    static const float width[PNPR_STYLE_COUNT_] = {0, 1.5f, 2.5f, 0, 2.5f, 0};
-    float w = (unsigned)s < PNPR_STYLE_COUNT_ ? width[s] : 0;
-    if (r_width) *r_width = w;
-    return w > 0;
+    /* points, sketchy, lines, stipple, cartoon, painterly: on by default; width when drawn */
+    static const int on[PNPR_STYLE_COUNT_] = {0, 0, 1, 0, 1, 0};
+    static const float width[PNPR_STYLE_COUNT_] = {2, 1.5f, 2.5f, 1.5f, 2.5f, 2};
+    int valid = (unsigned)s < PNPR_STYLE_COUNT_;
+    if (r_width) *r_width = valid ? width[s] : 0;
+    return valid && on[s];
 }

@@ -1464,8 +1464,8 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
     int mapped = vstyle != NULL;
     /* outlines: after the style's passes, from the mask's surface info (written only then) */
     float outline_width = 0;
-    int outline = o.outline ? o.outline > 0 : pnpr_style_outline_default(o.style, &outline_width);
-    pnpr_style_outline_default(o.style, &outline_width);
+    int outline = pnpr_style_outline_default(o.style, &outline_width);
+    if (o.outline) outline = o.outline > 0;
     if (o.outline_width > 0) outline_width = o.outline_width;
     outline = outline && !mapped && o.style != PNPR_STYLE_PAINTERLY && o.style != PNPR_STYLE_POINTS && n_draw > 0;
     int sketchy = o.style == PNPR_STYLE_SKETCHY, lines = o.style == PNPR_STYLE_LINES;

@@ -17,7 +17,8 @@ expect "--style sketchy --sketch a" "classify" run
 expect "--style sketchy --sketch a" "dither" skip
 expect "--style sketchy --sketch c" "dither" run
 expect "--style sketchy" "orient" skip  # the tone's key light is two-sided: no orientation
-expect "--style sketchy" "normals \(PCA\)" run   # outlines weigh depth jumps by the normals
+expect "--style sketchy --outline on" "normals \(PCA\)" run   # outlines weigh depth jumps by the normals
+expect "--style lines" "orient" skip
 expect "--style cartoon" "normals \(PCA\)" run
 expect "--style cartoon --outline off" "kd-tree \+ knn" skip  # colours assumed: JSEG only
 expect "--style stipple" "dither" run
@@ -32,8 +33,8 @@ expect "--features" "orient" run
 # an input that carries the features: everything reused, nothing recomputed
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float feature_degree\nproperty uchar feature_class\nproperty float feature_dir_x\nproperty float feature_dir_y\nproperty float feature_dir_z\nend_header\n0 0 0 0 0 0 0 0\n1 0 0 0 0 0 0 0\n0 1 0 0 0 0 0 0\n' > "$dir/f.ply"
 expect "$dir/f.ply --style sketchy" "classify" skip
-expect "$dir/f.ply --style sketchy" "normals \(PCA\)" run   # the outlines want normals f.ply lacks
-expect "$dir/f.ply --style sketchy --outline off" "kd-tree \+ knn" skip
+expect "$dir/f.ply --style sketchy --outline on" "normals \(PCA\)" run   # the outlines want normals f.ply lacks
+expect "$dir/f.ply --style sketchy" "kd-tree \+ knn" skip
 expect "$dir/f.ply --style points" "normals \(PCA\)" run    # colourless: shaded from normals
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n0 0 0 1 2 3\n1 0 0 1 2 3\n0 1 0 1 2 3\n' > "$dir/c.ply"
 expect "$dir/c.ply --style sketchy" "orient" skip

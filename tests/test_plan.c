@@ -35,9 +35,11 @@ static void test_styles(void)
     CHECK_STATUS(pnpr_cloud_alloc_labels(&coloured), PNPR_OK);
     p = plan_for(S(CARTOON), -1, &coloured);
     CHECK(p.segments == PNPR_PLAN_SEGMENTS_INPUT && p.want == 0);
-    p = plan_for(S(SKETCHY), 0, &coloured); /* variant c (zero) */
-    CHECK(p.want == (PNPR_WANT_DITHER | PNPR_WANT_CLASSES | PNPR_WANT_DEGREE | PNPR_WANT_NORMALS_ANY));
-    CHECK(p.why[3] != NULL && p.why[4] != NULL && p.segments == PNPR_PLAN_SEGMENTS_NONE);
+    p = plan_for(S(SKETCHY), 0, &coloured); /* variant c (zero), no outline by default */
+    CHECK(p.want == (PNPR_WANT_DITHER | PNPR_WANT_CLASSES | PNPR_WANT_DEGREE));
+    CHECK(p.why[3] != NULL && p.why[4] == NULL && p.segments == PNPR_PLAN_SEGMENTS_NONE);
+    p = plan_for(S(SKETCHY), 1, &coloured); /* outline asked for: normals */
+    CHECK(p.want == (PNPR_WANT_DITHER | PNPR_WANT_CLASSES | PNPR_WANT_DEGREE | PNPR_WANT_NORMALS_ANY) && p.why[4] != NULL);
     p = plan_for(S(STIPPLE), 0, &coloured); /* stipple draws no outline by default */
     CHECK(p.want == (PNPR_WANT_DITHER | PNPR_WANT_CLASSES | PNPR_WANT_DEGREE));
     p = plan_for(S(LINES), 0, &coloured);
@@ -48,8 +50,8 @@ static void test_styles(void)
     CHECK(p.want == PNPR_WANT_NORMALS_ANY);
     p = plan_for(S(PAINTERLY), 0, &coloured);
     CHECK(p.want == (PNPR_WANT_DEGREE | PNPR_WANT_CLASSES));
-    p = plan_for(S(POINTS) | S(SKETCHY), 0, NULL); /* unknown content: planned as coloured */
-    CHECK(p.want == (PNPR_WANT_DITHER | PNPR_WANT_CLASSES | PNPR_WANT_DEGREE | PNPR_WANT_NORMALS_ANY));
+    p = plan_for(S(LINES) | S(SKETCHY), 0, NULL); /* unknown content: planned as coloured */
+    CHECK(p.want == (PNPR_WANT_DITHER | PNPR_WANT_CLASSES | PNPR_WANT_DEGREE | PNPR_WANT_NORMALS_ANY) && p.lines);
     p = plan_for(0, 0, &coloured); /* nothing drawn: nothing planned */
     CHECK(p.want == 0 && p.needed == 0);
     pnpr_cloud_free(&coloured);
@@ -66,14 +68,14 @@ static void test_reuse(void)
     CHECK_STATUS(pnpr_compute_features(&c, &fo, NULL), PNPR_OK);
     CHECK(c.normal == NULL); /* dithering needs no stored normals */
     CHECK(pnpr_plan_cloud_has(&c, PNPR_WANT_DITHER) && !pnpr_plan_cloud_has(&c, PNPR_WANT_NORMALS_ANY));
-    pnpr_plan p = plan_for(S(SKETCHY), 0, &c);
+    pnpr_plan p = plan_for(S(SKETCHY), 1, &c); /* with an outline */
     CHECK(p.reused_features && !p.reused_normals && p.want == PNPR_WANT_NORMALS_ANY);
     /* normals without orientation: the features run stores them and orients nothing */
     fo.want = p.want;
     pnpr_features_stats st;
     CHECK_STATUS(pnpr_compute_features(&c, &fo, &st), PNPR_OK);
     CHECK(c.normal != NULL && st.runs[PNPR_STAGE_ORIENT] == 0 && st.runs[PNPR_STAGE_NORMALS] == 1);
-    p = plan_for(S(SKETCHY), 0, &c);
+    p = plan_for(S(SKETCHY), 1, &c);
     CHECK(p.want == 0 && p.reused_features && p.reused_normals);
     /* a command's own request: oriented normals, which cover any orientation */
     pnpr_plan_request req = {0};

@@ -41,7 +41,8 @@ int pnpr_style_needs_features(pnpr_style style);
 #define PNPR_OUTLINE_JUMP 3.0f
 #define PNPR_OUTLINE_HOLE 4.0f
 
-/* The outline a style draws by default: 1 on / 0 off, and its width in px (r_width may be NULL). */
+/* Whether a style draws outlines by default (1 on / 0 off; lines and cartoon), and the width in px
+ * it draws them with, also when they are asked for (r_width may be NULL; 0 for an invalid style). */
 int pnpr_style_outline_default(pnpr_style style, float *r_width);
 
 #ifdef __cplusplus

@@ -262,7 +262,7 @@ int DecoratePointnprPlugin::getDecorationClass(QAction *) const
 
 namespace {
 
-/* "sketchy 1.5 px, lines 2.5 px, cartoon 2.5 px": the styles with an outline by default and its
+/* "lines 2.5 px, cartoon 2.5 px": the styles with an outline by default and its
  * width, as the library says (pnpr_style_outline_default). */
 QString outlineDefaults()
 {

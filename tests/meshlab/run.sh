@@ -993,10 +993,10 @@ decorate_styles)
   conf_has DrawStyle ' value=\\"1\\"'
   conf_has Outline 'enum_cardinality=\\"3\\"'
   conf_has Outline 'enum_val2=\\"off\\"'
-  conf_has Outline 'on for sketchy 1.5 px, cartoon 2.5 px, lines 2.5 px'
+  conf_has Outline 'on for cartoon 2.5 px, lines 2.5 px'
   conf_has OutlineWidth 'type=\\"RichFloat\\"'
   conf_has OutlineWidth ' value=\\"0\\"'
-  conf_has OutlineWidth "0 = the style's default (sketchy 1.5 px, cartoon 2.5 px, lines 2.5 px)"
+  conf_has OutlineWidth "0 = the style's default (cartoon 2.5 px, lines 2.5 px)"
   conf_has ToneSource 'enum_cardinality=\\"4\\"'
   conf_has ToneSource 'enum_val3=\\"both\\"'
   conf_has ToneGamma ' value=\\"0\\"'
@@ -1034,8 +1034,8 @@ decorate_styles)
   cube_ply "$T/cube.ply" 1 50 0 0 0
   gui sketchy sketchy "$T/cube.ply" DrawStyle=1 && measure sketchy
   gui darktone sketchy "$T/cube.ply" DrawStyle=1 ToneGamma=0.25 && measure darktone
-  expect_log sketchy "pointnpr decorator: features computed for the sketchy style \\(15002 points, [0-9]+ ms\\): feature degree, feature classes, dithering points, normals\$"
-  expect_log darktone "pointnpr decorator: features computed for the sketchy style \\(15002 points, [0-9]+ ms\\): feature degree, feature classes, dithering points, normals\$"
+  expect_log sketchy "pointnpr decorator: features computed for the sketchy style \\(15002 points, [0-9]+ ms\\): feature degree, feature classes, dithering points\$"
+  expect_log darktone "pointnpr decorator: features computed for the sketchy style \\(15002 points, [0-9]+ ms\\): feature degree, feature classes, dithering points\$"
   holds sketchy "default tone: <= 5% of the front face's samples dark" "${N_sketchy_DARKIN:-1} <= 0.05 && ${N_sketchy_NIN:-0} >= 500"
   holds darktone "tone gamma 0.25: >= 10% of the front face's samples dark and >= 4x the default tone's (${N_sketchy_DARKIN:-?})" \
     "${N_darktone_DARKIN:-0} >= 0.1 && ${N_darktone_DARKIN:-0} >= 4 * ${N_sketchy_DARKIN:-1}"

@@ -242,11 +242,12 @@ static void test_controls(pnpr_renderer *r, uint8_t *px)
     CHECK_STATUS(draw(r, &o, 0, px), PNPR_ERR_INVALID_ARGUMENT);
     o.outline_width = NAN;
     CHECK_STATUS(draw(r, &o, 0, px), PNPR_ERR_INVALID_ARGUMENT);
-    /* the style defaults: outlines for lines, cartoon and sketchy, none for points */
+    /* the style defaults: outlines for lines and cartoon, none for the others (their width when asked) */
     float w = -1;
     CHECK(pnpr_style_outline_default(PNPR_STYLE_LINES, &w) == 1 && w == 2.5f);
     CHECK(pnpr_style_outline_default(PNPR_STYLE_CARTOON, &w) == 1 && w == 2.5f);
-    CHECK(pnpr_style_outline_default(PNPR_STYLE_POINTS, &w) == 0 && w == 0);
+    CHECK(pnpr_style_outline_default(PNPR_STYLE_SKETCHY, &w) == 0 && w == 1.5f); /* off, 1.5 px when on */
+    CHECK(pnpr_style_outline_default(PNPR_STYLE_POINTS, &w) == 0 && w == 2);
     CHECK(pnpr_style_outline_default(PNPR_STYLE_COUNT_, NULL) == 0);
     pnpr_cloud_free(&c);
 }
