@@ -81,11 +81,11 @@ int main(int argc, char **argv)
     printf("read %.2f s, features %.2f s, upload (kNN spacing + queue) %.2f s, profile lines + upload %.2f s\n",
            t_read, t_feat, t_upload, t_lines);
     printf("| style | points drawn | strokes | ms/frame | x points |\n|---|---:|---:|---:|---:|\n");
-    /* outline: 0 = the style's default, -1 = off (the cost of the outline passes) */
+    /* outline: 0 = the style's default, -1 = off, 1 = on (the cost of the outline passes) */
     struct { const char *name; pnpr_style style; pnpr_sketch_variant v; float faint; int outline; } runs[] = {
         {"points", PNPR_STYLE_POINTS, PNPR_SKETCH_ALL, 0, 0},
         {"sketchy (a) directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL, 0, 0},
-        {"sketchy (a), outline off", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL, 0, -1},
+        {"sketchy (a), outline on", PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL, 0, 1},
         {"sketchy (b) + non-directional", PNPR_STYLE_SKETCHY, PNPR_SKETCH_NONDIRECTIONAL, 0, 0},
         {"sketchy (c) + dithering", PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL, 0, 0},
         {"lines", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 0, 0},
