@@ -75,6 +75,7 @@
 #include <pointnpr/io.h>
 
 #include "../core/internal.h"
+#include "text_token.h"
 
 #include <errno.h>
 #include <float.h>
@@ -149,51 +150,11 @@ static float pcd_d2f(double v)
     return (float)v;
 }
 
-typedef struct pcd_tok {
-    const char *s;
-    size_t n;
-} pcd_tok;
-
-static int is_blank(char c)
-{
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-static int tok_is(pcd_tok t, const char *lit)
-{
-    size_t n = strlen(lit);
-    return t.n == n && memcmp(t.s, lit, n) == 0;
-}
-
-static int tok_eq(pcd_tok a, pcd_tok b)
-{
-    return a.n == b.n && memcmp(a.s, b.s, a.n) == 0;
-}
+typedef pnpr_token pcd_tok;
 
 static int show(pcd_tok t)
 {
     return (int)(t.n > PCD_SHOW ? PCD_SHOW : t.n);
-}
-
-/* Next blank-separated token of [*q, e); 0 at the end of the line. */
-static int next_token(const char **q, const char *e, pcd_tok *t)
-{
-    const char *s = *q;
-    while (s < e && is_blank(*s)) s++;
-    if (s >= e) { *q = e; return 0; }
-    t->s = s;
-    while (s < e && !is_blank(*s)) s++;
-    t->n = (size_t)(s - t->s);
-    *q = s;
-    return 1;
-}
-
-static size_t count_tokens(const char *q, const char *e)
-{
-    pcd_tok t;
-    size_t n = 0;
-    while (next_token(&q, e, &t)) n++;
-    return n;
 }
 
 /* Non-negative decimal integer; 0 on failure. */
@@ -318,15 +279,15 @@ static pnpr_status hdr_entry(pcd_field *f, int kw, pcd_tok t, long line, pnpr_er
 
 static pnpr_status hdr_list(pcd_header *h, int kw, const char *q, const char *le, long line, pnpr_error *err)
 {
-    pnpr_status st = hdr_list_check(h, kw, count_tokens(q, le), line, err);
+    pnpr_status st = hdr_list_check(h, kw, pnpr_token_count(q, le), line, err);
     pcd_tok t;
-    for (size_t i = 0; st == PNPR_OK && next_token(&q, le, &t); i++) st = hdr_entry(&h->fields[i], kw, t, line, err);
+    for (size_t i = 0; st == PNPR_OK && pnpr_token_next(&q, le, &t); i++) st = hdr_entry(&h->fields[i], kw, t, line, err);
     return st;
 }
 
 static pnpr_status hdr_fields(pcd_header *h, const char *q, const char *le, long line, pnpr_error *err)
 {
-    size_t nt = count_tokens(q, le);
+    size_t nt = pnpr_token_count(q, le);
     if (nt == 0 || nt > PCD_MAX_FIELDS)
         return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: FIELDS names %zu fields (expected 1 to %d)", line, nt,
                         PCD_MAX_FIELDS);
@@ -334,7 +295,7 @@ static pnpr_status hdr_fields(pcd_header *h, const char *q, const char *le, long
     if (!h->fields) return pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, line, -1, "line %ld: out of memory", line);
     h->nfields = nt;
     for (size_t i = 0; i < nt; i++) {
-        next_token(&q, le, &h->fields[i].name);
+        pnpr_token_next(&q, le, &h->fields[i].name);
         h->fields[i].size = 4; /* 0.5 files have no SIZE/TYPE/COUNT: 4-byte floats */
         h->fields[i].type = 'F';
         h->fields[i].count = 1;
@@ -345,7 +306,7 @@ static pnpr_status hdr_fields(pcd_header *h, const char *q, const char *le, long
 static pnpr_status hdr_number(pcd_header *h, int kw, const char *q, const char *le, long line, pnpr_error *err)
 {
     pcd_tok t = {"", 0};
-    if (count_tokens(q, le) != 1 || !next_token(&q, le, &t) || !parse_u64(t, &h->num[kw]))
+    if (pnpr_token_count(q, le) != 1 || !pnpr_token_next(&q, le, &t) || !parse_u64(t, &h->num[kw]))
         return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: %s wants one non-negative integer, found '%.*s'", line,
                         kw_names[kw], show(t), t.s);
     return PNPR_OK;
@@ -354,12 +315,12 @@ static pnpr_status hdr_number(pcd_header *h, int kw, const char *q, const char *
 static pnpr_status hdr_viewpoint(pcd_header *h, const char *q, const char *le, long line, pnpr_error *err)
 {
     pcd_tok t;
-    size_t nt = count_tokens(q, le);
+    size_t nt = pnpr_token_count(q, le);
     if (nt != 7)
         return pcd_fail(err, PNPR_ERR_FORMAT, line, -1,
                         "line %ld: VIEWPOINT wants 7 numbers (tx ty tz qw qx qy qz), found %zu",
                         line, nt);
-    for (int k = 0; k < 7 && next_token(&q, le, &t); k++)
+    for (int k = 0; k < 7 && pnpr_token_next(&q, le, &t); k++)
         if (!parse_double(t, &h->vp[k]) || !isfinite(h->vp[k]))
             return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: VIEWPOINT value %d '%.*s' is not a finite number",
                             line, k + 1, show(t), t.s);
@@ -369,10 +330,10 @@ static pnpr_status hdr_viewpoint(pcd_header *h, const char *q, const char *le, l
 static pnpr_status hdr_word(pcd_header *h, int kw, const char *q, const char *le, long line, pnpr_error *err)
 {
     pcd_tok t = {"", 0};
-    int one = count_tokens(q, le) == 1 && next_token(&q, le, &t);
+    int one = pnpr_token_count(q, le) == 1 && pnpr_token_next(&q, le, &t);
     if (kw == KW_DATA) {
-        h->data = !one ? DATA_NONE : tok_is(t, "ascii") ? DATA_ASCII : tok_is(t, "binary") ? DATA_BINARY
-                  : tok_is(t, "binary_compressed") ? DATA_COMPRESSED : DATA_NONE;
+        h->data = !one ? DATA_NONE : pnpr_token_is(t, "ascii") ? DATA_ASCII : pnpr_token_is(t, "binary") ? DATA_BINARY
+                  : pnpr_token_is(t, "binary_compressed") ? DATA_COMPRESSED : DATA_NONE;
         if (h->data == DATA_NONE)
             return pcd_fail(err, PNPR_ERR_FORMAT, line, -1,
                             "line %ld: unknown DATA '%.*s' (expected ascii, binary or binary_compressed)", line, show(t), t.s);
@@ -380,7 +341,7 @@ static pnpr_status hdr_word(pcd_header *h, int kw, const char *q, const char *le
     }
     static const char *const versions[] = {"0.7", ".7", "0.6", ".6", "0.5", ".5"};
     for (size_t i = 0; one && i < sizeof versions / sizeof versions[0]; i++)
-        if (tok_is(t, versions[i])) return PNPR_OK;
+        if (pnpr_token_is(t, versions[i])) return PNPR_OK;
     return pcd_fail(err, PNPR_ERR_UNSUPPORTED, line, -1,
                     "line %ld: PCD version '%.*s' is not supported (0.5, 0.6 and 0.7 are)",
                     line, show(t), t.s);
@@ -388,9 +349,9 @@ static pnpr_status hdr_word(pcd_header *h, int kw, const char *q, const char *le
 
 static int keyword_of(pcd_tok t)
 {
-    if (tok_is(t, "COLUMNS")) return KW_FIELDS;
+    if (pnpr_token_is(t, "COLUMNS")) return KW_FIELDS;
     for (int k = 0; k < KW_N; k++)
-        if (tok_is(t, kw_names[k])) return k;
+        if (pnpr_token_is(t, kw_names[k])) return k;
     return -1;
 }
 
@@ -424,9 +385,9 @@ static pnpr_status parse_lines(const char *d, size_t size, pcd_header *h, pnpr_e
         pcd_tok kw;
         line++;
         pos = (size_t)(le - d) + (nl ? 1 : 0);
-        if (!next_token(&q, le, &kw) || kw.s[0] == '#') continue;
+        if (!pnpr_token_next(&q, le, &kw) || kw.s[0] == '#') continue;
         for (const char *c = ls; c < le; c++)
-            if (((unsigned char)*c < 0x20 && !is_blank(*c)) || (unsigned char)*c == 0x7f)
+            if (((unsigned char)*c < 0x20 && !pnpr_is_blank(*c)) || (unsigned char)*c == 0x7f)
                 return pcd_fail(err, PNPR_ERR_FORMAT, line, (long long)(c - d),
                                 "line %ld: invalid character 0x%02x in the header", line, (unsigned char)*c);
         pnpr_status st = hdr_line(h, kw, q, le, line, err);
@@ -467,9 +428,9 @@ static pnpr_status check_types(const pcd_header *h, pnpr_error *err)
 static int role_of_name(pcd_tok n)
 {
     static const char *const names[] = {"x", "y", "z", "normal_x", "normal_y", "normal_z"};
-    if (tok_is(n, "_")) return ROLE_PAD;
+    if (pnpr_token_is(n, "_")) return ROLE_PAD;
     for (int k = 0; k < 6; k++)
-        if (tok_is(n, names[k])) return ROLE_X + k;
+        if (pnpr_token_is(n, names[k])) return ROLE_X + k;
     return ROLE_EXTRA;
 }
 
@@ -477,9 +438,9 @@ static pnpr_status check_names(const pcd_header *h, pnpr_error *err)
 {
     for (size_t i = 0; i < h->nfields; i++) {
         const pcd_field *f = &h->fields[i];
-        if (tok_is(f->name, "_")) continue;
+        if (pnpr_token_is(f->name, "_")) continue;
         for (size_t j = 0; j < i; j++)
-            if (tok_eq(f->name, h->fields[j].name))
+            if (pnpr_token_eq(f->name, h->fields[j].name))
                 return pcd_fail(err, PNPR_ERR_FORMAT, h->line[KW_FIELDS], -1, "line %ld: field '%.*s' appears twice",
                                 h->line[KW_FIELDS], show(f->name), f->name.s);
     }
@@ -507,10 +468,10 @@ static pnpr_status assign_roles(pcd_header *h, pnpr_error *err)
         pcd_field *f = &h->fields[i];
         if (f->role >= ROLE_NX && f->role <= ROLE_NZ && (!h->has_normal || f->count != 1)) f->role = ROLE_EXTRA;
         if (f->role >= ROLE_X && f->role <= ROLE_Z && (f->type == 'F' ? f->size == 8 : f->size >= 4)) h->double_xyz = 1;
-        if (f->role == ROLE_EXTRA && !h->has_rgb && (tok_is(f->name, "rgb") || tok_is(f->name, "rgba")) &&
+        if (f->role == ROLE_EXTRA && !h->has_rgb && (pnpr_token_is(f->name, "rgb") || pnpr_token_is(f->name, "rgba")) &&
             f->size == 4 && f->count == 1)
             f->role = ROLE_RGB, h->has_rgb = 1;
-        else if (f->role == ROLE_EXTRA && !h->has_label && tok_is(f->name, "label") && f->type != 'F' && f->size <= 4 &&
+        else if (f->role == ROLE_EXTRA && !h->has_label && pnpr_token_is(f->name, "label") && f->type != 'F' && f->size <= 4 &&
                  f->count == 1)
             f->role = ROLE_LABEL, h->has_label = 1;
         if (f->role == ROLE_EXTRA) { f->prop = h->nprops; h->nprops += f->count; }
@@ -828,14 +789,14 @@ static pnpr_status ascii_point(const pcd_reader *r, size_t i, const char *ls, co
 {
     const pcd_header *h = r->h;
     const char *q = ls;
-    const size_t found = count_tokens(ls, le);
+    const size_t found = pnpr_token_count(ls, le);
     pcd_tok t;
     if (found != h->values)
         return pcd_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(ls - (const char *)r->data),
                         "line %ld: point %zu has %zu values, the header announces %zu", line, i, found, h->values);
     for (size_t j = 0; j < h->nfields; j++) {
         const pcd_field *f = &h->fields[j];
-        for (uint32_t k = 0; f->role != ROLE_PAD && k < f->count && next_token(&q, le, &t); k++) {
+        for (uint32_t k = 0; f->role != ROLE_PAD && k < f->count && pnpr_token_next(&q, le, &t); k++) {
             unsigned char raw[8];
             int ok = parse_value(t, f, raw);
             if (ok <= 0)
@@ -860,7 +821,7 @@ static pnpr_status read_ascii(const pcd_reader *r)
         const char *nl = memchr(p, '\n', (size_t)(end - p)), *le = nl ? nl : end, *ls = p, *q = p;
         pcd_tok t;
         p = nl ? nl + 1 : end;
-        if (!next_token(&q, le, &t)) continue; /* blank line */
+        if (!pnpr_token_next(&q, le, &t)) continue; /* blank line */
         if (i % PCD_CHUNK == 0 && pnpr_progress_report(r->progress, "read pcd", (double)i / (double)r->h->n))
             return cancelled(r, i);
         pnpr_status st = ascii_point(r, i++, ls, le, line);
@@ -953,7 +914,6 @@ pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_
     *cloud = c;
     return PNPR_OK;
 }
-
 
 /* The whole file in memory (regular files and pipes). */
 static pnpr_status slurp(FILE *fp, const char *path, unsigned char **r_buf, size_t *r_len, pnpr_error *err)

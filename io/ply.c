@@ -66,6 +66,7 @@
  * Numbers are written and read in the "C" form whatever LC_NUMERIC says.
  */
 #include "../core/internal.h"
+#include "text_token.h"
 #include <pointnpr/io.h>
 
 #include <errno.h>
@@ -146,28 +147,11 @@ static float d2f(double v)
     return (float)v;
 }
 
-typedef struct ply_str {
-    const char *s;
-    size_t n;
-} ply_str;
+typedef pnpr_token ply_str;
 
-static int str_is(ply_str a, const char *lit)
-{
-    size_t n = strlen(lit);
-    return a.n == n && memcmp(a.s, lit, n) == 0;
-}
-static int str_eq(ply_str a, ply_str b)
-{
-    return a.n == b.n && memcmp(a.s, b.s, a.n) == 0;
-}
 static int show_len(ply_str a)
 {
     return (int)(a.n > PLY_NAME_SHOW ? PLY_NAME_SHOW : a.n);
-}
-
-static int is_blank(char c)
-{
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
 static pnpr_type type_from_name(ply_str t)
@@ -183,7 +167,7 @@ static pnpr_type type_from_name(ply_str t)
         {"double", PNPR_TYPE_FLOAT64}, {"float64", PNPR_TYPE_FLOAT64},
     };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
-        if (str_is(t, names[i].name)) return names[i].type;
+        if (pnpr_token_is(t, names[i].name)) return names[i].type;
     return PNPR_TYPE_NONE;
 }
 
@@ -262,10 +246,10 @@ static size_t tokenize(const char *s, const char *e, ply_str *tok, size_t max)
 {
     size_t n = 0;
     while (s < e) {
-        while (s < e && is_blank(*s)) s++;
+        while (s < e && pnpr_is_blank(*s)) s++;
         if (s >= e) break;
         const char *b = s;
-        while (s < e && !is_blank(*s)) s++;
+        while (s < e && !pnpr_is_blank(*s)) s++;
         if (n < max) { tok[n].s = b; tok[n].n = (size_t)(s - b); }
         n++;
     }
@@ -292,7 +276,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
     long line = 0;
     int have_end = 0, seen_vertex = 0, seen_face = 0;
 
-    if (size < 3 || memcmp(data, "ply", 3) != 0 || (size > 3 && data[3] != '\n' && !is_blank(data[3])))
+    if (size < 3 || memcmp(data, "ply", 3) != 0 || (size > 3 && data[3] != '\n' && !pnpr_is_blank(data[3])))
         return fail_at(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic");
 
     while (pos < size && !have_end) {
@@ -307,37 +291,37 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
         pos = (size_t)(le - data) + (nl ? 1 : 0);
         nt = tokenize(ls, le, tok, 8);
         if (line == 1) {
-            if (nt != 1 || !str_is(tok[0], "ply"))
+            if (nt != 1 || !pnpr_token_is(tok[0], "ply"))
                 return fail_at(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic");
             continue;
         }
         if (nt == 0) continue; /* blank line */
-        if (str_is(tok[0], "comment") || str_is(tok[0], "obj_info")) continue;
+        if (pnpr_token_is(tok[0], "comment") || pnpr_token_is(tok[0], "obj_info")) continue;
         for (const char *c = ls; c < le; c++) {
             unsigned char u = (unsigned char)*c;
-            if ((u < 0x20 && !is_blank(*c)) || u == 0x7f)
+            if ((u < 0x20 && !pnpr_is_blank(*c)) || u == 0x7f)
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)(c - data),
                                "line %ld: invalid character 0x%02x in header", line, u);
         }
-        if (str_is(tok[0], "format")) {
+        if (pnpr_token_is(tok[0], "format")) {
             if (h->encoding)
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: second 'format' line", line);
             if (nt != 3)
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'", line);
-            if (str_is(tok[1], "ascii")) h->encoding = PLY_ENC_ASCII;
-            else if (str_is(tok[1], "binary_little_endian")) h->encoding = PLY_ENC_LE;
-            else if (str_is(tok[1], "binary_big_endian")) h->encoding = PLY_ENC_BE;
+            if (pnpr_token_is(tok[1], "ascii")) h->encoding = PLY_ENC_ASCII;
+            else if (pnpr_token_is(tok[1], "binary_little_endian")) h->encoding = PLY_ENC_LE;
+            else if (pnpr_token_is(tok[1], "binary_big_endian")) h->encoding = PLY_ENC_BE;
             else
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: unknown format '%.*s' (expected ascii, binary_little_endian or binary_big_endian)",
                                line, show_len(tok[1]), tok[1].s);
-            if (!str_is(tok[2], "1.0") && !str_is(tok[2], "1"))
+            if (!pnpr_token_is(tok[2], "1.0") && !pnpr_token_is(tok[2], "1"))
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: unsupported PLY version '%.*s' (expected 1.0)", line,
                                show_len(tok[2]), tok[2].s);
-        } else if (str_is(tok[0], "element")) {
+        } else if (pnpr_token_is(tok[0], "element")) {
             ply_elem *e;
             if (nt != 3)
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
@@ -347,7 +331,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: element '%.*s' has a negative/invalid count '%.*s'", line,
                                show_len(tok[1]), tok[1].s, show_len(tok[2]), tok[2].s);
-            if ((str_is(tok[1], "vertex") && seen_vertex++) || (str_is(tok[1], "face") && seen_face++))
+            if ((pnpr_token_is(tok[1], "vertex") && seen_vertex++) || (pnpr_token_is(tok[1], "face") && seen_face++))
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: second '%.*s' element", line, show_len(tok[1]), tok[1].s);
             if (h->nelems >= PLY_MAX_ELEMS)
@@ -365,7 +349,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
             e->name = tok[1];
             e->count = count;
             e->line = line;
-        } else if (str_is(tok[0], "property")) {
+        } else if (pnpr_token_is(tok[0], "property")) {
             ply_elem *e = h->nelems ? &h->elems[h->nelems - 1] : NULL;
             ply_prop p;
             memset(&p, 0, sizeof p);
@@ -373,7 +357,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
             if (!e)
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: 'property' before any 'element'", line);
-            if (nt >= 2 && str_is(tok[1], "list")) {
+            if (nt >= 2 && pnpr_token_is(tok[1], "list")) {
                 if (nt != 5)
                     return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                    "line %ld: expected 'property list <count type> <item type> <name>'", line);
@@ -419,7 +403,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
                 e->min_size += pnpr_type_size(p.type);
             }
             e->props[e->nprops++] = p;
-        } else if (str_is(tok[0], "end_header")) {
+        } else if (pnpr_token_is(tok[0], "end_header")) {
             if (nt != 1)
                 return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: unexpected text after 'end_header'", line);
@@ -436,8 +420,8 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
     h->body = pos;
     h->body_line = line + 1;
     for (size_t i = 0; i < h->nelems; i++) {
-        if (str_is(h->elems[i].name, "vertex")) h->vertex = &h->elems[i];
-        if (str_is(h->elems[i].name, "face")) h->face = &h->elems[i];
+        if (pnpr_token_is(h->elems[i].name, "vertex")) h->vertex = &h->elems[i];
+        if (pnpr_token_is(h->elems[i].name, "face")) h->face = &h->elems[i];
     }
     if (!h->vertex)
         return fail_at(err, PNPR_ERR_FORMAT, 0, -1, "header: no 'vertex' element");
@@ -448,7 +432,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
 static ply_prop *find_scalar(ply_elem *e, const char *name)
 {
     for (size_t i = 0; i < e->nprops; i++)
-        if (!e->props[i].count_type && str_is(e->props[i].name, name)) return &e->props[i];
+        if (!e->props[i].count_type && pnpr_token_is(e->props[i].name, name)) return &e->props[i];
     return NULL;
 }
 
@@ -464,14 +448,14 @@ static pnpr_status assign_roles(ply_header *h, int *double_xyz, pnpr_error *err)
     for (size_t i = 0; i < v->nprops; i++) {
         ply_prop *p = &v->props[i];
         if (p->count_type) {
-            if (str_is(p->name, "x") || str_is(p->name, "y") || str_is(p->name, "z"))
+            if (pnpr_token_is(p->name, "x") || pnpr_token_is(p->name, "y") || pnpr_token_is(p->name, "z"))
                 return fail_at(err, PNPR_ERR_FORMAT, p->line, -1,
                                "line %ld: vertex property '%.*s' must be a scalar, not a list", p->line,
                                show_len(p->name), p->name.s);
             continue;
         }
         for (size_t j = 0; j < i; j++)
-            if (!v->props[j].count_type && str_eq(v->props[j].name, p->name))
+            if (!v->props[j].count_type && pnpr_token_eq(v->props[j].name, p->name))
                 return fail_at(err, PNPR_ERR_FORMAT, p->line, -1,
                                "line %ld: duplicate vertex property '%.*s'", p->line, show_len(p->name), p->name.s);
         p->role = ROLE_EXTRA;
@@ -497,7 +481,7 @@ static pnpr_status assign_roles(ply_header *h, int *double_xyz, pnpr_error *err)
     }
     for (size_t i = 0; i < v->nprops; i++) {
         ply_prop *p = &v->props[i];
-        if (p->role == ROLE_EXTRA && type_is_int(p->type) && (str_is(p->name, "label") || str_is(p->name, "segment"))) {
+        if (p->role == ROLE_EXTRA && type_is_int(p->type) && (pnpr_token_is(p->name, "label") || pnpr_token_is(p->name, "segment"))) {
             p->role = ROLE_LABEL;
             break;
         }
@@ -505,7 +489,7 @@ static pnpr_status assign_roles(ply_header *h, int *double_xyz, pnpr_error *err)
     if (h->face) {
         for (size_t i = 0; i < h->face->nprops; i++) {
             ply_prop *p = &h->face->props[i];
-            if (p->count_type && (str_is(p->name, "vertex_indices") || str_is(p->name, "vertex_index"))) {
+            if (p->count_type && (pnpr_token_is(p->name, "vertex_indices") || pnpr_token_is(p->name, "vertex_index"))) {
                 p->role = ROLE_FACE;
                 break;
             }
@@ -996,29 +980,9 @@ static long next_line(ply_cursor *cur, const char **ls, const char **le)
         long no = cur->line++;
         cur->p = nl ? nl + 1 : cur->end;
         for (const char *c = s; c < e; c++)
-            if (!is_blank(*c)) { *ls = s; *le = e; return no; }
+            if (!pnpr_is_blank(*c)) { *ls = s; *le = e; return no; }
     }
     return 0;
-}
-
-static int next_token(const char **q, const char *le, ply_str *tok)
-{
-    const char *s = *q;
-    while (s < le && is_blank(*s)) s++;
-    if (s >= le) { *q = s; return 0; }
-    tok->s = s;
-    while (s < le && !is_blank(*s)) s++;
-    tok->n = (size_t)(s - tok->s);
-    *q = s;
-    return 1;
-}
-
-static size_t count_tokens(const char *ls, const char *le)
-{
-    ply_str tok;
-    size_t n = 0;
-    while (next_token(&ls, le, &tok)) n++;
-    return n;
 }
 
 /* One element of an ascii body: one item per non-blank line. */
@@ -1050,7 +1014,7 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
             const ply_prop *p = &e->props[k];
             double v = 0;
             float f = 0;
-            if (!next_token(&q, le, &tok)) {
+            if (!pnpr_token_next(&q, le, &tok)) {
                 expected += e->nprops - k;
                 for (size_t j = k + 1; j < e->nprops; j++) open |= e->props[j].count_type != 0;
                 goto too_few;
@@ -1070,7 +1034,7 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
                                    show_len(p->name), p->name.s);
                 expected += (size_t)cnt;
                 for (uint64_t j = 0; j < (uint64_t)cnt; j++) {
-                    if (!next_token(&q, le, &tok)) {
+                    if (!pnpr_token_next(&q, le, &tok)) {
                         expected += e->nprops - 1 - k;
                         for (size_t jj = k + 1; jj < e->nprops; jj++) open |= e->props[jj].count_type != 0;
                         goto too_few;
@@ -1120,8 +1084,8 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
                            show_len(e->name), e->name.s, i, line, type_is_int(p->type) ? "an integer" : "a number",
                            pnpr_type_ply_name(p->type), show_len(p->name), p->name.s, show_len(tok), tok.s);
         }
-        if (next_token(&q, le, &tok)) {
-            found += 1 + count_tokens(q, le);
+        if (pnpr_token_next(&q, le, &tok)) {
+            found += 1 + pnpr_token_count(q, le);
             return fail_at(r->err, PNPR_ERR_FORMAT, line, (long long)(ls - base),
                            "%.*s %zu (line %ld): expected %zu values, found %zu", show_len(e->name), e->name.s, i,
                            line, expected, found);
@@ -1258,7 +1222,6 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
     *cloud = c;
     return PNPR_OK;
 }
-
 
 pnpr_status pnpr_read_ply_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
                                pnpr_error *err)
