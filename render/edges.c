@@ -25,7 +25,7 @@ static void edge_uniforms(pnpr_edges *e)
     e->ue_inset = glGetUniformLocation(e->prog_erode, "u_inset");
     e->ue_inset_max = glGetUniformLocation(e->prog_erode, "u_inset_max");
     e->ue_limit = glGetUniformLocation(e->prog_erode, "u_limit");
-    e->ue_radius = glGetUniformLocation(e->prog_erode, "u_radius");
+    e->ue_width = glGetUniformLocation(e->prog_erode, "u_width");
     e->ui_filled = glGetUniformLocation(e->prog_ink, "u_filled");
     e->ui_eroded = glGetUniformLocation(e->prog_ink, "u_eroded");
     e->ui_width = glGetUniformLocation(e->prog_ink, "u_width");
@@ -169,11 +169,9 @@ pnpr_status pnpr_edges_draw(pnpr_edges *e, GLuint info_tex, GLuint frame_fbo, in
     glUniform1f(e->ue_ppu, p->ppu);
     glUniform1i(e->ue_ortho, p->ortho != 0);
     glUniform1f(e->ue_inset, p->inset);
-    glUniform1f(e->ue_radius, p->radius);
-    glUniform1f(glGetUniformLocation(e->prog_erode, "u_inset_floor"), 0.0f);
     glUniform1f(e->ue_inset_max, (float)PNPR_EDGE_MAX_INSET);
     glUniform1f(e->ue_limit, limit);
-    glUniform1f(glGetUniformLocation(e->prog_erode, "u_width"), p->width);
+    glUniform1f(e->ue_width, p->width);
     glUniform1i(e->ue_skip_level, erode_skip ? PNPR_EDGE_SKIP_ERODE : 0);
     glBindTexture(GL_TEXTURE_2D, e->tex[0]);
     glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -13,7 +13,7 @@ typedef struct pnpr_edges {
     GLint uc_src, uc_block, uf_cover, ue_cover;
     GLuint cover_fbo[2], cover_tex[2]; /* coarse coverage: 32-px blocks of the info, 16-px of tex[0] */
     GLint uf_info, uf_reach, uf_jump, uf_hole, uf_ppu, uf_ortho, uf_surface_reach, uf_skip_level;
-    GLint ue_filled, ue_ppu, ue_ortho, ue_inset, ue_inset_max, ue_limit, ue_radius, ue_skip_level;
+    GLint ue_filled, ue_ppu, ue_ortho, ue_inset, ue_inset_max, ue_limit, ue_width, ue_skip_level;
     GLint ui_filled, ui_eroded, ui_width, ui_jump, ui_ink, ui_erase, ui_background;
     GLuint fbo[2], tex[2]; /* the hole-closed info and its minimum filter, frame-sized */
     int w, h;
@@ -31,7 +31,6 @@ typedef struct pnpr_edge_params {
     float inset;         /* silhouettes lie this fraction of the projected mask-disk radius inside
                           * the mask's boundary; the overhang is painted in `background` */
     float background[4]; /* premultiplied */
-    float radius;        /* the mean mask-disk radius (world): sets the inset */
 } pnpr_edge_params;
 
 /* Largest inset in px (the overhang of very large disks is not erased beyond it). */

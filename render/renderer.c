@@ -1540,8 +1540,7 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
         pnpr_edge_params ep = {outline_width > 0 ? outline_width : 2, o.outline_jump > 0 ? o.outline_jump : PNPR_OUTLINE_JUMP,
                                o.outline_hole > 0 ? o.outline_hole : PNPR_OUTLINE_HOLE, PNPR_EDGE_MAX_REACH, fc.pixels_per_unit,
                                fc.ortho, {ink[0], ink[1], ink[2], ink[3]}, inset,
-                               {o.background[0] * a, o.background[1] * a, o.background[2] * a, a},
-                               r->mean_radius * point_scale * lod * mask_scale};
+                               {o.background[0] * a, o.background[1] * a, o.background[2] * a, a}};
         st = pnpr_edges_draw(&r->edges, r->info_tex, r->fbo, fw, fh, &ep, err);
         if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     }

@@ -10,13 +10,11 @@
 //         outermost points; the silhouette is drawn that far inside the mask's boundary and the
 //         overhang is erased (edge_ink.frag), at most u_inset_max px. The radius is the mean of
 //         the 3x3 neighbourhood's disks (one disk's radius varies from point to point: a ragged
-//         band), at least the cloud's mean radius u_radius times u_inset_floor.
+//         band).
 uniform sampler2D u_filled;
 uniform float u_ppu;      // pixels per world unit at eye distance 1
 uniform int u_ortho;
 uniform float u_inset;
-uniform float u_radius;  // mean mask-disk radius (world)
-uniform float u_inset_floor;
 uniform float u_inset_max;
 uniform float u_limit;
 uniform float u_width;   // the outline width (px)
@@ -24,6 +22,10 @@ uniform sampler2D u_cover; // coarse coverage of u_filled (edge_cover.frag), blo
 uniform int u_skip_level;  // its 3x3 texels around a pixel span at least u_limit px: all covered,
                            // no empty pixel is that near (0 = no shortcut)
 out vec4 o_info;
+
+// the 8 march directions, the diagonals last (their steps are sqrt(2) px)
+const ivec2 DIRS[8] = ivec2[8](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1),
+                               ivec2(1, 1), ivec2(1, -1), ivec2(-1, 1), ivec2(-1, -1));
 
 // Near a silhouette: is the surface here more than a speck? Some run of surface pixels from p
 // (along one of 8 directions) must be longer than the ink band on both sides of a blob (inset and
@@ -35,8 +37,7 @@ bool thick(ivec2 p, ivec2 size, float dist, float inset)
         return true; // no empty pixel near: not a silhouette pixel
     float need = min(2.0 * (inset + u_width) + 2.0, 48.0);
     for (int d = 0; d < 8; d++) {
-        ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
-                           d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);
+        ivec2 step = DIRS[d];
         float unit = d >= 4 ? 1.41421356 : 1.0;
         int s = 1;
         for (; float(s) * unit < need; s++) {
@@ -84,8 +85,7 @@ void main()
             steps = 0;
     }
     for (int d = 0; d < 8; d++) {
-        ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
-                           d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);
+        ivec2 step = DIRS[d];
         float unit = d >= 4 ? 1.41421356 : 1.0;
         for (int s = 1; s <= steps && float(s) * unit < dist; s++) {
             ivec2 q = p + step * s;
@@ -97,7 +97,7 @@ void main()
             }
         }
     }
-    float r_px = max(rsum / rn, u_radius * u_inset_floor) * u_ppu / (u_ortho != 0 ? 1.0 : max(me.x, 1e-6));
+    float r_px = rsum / rn * u_ppu / (u_ortho != 0 ? 1.0 : max(me.x, 1e-6));
     float inset = clamp(u_inset * r_px - 0.5, 0.0, u_inset_max);
     o_info = vec4(best, dist, thick(p, size, dist, inset) ? inset : -1.0 - inset);
 }

@@ -18,6 +18,10 @@ uniform int u_erase;         // 1: paint the overhang in u_background instead
 uniform vec4 u_background;   // premultiplied
 out vec4 o_color;
 
+// the 8 march directions, the diagonals last (their steps are sqrt(2) px)
+const ivec2 DIRS[8] = ivec2[8](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1),
+                               ivec2(1, 1), ivec2(1, -1), ivec2(-1, 1), ivec2(-1, -1));
+
 void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -40,8 +44,7 @@ void main()
     // the near surface's disks overhang the far one by the inset too: the band lies inside it
     int reach = int(ceil(inset + u_width + 1.5));
     for (int d = 0; d < 8 && cover < 1.0; d++) {
-        ivec2 step = ivec2(d == 0 || d == 4 || d == 5 ? 1 : d == 1 || d == 6 || d == 7 ? -1 : 0,
-                           d == 2 || d == 4 || d == 6 ? 1 : d == 3 || d == 5 || d == 7 ? -1 : 0);
+        ivec2 step = DIRS[d];
         float unit = d >= 4 ? 1.41421356 : 1.0;
         for (int s = 1; s <= reach; s++) {
             float past = float(s) * unit - inset;
