@@ -10,6 +10,8 @@
 #include <pointnpr/features.h>
 #include <pointnpr/view.h>
 
+#include "../core/vec3.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,19 +46,6 @@
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void cross3(const double a[3], const double b[3], double r[3])
-{
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
-}
-static double normalize3(double v[3])
-{
-    double l = sqrt(dot3(v, v));
-    if (l > 0 && isfinite(l)) { v[0] /= l; v[1] /= l; v[2] /= l; }
-    return l;
-}
 static void set3(double r[3], double x, double y, double z) { r[0] = x; r[1] = y; r[2] = z; }
 static int finite3f(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
@@ -134,7 +123,7 @@ static double box_diagonal(const float lo[3], const float hi[3])
 {
     double d[3];
     for (int a = 0; a < 3; a++) d[a] = (double)hi[a] - (double)lo[a];
-    return sqrt(dot3(d, d));
+    return sqrt(pnpr_dot3(d, d));
 }
 
 /* Distance from a point (offsets, double) to the box; 0 inside. */
@@ -142,7 +131,7 @@ static double box_distance(const float lo[3], const float hi[3], const double p[
 {
     double e[3];
     for (int a = 0; a < 3; a++) e[a] = fmax(fmax((double)lo[a] - p[a], p[a] - (double)hi[a]), 0.0);
-    return sqrt(dot3(e, e));
+    return sqrt(pnpr_dot3(e, e));
 }
 
 /* Far outliers among all points; a point whose offset overflowed float but whose source
@@ -190,7 +179,7 @@ static void plane_count(const double *pts, size_t m, double tol, plane *pl)
 {
     pl->on = pl->above = pl->below = 0;
     for (size_t i = 0; i < m; i++) {
-        double s = dot3(pl->n, pts + 3 * i) + pl->d;
+        double s = pnpr_dot3(pl->n, pts + 3 * i) + pl->d;
         if (s > tol) pl->above++;
         else if (s < -tol) pl->below++;
         else pl->on++;
@@ -203,7 +192,7 @@ static void plane_refine(const double *pts, size_t m, double tol, plane *pl)
     double c[3] = {0, 0, 0}, cov[3][3] = {{0}};
     size_t n = 0;
     for (size_t i = 0; i < m; i++)
-        if (fabs(dot3(pl->n, pts + 3 * i) + pl->d) <= tol) {
+        if (fabs(pnpr_dot3(pl->n, pts + 3 * i) + pl->d) <= tol) {
             for (int a = 0; a < 3; a++) c[a] += pts[3 * i + a];
             n++;
         }
@@ -211,18 +200,18 @@ static void plane_refine(const double *pts, size_t m, double tol, plane *pl)
     for (int a = 0; a < 3; a++) c[a] /= (double)n;
     for (size_t i = 0; i < m; i++) {
         const double *p = pts + 3 * i;
-        if (fabs(dot3(pl->n, p) + pl->d) > tol) continue;
+        if (fabs(pnpr_dot3(pl->n, p) + pl->d) > tol) continue;
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) cov[a][b] += (p[a] - c[a]) * (p[b] - c[b]);
     }
     double w[3], v[3][3];
     pnpr_eigen_sym3(cov, w, v);
     double nn[3] = {v[0][0], v[0][1], v[0][2]};
-    if (!(normalize3(nn) > 0.5)) return;
-    if (dot3(nn, pl->n) < 0) set3(nn, -nn[0], -nn[1], -nn[2]);
+    if (!(pnpr_normalize3(nn) > 0.5)) return;
+    if (pnpr_dot3(nn, pl->n) < 0) set3(nn, -nn[0], -nn[1], -nn[2]);
     memcpy(pl->n, nn, sizeof nn);
     memcpy(pl->centroid, c, sizeof c);
-    pl->d = -dot3(nn, c);
+    pl->d = -pnpr_dot3(nn, c);
 }
 
 /* Seeded RANSAC: the plane with the most points within tol on an evenly spread scoring set,
@@ -236,11 +225,11 @@ static int ransac_plane(const double *pts, size_t m, double tol, double diag, ui
                      *c = pts + 3 * (rng_next(&seed) % m);
         double u[3], v[3], n[3];
         for (int k = 0; k < 3; k++) { u[k] = b[k] - a[k]; v[k] = c[k] - a[k]; }
-        cross3(u, v, n);
-        if (!(normalize3(n) > 1e-6 * diag * diag)) continue; /* (nearly) collinear */
+        pnpr_cross3(u, v, n);
+        if (!(pnpr_normalize3(n) > 1e-6 * diag * diag)) continue; /* (nearly) collinear */
         size_t score = 0;
-        double d = -dot3(n, a);
-        for (size_t i = 0; i < m; i += step) score += fabs(dot3(n, pts + 3 * i) + d) <= tol;
+        double d = -pnpr_dot3(n, a);
+        for (size_t i = 0; i < m; i += step) score += fabs(pnpr_dot3(n, pts + 3 * i) + d) <= tol;
         if (score > best) {
             best = score;
             memcpy(r_best->n, n, sizeof n);
@@ -325,17 +314,17 @@ static int accept_ground(plane *pl, size_t m, double min_share, const scanner *s
     if ((double)pl->on < min_share * (double)m) return 0;
     size_t off = pl->above + pl->below, minority = pl->above < pl->below ? pl->above : pl->below;
     int flip;
-    if (sc->have_vp && fabs(dot3(pl->n, sc->vp) + pl->d) > 0) {
+    if (sc->have_vp && fabs(pnpr_dot3(pl->n, sc->vp) + pl->d) > 0) {
         /* a stored scanner position (PCD VIEWPOINT): scanners see the ground from above */
-        flip = dot3(pl->n, sc->vp) + pl->d < 0;
+        flip = pnpr_dot3(pl->n, sc->vp) + pl->d < 0;
     } else if ((double)off < PURE_PLANE * (double)m) { /* no content off the plane: who sees it? */
         const double *eye = scanner_eye(sc);
-        double s = eye ? dot3(pl->n, eye) + pl->d : 0;
+        double s = eye ? pnpr_dot3(pl->n, eye) + pl->d : 0;
         flip = s != 0 ? s < 0 : prior_flip(pl->n);
     } else if ((double)minority <= ONE_SIDE_MAX * (double)off) {
         flip = pl->below > pl->above;
     } else if (sc->have_vp) {
-        flip = dot3(pl->n, sc->vp) + pl->d < 0; /* content on both sides: the scanner's side */
+        flip = pnpr_dot3(pl->n, sc->vp) + pl->d < 0; /* content on both sides: the scanner's side */
     } else return 0;
     if (flip) {
         set3(pl->n, -pl->n[0], -pl->n[1], -pl->n[2]);
@@ -354,7 +343,7 @@ static int faces_camera(const plane *pl, const scanner *sc, double max_deg)
     double d[3];
     if (!eye) return 0;
     memcpy(d, eye, sizeof d);
-    return normalize3(d) > 0 && fabs(dot3(pl->n, d)) > cos(max_deg * DEG);
+    return pnpr_normalize3(d) > 0 && fabs(pnpr_dot3(pl->n, d)) > cos(max_deg * DEG);
 }
 
 /* The ground: the largest plane that passes accept_ground; when it faces the camera, a second
@@ -370,7 +359,7 @@ static int find_ground(const double *pts, size_t m, double diag, uint64_t seed, 
     double *rest = malloc(3 * m * sizeof *rest);
     size_t k = 0;
     for (size_t i = 0; rest && i < m; i++)
-        if (fabs(dot3(r_pl->n, pts + 3 * i) + r_pl->d) > tol) memcpy(rest + 3 * k++, pts + 3 * i, 3 * sizeof *pts);
+        if (fabs(pnpr_dot3(r_pl->n, pts + 3 * i) + r_pl->d) > tol) memcpy(rest + 3 * k++, pts + 3 * i, 3 * sizeof *pts);
     plane p2;
     int found = k >= 3 && ransac_plane(rest, k, tol, diag, seed + 1, &p2);
     free(rest);
@@ -389,15 +378,15 @@ static int find_ground(const double *pts, size_t m, double diag, uint64_t seed, 
 static void rotate_z_to(const double u[3], const double v[3], double r[3])
 {
     double z[3] = {0, 0, 1}, k[3], kxv[3];
-    cross3(z, u, k);
-    double s = normalize3(k), c = u[2];
+    pnpr_cross3(z, u, k);
+    double s = pnpr_normalize3(k), c = u[2];
     if (!(s > 1e-12)) {
         if (c > 0) { memcpy(r, v, 3 * sizeof *r); return; }
         set3(k, 1, 0, 0);
         s = 0;
     }
-    cross3(k, v, kxv);
-    double kv = dot3(k, v);
+    pnpr_cross3(k, v, kxv);
+    double kv = pnpr_dot3(k, v);
     for (int a = 0; a < 3; a++) r[a] = v[a] * c + kxv[a] * s + k[a] * kv * (1 - c);
 }
 
@@ -409,16 +398,16 @@ static double horizontal_axis(const double *pts, size_t m, const double u[3], do
     for (size_t i = 0; i < m; i++)
         for (int a = 0; a < 3; a++) mean[a] += pts[3 * i + a] / (double)m;
     for (size_t i = 0; i < m; i++) {
-        double q[3], h = dot3(pts + 3 * i, u) - dot3(mean, u);
+        double q[3], h = pnpr_dot3(pts + 3 * i, u) - pnpr_dot3(mean, u);
         for (int a = 0; a < 3; a++) q[a] = pts[3 * i + a] - mean[a] - h * u[a]; /* in the ground plane */
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) cov[a][b] += q[a] * q[b];
     }
     pnpr_eigen_sym3(cov, w, vec); /* ascending: ~0 (up), narrow, wide */
     memcpy(r_wide, vec[2], 3 * sizeof *r_wide);
-    double h = dot3(r_wide, u);
+    double h = pnpr_dot3(r_wide, u);
     for (int a = 0; a < 3; a++) r_wide[a] -= h * u[a];
-    if (!(normalize3(r_wide) > 0.5)) rotate_z_to(u, (double[3]){1, 0, 0}, r_wide); /* no spread: any */
+    if (!(pnpr_normalize3(r_wide) > 0.5)) rotate_z_to(u, (double[3]){1, 0, 0}, r_wide); /* no spread: any */
     int big = fabs(r_wide[0]) >= fabs(r_wide[1]) ? (fabs(r_wide[0]) >= fabs(r_wide[2]) ? 0 : 2)
                                                  : (fabs(r_wide[1]) >= fabs(r_wide[2]) ? 1 : 2);
     if (r_wide[big] < 0) set3(r_wide, -r_wide[0], -r_wide[1], -r_wide[2]); /* independent of the solver */
@@ -429,11 +418,11 @@ static double horizontal_axis(const double *pts, size_t m, const double u[3], do
 static void view_extents(const double *pts, size_t m, const double h[3], pnpr_view_info *info)
 {
     double across[3], lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    cross3(h, info->up, across);
+    pnpr_cross3(h, info->up, across);
     const double *ax[3] = {info->up, across, h};
     for (size_t i = 0; i < m; i++)
         for (int k = 0; k < 3; k++) {
-            double t = dot3(pts + 3 * i, ax[k]);
+            double t = pnpr_dot3(pts + 3 * i, ax[k]);
             lo[k] = fmin(lo[k], t);
             hi[k] = fmax(hi[k], t);
         }
@@ -454,9 +443,9 @@ static double elevation_for(const pnpr_view_info *info)
 /* The horizontal part of v, unit; 0 when it is shorter than min_len. */
 static int horizontal(const double u[3], const double v[3], double min_len, double r[3])
 {
-    double h = dot3(v, u);
+    double h = pnpr_dot3(v, u);
     for (int a = 0; a < 3; a++) r[a] = v[a] - h * u[a];
-    return normalize3(r) > min_len;
+    return pnpr_normalize3(r) > min_len;
 }
 
 /* Azimuth (scanner side, else the front), turned to put the wide axis across the screen,
@@ -478,8 +467,8 @@ static void view_direction(const double *pts, size_t m, const scanner *sc, doubl
      * outside reads best from where it was taken), the elevation kept within 20..65 degrees */
     int anisotropic = horizontal_axis(pts, m, u, info->wide_axis) > ANISOTROPY;
     if (anisotropic && info->azimuth_source != PNPR_AZIMUTH_VIEWPOINT) {
-        cross3(u, info->wide_axis, narrow);
-        double s = dot3(narrow, h) < 0 ? -1 : 1;
+        pnpr_cross3(u, info->wide_axis, narrow);
+        double s = pnpr_dot3(narrow, h) < 0 ? -1 : 1;
         for (int a = 0; a < 3; a++) h[a] = s * narrow[a];
     }
     view_extents(pts, m, h, info);
@@ -488,14 +477,14 @@ static void view_direction(const double *pts, size_t m, const scanner *sc, doubl
     double to_eye[3];
     if (eye) {
         memcpy(to_eye, eye, sizeof to_eye);
-        if (normalize3(to_eye) > 0) {
-            double e = asin(fmax(-1.0, fmin(1.0, dot3(to_eye, u)))) / DEG;
+        if (pnpr_normalize3(to_eye) > 0) {
+            double e = asin(fmax(-1.0, fmin(1.0, pnpr_dot3(to_eye, u)))) / DEG;
             info->elevation_deg = fmax(SCANNER_ELEV_MIN, fmin(SCANNER_ELEV_MAX, e));
         }
     }
     double ce = cos(info->elevation_deg * DEG), se = sin(info->elevation_deg * DEG);
     for (int a = 0; a < 3; a++) info->view_dir[a] = ce * h[a] + se * u[a];
-    normalize3(info->view_dir);
+    pnpr_normalize3(info->view_dir);
 }
 
 /* ---- the whole ------------------------------------------------------------------------------- */
@@ -505,7 +494,7 @@ static pnpr_status check_options(const pnpr_view_options *o)
     if ((unsigned)o->up_mode >= PNPR_UP_MODE_COUNT_) return PNPR_ERR_INVALID_ARGUMENT;
     if (o->up_mode != PNPR_UP_VECTOR) return PNPR_OK;
     double u[3] = {o->up[0], o->up[1], o->up[2]};
-    return normalize3(u) > 0 ? PNPR_OK : PNPR_ERR_INVALID_ARGUMENT;
+    return pnpr_normalize3(u) > 0 ? PNPR_OK : PNPR_ERR_INVALID_ARGUMENT;
 }
 
 /* The up vector: user, hint, ground plane, default (the ground is reported whenever found). */
@@ -536,7 +525,7 @@ static void decide_up(const pnpr_cloud *c, const pnpr_view_options *o, uint64_t 
         set3(info->up, 0, 0, 1);
         info->up_source = PNPR_UP_FROM_DEFAULT;
     }
-    normalize3(info->up);
+    pnpr_normalize3(info->up);
 }
 
 pnpr_status pnpr_scene_frame(const pnpr_cloud *cloud, const pnpr_view_options *opts, pnpr_view_info *r_info)

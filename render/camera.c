@@ -1,25 +1,12 @@
 /* Camera: auto-fit and the look-at / perspective matrices (in double, relative to the cloud's
  * origin, then converted to float). */
 #include "render_internal.h"
+#include "../core/vec3.h"
 
 #include <math.h>
 #include <string.h>
 
 static const double PNPR_PI = 3.14159265358979323846;
-
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void cross3(const double a[3], const double b[3], double r[3])
-{
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
-}
-static double normalize3(double v[3])
-{
-    double l = sqrt(dot3(v, v));
-    if (l > 0 && isfinite(l)) { v[0] /= l; v[1] /= l; v[2] /= l; }
-    return l;
-}
 
 pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float fov_y_deg,
                             float aspect, pnpr_camera *r_camera)
@@ -31,16 +18,16 @@ pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float 
     if (!(aspect > 0) || !isfinite(aspect)) aspect = 1;
     double d[3] = {0, -1, 0.5};
     if (dir) { d[0] = dir[0]; d[1] = dir[1]; d[2] = dir[2]; }
-    if (!(normalize3(d) > 0)) { d[0] = 0; d[1] = -1; d[2] = 0.5; normalize3(d); }
+    if (!(pnpr_normalize3(d) > 0)) { d[0] = 0; d[1] = -1; d[2] = 0.5; pnpr_normalize3(d); }
     double c[3];
     for (int a = 0; a < 3; a++) c[a] = 0.5 * ((double)bmin[a] + (double)bmax[a]);
     /* camera basis: right s, up u, towards the eye d */
     double up0[3] = {0, 0, 1};
     if (fabs(d[2]) > 0.999) { up0[0] = 0; up0[1] = 1; up0[2] = 0; }
     double s[3], u[3], f[3] = {-d[0], -d[1], -d[2]};
-    cross3(f, up0, s);
-    normalize3(s);
-    cross3(s, f, u);
+    pnpr_cross3(f, up0, s);
+    pnpr_normalize3(s);
+    pnpr_cross3(s, f, u);
     /* the nearest distance (along d, from the box centre) at which all 8 corners are inside
      * the frustum: corner at (x, y) across and z towards the eye needs
      * dist >= z + |x| / tan(half_x) and dist >= z + |y| / tan(half_y) */
@@ -49,10 +36,10 @@ pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float 
     for (int k = 0; k < 8; k++) {
         double p[3] = {((k & 1) ? bmax[0] : bmin[0]) - c[0], ((k & 2) ? bmax[1] : bmin[1]) - c[1],
                        ((k & 4) ? bmax[2] : bmin[2]) - c[2]};
-        double x = fabs(dot3(p, s)), y = fabs(dot3(p, u)), z = dot3(p, d);
+        double x = fabs(pnpr_dot3(p, s)), y = fabs(pnpr_dot3(p, u)), z = pnpr_dot3(p, d);
         double need = z + (x / tan_x > y / tan_y ? x / tan_x : y / tan_y);
         if (need > dist) dist = need;
-        double e = sqrt(dot3(p, p));
+        double e = sqrt(pnpr_dot3(p, p));
         if (e > extent) extent = e;
     }
     if (!(extent > 0)) { extent = 1; dist = 1 / tan_y; } /* a single point */
@@ -83,7 +70,7 @@ static void fit_frustum(const pnpr_cloud *cloud, const pnpr_view_info *info, con
         for (int a = 0; a < 3; a++) in &= q[a] >= info->lo[a] && q[a] <= info->hi[a]; /* NaN: out */
         if (!in) continue;
         double p[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
-        double x = dot3(p, s), y = dot3(p, u), z = dot3(p, d);
+        double x = pnpr_dot3(p, s), y = pnpr_dot3(p, u), z = pnpr_dot3(p, d);
         if (x + z * tan_x > px) px = x + z * tan_x;
         if (x - z * tan_x < mx) mx = x - z * tan_x;
         if (y + z * tan_y > py) py = y + z * tan_y;
@@ -104,12 +91,12 @@ static void robust_depth_range(const pnpr_view_info *info, const double eye[3], 
 {
     double dmin = INFINITY, dmax = -INFINITY, e[3];
     for (int a = 0; a < 3; a++) e[a] = (double)info->hi[a] - (double)info->lo[a];
-    double diag = sqrt(dot3(e, e));
+    double diag = sqrt(pnpr_dot3(e, e));
     for (int k = 0; k < 8; k++) {
         double p[3] = {((k & 1) ? info->hi[0] : info->lo[0]) - eye[0], ((k & 2) ? info->hi[1] : info->lo[1]) - eye[1],
                        ((k & 4) ? info->hi[2] : info->lo[2]) - eye[2]};
-        dmin = fmin(dmin, dot3(p, f));
-        dmax = fmax(dmax, dot3(p, f));
+        dmin = fmin(dmin, pnpr_dot3(p, f));
+        dmax = fmax(dmax, pnpr_dot3(p, f));
     }
     double fa = dmax + 0.25 * diag, n = dmin - 0.25 * diag;
     if (n < fa * 1e-3) n = fa * 1e-3;
@@ -130,14 +117,14 @@ pnpr_status pnpr_camera_default(const pnpr_cloud *cloud, const pnpr_view_options
     if (!(aspect > 0) || !isfinite(aspect)) aspect = 1;
     const double *d = info.view_dir;
     double f[3] = {-d[0], -d[1], -d[2]}, s[3], u[3], c[3], fit[3], zmax, e[3];
-    cross3(f, info.up, s);
-    normalize3(s);
-    cross3(s, f, u);
+    pnpr_cross3(f, info.up, s);
+    pnpr_normalize3(s);
+    pnpr_cross3(s, f, u);
     for (int a = 0; a < 3; a++) {
         c[a] = 0.5 * ((double)info.lo[a] + (double)info.hi[a]);
         e[a] = (double)info.hi[a] - (double)info.lo[a];
     }
-    double tan_y = tan(0.5 * fov_y_deg * PNPR_PI / 180.0), diag = sqrt(dot3(e, e));
+    double tan_y = tan(0.5 * fov_y_deg * PNPR_PI / 180.0), diag = sqrt(pnpr_dot3(e, e));
     fit_frustum(cloud, &info, c, s, u, d, tan_y * aspect / 1.05, tan_y / 1.05, fit, &zmax); /* 5% margin */
     double dist = fit[2], min_dist = diag > 0 ? zmax + 0.02 * diag : 1 / tan_y; /* eye outside the content */
     if (!(dist >= min_dist)) dist = min_dist;
@@ -170,13 +157,13 @@ static pnpr_status lookat_matrices(const pnpr_camera *cam, const double origin[3
         f[a] = (cam->target[a] - origin[a]) - eye[a];
         up[a] = cam->up[a];
     }
-    if (!(normalize3(f) > 0))
+    if (!(pnpr_normalize3(f) > 0))
         return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera: eye and target are the same point");
     double s[3], u[3];
-    cross3(f, up, s);
-    if (!(normalize3(s) > 1e-12))
+    pnpr_cross3(f, up, s);
+    if (!(pnpr_normalize3(s) > 1e-12))
         return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera: up is zero or parallel to the view direction");
-    cross3(s, f, u);
+    pnpr_cross3(s, f, u);
     float fov = cam->fov_y_deg;
     if (fov == 0) fov = 45;
     if (!(fov > 0 && fov < 179))
@@ -185,7 +172,7 @@ static pnpr_status lookat_matrices(const pnpr_camera *cam, const double origin[3
         s[0], u[0], -f[0], 0,
         s[1], u[1], -f[1], 0,
         s[2], u[2], -f[2], 0,
-        -dot3(s, eye), -dot3(u, eye), dot3(f, eye), 1};
+        -pnpr_dot3(s, eye), -pnpr_dot3(u, eye), pnpr_dot3(f, eye), 1};
     double n = cam->near_plane, fa = cam->far_plane;
     if (!(n > 0) || !(fa > n)) {
         /* automatic: the depth range of the box corners along the view direction */

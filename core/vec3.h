@@ -1,0 +1,24 @@
+/* Small 3-vector helpers in double (not installed), shared by the library's sources. */
+#ifndef PNPR_VEC3_H
+#define PNPR_VEC3_H
+
+#include <math.h>
+
+static inline double pnpr_dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static inline void pnpr_cross3(const double a[3], const double b[3], double r[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Scales v to unit length when its length is positive and finite; returns the length. */
+static inline double pnpr_normalize3(double v[3])
+{
+    double l = sqrt(pnpr_dot3(v, v));
+    if (l > 0 && isfinite(l)) { v[0] /= l; v[1] /= l; v[2] /= l; }
+    return l;
+}
+
+#endif
