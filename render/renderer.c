@@ -1200,7 +1200,7 @@ static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_camera *fc, const pn
     glUniform1f(r->ul.pull, 2.0f * r->mean_radius * ps * lod);
     glUniform1i(r->ul.ortho, fc->ortho);
     glUniform1f(r->ul.ppu, fc->pixels_per_unit);
-    glUniform1f(r->ul.min_px, o->line_min_px > 0 ? o->line_min_px : 8.0f);
+    glUniform1f(r->ul.min_px, o->line_min_px > 0 ? o->line_min_px : PNPR_LINE_MIN_PX);
     glBindVertexArray(r->vao_lines);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)r->line_segments);
     return r->line_segments;

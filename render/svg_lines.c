@@ -271,7 +271,7 @@ static pnpr_status write_drawing(const char *path, const pnpr_polylines *lines, 
     if (o->background)
         bad |= fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"#%02x%02x%02x\"/>\n", o->background_rgb[0],
                        o->background_rgb[1], o->background_rgb[2]) < 0;
-    if (outl) bad |= write_outlines(f, outl, o->outline_width > 0 ? o->outline_width : 2, colour) < 0;
+    if (outl) bad |= write_outlines(f, outl, o->outline_width > 0 ? o->outline_width : PNPR_SVG_OUTLINE_WIDTH, colour) < 0;
     bad |= write_lines(f, lines, pr, zb, tol, o, o->stroke_width > 0 ? o->stroke_width : 1.5, colour) < 0;
     bad |= fprintf(f, "</svg>\n") < 0;
     return pnpr_file_commit(f, tmp, path, bad, err);

@@ -122,7 +122,7 @@ typedef struct pnpr_svg_options {
      * near surface by the disks' overhang. Only what is visible is drawn. */
     int outline;            /* 0 = on when there are occluders, 1 = on, -1 = off (no occluders:
                              * no outlines either way) */
-    float outline_width;    /* px; 0 = 2 */
+    float outline_width;    /* px; 0 = PNPR_SVG_OUTLINE_WIDTH */
     float outline_jump;     /* depth extents; 0 = PNPR_OUTLINE_JUMP (style.h) */
 } pnpr_svg_options;
 
@@ -167,6 +167,9 @@ typedef struct pnpr_style_map_entry {
     pnpr_style style;
 } pnpr_style_map_entry;
 
+/* Default of pnpr_draw_options.line_min_px. */
+#define PNPR_LINE_MIN_PX 8.0f
+
 /* Per-frame options; zero = documented default. Colours are linear 0..1 RGBA. */
 typedef struct pnpr_draw_options {
     pnpr_style style;      /* the style; with a style map, the default style of labels not in it */
@@ -194,7 +197,8 @@ typedef struct pnpr_draw_options {
     pnpr_composite composite;
     float line_width;      /* lines: stroke width in pixels (0 = 2) */
     float line_min_px;     /* lines: profile lines (whole polylines) shorter than this many pixels
-                            * on screen are not drawn: scan noise makes such scribbles (0 = 8) */
+                            * on screen are not drawn: scan noise makes such scribbles
+                            * (0 = PNPR_LINE_MIN_PX) */
     float faint;           /* lines: 0..1, the cloud drawn faintly under the lines (its colours
                             * mixed with the background, this much of the point colour); 0 = none */
     float dot_size;        /* stipple: dot diameter in pixels (0 = 2.5) */

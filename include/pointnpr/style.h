@@ -40,6 +40,8 @@ int pnpr_style_needs_features(pnpr_style style);
  * holes are closed within PNPR_OUTLINE_HOLE projected disk radii. */
 #define PNPR_OUTLINE_JUMP 3.0f
 #define PNPR_OUTLINE_HOLE 4.0f
+/* The SVG export's outline width in px (pnpr_svg_options.outline_width 0). */
+#define PNPR_SVG_OUTLINE_WIDTH 2.0f
 
 /* Whether a style draws outlines by default (1 on / 0 off; lines and cartoon), and the width in px
  * it draws them with, also when they are asked for (r_width may be NULL; 0 for an invalid style). */

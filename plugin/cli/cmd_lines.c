@@ -41,10 +41,10 @@ static void usage(FILE *f)
             "  --show-hidden        keep hidden parts in the SVG (and draw no outlines)\n"
             "  --outline on|off     the SVG gets IN's silhouettes and occluding contours as paths\n"
             "                       (default on; docs/lines.md)\n"
-            "  --outline-width PX   their stroke width (default 2)\n"
+            "  --outline-width PX   their stroke width (default %g)\n"
             "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default %g)\n"
             "  --k N, --threshold T feature options used when features are computed\n"
-            "  --quiet              no progress on stderr\n", (double)PNPR_OUTLINE_JUMP);
+            "  --quiet              no progress on stderr\n", (double)PNPR_SVG_OUTLINE_WIDTH, (double)PNPR_OUTLINE_JUMP);
 }
 
 static int ends_with(const char *s, const char *suffix)

@@ -26,6 +26,10 @@ int cli_render(int argc, char **argv)
 
 static void usage(FILE *f)
 {
+    float w_lines = 0, w_cartoon = 0, w_sketchy = 0; /* the outline widths, as the library says */
+    pnpr_style_outline_default(PNPR_STYLE_LINES, &w_lines);
+    pnpr_style_outline_default(PNPR_STYLE_CARTOON, &w_cartoon);
+    pnpr_style_outline_default(PNPR_STYLE_SKETCHY, &w_sketchy);
     fprintf(f,
             "usage: pointnpr render IN -o OUT.png [options]\n"
             "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG.\n"
@@ -54,7 +58,7 @@ static void usage(FILE *f)
             "  --point-scale F      disk radius multiplier (default 1)\n"
             "  --line-width PX      lines: stroke width in pixels (default 2)\n"
             "  --line-min PX        lines: profile lines shorter than PX on screen are left out (scan\n"
-            "                       noise scribbles; default 8)\n"
+            "                       noise scribbles; default %g)\n"
             "  --dot-size PX        stipple: dot diameter in pixels (default 2.5)\n"
             "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
             "                       (PLY property segment or label, pointnpr segment; default 4)\n"
@@ -68,7 +72,7 @@ static void usage(FILE *f)
             "  --light X,Y,Z        direction towards the key light (default: from above, front left)\n"
             "  --outline on|off     silhouettes and occluding contours (default: on for lines and cartoon,\n"
             "                       off for the others; sketchy reads well with them on)\n"
-            "  --outline-width PX   their width in pixels (default: lines and cartoon 2.5, others 1.5-2)\n"
+            "  --outline-width PX   their width in pixels (default: lines %g, cartoon %g, sketchy %g)\n"
             "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default %g)\n"
             "  --outline-hole F     gaps enclosed within F projected disk extents are sampling holes,\n"
             "                       not outlines (default %g)\n"
@@ -83,6 +87,7 @@ static void usage(FILE *f)
             "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
             "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
             "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n",
+            (double)PNPR_LINE_MIN_PX, (double)w_lines, (double)w_cartoon, (double)w_sketchy,
             (double)PNPR_OUTLINE_JUMP, (double)PNPR_OUTLINE_HOLE);
 }
 
