@@ -1,5 +1,6 @@
 /* The point cloud model: float offsets from a double origin, optional arrays, extra properties. */
 #include <pointnpr/cloud.h>
+#include <pointnpr/outliers.h>
 
 #include <math.h>
 #include <stdlib.h>
@@ -179,13 +180,18 @@ void pnpr_cloud_world(const pnpr_cloud *cloud, size_t i, double r_world[3])
                                     : cloud->origin[a] + (double)cloud->xyz[3 * i + a];
 }
 
-/* Centre of the finite bounding box of world coordinates (0 when there is none). */
-static void world_centre(const double *world, size_t count, double r_c[3])
+/* Centre of the finite bounding box of the world coordinates that are not far outliers
+ * (pnpr_world_outliers, default factor; 0 when there is no finite point). Without far outliers
+ * this is the centre of the whole finite bounding box. */
+static pnpr_status world_centre(const double *world, size_t count, double r_c[3])
 {
+    pnpr_outlier_info info;
+    pnpr_status st = pnpr_world_outliers(world, count, NULL, NULL, &info);
+    if (st != PNPR_OK) return st;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = 0; i < count; i++) {
         const double *p = world + 3 * i;
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) continue;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]) || pnpr_outlier_is_far(&info, p)) continue;
         for (int a = 0; a < 3; a++) {
             if (p[a] < lo[a]) lo[a] = p[a];
             if (p[a] > hi[a]) hi[a] = p[a];
@@ -193,13 +199,15 @@ static void world_centre(const double *world, size_t count, double r_c[3])
     }
     for (int a = 0; a < 3; a++)
         r_c[a] = lo[a] <= hi[a] ? 0.5 * lo[a] + 0.5 * hi[a] : 0.0;
+    return PNPR_OK;
 }
 
 pnpr_status pnpr_cloud_set_world(pnpr_cloud *cloud, const double *world)
 {
     if (!cloud || (!world && cloud->count) || (cloud->count && !cloud->xyz))
         return PNPR_ERR_INVALID_ARGUMENT;
-    world_centre(world, cloud->count, cloud->origin);
+    pnpr_status st = world_centre(world, cloud->count, cloud->origin);
+    if (st != PNPR_OK) return st;
     for (size_t i = 0; i < 3 * cloud->count; i++)
         cloud->xyz[i] = (float)(world[i] - cloud->origin[i % 3]);
     return PNPR_OK;
@@ -303,5 +311,62 @@ pnpr_status pnpr_cloud_append(pnpr_cloud *dst, const pnpr_cloud *src)
         dst->faces.count = f0 + f1;
     }
     dst->count = n;
+    return PNPR_OK;
+}
+
+/* Moves the kept elements (keep[i] != 0) of an array of n elements of `size` bytes to its front. */
+static void compact(void *data, size_t size, size_t n, const uint8_t *keep)
+{
+    if (!data) return;
+    char *a = data;
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!keep[i]) continue;
+        if (m != i) memcpy(a + m * size, a + i * size, size);
+        m++;
+    }
+}
+
+/* Faces whose corners are all kept, re-indexed to the kept points' new positions. */
+static pnpr_status keep_faces(pnpr_faces *f, size_t n, const uint8_t *keep)
+{
+    if (!f->count) return PNPR_OK;
+    uint32_t *map = malloc(n * sizeof *map);
+    if (!map) return PNPR_ERR_OUT_OF_MEMORY;
+    uint32_t m = 0;
+    for (size_t i = 0; i < n; i++) map[i] = keep[i] ? m++ : UINT32_MAX;
+    size_t nf = 0, ni = 0;
+    for (size_t k = 0; k < f->count; k++) {
+        uint32_t b = f->offset[k], e = f->offset[k + 1], ok = 1;
+        for (uint32_t j = b; j < e; j++) ok &= f->index[j] < n && map[f->index[j]] != UINT32_MAX;
+        if (!ok) continue;
+        f->offset[nf++] = (uint32_t)ni;
+        for (uint32_t j = b; j < e; j++) f->index[ni++] = map[f->index[j]];
+    }
+    f->offset[nf] = (uint32_t)ni;
+    f->count = nf;
+    free(map);
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_cloud_keep(pnpr_cloud *cloud, const uint8_t *keep, size_t *r_removed)
+{
+    if (r_removed) *r_removed = 0;
+    if (!cloud || (cloud->count && (!keep || !cloud->xyz))) return PNPR_ERR_INVALID_ARGUMENT;
+    const size_t n = cloud->count;
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) m += keep[i] != 0;
+    if (m == n) return PNPR_OK;
+    pnpr_status st = keep_faces(&cloud->faces, n, keep);
+    if (st != PNPR_OK) return st;
+    compact(cloud->xyz, 3 * sizeof(float), n, keep);
+    compact(cloud->src_xyz, 3 * sizeof(double), n, keep);
+    compact(cloud->rgb, 3, n, keep);
+    compact(cloud->normal, 3 * sizeof(float), n, keep);
+    compact(cloud->label, sizeof(uint32_t), n, keep);
+    for (size_t k = 0; k < cloud->prop_count; k++)
+        compact(cloud->props[k].data, pnpr_type_size(cloud->props[k].type), n, keep);
+    cloud->count = m;
+    if (r_removed) *r_removed = n - m;
     return PNPR_OK;
 }

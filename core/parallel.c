@@ -48,6 +48,7 @@ pnpr_status pnpr_parallel_for(size_t n, size_t chunk, int threads, pnpr_range_fn
     if (n == 0) return PNPR_OK;
     if (chunk == 0) chunk = 1024;
     if (threads <= 0) threads = pnpr_default_threads();
+    if (threads > PNPR_THREADS_MAX) threads = PNPR_THREADS_MAX;
     size_t chunks = (n + chunk - 1) / chunk;
     if ((size_t)threads > chunks) threads = (int)chunks;
 

@@ -79,6 +79,32 @@ static void restore_in_place(void *data, size_t size, size_t n, uint32_t *perm)
     for (size_t s = 0; s < n; s++) perm[s] &= ~DONE;
 }
 
+static int finite_in(double v, double lo, double hi) { return isfinite(v) && v >= lo && v <= hi; }
+
+pnpr_status pnpr_features_check_options(const pnpr_features_options *o, pnpr_error *err)
+{
+    if (!o) return PNPR_OK;
+    if (o->want & ~(uint32_t)(PNPR_WANT_ALL | PNPR_WANT_NORMALS_ANY))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: want 0x%x has unknown bits", (unsigned)o->want);
+    if (o->k > PNPR_FEATURES_K_MAX)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: k %u is more than %d", (unsigned)o->k,
+                              PNPR_FEATURES_K_MAX);
+    if (!finite_in(o->threshold, 0, 1))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: threshold %g is not in [0,1]", o->threshold);
+    if (!finite_in(o->direction_confidence, 0, 1))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: direction_confidence %g is not in [0,1]",
+                              o->direction_confidence);
+    if (!finite_in(o->weight_geometry, 0, HUGE_VAL) || !finite_in(o->weight_color, 0, HUGE_VAL))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: weights %g, %g must be finite and >= 0",
+                              o->weight_geometry, o->weight_color);
+    if (!finite_in(o->dither_scale, 0, HUGE_VAL))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: dither_scale %g must be finite and >= 0",
+                              o->dither_scale);
+    if (o->has_viewpoint && !(isfinite(o->viewpoint[0]) && isfinite(o->viewpoint[1]) && isfinite(o->viewpoint[2])))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: the viewpoint is not finite");
+    return PNPR_OK;
+}
+
 /* The pipeline works in kd-tree order: the tree's reordered copy of the points is spatially
  * coherent, so the neighbour gathers of every stage hit the cache (on a 1M-point cloud in random
  * order this more than halves the time of the normal, orientation and feature-degree stages).
@@ -95,18 +121,15 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     if (!cloud || (cloud->count && !cloud->xyz)) return PNPR_ERR_INVALID_ARGUMENT;
     if (!opts) opts = &defaults;
     if (cloud->count >= 0x80000000u) return PNPR_ERR_UNSUPPORTED; /* 2^31 points at most */
-    if (!isfinite(opts->threshold) || opts->threshold < 0 || opts->threshold > 1) return PNPR_ERR_INVALID_ARGUMENT;
-    if (opts->has_viewpoint && !(isfinite(opts->viewpoint[0]) && isfinite(opts->viewpoint[1]) && isfinite(opts->viewpoint[2])))
-        return PNPR_ERR_INVALID_ARGUMENT;
+    pnpr_status st = pnpr_features_check_options(opts, NULL);
+    if (st != PNPR_OK) return st; /* huge k is refused, not slow */
     const size_t n = cloud->count;
     size_t k = opts->k ? opts->k : 16;
-    if (k > 1024) return PNPR_ERR_INVALID_ARGUMENT; /* documented limit: huge k is refused, not slow */
     float min_conf = opts->direction_confidence > 0 ? opts->direction_confidence : 0.6f;
     run r = {r_stats, &opts->progress, 0, 0};
 
     /* the stages the wanted outputs need (docs/features.md, "Computing only what is needed") */
     const uint32_t want = opts->want ? opts->want : PNPR_WANT_ALL;
-    if (want & ~(uint32_t)(PNPR_WANT_ALL | PNPR_WANT_NORMALS_ANY)) return PNPR_ERR_INVALID_ARGUMENT;
     const int need_dither = (want & PNPR_WANT_DITHER) != 0;
     const int need_classify = need_dither || (want & PNPR_WANT_CLASSES);
     const int need_degree = need_classify || (want & PNPR_WANT_DEGREE);
@@ -116,7 +139,6 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     /* outputs (allocated first: a cloud that cannot hold them fails before the work) */
     static const char *const fnames[5] = {"feature_degree", "feature_confidence", "feature_dir_x",
                                           "feature_dir_y", "feature_dir_z"};
-    pnpr_status st;
     int nout = need_classify ? 5 : (need_degree ? 1 : 0);
     for (int f = 0; f < nout; f++)
         if ((st = pnpr_cloud_add_property(cloud, fnames[f], PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK) return st;
@@ -149,7 +171,10 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     size_t valid = 0;
     for (size_t i = 0; i < n; i++) {
         const float *p = cloud->xyz + 3 * i;
-        valid += isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+        const double *w = cloud->src_xyz ? cloud->src_xyz + 3 * i : NULL;
+        int ok = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+        valid += ok;
+        r_stats->beyond_float += !ok && w && isfinite(w[0]) && isfinite(w[1]) && isfinite(w[2]);
     }
     r_stats->valid_points = valid;
     if (k > valid) k = valid;

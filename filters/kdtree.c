@@ -361,6 +361,31 @@ size_t pnpr_kdtree_radius(const pnpr_kdtree *t, const float q[3], float radius,
     return radius_rec(t, 0, q, radius * radius, r_idx, cap, 0);
 }
 
+/* radius_rec that stops once `cap` points are found (the same first ones, in the same order). */
+static size_t radius_first_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], float r2, uint32_t *r_idx,
+                               size_t cap, size_t found)
+{
+    const node *nd = &t->nodes[id];
+    if (nd->right == 0) {
+        for (uint32_t p = nd->begin; p < nd->end && found < cap; p++) {
+            const float *x = t->pts + 3 * p;
+            float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
+            if (dx * dx + dy * dy + dz * dz <= r2) r_idx[found++] = t->index[p];
+        }
+        return found;
+    }
+    float diff = q[nd->axis] - nd->split;
+    if (found < cap && (diff <= 0 || diff * diff <= r2)) found = radius_first_rec(t, id + 1, q, r2, r_idx, cap, found);
+    if (found < cap && (diff >= 0 || diff * diff <= r2)) found = radius_first_rec(t, nd->right, q, r2, r_idx, cap, found);
+    return found;
+}
+
+size_t pnpr_kdtree_radius_first(const pnpr_kdtree *t, const float q[3], float radius, uint32_t *r_idx, size_t cap)
+{
+    if (!t || t->count == 0 || !q || !finite3(q) || !(radius >= 0) || !isfinite(radius) || !r_idx || !cap) return 0;
+    return radius_first_rec(t, 0, q, radius * radius, r_idx, cap, 0);
+}
+
 typedef struct self_job {
     const pnpr_kdtree *tree;
     size_t k;
@@ -464,4 +489,126 @@ float pnpr_kdtree_median_spacing(const pnpr_kdtree *t, size_t max_samples)
     }
     free(d);
     return h;
+}
+
+/* ---- connected components at a distance (kdtree_internal.h) ---------------------------------- */
+
+typedef struct cc {
+    const pnpr_kdtree *t;
+    float r2;
+    float *box;      /* 6 floats per node: lo xyz, hi xyz */
+    uint32_t *rep;   /* per node: a point whose component holds the whole node, or NONE */
+    uint32_t *parent; /* union-find over tree positions */
+} cc;
+
+static uint32_t cc_find(uint32_t *parent, uint32_t x)
+{
+    while (parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; }
+    return x;
+}
+
+static void cc_union(uint32_t *parent, uint32_t a, uint32_t b)
+{
+    a = cc_find(parent, a);
+    b = cc_find(parent, b);
+    if (a != b) parent[a < b ? b : a] = a < b ? a : b;
+}
+
+/* Node boxes bottom-up: children have larger ids than their parent (preorder). */
+static void cc_boxes(const pnpr_kdtree *t, float *box)
+{
+    for (size_t id = t->node_count; id-- > 0;) {
+        const node *nd = &t->nodes[id];
+        float *b = box + 6 * id;
+        for (int a = 0; a < 3; a++) { b[a] = INFINITY; b[3 + a] = -INFINITY; }
+        if (nd->right == 0) {
+            for (uint32_t p = nd->begin; p < nd->end; p++)
+                for (int a = 0; a < 3; a++) {
+                    b[a] = fminf(b[a], t->pts[3 * p + a]);
+                    b[3 + a] = fmaxf(b[3 + a], t->pts[3 * p + a]);
+                }
+            continue;
+        }
+        const float *l = box + 6 * (id + 1), *r = box + 6 * (size_t)nd->right;
+        for (int a = 0; a < 3; a++) { b[a] = fminf(l[a], r[a]); b[3 + a] = fmaxf(l[3 + a], r[3 + a]); }
+    }
+}
+
+/* Squared distances from q to the nearest and the farthest point of a box, with the float
+ * formula of the point test (rounding is monotone, so near <= and far >= every point's value). */
+static void cc_box_d2(const float *b, const float q[3], float *r_near, float *r_far)
+{
+    float n = 0, f = 0;
+    for (int a = 0; a < 3; a++) {
+        float lo = b[a] - q[a], hi = b[3 + a] - q[a];
+        float gap = lo > 0 ? lo : (hi < 0 ? -hi : 0.0f), far = fmaxf(fabsf(lo), fabsf(hi));
+        n += gap * gap;
+        f += far * far;
+    }
+    *r_near = n;
+    *r_far = f;
+}
+
+/* Leaf: joins the points within reach; marks the leaf when all its points share a component. */
+static void cc_leaf(cc *c, uint32_t id, const float q[3], uint32_t p)
+{
+    const node *nd = &c->t->nodes[id];
+    const float *pts = c->t->pts;
+    for (uint32_t j = nd->begin; j < nd->end; j++) {
+        const float *x = pts + 3 * j;
+        float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
+        if (dx * dx + dy * dy + dz * dz <= c->r2) cc_union(c->parent, p, j);
+    }
+    uint32_t root = cc_find(c->parent, nd->begin), same = 1;
+    for (uint32_t j = nd->begin + 1; j < nd->end && same; j++) same = cc_find(c->parent, j) == root;
+    if (same) c->rep[id] = nd->begin;
+}
+
+static void cc_rec(cc *c, uint32_t id, const float q[3], uint32_t p)
+{
+    float near, far;
+    cc_box_d2(c->box + 6 * (size_t)id, q, &near, &far);
+    if (!(near <= c->r2)) return;
+    uint32_t rep = c->rep[id];
+    if (rep != PNPR_INDEX_NONE && cc_find(c->parent, rep) == cc_find(c->parent, p)) return;
+    const node *nd = &c->t->nodes[id];
+    if (far <= c->r2) { /* every point of the node is within reach */
+        if (rep != PNPR_INDEX_NONE) { cc_union(c->parent, p, rep); return; }
+        for (uint32_t j = nd->begin; j < nd->end; j++) cc_union(c->parent, p, j);
+        c->rep[id] = p;
+        return;
+    }
+    if (nd->right == 0) { cc_leaf(c, id, q, p); return; }
+    cc_rec(c, id + 1, q, p);
+    cc_rec(c, nd->right, q, p);
+    uint32_t rl = c->rep[id + 1], rr = c->rep[nd->right];
+    if (c->rep[id] == PNPR_INDEX_NONE && rl != PNPR_INDEX_NONE && rr != PNPR_INDEX_NONE &&
+        cc_find(c->parent, rl) == cc_find(c->parent, rr))
+        c->rep[id] = rl;
+}
+
+pnpr_status pnpr_kdtree_components(const pnpr_kdtree *t, size_t count, float distance,
+                                   const pnpr_progress *progress, uint32_t *r_labels)
+{
+    if (!t || (count && !r_labels) || count < t->count || !(distance >= 0)) return PNPR_ERR_INVALID_ARGUMENT;
+    for (size_t i = 0; i < count; i++) r_labels[i] = (uint32_t)i;
+    if (t->count == 0) return PNPR_OK;
+    cc c = {t, distance * distance, malloc(6 * t->node_count * sizeof(float)),
+            malloc(t->node_count * sizeof(uint32_t)), malloc(t->count * sizeof(uint32_t))};
+    pnpr_status st = PNPR_OK;
+    if (!c.box || !c.rep || !c.parent) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    cc_boxes(t, c.box);
+    for (size_t id = 0; id < t->node_count; id++) c.rep[id] = PNPR_INDEX_NONE;
+    for (size_t p = 0; p < t->count; p++) c.parent[p] = (uint32_t)p;
+    for (size_t p = 0; p < t->count; p++) { /* tree order: neighbouring queries share nodes */
+        cc_rec(&c, 0, t->pts + 3 * p, (uint32_t)p);
+        if ((p & 0x3FFF) == 0 && pnpr_progress_report(progress, "components", (double)p / (double)t->count)) {
+            st = PNPR_ERR_CANCELLED;
+            goto done;
+        }
+    }
+    for (size_t p = 0; p < t->count; p++) r_labels[t->index[p]] = t->index[cc_find(c.parent, (uint32_t)p)];
+done:
+    free(c.box); free(c.rep); free(c.parent);
+    return st;
 }

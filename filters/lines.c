@@ -33,12 +33,13 @@
 #include <pointnpr/knn.h>
 
 #include "../core/internal.h"
+#include "kdtree_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define RADIUS_CAP 256
+#define RADIUS_CAP PNPR_LINES_NEIGHBOURS_MAX
 
 int pnpr_lines_buf_push(pnpr_lines_buf *b, const double p[3])
 {
@@ -109,6 +110,23 @@ static void end_tangent(const float *pos, const uint32_t *nodes, size_t count, i
     for (int a = 0; a < 3; a++) { r_e[a] = e[a]; r_t[a] = l > 0 ? t[a] / l : 0; }
 }
 
+pnpr_status pnpr_lines_check_options(const pnpr_lines_options *o, pnpr_error *err)
+{
+    if (!o) return PNPR_OK;
+    static const char *const names[6] = {"spacing", "connect_radius", "merge_tol", "direction_weight",
+                                         "min_length", "sample_tol"};
+    const float vals[6] = {o->spacing, o->connect_radius, o->merge_tol, o->direction_weight, o->min_length,
+                           o->sample_tol};
+    for (int i = 0; i < 6; i++)
+        if (!isfinite(vals[i]) || vals[i] < 0)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "lines: %s %g must be finite and >= 0", names[i],
+                                  vals[i]);
+    if (o->shift_iterations > PNPR_LINES_SHIFT_MAX)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "lines: shift_iterations %d is more than %d",
+                              o->shift_iterations, PNPR_LINES_SHIFT_MAX);
+    return PNPR_OK;
+}
+
 pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, size_t m,
                                       const double origin[3], const pnpr_lines_options *opts,
                                       pnpr_polylines *r_lines, pnpr_lines_stats *r_stats)
@@ -123,10 +141,7 @@ pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, 
     if (!opts) opts = &defaults;
     if (m && (!xyz_in || !dir_in)) return PNPR_ERR_INVALID_ARGUMENT;
     if (m >= 0x7FFFFFFFu) return PNPR_ERR_UNSUPPORTED;
-    const float opt_vals[6] = {opts->spacing, opts->connect_radius, opts->merge_tol, opts->direction_weight,
-                               opts->min_length, opts->sample_tol};
-    for (int i = 0; i < 6; i++)
-        if (!isfinite(opt_vals[i]) || opt_vals[i] < 0) return PNPR_ERR_INVALID_ARGUMENT;
+    if (pnpr_lines_check_options(opts, NULL) != PNPR_OK) return PNPR_ERR_INVALID_ARGUMENT;
 
     pnpr_status st = PNPR_OK;
     /* valid input points: finite position and a nonzero direction */
@@ -171,8 +186,7 @@ pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, 
     for (int it = 0; it < shifts; it++) {
         for (size_t i = 0; i < n; i++) {
             const float *p = pos + 3 * i, *d = dir + 3 * i;
-            size_t got = pnpr_kdtree_radius(tree, p, (float)(2 * h), nb, RADIUS_CAP);
-            if (got > RADIUS_CAP) got = RADIUS_CAP;
+            size_t got = pnpr_kdtree_radius_first(tree, p, (float)(2 * h), nb, RADIUS_CAP);
             double mean[3] = {0, 0, 0};
             for (size_t r = 0; r < got; r++)
                 for (int a = 0; a < 3; a++) mean[a] += pos[3 * (size_t)nb[r] + a];
@@ -195,8 +209,7 @@ pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, 
     for (size_t i = 0; i < n; i++) cluster[i] = PNPR_INDEX_NONE;
     for (size_t i = 0; i < n; i++) {
         if (cluster[i] != PNPR_INDEX_NONE) continue;
-        size_t got = pnpr_kdtree_radius(tree, pos + 3 * i, (float)tol_merge, nb, RADIUS_CAP);
-        if (got > RADIUS_CAP) got = RADIUS_CAP;
+        size_t got = pnpr_kdtree_radius_first(tree, pos + 3 * i, (float)tol_merge, nb, RADIUS_CAP);
         const float *d0 = dir + 3 * i;
         double c[3] = {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]}, dsum[3] = {d0[0], d0[1], d0[2]};
         size_t cnt = 1;

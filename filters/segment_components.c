@@ -1,6 +1,7 @@
 /* Connected components at a distance threshold (the "CC" segment source of Wegen et al.):
  * points closer than `distance` (<=) are connected; components are the classes of the
- * transitive closure (union-find over kd-tree radius queries, sequential, deterministic).
+ * transitive closure (union-find over the kd-tree, sequential, deterministic:
+ * pnpr_kdtree_components, whose cost does not grow with the distance).
  *
  * Choices: distance 0 = 3 x the median nearest-neighbour distance, measured on a stride sample of
  * at most 10000 points (coincident neighbours skipped; a cloud of coincident points gets
@@ -11,6 +12,7 @@
 #include <pointnpr/knn.h>
 
 #include "../core/internal.h"
+#include "kdtree_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -24,12 +26,6 @@ static int cmp_float(const void *a, const void *b)
 {
     float x = *(const float *)a, y = *(const float *)b;
     return x < y ? -1 : x > y;
-}
-
-static uint32_t uf_find(uint32_t *parent, uint32_t x)
-{
-    while (parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; }
-    return x;
 }
 
 float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, size_t count)
@@ -61,40 +57,17 @@ pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_c
     pnpr_components_options o = opts ? *opts : (pnpr_components_options){0};
     if (!(o.distance >= 0) || isinf(o.distance)) return PNPR_ERR_INVALID_ARGUMENT;
     pnpr_kdtree *tree = NULL, *kept_tree = NULL;
-    uint32_t *parent = NULL, *buf = NULL, *size = NULL, *kept = NULL;
+    uint32_t *size = NULL, *kept = NULL;
     float *kept_xyz = NULL;
     pnpr_status st = pnpr_kdtree_build_threads(xyz, count, 0, o.threads, &tree);
     if (st != PNPR_OK) return st;
     float dist = o.distance > 0 ? o.distance : 3.0f * pnpr_segment_median_spacing(tree, xyz, count);
-    size_t cap = 256;
-    parent = malloc(count * sizeof *parent);
-    buf = malloc(cap * sizeof *buf);
     size = calloc(count, sizeof *size);
-    if (!parent || !buf || !size) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    for (size_t i = 0; i < count; i++) parent[i] = (uint32_t)i;
-    for (size_t i = 0; i < count; i++) {
-        if (!finite3(xyz + 3 * i)) continue;
-        size_t n = pnpr_kdtree_radius(tree, xyz + 3 * i, dist, buf, cap);
-        if (n > cap) {
-            uint32_t *p = realloc(buf, n * sizeof *p);
-            if (!p) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-            buf = p; cap = n;
-            n = pnpr_kdtree_radius(tree, xyz + 3 * i, dist, buf, cap);
-        }
-        for (size_t r = 0; r < n; r++) {
-            uint32_t a = uf_find(parent, (uint32_t)i), b = uf_find(parent, buf[r]);
-            if (a != b) parent[a < b ? b : a] = a < b ? a : b;
-        }
-        if ((i & 0x3FFF) == 0 && pnpr_progress_report(&o.progress, "components", (double)i / (double)count)) {
-            st = PNPR_ERR_CANCELLED;
-            goto done;
-        }
-    }
+    if (!size) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    if ((st = pnpr_kdtree_components(tree, count, dist, &o.progress, r_labels)) != PNPR_OK) goto done;
     size_t nkept = 0;
-    for (size_t i = 0; i < count; i++) {
-        r_labels[i] = uf_find(parent, (uint32_t)i);
+    for (size_t i = 0; i < count; i++)
         if (finite3(xyz + 3 * i)) size[r_labels[i]]++;
-    }
     if (o.min_size > 1) {
         for (size_t i = 0; i < count; i++)
             if (finite3(xyz + 3 * i) && size[r_labels[i]] >= o.min_size) nkept++;
@@ -125,7 +98,7 @@ pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_c
 done:
     pnpr_kdtree_free(tree);
     pnpr_kdtree_free(kept_tree);
-    free(parent); free(buf); free(size); free(kept); free(kept_xyz);
+    free(size); free(kept); free(kept_xyz);
     if (r_info) r_info->seconds = pnpr_now() - t0;
     return st;
 }

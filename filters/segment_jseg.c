@@ -345,9 +345,9 @@ pnpr_status pnpr_segment_jseg(const float *xyz, const uint8_t *rgb, size_t count
     if (!count) return PNPR_OK;
     if (!xyz || !rgb || !r_labels || count >= 0x7FFFFFFFu) return PNPR_ERR_INVALID_ARGUMENT;
     pnpr_jseg_options o = opts ? *opts : (pnpr_jseg_options){0};
-    uint32_t kc = o.classes ? (o.classes > 255 ? 255 : o.classes) : 16;
+    uint32_t kc = o.classes ? (o.classes > PNPR_JSEG_CLASSES_MAX ? PNPR_JSEG_CLASSES_MAX : o.classes) : 16;
     double qdist = o.quant_distance > 0 ? o.quant_distance : (o.quant_distance < 0 ? 0 : 12);
-    size_t k = o.k ? (o.k > 256 ? 256 : o.k) : 24;
+    size_t k = o.k ? (o.k > PNPR_SEGMENT_K_MAX ? PNPR_SEGMENT_K_MAX : o.k) : 24;
     double seed_factor = o.seed_factor > 0 ? o.seed_factor : 0.6;
     double merge_distance = o.merge_distance > 0 ? o.merge_distance : (o.merge_distance < 0 ? 0 : 10);
 

@@ -28,7 +28,7 @@ pnpr_status pnpr_segment_rgbgrow(const float *xyz, const uint8_t *rgb, size_t co
     if (!xyz || !rgb || !r_labels || count >= 0x7FFFFFFFu) return PNPR_ERR_INVALID_ARGUMENT;
     pnpr_rgbgrow_options o = opts ? *opts : (pnpr_rgbgrow_options){0};
     if (!(o.distance >= 0) || isinf(o.distance)) return PNPR_ERR_INVALID_ARGUMENT;
-    size_t k = o.k ? (o.k > 256 ? 256 : o.k) : 16;
+    size_t k = o.k ? (o.k > PNPR_SEGMENT_K_MAX ? PNPR_SEGMENT_K_MAX : o.k) : 16;
     double pd = o.point_distance > 0 ? o.point_distance : 25;
     double rd = o.region_distance > 0 ? o.region_distance : (o.region_distance < 0 ? 0 : 10);
     uint32_t min_size = o.min_size ? o.min_size : 10;

@@ -8,9 +8,11 @@
  * its points, double, around the centroid) exceeds max_variation and it has at least 2 *
  * min_size points, it is split by the plane through its centroid perpendicular to the principal
  * eigenvector (the direction of greatest variation), and both halves are treated the same way
- * (an explicit stack, no recursion). Halves smaller than min_size are not split off (the split
- * is not made). The leaves are the output sub-regions, numbered in order of first appearance;
- * invalid points (label >= segment_count, or non-finite coordinates) keep a label of their own
+ * (an explicit stack, no recursion), at most PNPR_SPLIT_DEPTH_MAX times along any path, so the
+ * cost is at most that many passes over the points however small min_size and max_variation are
+ * (a centroid split of a skewed region may peel off few points at a time). Halves smaller than
+ * min_size are not split off (the split is not made). The leaves are the output sub-regions,
+ * numbered in order of first appearance; invalid points (label >= segment_count, or non-finite coordinates) keep a label of their own
  * after the others. Choices the paper leaves open: the split plane through the centroid (not a
  * median), the stop rule on surface variation (the paper: "curvature variations") and size. */
 #include <pointnpr/features.h>
@@ -20,7 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct span { size_t begin, end; } span;
+typedef struct span { size_t begin, end; int depth; } span;
 
 static double variation_and_axis(const float *xyz, const uint32_t *ids, size_t begin, size_t end,
                                  double r_c[3], double r_axis[3])
@@ -84,12 +86,13 @@ pnpr_status pnpr_segment_covariance_split(const float *xyz, size_t count, const 
     pnpr_status st = stack ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
     for (uint32_t s = 0; st == PNPR_OK && s < segment_count; s++) {
         if (start[s + 1] == start[s]) continue;
-        stack[top++] = (span){start[s], start[s + 1]};
+        stack[top++] = (span){start[s], start[s + 1], 0};
         while (top && st == PNPR_OK) {
             span sp = stack[--top];
             size_t n = sp.end - sp.begin, mid = sp.begin;
             double c[3], axis[3];
-            if (n >= 2 * (size_t)min_size && variation_and_axis(xyz, ids, sp.begin, sp.end, c, axis) > max_variation) {
+            if (sp.depth < PNPR_SPLIT_DEPTH_MAX && n >= 2 * (size_t)min_size &&
+                variation_and_axis(xyz, ids, sp.begin, sp.end, c, axis) > max_variation) {
                 /* partition by the side of the plane through the centroid */
                 size_t lo = sp.begin, hi = sp.end;
                 while (lo < hi) {
@@ -107,8 +110,8 @@ pnpr_status pnpr_segment_covariance_split(const float *xyz, size_t count, const 
                     stack = ns;
                     cap *= 2;
                 }
-                stack[top++] = (span){mid, sp.end};
-                stack[top++] = (span){sp.begin, mid};
+                stack[top++] = (span){mid, sp.end, sp.depth + 1};
+                stack[top++] = (span){sp.begin, mid, sp.depth + 1};
             } else {
                 for (size_t i = sp.begin; i < sp.end; i++) leaf[ids[i]] = leaves;
                 leaves++;

@@ -145,7 +145,7 @@ pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud, const pnp
     if (opts) o = *opts;
     if ((int)o.format < 0 || o.format >= PNPR_FORMAT_COUNT_)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: invalid write format %d", path, (int)o.format);
-    if (o.format == PNPR_FORMAT_AUTO) o.format = pnpr_format_from_path(path);
+    if (o.format == PNPR_FORMAT_AUTO) o.format = strcmp(path, "-") ? pnpr_format_from_path(path) : PNPR_FORMAT_PLY;
     switch (o.format) {
     case PNPR_FORMAT_PLY:
         return pnpr_write_ply_file(path, cloud, &o, err);

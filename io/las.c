@@ -33,20 +33,21 @@
  *
  * Errors are precise (PNPR_ERR_FORMAT / TRUNCATED / UNSUPPORTED with the byte offset in
  * pnpr_error.offset where it helps); the size of the point data is checked against the bytes
- * present before anything is allocated, and every size computation is overflow-checked. */
+ * present before anything is allocated (pnpr_read_las_file maps the file, io/file_bytes.h, so
+ * before any point is read), and every size computation is overflow-checked. */
 #include "../core/internal.h"
+#include "file_bytes.h"
 #include <pointnpr/io.h>
 
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-/* Exported for io/io.c (not in the public header): reads a whole .las file through
- * pnpr_read_las_memory; error messages are prefixed with the path. */
+/* Exported for io/io.c (not in the public header): reads a .las file through
+ * pnpr_read_las_memory on its mapped bytes (io/file_bytes.h); error messages are prefixed with the
+ * path. */
 pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
                                pnpr_error *err);
 
@@ -334,41 +335,11 @@ pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, 
     if (!path || !cloud)
         return las_fail(err, PNPR_ERR_INVALID_ARGUMENT, -1, "pnpr_read_las_file: NULL argument");
     pnpr_cloud_free(cloud);
-    struct stat sb;
-    if (stat(path, &sb) != 0)
-        return las_fail(err, PNPR_ERR_IO, -1, "%s: %s", path, strerror(errno));
-    if (S_ISDIR(sb.st_mode))
-        return las_fail(err, PNPR_ERR_IO, -1, "%s: %s", path, strerror(EISDIR));
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return las_fail(err, PNPR_ERR_IO, -1, "%s: %s", path, strerror(errno));
-    /* Read everything, growing the buffer: works for regular files and pipes alike. */
-    size_t cap = S_ISREG(sb.st_mode) && sb.st_size > 0 && (uintmax_t)sb.st_size < SIZE_MAX
-                     ? (size_t)sb.st_size + 1 : 65536;
-    size_t len = 0;
-    unsigned char *buf = malloc(cap);
-    pnpr_status st = PNPR_OK;
-    if (!buf) st = las_fail(err, PNPR_ERR_OUT_OF_MEMORY, -1, "%s: cannot allocate %zu bytes", path, cap);
-    while (st == PNPR_OK) {
-        if (len == cap) {
-            if (cap > SIZE_MAX / 2) { st = las_fail(err, PNPR_ERR_OUT_OF_MEMORY, -1, "%s: file too large", path); break; }
-            unsigned char *grown = realloc(buf, cap * 2);
-            if (!grown) { st = las_fail(err, PNPR_ERR_OUT_OF_MEMORY, -1, "%s: cannot allocate %zu bytes", path, cap * 2); break; }
-            buf = grown;
-            cap *= 2;
-        }
-        size_t got = fread(buf + len, 1, cap - len, f);
-        len += got;
-        if (got == 0) {
-            if (ferror(f)) st = las_fail(err, PNPR_ERR_IO, -1, "%s: read error: %s", path, strerror(errno));
-            break;
-        }
-    }
-    fclose(f);
-    if (st == PNPR_OK) {
-        st = pnpr_read_las_memory(buf, len, opts, cloud, err);
-        if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
-    }
-    free(buf);
+    pnpr_file_bytes fb; /* mapped: the header is checked against the size before a point is touched */
+    pnpr_status st = pnpr_file_bytes_open(path, &fb, err);
+    if (st != PNPR_OK) return st;
+    st = pnpr_read_las_memory(fb.data, fb.size, opts, cloud, err);
+    pnpr_file_bytes_close(&fb);
+    if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
     return st;
 }

@@ -3,6 +3,7 @@
 #include <pointnpr/lines.h>
 
 #include "../core/internal.h"
+#include <pointnpr/output.h>
 
 #include <stdio.h>
 #include <string.h>
@@ -17,13 +18,9 @@ static size_t vertex_total(const pnpr_polylines *l)
     return l->count && l->offset ? l->offset[l->count] : 0;
 }
 
-pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *l, pnpr_error *err)
+static int print_obj(FILE *f, const void *ctx)
 {
-    if (!valid_lines(l)) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "invalid polylines");
-    char tmp[4096];
-    FILE *f;
-    pnpr_status st = pnpr_file_begin(path, tmp, sizeof tmp, &f, err);
-    if (st != PNPR_OK) return st;
+    const pnpr_polylines *l = ctx;
     int bad = fprintf(f, "# profile lines by pointnpr %s: %zu polylines\n", PNPR_VERSION_STRING, l->count) < 0;
     size_t nv = vertex_total(l);
     for (size_t i = 0; i < nv && !bad; i++)
@@ -35,21 +32,23 @@ pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *l, pnpr
         if (l->closed[p] && l->offset[p + 1] > l->offset[p]) bad |= fprintf(f, " %zu", l->offset[p] + 1) < 0;
         bad |= fputc('\n', f) == EOF;
     }
-    return pnpr_file_commit(f, tmp, path, bad, err);
+    return bad;
 }
 
-pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *l, pnpr_error *err)
+pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *l, pnpr_error *err)
 {
     if (!valid_lines(l)) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "invalid polylines");
+    return pnpr_output_write(path, print_obj, l, err);
+}
+
+static int print_ply(FILE *f, const void *ctx)
+{
+    const pnpr_polylines *l = ctx;
     size_t nv = vertex_total(l), ne = 0;
     for (size_t p = 0; p < l->count; p++) {
         size_t c = l->offset[p + 1] - l->offset[p];
         ne += c > 1 ? c - 1 + (l->closed[p] && c > 2) : 0;
     }
-    char tmp[4096];
-    FILE *f;
-    pnpr_status st = pnpr_file_begin(path, tmp, sizeof tmp, &f, err);
-    if (st != PNPR_OK) return st;
     int bad = fprintf(f,
                       "ply\nformat ascii 1.0\ncomment profile lines by pointnpr %s\n"
                       "element vertex %zu\nproperty double x\nproperty double y\nproperty double z\n"
@@ -63,5 +62,11 @@ pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *l, pnpr
         for (size_t v = a + 1; v < b && !bad; v++) bad = fprintf(f, "%zu %zu\n", v - 1, v) < 0;
         if (l->closed[p] && b - a > 2 && !bad) bad = fprintf(f, "%zu %zu\n", b - 1, a) < 0;
     }
-    return pnpr_file_commit(f, tmp, path, bad, err);
+    return bad;
+}
+
+pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *l, pnpr_error *err)
+{
+    if (!valid_lines(l)) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "invalid polylines");
+    return pnpr_output_write(path, print_ply, l, err);
 }

@@ -1,31 +1,56 @@
 // OBJ/OFF input through OpenMesh: a thin adapter from OpenMesh's readers to pnpr_cloud.
 //
+// Hostile input. OpenMesh 9 trusts the files it reads (header counts drive its loops and its
+// reserve(), a number that does not parse silently drops an OBJ vertex or derails an OFF
+// stream, a face corner without a vertex makes it write out of bounds). So every file first goes
+// through a validating pre-pass, io/mesh_check.c (its header lists the rules), which walks the
+// file once, streaming, the way OpenMesh tokenises it, and fails with "FILE: line N: ..."
+// (err->line = N; binary OFF: "FILE: byte N: ...", err->offset) at the first thing OpenMesh would
+// misread, loop on or over-allocate:
+//  - counts are checked against what the file can hold before anything is allocated
+//    (PNPR_ERR_TRUNCATED: "OFF\n2147483648 0 0" in 20 bytes fails at once), negative counts and
+//    counts above 2^32-1 are PNPR_ERR_FORMAT, more than 2^31-1 vertices PNPR_ERR_UNSUPPORTED;
+//  - numbers must parse whole and fit a float: an OBJ or OFF vertex with "nan", "1e400" or
+//    "1,5" FAILS the read with its line and vertex number (PNPR_ERR_FORMAT). Chosen over keeping
+//    such a vertex as a non-finite point because OpenMesh drops it and every later face index
+//    would then name the wrong vertex; failing keeps indices meaning what the file says;
+//  - face corners must name existing vertices (index 0, an index past the last vertex, a
+//    relative index before the first, an OFF index >= the vertex count): PNPR_ERR_FORMAT, as in
+//    the PLY reader, never a silent drop;
+//  - binary bytes (NUL, control characters) in a text file, or an OBJ file without a single OBJ
+//    statement, are PNPR_ERR_FORMAT: random bytes named .obj are not an empty cloud.
+// What passes is read by OpenMesh with bounded loops and memory (at most a few bytes of storage
+// per byte of file).
+//
 // OpenMesh parses the file; a small importer (derived from OpenMesh's ImporterT) records what
 // the reader hands over, in file order: vertex positions, vertex colours and normals when the
-// file has them, and faces exactly as the file lists them (OpenMesh's own mesh would drop
-// degenerate faces and duplicate vertices around non-manifold ones; a point cloud keeps the
-// file's vertices one to one).
+// file has them, and faces exactly as the file lists them. Faces are recorded, not added to
+// OpenMesh's mesh: its mesh would drop degenerate faces and duplicate vertices around
+// non-manifold ones, and its checks cost time quadratic in a face's corners and a vertex's
+// faces; a point cloud keeps the file's vertices one to one. Faces with fewer than 3 corners
+// are dropped (OFF faces of 0-2 corners; OBJ faces after OpenMesh removes repeated corners).
+// Float colours are clamped to [0, 1] before OpenMesh's rounding (its cast is undefined outside).
+//
+// Warnings. What OpenMesh prints during a read (omerr, omlog, and its direct std::cerr writes,
+// e.g. "Error setting vertex color" or a missing material file) is captured and re-emitted on
+// stderr as at most 5 lines "FILE: OpenMesh: ...", then "FILE: (N more warnings)".
 //
 // Exact coordinates: OpenMesh (9.x) parses ascii coordinates as float, which loses the detail of
-// georeferenced data (5e6 + millimetres). For ascii OBJ/OFF the adapter therefore re-reads the
-// vertex lines itself with strtod, and uses those doubles (src_xyz, src_coord_type FLOAT64)
-// after checking, vertex by vertex, that strtof of the same text gives exactly the float that
-// OpenMesh produced — i.e. that both saw the same vertices in the same order. If anything
-// disagrees in an OBJ (an exotic layout), or the file is binary OFF (float32 on disk), the
-// floats are used as they are: origin 0, src_coord_type FLOAT32.
+// georeferenced data (5e6 + millimetres). The pre-pass reads the same vertex words as doubles
+// (strtod, "C" form), and the adapter uses them (src_xyz, src_coord_type FLOAT64) after checking,
+// vertex by vertex, that strtof of the same text gives exactly the float that OpenMesh produced,
+// i.e. that both saw the same vertices in the same order. If they disagree in an OBJ the floats
+// are used as they are (origin 0, FLOAT32); in an OFF that is an error (PNPR_ERR_FORMAT). Binary
+// OFF (float32 on disk) gives the floats as they are.
 //
-// OFF checks: OpenMesh silently returns too few or wrong vertices for some OFF files (a vertex
-// list shorter than the header says, counts on the keyword line, comment lines in the body).
-// The text pass catches these: PNPR_ERR_TRUNCATED when the file has fewer vertex lines than the
-// header announces, PNPR_ERR_FORMAT when OpenMesh's vertex count or values differ from the text.
-//
-// Faces are kept when they have at least 3 corners that all name vertices of the file.
 // Inputs whose extension does not name the format (sniffed by io.c) are read through a
 // temporary symbolic link with the right extension, because OpenMesh chooses its reader by
-// extension and its OFF stream reader does not parse the keyword line.
+// extension and its OFF stream reader does not parse the keyword line. The file must be a
+// regular file (OpenMesh reads it twice).
 //
-// Thread safety: OpenMesh's readers are process-wide singletons that keep per-file state, so
-// do not read OBJ/OFF files from several threads at once.
+// Thread safety: OpenMesh's readers are process-wide singletons that keep per-file state, and the
+// warning capture redirects std::cerr and std::clog during a read, so do not read OBJ/OFF files
+// from several threads at once.
 //
 // No C++ exception escapes: everything is wrapped in try/catch.
 #include <pointnpr/io.h>
@@ -55,15 +80,20 @@ extern "C" pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_opt
 // MeshIO.hh must come before the mesh kernel headers.
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
 
+#include "mesh_check.h"
+
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
+#include <iostream>
 #include <new>
+#include <streambuf>
 #include <string>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -78,13 +108,24 @@ struct MeshTraits : public OpenMesh::DefaultTraits {
 };
 typedef OpenMesh::PolyMesh_ArrayKernelT<MeshTraits> Mesh;
 
-// Records the reader's vertices, colours, normals and faces in file order, and forwards
-// everything to OpenMesh's own importer (readers may look at the mesh it builds).
+// OpenMesh's colour cast (v * 255 + 0.5, truncated) for v in [0, 1]; clamped outside, where the
+// cast would be undefined; NaN gives 0.
+uint8_t unit_byte(float v)
+{
+    if (!(v > 0.0f)) return 0;
+    if (v >= 1.0f) return 255;
+    return (uint8_t)(v * 255.0f + 0.5f);
+}
+
+// Records the reader's vertices, colours, normals and faces in file order. Vertices are also
+// added to OpenMesh's mesh (the readers ask for its vertex count); faces, colours and normals
+// are only recorded.
 class RecordingImporter : public OpenMesh::IO::ImporterT<Mesh> {
 public:
     typedef OpenMesh::IO::ImporterT<Mesh> Base;
 
-    explicit RecordingImporter(Mesh &mesh) : Base(mesh) {}
+    // expected: the vertex count the pre-pass validated (bounds what reserve() may allocate)
+    RecordingImporter(Mesh &mesh, size_t expected) : Base(mesh), expected_(expected) {}
 
     std::vector<double> xyz;        // 3 per file vertex, as the reader gave them
     std::vector<float> xyz_float;   // same, when the reader gave floats (for the exactness check)
@@ -95,6 +136,17 @@ public:
     std::vector<uint32_t> face_offset{0};
     std::vector<uint32_t> face_index;
     std::vector<long> vertex_of_handle; // mesh vertex idx -> file vertex index, -1 = not one
+
+    void reserve(unsigned int nV, unsigned int, unsigned int) override
+    {
+        size_t n = std::min((size_t)nV, expected_);
+        Base::reserve((unsigned int)n, 0, 0);
+        xyz.reserve(3 * n);
+        xyz_float.reserve(3 * n);
+        rgb.reserve(3 * n);
+        normal.reserve(3 * n);
+        vertex_of_handle.reserve(n);
+    }
 
     OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f &p) override
     {
@@ -113,52 +165,42 @@ public:
         return vh;
     }
 
+    // Kept when it has at least 3 corners that all name vertices of the file. The handle
+    // returned is invalid: nothing was added to OpenMesh's mesh, so readers attach nothing to it.
     OpenMesh::FaceHandle add_face(const VHandles &idx) override
     {
-        std::vector<uint32_t> corners;
-        bool ok = idx.size() >= 3;
-        for (size_t k = 0; ok && k < idx.size(); k++) {
+        if (idx.size() < 3 || face_index.size() + idx.size() > UINT32_MAX) return OpenMesh::FaceHandle();
+        const size_t start = face_index.size();
+        for (size_t k = 0; k < idx.size(); k++) {
             long v = file_vertex(idx[k]);
-            if (v < 0) ok = false;
-            else corners.push_back((uint32_t)v);
+            if (v < 0) {
+                face_index.resize(start);
+                return OpenMesh::FaceHandle();
+            }
+            face_index.push_back((uint32_t)v);
         }
-        if (ok && face_index.size() + corners.size() <= UINT32_MAX) {
-            face_index.insert(face_index.end(), corners.begin(), corners.end());
-            face_offset.push_back((uint32_t)face_index.size());
-        }
-        return Base::add_face(idx);
+        face_offset.push_back((uint32_t)face_index.size());
+        return OpenMesh::FaceHandle();
     }
+    size_t n_faces() const override { return face_offset.size() - 1; }
+    void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle, const std::vector<OpenMesh::Vec2f> &) override {}
+    void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle, const std::vector<OpenMesh::Vec3f> &) override {}
 
-    void set_color(OpenMesh::VertexHandle vh, const OpenMesh::Vec3uc &c) override
-    {
-        Base::set_color(vh, c);
-        store_color(vh, c);
-    }
-    void set_color(OpenMesh::VertexHandle vh, const OpenMesh::Vec4uc &c) override
-    {
-        Base::set_color(vh, c);
-        store_color(vh, OpenMesh::color_cast<OpenMesh::Vec3uc>(c));
-    }
+    void set_color(OpenMesh::VertexHandle vh, const OpenMesh::Vec3uc &c) override { store_color(vh, c[0], c[1], c[2]); }
+    void set_color(OpenMesh::VertexHandle vh, const OpenMesh::Vec4uc &c) override { store_color(vh, c[0], c[1], c[2]); }
     void set_color(OpenMesh::VertexHandle vh, const OpenMesh::Vec3f &c) override
     {
-        Base::set_color(vh, c);
-        store_color(vh, OpenMesh::color_cast<OpenMesh::Vec3uc>(c));
+        store_color(vh, unit_byte(c[0]), unit_byte(c[1]), unit_byte(c[2]));
     }
     void set_color(OpenMesh::VertexHandle vh, const OpenMesh::Vec4f &c) override
     {
-        Base::set_color(vh, c);
-        store_color(vh, OpenMesh::color_cast<OpenMesh::Vec3uc>(c));
+        store_color(vh, unit_byte(c[0]), unit_byte(c[1]), unit_byte(c[2]));
     }
     void set_normal(OpenMesh::VertexHandle vh, const OpenMesh::Vec3f &n) override
     {
-        Base::set_normal(vh, n);
         store_normal(vh, OpenMesh::Vec3d(n[0], n[1], n[2]));
     }
-    void set_normal(OpenMesh::VertexHandle vh, const OpenMesh::Vec3d &n) override
-    {
-        Base::set_normal(vh, n);
-        store_normal(vh, n);
-    }
+    void set_normal(OpenMesh::VertexHandle vh, const OpenMesh::Vec3d &n) override { store_normal(vh, n); }
     // face colours/normals are not kept: the base class handles them (ignored unless requested)
     using Base::add_vertex;
     using Base::add_face;
@@ -168,6 +210,8 @@ public:
     size_t count() const { return xyz.size() / 3; }
 
 private:
+    size_t expected_;
+
     void record(OpenMesh::VertexHandle vh, const OpenMesh::Vec3d &p)
     {
         long file_index = (long)count();
@@ -185,11 +229,13 @@ private:
         if (vh.idx() < 0 || (size_t)vh.idx() >= vertex_of_handle.size()) return -1;
         return vertex_of_handle[(size_t)vh.idx()];
     }
-    void store_color(OpenMesh::VertexHandle vh, const OpenMesh::Vec3uc &c)
+    void store_color(OpenMesh::VertexHandle vh, uint8_t r, uint8_t g, uint8_t b)
     {
         long v = file_vertex(vh);
         if (v < 0) return;
-        for (int a = 0; a < 3; a++) rgb[3 * (size_t)v + a] = c[a];
+        rgb[3 * (size_t)v] = r;
+        rgb[3 * (size_t)v + 1] = g;
+        rgb[3 * (size_t)v + 2] = b;
         any_color = true;
     }
     void store_normal(OpenMesh::VertexHandle vh, const OpenMesh::Vec3d &n)
@@ -201,6 +247,72 @@ private:
             normal[3 * (size_t)v + a] = len > 0 && std::isfinite(len) ? (float)(n[a] / len) : 0.0f;
         any_normal = true;
     }
+};
+
+// Collects the lines written to it: the first kKeep (cut at kWidth bytes) and a count.
+class WarningCapture : public std::streambuf {
+public:
+    static const size_t kKeep = 5, kWidth = 200;
+
+    // Ends a last line without a newline; prints what was kept on stderr, prefixed with path.
+    void emit(const char *path)
+    {
+        end_line();
+        for (const std::string &l : kept_) std::fprintf(stderr, "%s: OpenMesh: %s\n", path, l.c_str());
+        if (lines_ > kept_.size()) std::fprintf(stderr, "%s: (%zu more warnings)\n", path, lines_ - kept_.size());
+    }
+
+protected:
+    int_type overflow(int_type c) override
+    {
+        if (!traits_type::eq_int_type(c, traits_type::eof())) put(traits_type::to_char_type(c));
+        return traits_type::not_eof(c);
+    }
+    std::streamsize xsputn(const char *s, std::streamsize n) override
+    {
+        for (std::streamsize i = 0; i < n; i++) put(s[i]);
+        return n;
+    }
+
+private:
+    std::vector<std::string> kept_;
+    std::string cur_;
+    size_t lines_ = 0;
+
+    void put(char c)
+    {
+        if (c == '\n') end_line();
+        else if (cur_.size() < kWidth) cur_.push_back((unsigned char)c < 0x20 || c == 0x7f ? '?' : c);
+    }
+    void end_line()
+    {
+        size_t b = cur_.find_first_not_of(" \t?");
+        if (b != std::string::npos) {
+            lines_++;
+            if (kept_.size() < kKeep) kept_.push_back(cur_.substr(b));
+        }
+        cur_.clear();
+    }
+};
+
+// Sends std::cerr and std::clog (where OpenMesh's omerr and omlog go, and where its readers
+// write directly) to a capture while it lives.
+class StreamRedirect {
+public:
+    explicit StreamRedirect(WarningCapture &capture)
+        : err_(std::cerr.rdbuf(&capture)), log_(std::clog.rdbuf(&capture)) {}
+    ~StreamRedirect()
+    {
+        ::omerr().flush(); // a line OpenMesh left without its newline
+        ::omlog().flush();
+        std::cerr.rdbuf(err_);
+        std::clog.rdbuf(log_);
+    }
+    StreamRedirect(const StreamRedirect &) = delete;
+    StreamRedirect &operator=(const StreamRedirect &) = delete;
+
+private:
+    std::streambuf *err_, *log_;
 };
 
 // A symbolic link "<tmpdir>/pointnpr-XXXXXX/input<ext>" to a file, removed on destruction.
@@ -239,92 +351,22 @@ bool ext_matches(const char *path, const char *ext)
            (std::strcmp(ext, ".obj") == 0 ? PNPR_FORMAT_OBJ : PNPR_FORMAT_OFF);
 }
 
-// Splits off the first three numbers after position `p` of `line` (strtod and strtof of the
-// same text). Returns false when there are fewer than three.
-bool parse3(const char *p, double d[3], float f[3])
-{
-    for (int a = 0; a < 3; a++) {
-        char *end = nullptr;
-        d[a] = std::strtod(p, &end);
-        if (end == p) return false;
-        f[a] = std::strtof(p, nullptr);
-        p = end;
-    }
-    return true;
-}
-
-const char *skip_space(const char *p)
-{
-    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\f' || *p == '\v') p++;
-    return p;
-}
-
-// Exact vertex coordinates of an ascii OBJ ("v x y z ..." lines, in order).
-bool exact_obj(std::istream &in, std::vector<double> &out, std::vector<float> &out_f)
-{
-    std::string line;
-    while (std::getline(in, line)) {
-        const char *p = skip_space(line.c_str());
-        if (p[0] != 'v' || (p[1] != ' ' && p[1] != '\t')) continue;
-        double d[3];
-        float f[3];
-        if (!parse3(p + 1, d, f)) return false;
-        out.insert(out.end(), d, d + 3);
-        out_f.insert(out_f.end(), f, f + 3);
-    }
-    return true;
-}
-
-// Next line that is neither empty nor a '#' comment.
-bool next_content_line(std::istream &in, std::string &line, const char **r_p)
-{
-    while (std::getline(in, line)) {
-        const char *p = skip_space(line.c_str());
-        if (*p && *p != '#' && *p != '\n') { *r_p = p; return true; }
-    }
-    return false;
-}
-
-// What the text pass over an OFF file found.
-enum OffText {
-    OFF_TEXT_NONE,  // binary or non-3D variant (4OFF, nOFF), or no readable header: not checked
-    OFF_TEXT_OK,    // header count and that many vertex lines with 3 numbers each
-    OFF_TEXT_SHORT, // the header announces more vertex lines than the file has
-    OFF_TEXT_BAD    // a vertex line with fewer than 3 numbers (OpenMesh's values are kept)
+// The pre-pass's exact coordinates and the floats strtof gives for the same text.
+struct ExactText {
+    std::vector<double> xyz;
+    std::vector<float> xyz_float;
 };
 
-// Exact vertex coordinates of an ascii OFF: keyword, "nv nf ne" (on the keyword line or the
-// next content line), then nv vertex lines; '#' comments and blank lines are skipped.
-OffText exact_off(std::istream &in, std::vector<double> &out, std::vector<float> &out_f,
-                  unsigned long long *r_nv)
+int exact_vertex(void *user, const double xyz[3], const float xyz_f[3])
 {
-    std::string line;
-    const char *p = nullptr;
-    *r_nv = 0;
-    if (!next_content_line(in, line, &p)) return OFF_TEXT_NONE;
-    const char *kw = p;
-    while (*p && *p != ' ' && *p != '\t' && *p != '\r') p++;
-    std::string keyword(kw, (size_t)(p - kw));
-    if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return OFF_TEXT_NONE;
-    if (keyword.find('4') != std::string::npos || keyword.find('n') != std::string::npos) return OFF_TEXT_NONE;
-    if (line.find("BINARY") != std::string::npos) return OFF_TEXT_NONE;
-    p = skip_space(p);
-    if (!*p || *p == '#') {
-        if (!next_content_line(in, line, &p)) return OFF_TEXT_NONE;
+    try {
+        ExactText *t = static_cast<ExactText *>(user);
+        t->xyz.insert(t->xyz.end(), xyz, xyz + 3);
+        t->xyz_float.insert(t->xyz_float.end(), xyz_f, xyz_f + 3);
+        return 0;
+    } catch (...) {
+        return 1;
     }
-    char *end = nullptr;
-    unsigned long long nv = std::strtoull(p, &end, 10);
-    if (end == p || *p == '-') return OFF_TEXT_NONE;
-    *r_nv = nv;
-    for (unsigned long long i = 0; i < nv; i++) {
-        if (!next_content_line(in, line, &p)) return OFF_TEXT_SHORT;
-        double d[3];
-        float f[3];
-        if (!parse3(p, d, f)) return OFF_TEXT_BAD;
-        out.insert(out.end(), d, d + 3);
-        out_f.insert(out_f.end(), f, f + 3);
-    }
-    return OFF_TEXT_OK;
 }
 
 bool same_float(float a, float b)
@@ -370,6 +412,41 @@ pnpr_status fill_cloud(RecordingImporter &imp, const std::vector<double> *exact,
     return PNPR_OK;
 }
 
+// OpenMesh reads om_path into imp; its warnings go to stderr, bounded and named by path.
+bool run_openmesh(const char *path, const std::string &om_path, RecordingImporter &imp)
+{
+    OpenMesh::IO::Options opt;
+    opt += OpenMesh::IO::Options::VertexColor;
+    opt += OpenMesh::IO::Options::VertexNormal;
+    WarningCapture capture;
+    bool ok;
+    {
+        StreamRedirect redirect(capture);
+        ok = OpenMesh::IO::IOManager().read(om_path, imp, opt);
+    }
+    capture.emit(path);
+    if (!opt.check(OpenMesh::IO::Options::VertexColor)) imp.any_color = false;
+    if (!opt.check(OpenMesh::IO::Options::VertexNormal)) imp.any_normal = false;
+    return ok;
+}
+
+// Whether the pre-pass's exact coordinates describe the vertices OpenMesh read (same count,
+// strtof of each text = OpenMesh's float). An OFF that disagrees is an error (*st set).
+bool exact_matches(const char *path, pnpr_file_format fmt, const ExactText &text, const RecordingImporter &imp,
+                   pnpr_status *st, pnpr_error *err)
+{
+    *st = PNPR_OK;
+    if (imp.reader_gave_doubles || text.xyz.size() != imp.xyz.size()) return false;
+    for (size_t i = 0; i < text.xyz_float.size(); i++) {
+        if (same_float(text.xyz_float[i], imp.xyz_float[i])) continue;
+        if (fmt == PNPR_FORMAT_OFF)
+            *st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: OpenMesh read vertex %zu differently from the file's text",
+                                 path, i / 3);
+        return false;
+    }
+    return true;
+}
+
 pnpr_status read_mesh(const char *path, pnpr_file_format fmt, const pnpr_read_options *opts,
                       pnpr_cloud *cloud, pnpr_error *err)
 {
@@ -377,74 +454,40 @@ pnpr_status read_mesh(const char *path, pnpr_file_format fmt, const pnpr_read_op
     const char *ext = fmt == PNPR_FORMAT_OBJ ? ".obj" : ".off";
     if (pnpr_progress_report(progress, "read mesh", 0.0))
         return pnpr_error_set(err, PNPR_ERR_CANCELLED, "%s: cancelled", path);
-
-    Mesh mesh;
-    mesh.request_vertex_colors();
-    mesh.request_vertex_normals();
-    RecordingImporter imp(mesh);
-    OpenMesh::IO::Options opt;
-    opt += OpenMesh::IO::Options::VertexColor;
-    opt += OpenMesh::IO::Options::VertexNormal;
-    bool ok;
-    if (ext_matches(path, ext)) {
-        ok = OpenMesh::IO::IOManager().read(path, imp, opt);
-    } else {
-        // OpenMesh picks its reader by the extension, and its OFF reader only looks at the
-        // keyword (COFF, NOFF, BINARY...) when given a file name: its stream entry point reuses
-        // whatever the previous OFF file said. So give it a link with the right extension.
-        ExtLink link;
+    // OpenMesh picks its reader by the extension, and its OFF reader only looks at the keyword
+    // (COFF, NOFF, BINARY...) when given a file name: its stream entry point reuses whatever the
+    // previous OFF file said. So a file without the extension is read through a link that has it.
+    ExtLink link;
+    std::string om_path = path;
+    if (!ext_matches(path, ext)) {
         if (!link.make(path, ext))
             return pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot create a temporary link with a %s extension: %s",
                                   path, ext, std::strerror(errno));
-        ok = OpenMesh::IO::IOManager().read(link.link_path, imp, opt);
+        om_path = link.link_path;
     }
-    if (!ok)
+    ExactText text;
+    pnpr_mesh_check mc;
+    std::memset(&mc, 0, sizeof mc);
+    mc.format = fmt;
+    mc.openmesh_path = om_path.c_str();
+    mc.vertex = exact_vertex;
+    mc.user = &text;
+    pnpr_status st = pnpr_mesh_check_file(path, &mc, err);
+    if (st != PNPR_OK) return st;
+
+    Mesh mesh;
+    RecordingImporter imp(mesh, (size_t)mc.vertices);
+    if (!run_openmesh(path, om_path, imp))
         return pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: OpenMesh could not read the file", path);
-    if (imp.count() > UINT32_MAX)
-        return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: %zu vertices, more than 2^32-1", path, imp.count());
-    if (!opt.check(OpenMesh::IO::Options::VertexColor)) imp.any_color = false;
-    if (!opt.check(OpenMesh::IO::Options::VertexNormal)) imp.any_normal = false;
+    if (imp.count() != mc.vertices)
+        return pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: OpenMesh read %zu vertices, the file has %llu", path,
+                              imp.count(), (unsigned long long)mc.vertices);
     if (pnpr_progress_report(progress, "read mesh", 0.5))
         return pnpr_error_set(err, PNPR_ERR_CANCELLED, "%s: cancelled", path);
 
-    // Exact coordinates from the text, when they provably match what OpenMesh read. For OFF the
-    // header's vertex count is also checked: OpenMesh accepts some broken or unusual files
-    // (a truncated vertex list, counts on the keyword line) and returns fewer or wrong vertices.
-    std::vector<double> exact;
-    std::vector<float> exact_f;
-    bool use_exact = false;
-    std::ifstream text(path, std::ios::in | std::ios::binary);
-    if (text) {
-        bool parsed;
-        if (fmt == PNPR_FORMAT_OBJ) {
-            parsed = exact_obj(text, exact, exact_f);
-        } else {
-            unsigned long long nv = 0;
-            OffText t = exact_off(text, exact, exact_f, &nv);
-            if (t == OFF_TEXT_SHORT)
-                return pnpr_error_set(err, PNPR_ERR_TRUNCATED,
-                                      "%s: the OFF header announces %llu vertices, the file has %zu vertex lines",
-                                      path, nv, exact.size() / 3);
-            if ((t == OFF_TEXT_OK || t == OFF_TEXT_BAD) && nv != (unsigned long long)imp.count())
-                return pnpr_error_set(err, PNPR_ERR_FORMAT,
-                                      "%s: OpenMesh read %zu vertices but the OFF header announces %llu",
-                                      path, imp.count(), nv);
-            parsed = t == OFF_TEXT_OK;
-        }
-        use_exact = parsed && exact.size() == imp.xyz.size();
-        for (size_t i = 0; use_exact && i < exact_f.size(); i++) {
-            if (same_float(exact_f[i], imp.xyz_float[i])) continue;
-            use_exact = false;
-            // OFF: same count but other values means OpenMesh misread the body (e.g. comment lines)
-            if (fmt == PNPR_FORMAT_OFF)
-                return pnpr_error_set(err, PNPR_ERR_FORMAT,
-                                      "%s: OpenMesh read vertex %zu differently from the file's text "
-                                      "(unusual OFF layout, e.g. comment lines between the data lines)",
-                                      path, i / 3);
-        }
-        if (imp.reader_gave_doubles) use_exact = false; // a reader that parses doubles is exact already
-    }
-    pnpr_status st = fill_cloud(imp, use_exact ? &exact : nullptr, cloud);
+    bool use_exact = !mc.binary && exact_matches(path, fmt, text, imp, &st, err);
+    if (st != PNPR_OK) return st;
+    st = fill_cloud(imp, use_exact ? &text.xyz : nullptr, cloud);
     if (st != PNPR_OK)
         return pnpr_error_set(err, st, "%s: cannot store %zu vertices", path, imp.count());
     if (pnpr_progress_report(progress, "read mesh", 1.0))
@@ -469,6 +512,8 @@ extern "C" pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_opt
         return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, std::strerror(errno));
     if (S_ISDIR(sb.st_mode))
         return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, std::strerror(EISDIR));
+    if (!S_ISREG(sb.st_mode))
+        return pnpr_error_set(err, PNPR_ERR_IO, "%s: not a regular file", path);
     pnpr_status st;
     try {
         st = read_mesh(path, fmt, opts, cloud, err);

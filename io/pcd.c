@@ -60,6 +60,8 @@
  *    PNPR_ERR_FORMAT, F2 (half floats) PNPR_ERR_UNSUPPORTED. Every count is checked against
  *    the bytes present before the cloud is allocated (a 200-byte file that announces 10^12
  *    points fails at once); size arithmetic saturates. On error the cloud is left zeroed.
+ *    pnpr_read_pcd_file maps the file (io/file_bytes.h), so that check comes before any of the
+ *    data is read: a 2 GB sparse file that announces 10^9 points fails at once.
  *  - Progress stage "read pcd", every 65536 points; cancelling gives PNPR_ERR_CANCELLED.
  *
  * WRITING (pnpr_write_pcd_stream, pnpr_write_pcd_file): "VERSION 0.7", DATA binary (little
@@ -75,6 +77,8 @@
 #include <pointnpr/io.h>
 
 #include "../core/internal.h"
+#include <pointnpr/output.h>
+#include "file_bytes.h"
 #include "text_token.h"
 
 #include <errno.h>
@@ -85,7 +89,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 /* Exported beyond io.h (io/io.c declares them itself and dispatches to them). */
 pnpr_status pnpr_read_pcd_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
@@ -915,47 +918,15 @@ pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_
     return PNPR_OK;
 }
 
-/* The whole file in memory (regular files and pipes). */
-static pnpr_status slurp(FILE *fp, const char *path, unsigned char **r_buf, size_t *r_len, pnpr_error *err)
-{
-    struct stat sb;
-    size_t cap = 1 << 16, len = 0;
-    if (fstat(fileno(fp), &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > 0 &&
-        (uint64_t)sb.st_size < (uint64_t)SIZE_MAX / 2)
-        cap = (size_t)sb.st_size + 1; /* + 1: EOF is seen without growing */
-    unsigned char *buf = malloc(cap);
-    for (size_t got = 1; buf && got > 0; len += got) {
-        if (len == cap) {
-            unsigned char *grown = cap <= SIZE_MAX / 2 ? realloc(buf, 2 * cap) : NULL;
-            if (!grown) { free(buf); buf = NULL; break; }
-            buf = grown;
-            cap *= 2;
-        }
-        got = fread(buf + len, 1, cap - len, fp);
-    }
-    if (!buf) return pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: file too large for memory", path);
-    if (ferror(fp)) {
-        free(buf);
-        return pcd_fail(err, PNPR_ERR_IO, 0, -1, "%s: read error", path);
-    }
-    *r_buf = buf;
-    *r_len = len;
-    return PNPR_OK;
-}
-
 pnpr_status pnpr_read_pcd_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud, pnpr_error *err)
 {
     if (!path || !cloud) return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read pcd: NULL path or cloud");
     pnpr_cloud_free(cloud);
-    FILE *fp = fopen(path, "rb");
-    if (!fp) return pcd_fail(err, PNPR_ERR_IO, 0, -1, "%s: cannot open: %s", path, strerror(errno));
-    unsigned char *buf = NULL;
-    size_t len = 0;
-    pnpr_status st = slurp(fp, path, &buf, &len, err);
-    fclose(fp);
+    pnpr_file_bytes fb; /* mapped: the header is checked against the size before the data are touched */
+    pnpr_status st = pnpr_file_bytes_open(path, &fb, err);
     if (st != PNPR_OK) return st;
-    st = pnpr_read_pcd_memory(buf, len, opts, cloud, err);
-    free(buf);
+    st = pnpr_read_pcd_memory(fb.data, fb.size, opts, cloud, err);
+    pnpr_file_bytes_close(&fb);
     if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
     return st;
 }
@@ -1218,30 +1189,18 @@ pnpr_status pnpr_write_pcd_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
     return st;
 }
 
-static int file_sink(void *user, const void *data, size_t size)
-{
-    return fwrite(data, 1, size, (FILE *)user) == size ? 0 : 1;
-}
-
 pnpr_status pnpr_write_pcd_file(const char *path, const pnpr_cloud *cloud, const pnpr_write_options *opts, pnpr_error *err)
 {
     if (!path || !path[0] || !cloud)
         return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write pcd: NULL/empty path or NULL cloud");
-    size_t cap = strlen(path) + 5;
-    char *tmp = malloc(cap);
-    if (!tmp) return pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: out of memory", path);
-    FILE *f = NULL;
-    pnpr_status st = pnpr_file_begin(path, tmp, cap, &f, err);
+    pnpr_output *o = malloc(sizeof *o);
+    if (!o) return pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: out of memory", path);
+    pnpr_status st = pnpr_output_open(o, path, err);
     if (st == PNPR_OK) {
-        st = pnpr_write_pcd_stream(file_sink, f, cloud, opts, err);
-        if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
-        pnpr_error cerr;
-        pnpr_status cst = pnpr_file_commit(f, tmp, path, st != PNPR_OK, &cerr);
-        if (st == PNPR_OK && cst != PNPR_OK) {
-            st = cst;
-            if (err) *err = cerr;
-        }
+        st = pnpr_write_pcd_stream(pnpr_output_sink, o, cloud, opts, err);
+        if (st != PNPR_OK && st != PNPR_ERR_IO) pnpr_error_prefix_path(err, path);
+        st = pnpr_output_close(o, st, err);
     }
-    free(tmp);
+    free(o);
     return st;
 }

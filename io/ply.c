@@ -39,8 +39,13 @@
  *    was found; err->line / err->offset are set accordingly. Element indices in messages are
  *    0-based ("vertex 0" is the first). A body shorter than announced gives PNPR_ERR_TRUNCATED,
  *    anything malformed PNPR_ERR_FORMAT. Counts are checked against the bytes present before
- *    anything is allocated; every size computation is overflow-checked. On error the cloud is
+ *    anything is allocated: binary bodies need their exact size (lists: at least their counts),
+ *    ascii bodies 2 bytes a value ("0 0 1\n"; a line an item for elements read for nothing).
+ *    An ascii body of at most 64 KiB that falls short is parsed anyway, storing nothing, so that
+ *    the error names the line. Every size computation is overflow-checked. On error the cloud is
  *    left zeroed.
+ *  - pnpr_read_ply_file maps the file (io/file_bytes.h) and parses the mapping: a header that
+ *    announces more than the file holds fails having read the header's pages only.
  *  - Progress stage "read ply", about every 1% of the vertices; cancelling gives
  *    PNPR_ERR_CANCELLED.
  *
@@ -66,6 +71,8 @@
  * Numbers are written and read in the "C" form whatever LC_NUMERIC says.
  */
 #include "../core/internal.h"
+#include <pointnpr/output.h>
+#include "file_bytes.h"
 #include "text_token.h"
 #include <pointnpr/io.h>
 
@@ -77,7 +84,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 /* Exported beyond io.h (io/io.c declares them itself and dispatches to them):
  * read a whole PLY file (errors are prefixed with the path) and write one atomically. */
@@ -498,27 +504,65 @@ static pnpr_status assign_roles(ply_header *h, int *double_xyz, pnpr_error *err)
     return PNPR_OK;
 }
 
-/* Checks that the body can hold what the header announces, before anything is allocated. */
-static pnpr_status check_body_size(const ply_header *h, size_t size, pnpr_error *err)
+/* Whether any property of e is stored: an ascii line of such an element is split into all its
+ * values; a line of an element read for nothing is only counted. */
+static int elem_is_read(const ply_elem *e)
+{
+    for (size_t k = 0; k < e->nprops; k++)
+        if (e->props[k].role != ROLE_SKIP) return 1;
+    return 0;
+}
+
+static pnpr_status ascii_short(pnpr_error *err, const ply_elem *e, size_t size, size_t avail, uint64_t need)
+{
+    return fail_at(err, PNPR_ERR_TRUNCATED, e->line, (long long)size,
+                   "line %ld: element '%.*s' announces %llu items, but the ascii body has only %zu bytes "
+                   "(at least %llu needed)",
+                   e->line, show_len(e->name), e->name.s, (unsigned long long)e->count, avail,
+                   (unsigned long long)need - 1);
+}
+
+/* Largest ascii body that fails the 2-bytes-a-value bound but is still parsed (storing nothing)
+ * to name the line where it goes wrong. */
+#define PLY_ASCII_PROBE ((size_t)1 << 16)
+
+/* Ascii bodies hold an item a non-blank line: at least 2 bytes ("v\n"), and 2 bytes a value
+ * ("v v v\n") when the element's values are read; the very last line may lack its newline.
+ * A body short of the first bound fails here. One that holds a line an item but not the values
+ * is broken or truncated inside: above PLY_ASCII_PROBE bytes it fails here too (a header that
+ * lies costs nothing), smaller ones set *r_dry so that the parser finds the line. */
+static pnpr_status check_ascii_size(const ply_header *h, size_t size, int probe, int *r_dry, pnpr_error *err)
+{
+    const size_t avail = size - h->body;
+    uint64_t lines = 0, bytes = 0;
+    for (size_t i = 0; i < h->nelems; i++) {
+        const ply_elem *e = &h->elems[i];
+        if (!e->nprops) continue; /* items without values take no text */
+        lines = add_sat(lines, mul_sat(e->count, 2));
+        if (lines > (uint64_t)avail + 1) return ascii_short(err, e, size, avail, lines);
+    }
+    for (size_t i = 0; i < h->nelems; i++) {
+        const ply_elem *e = &h->elems[i];
+        if (!e->nprops) continue;
+        bytes = add_sat(bytes, mul_sat(e->count, elem_is_read(e) ? mul_sat(e->nprops, 2) : 2));
+        if (bytes <= (uint64_t)avail + 1) continue;
+        if (probe && avail <= PLY_ASCII_PROBE) {
+            *r_dry = 1;
+            return PNPR_OK;
+        }
+        return ascii_short(err, e, size, avail, bytes);
+    }
+    return PNPR_OK;
+}
+
+/* Checks that the body can hold what the header announces, before anything is allocated (see
+ * check_ascii_size for probe and *r_dry). */
+static pnpr_status check_body_size(const ply_header *h, size_t size, int probe, int *r_dry, pnpr_error *err)
 {
     const size_t avail = size - h->body;
     uint64_t cum = 0;
-    if (h->encoding == PLY_ENC_ASCII) {
-        /* An item with values is a non-blank line: at least 2 bytes ("v\n"), the very last one 1.
-         * (A tighter bound would hide the line-precise errors of the body parser.) */
-        for (size_t i = 0; i < h->nelems; i++) {
-            const ply_elem *e = &h->elems[i];
-            if (!e->nprops) continue;
-            cum = add_sat(cum, mul_sat(e->count, 2));
-            if (cum > (uint64_t)avail + 1)
-                return fail_at(err, PNPR_ERR_TRUNCATED, e->line, (long long)size,
-                               "line %ld: element '%.*s' announces %llu items, but the ascii body has only %zu bytes "
-                               "(at least %llu needed)",
-                               e->line, show_len(e->name), e->name.s, (unsigned long long)e->count, avail,
-                               (unsigned long long)cum - 1);
-        }
-        return PNPR_OK;
-    }
+    *r_dry = 0;
+    if (h->encoding == PLY_ENC_ASCII) return check_ascii_size(h, size, probe, r_dry, err);
     uint64_t total = 0;
     int any_list = 0;
     for (size_t i = 0; i < h->nelems; i++) {
@@ -639,12 +683,14 @@ typedef struct ply_reader {
     pnpr_error *err;
     size_t index_cap;   /* capacity of c->faces.index */
     size_t nindex;      /* indices stored */
+    int dry;            /* parse only to find the body's first error: nothing is stored */
 } ply_reader;
 
 /* Stores vertex property p of vertex i. f is meaningful for FLOAT32 properties only. */
 static void store_vertex(ply_reader *r, const ply_prop *p, size_t i, double v, float f)
 {
     pnpr_cloud *c = r->c;
+    if (r->dry) return;
     switch (p->role) {
     case ROLE_X: case ROLE_Y: case ROLE_Z: {
         size_t k = 3 * i + (size_t)(p->role - ROLE_X);
@@ -690,6 +736,7 @@ static int tick(ply_reader *r, ply_tick *t, size_t done, size_t count)
 static int push_index(ply_reader *r, uint32_t v)
 {
     pnpr_faces *fc = &r->c->faces;
+    if (r->dry) return 1;
     if (r->nindex == r->index_cap) {
         size_t cap = r->index_cap ? 2 * r->index_cap : 1024;
         if (cap > UINT32_MAX) cap = UINT32_MAX;
@@ -992,11 +1039,9 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
     const size_t n = (size_t)e->count; /* fits: checked against the bytes present */
     const uint64_t vcount = r->h->vertex->count;
     const char *base = (const char *)r->data;
-    int keep = 0;
+    const int keep = elem_is_read(e);
     ply_tick t;
     if (e->nprops == 0) return PNPR_OK; /* items without values take no text */
-    for (size_t k = 0; k < e->nprops; k++)
-        if (e->props[k].role != ROLE_SKIP) keep = 1;
     tick_init(&t, n);
     for (size_t i = 0; i < n; i++) {
         const char *ls, *le, *q;
@@ -1183,18 +1228,20 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
     memset(&r, 0, sizeof r);
     st = parse_header((const char *)data, size, &h, err);
     if (st == PNPR_OK) st = assign_roles(&h, &r.double_xyz, err);
-    if (st == PNPR_OK) st = check_body_size(&h, size, err);
+    if (st == PNPR_OK) st = check_body_size(&h, size, 1, &r.dry, err);
     if (st == PNPR_OK) {
         r.data = data;
         r.size = size;
         r.h = &h;
         r.c = &c;
         r.swap = (h.encoding == PLY_ENC_LE) != host_is_little();
-        r.progress = opts ? &opts->progress : NULL;
+        r.progress = opts && !r.dry ? &opts->progress : NULL;
         r.err = err;
-        st = prepare_cloud(&r, &h, err);
+        if (!r.dry) st = prepare_cloud(&r, &h, err);
     }
     if (st == PNPR_OK) st = h.encoding == PLY_ENC_ASCII ? read_ascii(&r) : read_binary(&r);
+    if (st == PNPR_OK && r.dry) /* cannot pass (the bound is exact); if it did, the bound speaks */
+        st = check_body_size(&h, size, 0, &r.dry, err);
     if (st == PNPR_OK && pnpr_progress_report(r.progress, "read ply", 1.0))
         st = cancelled(&r, c.count, c.count);
     if (st == PNPR_OK) {
@@ -1229,43 +1276,11 @@ pnpr_status pnpr_read_ply_file(const char *path, const pnpr_read_options *opts, 
     if (!path || !cloud)
         return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read ply: NULL path or cloud");
     pnpr_cloud_free(cloud);
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return fail_at(err, PNPR_ERR_IO, 0, -1, "%s: cannot open: %s", path, strerror(errno));
-    struct stat sb;
-    size_t cap = 1 << 16, len = 0;
-    if (fstat(fileno(fp), &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > 0 &&
-        (uint64_t)sb.st_size < (uint64_t)SIZE_MAX - 1)
-        cap = (size_t)sb.st_size + 1; /* + 1: EOF is seen without growing */
-    char *buf = malloc(cap);
-    if (!buf) {
-        fclose(fp);
-        return fail_at(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: cannot allocate %zu bytes", path, cap);
-    }
-    for (;;) {
-        if (len == cap) {
-            size_t ncap = cap > SIZE_MAX / 2 ? SIZE_MAX : 2 * cap;
-            char *grown = ncap > cap ? realloc(buf, ncap) : NULL;
-            if (!grown) {
-                free(buf);
-                fclose(fp);
-                return fail_at(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: file too large for memory", path);
-            }
-            buf = grown;
-            cap = ncap;
-        }
-        size_t got = fread(buf + len, 1, cap - len, fp);
-        len += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(fp);
-    fclose(fp);
-    if (bad) {
-        free(buf);
-        return fail_at(err, PNPR_ERR_IO, 0, -1, "%s: read error", path);
-    }
-    pnpr_status st = pnpr_read_ply_memory(buf, len, opts, cloud, err);
-    free(buf);
+    pnpr_file_bytes fb; /* mapped: the header is checked against the size before the body is touched */
+    pnpr_status st = pnpr_file_bytes_open(path, &fb, err);
+    if (st != PNPR_OK) return st;
+    st = pnpr_read_ply_memory(fb.data, fb.size, opts, cloud, err);
+    pnpr_file_bytes_close(&fb);
     if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
     return st;
 }
@@ -1768,37 +1783,19 @@ pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
     return PNPR_OK;
 }
 
-static int file_sink(void *user, const void *data, size_t size)
-{
-    return fwrite(data, 1, size, (FILE *)user) == size ? 0 : 1;
-}
-
 pnpr_status pnpr_write_ply_file(const char *path, const pnpr_cloud *cloud,
                                 const pnpr_write_options *opts, pnpr_error *err)
 {
     if (!path || !path[0] || !cloud)
         return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: NULL/empty path or NULL cloud");
-    size_t len = strlen(path);
-    char *tmp = malloc(len + 5);
-    if (!tmp) return fail_at(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: out of memory", path);
-    memcpy(tmp, path, len);
-    memcpy(tmp + len, ".tmp", 5);
-    FILE *fp = fopen(tmp, "wb");
-    if (!fp) {
-        pnpr_status st = fail_at(err, PNPR_ERR_IO, 0, -1, "%s: cannot create %s: %s", path, tmp, strerror(errno));
-        free(tmp);
-        return st;
+    pnpr_output *o = malloc(sizeof *o);
+    if (!o) return fail_at(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: out of memory", path);
+    pnpr_status st = pnpr_output_open(o, path, err);
+    if (st == PNPR_OK) {
+        st = pnpr_write_ply_stream(pnpr_output_sink, o, cloud, opts, err);
+        if (st != PNPR_OK && st != PNPR_ERR_IO) pnpr_error_prefix_path(err, path);
+        st = pnpr_output_close(o, st, err);
     }
-    pnpr_status st = pnpr_write_ply_stream(file_sink, fp, cloud, opts, err);
-    if (st != PNPR_OK) {
-        fclose(fp);
-        pnpr_error_prefix_path(err, path);
-    } else if (fclose(fp) != 0) {
-        st = fail_at(err, PNPR_ERR_IO, 0, -1, "%s: cannot write %s: %s", path, tmp, strerror(errno));
-    } else if (rename(tmp, path) != 0) {
-        st = fail_at(err, PNPR_ERR_IO, 0, -1, "%s: cannot rename %s: %s", path, tmp, strerror(errno));
-    }
-    if (st != PNPR_OK) remove(tmp);
-    free(tmp);
+    free(o);
     return st;
 }

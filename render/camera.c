@@ -1,6 +1,7 @@
 /* Camera: auto-fit and the look-at / perspective matrices (in double, relative to the cloud's
  * origin, then converted to float). */
 #include "render_internal.h"
+#include <pointnpr/outliers.h>
 #include "../core/vec3.h"
 
 #include <math.h>
@@ -13,7 +14,7 @@ pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float 
 {
     if (!cloud || !r_camera) return PNPR_ERR_INVALID_ARGUMENT;
     float bmin[3], bmax[3];
-    if (pnpr_cloud_bounds(cloud, bmin, bmax) == 0) return PNPR_ERR_EMPTY;
+    if (pnpr_cloud_inlier_bounds(cloud, bmin, bmax) == 0) return PNPR_ERR_EMPTY;
     if (!(fov_y_deg > 0 && fov_y_deg < 179)) fov_y_deg = 45;
     if (!(aspect > 0) || !isfinite(aspect)) aspect = 1;
     double d[3] = {0, -1, 0.5};
@@ -158,11 +159,11 @@ static pnpr_status lookat_matrices(const pnpr_camera *cam, const double origin[3
         up[a] = cam->up[a];
     }
     if (!(pnpr_normalize3(f) > 0))
-        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera: eye and target are the same point");
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "camera: eye and target are the same point");
     double s[3], u[3];
     pnpr_cross3(f, up, s);
     if (!(pnpr_normalize3(s) > 1e-12))
-        return pnpr_error_set(err, PNPR_ERR_NUMERIC, "camera: up is zero or parallel to the view direction");
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "camera: up is zero or parallel to the view direction");
     pnpr_cross3(s, f, u);
     float fov = cam->fov_y_deg;
     if (fov == 0) fov = 45;
@@ -236,7 +237,7 @@ pnpr_status pnpr_camera_matrices_from_camera(const pnpr_camera *camera, const pn
     int have_box = 0;
     if (cloud) {
         memcpy(origin, cloud->origin, sizeof origin);
-        have_box = pnpr_cloud_bounds(cloud, bmin, bmax) > 0;
+        have_box = pnpr_cloud_inlier_bounds(cloud, bmin, bmax) > 0;
     }
     double view[16], proj[16], n, fa;
     pnpr_status st = lookat_matrices(camera, origin, bmin, bmax, have_box, width, height, view, proj, &n, &fa, err);

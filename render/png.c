@@ -1,6 +1,8 @@
-/* PNG output through libpng's simplified API; written to a temporary name, then renamed. */
+/* PNG output through libpng's simplified API, written as every output is (pointnpr/output.h). */
 #include <pointnpr/render.h>
+#include <pointnpr/output.h>
 
+#include <errno.h>
 #include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,27 +22,27 @@ pnpr_status pnpr_write_png(const char *path, const uint8_t *rgba, int width, int
         for (size_t i = 0; i < n; i++) memcpy(rgb + 3 * i, rgba + 4 * i, 3);
         pixels = rgb;
     }
-    size_t len = strlen(path);
-    char *tmp = malloc(len + 16);
-    if (!tmp) { free(rgb); return PNPR_ERR_OUT_OF_MEMORY; }
-    snprintf(tmp, len + 16, "%s.tmp-png", path);
     png_image img;
     memset(&img, 0, sizeof img);
     img.version = PNG_IMAGE_VERSION;
     img.width = (png_uint_32)width;
     img.height = (png_uint_32)height;
     img.format = alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
-    int ok = png_image_write_to_file(&img, tmp, 0, pixels, 0, NULL);
     pnpr_status st = PNPR_OK;
-    if (!ok) {
-        st = pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot write PNG (%s)", path, img.message);
-        remove(tmp);
-    } else if (rename(tmp, path) != 0) {
-        st = pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot write PNG (rename failed)", path);
-        remove(tmp);
+    pnpr_output *o = malloc(sizeof *o);
+    if (!o) st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    else if ((st = pnpr_output_open(o, path, err)) == PNPR_OK) {
+        if (err) err->message[0] = '\0';
+        int ok = png_image_write_to_stdio(&img, o->f, 0, pixels, 0, NULL);
+        if (!ok && ferror(o->f) && !o->write_errno) o->write_errno = errno ? errno : EIO;
+        if (!ok && !ferror(o->f)) /* libpng refused the image itself */
+            st = pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot write PNG (%s)", path, img.message);
+        else if (!ok)
+            st = PNPR_ERR_IO;
+        st = pnpr_output_close(o, st, err);
     }
+    free(o);
     png_image_free(&img);
-    free(tmp);
     free(rgb);
     return st;
 }

@@ -8,6 +8,7 @@
 
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
+#include <pointnpr/outliers.h>
 
 #include <float.h>
 #include <math.h>
@@ -614,6 +615,9 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     pnpr_upload_options o;
     memset(&o, 0, sizeof o);
     if (opts) o = *opts;
+    if (o.spacing_k > PNPR_SPACING_K_MAX)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: spacing_k %u is more than %d",
+                              (unsigned)o.spacing_k, PNPR_SPACING_K_MAX);
     uint32_t k = o.spacing_k ? o.spacing_k : 4;
 
     const pnpr_property *pc = pnpr_cloud_find_property(cloud, "feature_class");
@@ -753,7 +757,7 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
     }
     r->mean_radius = n ? (float)(rsum / (double)n) : 0;
     memcpy(r->origin, cloud->origin, sizeof r->origin);
-    if (pnpr_cloud_bounds(cloud, r->bmin, r->bmax) == 0) {
+    if (pnpr_cloud_inlier_bounds(cloud, r->bmin, r->bmax) == 0) { /* far outliers do not stretch it */
         memset(r->bmin, 0, sizeof r->bmin);
         memset(r->bmax, 0, sizeof r->bmax);
     }
@@ -1687,6 +1691,10 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, 
     if (margin > tmax / 4) margin = tmax / 4;
     int inner = tmax - 2 * margin;
     int nx = (width + inner - 1) / inner, ny = (height + inner - 1) / inner;
+    if ((double)nx * ny > PNPR_SNAPSHOT_TILES_MAX)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT,
+                              "snapshot: %dx%d in tiles of %d px takes %.0f tiles, more than %d (raise max_tile_size)",
+                              width, height, tmax, (double)nx * ny, PNPR_SNAPSHOT_TILES_MAX);
     int ntiles = nx * ny, done = 0;
     tgt.width = tgt.height = tmax;
     for (int ty = 0; ty < ny; ty++)

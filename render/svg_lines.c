@@ -16,6 +16,7 @@
 #include "render_internal.h"
 #include "svg_outline.h"
 #include "../core/internal.h"
+#include <pointnpr/output.h>
 
 #include <pointnpr/knn.h>
 
@@ -252,14 +253,21 @@ static int write_lines(FILE *f, const pnpr_polylines *lines, const proj *pr, con
     return bad ? -1 : fprintf(f, "</g>\n") < 0 ? -1 : 0;
 }
 
-/* The whole drawing: header, background, outlines (when `outl`), lines. */
-static pnpr_status write_drawing(const char *path, const pnpr_polylines *lines, const proj *pr, const float *zb,
-                                 double tol, const pnpr_outline_set *outl, const pnpr_svg_options *o, pnpr_error *err)
+/* What write_drawing prints. */
+typedef struct drawing {
+    const pnpr_polylines *lines;
+    const proj *pr;
+    const float *zb;
+    double tol;
+    const pnpr_outline_set *outl;
+    const pnpr_svg_options *o;
+} drawing;
+
+/* The whole drawing: header, background, outlines (when `outl`), lines; 0 when all was written. */
+static int print_drawing(FILE *f, const void *ctx)
 {
-    char tmp[4096];
-    FILE *f;
-    pnpr_status st = pnpr_file_begin(path, tmp, sizeof tmp, &f, err);
-    if (st != PNPR_OK) return st;
+    const drawing *d = ctx;
+    const pnpr_svg_options *o = d->o;
     const uint8_t *sc = o->stroke_rgb;
     char colour[16];
     snprintf(colour, sizeof colour, "#%02x%02x%02x", sc[0], sc[1], sc[2]);
@@ -267,14 +275,22 @@ static pnpr_status write_drawing(const char *path, const pnpr_polylines *lines, 
                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                       "<!-- profile lines by pointnpr %s -->\n"
                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\">\n",
-                      PNPR_VERSION_STRING, pr->w, pr->h, pr->w, pr->h) < 0;
+                      PNPR_VERSION_STRING, d->pr->w, d->pr->h, d->pr->w, d->pr->h) < 0;
     if (o->background)
         bad |= fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"#%02x%02x%02x\"/>\n", o->background_rgb[0],
                        o->background_rgb[1], o->background_rgb[2]) < 0;
-    if (outl) bad |= write_outlines(f, outl, o->outline_width > 0 ? o->outline_width : PNPR_SVG_OUTLINE_WIDTH, colour) < 0;
-    bad |= write_lines(f, lines, pr, zb, tol, o, o->stroke_width > 0 ? o->stroke_width : 1.5, colour) < 0;
+    if (d->outl)
+        bad |= write_outlines(f, d->outl, o->outline_width > 0 ? o->outline_width : PNPR_SVG_OUTLINE_WIDTH, colour) < 0;
+    bad |= write_lines(f, d->lines, d->pr, d->zb, d->tol, o, o->stroke_width > 0 ? o->stroke_width : 1.5, colour) < 0;
     bad |= fprintf(f, "</svg>\n") < 0;
-    return pnpr_file_commit(f, tmp, path, bad, err);
+    return bad;
+}
+
+static pnpr_status write_drawing(const char *path, const pnpr_polylines *lines, const proj *pr, const float *zb,
+                                 double tol, const pnpr_outline_set *outl, const pnpr_svg_options *o, pnpr_error *err)
+{
+    drawing d = {lines, pr, zb, tol, outl, o};
+    return pnpr_output_write(path, print_drawing, &d, err);
 }
 
 pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,

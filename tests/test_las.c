@@ -1,6 +1,7 @@
 /* LAS reader: files built byte by byte for versions 1.0-1.4 and point formats 0-3, 6-8,
  * exact world coordinates at a 5e6 offset, colours, extra properties, corrupt inputs,
  * and pnpr_read_file dispatch (extension, magic bytes, missing file). */
+#include "sparse_file.h"
 #include "testutil.h"
 
 #include <pointnpr/io.h>
@@ -579,8 +580,34 @@ static void test_read_file(void)
     }
 }
 
+/* A 2 GiB sparse file announcing 10^9 points (10^12 in the 64-bit count of LAS 1.4) fails from the
+ * header (before: 16 s, 2.1 GB). */
+static void test_sparse_headers(void)
+{
+    size_t size = 0;
+    las_spec s = spec_default(2, 0, k_pts, 0);
+    s.legacy_count = 1000000000u;
+    unsigned char *b = make_las(&s, &size);
+    CHECK(b != NULL && size == 227);
+    if (b)
+        pnpr_sparse_check(PNPR_TEST_SCRATCH "/las_sparse_12.las", b, size, PNPR_ERR_TRUNCATED,
+                          "truncated point data: needs 20000000227 bytes, has 2147483648; "
+                          "point 107374171 of 1000000000 is the first missing");
+    free(b);
+    s = spec_default(4, 6, k_pts, 0);
+    s.count64 = 1000000000000u;
+    b = make_las(&s, &size);
+    CHECK(b != NULL && size == 375);
+    if (b)
+        pnpr_sparse_check(PNPR_TEST_SCRATCH "/las_sparse_14.las", b, size, PNPR_ERR_TRUNCATED,
+                          "truncated point data: needs 30000000000375 bytes, has 2147483648; "
+                          "point 71582775 of 1000000000000 is the first missing");
+    free(b);
+}
+
 int main(void)
 {
+    test_sparse_headers(); /* first: the peak RSS it measures is its own */
     test_formats();
     test_rgb_8bit_in_16();
     test_counts();

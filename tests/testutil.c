@@ -1,5 +1,8 @@
 #include "testutil.h"
 
+#include <dirent.h>
+#include <string.h>
+
 #include <math.h>
 #include <stdlib.h>
 
@@ -107,4 +110,20 @@ pnpr_status pnpr_test_plane(pnpr_cloud *cloud, size_t nx, size_t ny, double h, c
             w[3 * q + 2] = offset[2];
         }
     return finish_world(cloud, w, n);
+}
+
+int pnpr_test_temporaries(const char *dir, const char *name)
+{
+    DIR *d = opendir(dir);
+    if (!d) return -1;
+    int n = 0;
+    size_t nl = strlen(name);
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        size_t len = strlen(e->d_name);
+        int named = nl == 0 || (!strncmp(e->d_name + 1, name, nl) && e->d_name[nl + 1] == '.');
+        n += len > nl + 7 && e->d_name[0] == '.' && named && !strcmp(e->d_name + len - 5, ".part");
+    }
+    closedir(d);
+    return n;
 }

@@ -96,8 +96,11 @@ pnpr_status pnpr_cloud_remove_property(pnpr_cloud *cloud, const char *name);
 void pnpr_cloud_world(const pnpr_cloud *cloud, size_t i, double r_world[3]);
 
 /* Sets the origin and float offsets from world coordinates (3*count doubles).
- * The origin is the centre of the finite bounding box; non-finite coordinates stay
- * non-finite in xyz (stages treat such points as invalid). Does not touch src_xyz. */
+ * The origin is the centre of the finite bounding box of the points that are not far outliers
+ * (outliers.h; without far outliers: of all finite points), so that one point at 1e9 does not
+ * take the content's float precision. Non-finite coordinates stay non-finite in xyz, and so do
+ * offsets that overflow float (a coordinate of 1e308): stages treat such points as invalid.
+ * Does not touch src_xyz. */
 pnpr_status pnpr_cloud_set_world(pnpr_cloud *cloud, const double *world);
 
 /* Appends all points of `src` to `dst` (re-expressing offsets in dst's origin, which is
@@ -105,6 +108,11 @@ pnpr_status pnpr_cloud_set_world(pnpr_cloud *cloud, const double *world);
  * properties present in either cloud are kept (missing values are zero); faces are
  * re-indexed. */
 pnpr_status pnpr_cloud_append(pnpr_cloud *dst, const pnpr_cloud *src);
+
+/* Removes the points with keep[i] == 0 (count entries) from every per-point array and extra
+ * property, keeping the order of the others; faces with a removed corner are dropped, the others
+ * re-indexed. r_removed (may be NULL) receives how many points went. */
+pnpr_status pnpr_cloud_keep(pnpr_cloud *cloud, const uint8_t *keep, size_t *r_removed);
 
 /* Bounding box of the finite offsets; returns the number of finite points. */
 size_t pnpr_cloud_bounds(const pnpr_cloud *cloud, float r_min[3], float r_max[3]);

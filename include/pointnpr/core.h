@@ -74,6 +74,10 @@ void pnpr_free(void *p);
 /* Number of worker threads to use when an option says 0 (= all cores). At least 1. */
 int pnpr_default_threads(void);
 
+/* Every `threads` option is clamped to this many (and to the number of work chunks): a larger
+ * value starts no more threads. */
+#define PNPR_THREADS_MAX 1024
+
 #ifdef __cplusplus
 }
 #endif

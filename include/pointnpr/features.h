@@ -49,9 +49,14 @@ enum {
                                   * two-sided shading need no more): no orientation stage */
 };
 
+/* Largest neighbourhood size: kNN lists take count x k entries and the classification reads 2k
+ * neighbours, so a larger k is refused rather than slow. */
+#define PNPR_FEATURES_K_MAX 1024
+
 typedef struct pnpr_features_options {
     uint32_t want;           /* PNPR_WANT_* bits; 0 = all */
-    uint32_t k;              /* neighbourhood size; 0 = 16. Clamped to the number of valid points. */
+    uint32_t k;              /* neighbourhood size; 0 = 16, at most PNPR_FEATURES_K_MAX. Clamped to
+                              * the number of valid points. */
     float threshold;         /* feature-degree threshold for feature points; 0 = automatic */
     float weight_geometry;   /* weights of the two terms; both 0 = 0.5 / 0.5. */
     float weight_color;      /*   they are normalised to sum 1; colourless clouds use geometry only */
@@ -85,9 +90,17 @@ typedef struct pnpr_features_stats {
     uint32_t runs[PNPR_STAGE_COUNT_];
     uint32_t k_used;          /* effective k */
     float threshold_used;     /* effective feature threshold */
-    size_t valid_points;      /* points with finite coordinates */
+    size_t valid_points;      /* points the analysis uses: finite offsets (xyz) */
+    size_t beyond_float;      /* points left out although their world coordinates (src_xyz) are
+                               * finite: their offset from the origin overflows float (outliers.h) */
     size_t feature_points, directional_points, dither_points;
 } pnpr_features_stats;
+
+/* Checks the options as pnpr_compute_features does: PNPR_ERR_INVALID_ARGUMENT, with a message
+ * naming the option in err (may be NULL), for unknown want bits, k above PNPR_FEATURES_K_MAX, a
+ * threshold or direction_confidence outside [0,1], negative or non-finite weights or dither_scale,
+ * a non-finite viewpoint. opts NULL = all defaults (valid). */
+pnpr_status pnpr_features_check_options(const pnpr_features_options *opts, pnpr_error *err);
 
 /* ---- the whole pipeline on a cloud ---------------------------------------------------------
  * Computes normals (kept from the input unless opts->recompute_normals or unless more than half

@@ -73,6 +73,8 @@ pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_
 pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_options *opts,
                                 pnpr_cloud *cloud, pnpr_error *err);
 
+/* Writes PLY or PCD (format, else the extension; "-" is PLY on standard output) the way every
+ * output is written (pointnpr/output.h): never half a file, never a special file replaced. */
 pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud,
                             const pnpr_write_options *opts, pnpr_error *err);
 

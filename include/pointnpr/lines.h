@@ -17,12 +17,21 @@
 extern "C" {
 #endif
 
+/* Bounds that keep the cost linear in the number of directional points whatever the options:
+ * at most PNPR_LINES_SHIFT_MAX shift iterations (more is refused), and the shift and the merge
+ * take at most PNPR_LINES_NEIGHBOURS_MAX points within their radius (a radius that takes in the
+ * whole cloud costs no more than that); the graph takes each node's 8 nearest nodes within
+ * connect_radius; a knot span is sampled into at most 1024 pieces however small sample_tol is. */
+#define PNPR_LINES_SHIFT_MAX 64
+#define PNPR_LINES_NEIGHBOURS_MAX 256
+
 typedef struct pnpr_lines_options {
     float spacing;          /* sample spacing h (world units); 0 = median nearest-neighbour
                              * distance among the directional points */
     float connect_radius;   /* graph neighbourhood radius; 0 = 3 h */
     float merge_tol;        /* points closer than this are merged; 0 = h */
-    int shift_iterations;   /* noise-reducing shifts; 0 = 4, negative = none */
+    int shift_iterations;   /* noise-reducing shifts; 0 = 4, negative = none, at most
+                             * PNPR_LINES_SHIFT_MAX */
     float direction_weight; /* beta in the edge weight (see docs); 0 = 4 */
     float min_length;       /* spurs and isolated chains shorter than this are dropped; 0 = 5 h */
     float sample_tol;       /* max chord deviation of the output polylines; 0 = 0.05 h */
@@ -49,6 +58,11 @@ typedef struct pnpr_lines_stats {
     double total_length;
     double seconds_graph, seconds_mst, seconds_fit;
 } pnpr_lines_stats;
+
+/* Checks the options as pnpr_profile_lines does: PNPR_ERR_INVALID_ARGUMENT, with a message naming
+ * the option in err (may be NULL), for a negative or non-finite length or weight, or
+ * shift_iterations above PNPR_LINES_SHIFT_MAX. opts NULL = all defaults (valid). */
+pnpr_status pnpr_lines_check_options(const pnpr_lines_options *opts, pnpr_error *err);
 
 /* Profile lines of a cloud that carries the feature properties of pnpr_compute_features
  * (feature_class, feature_dir_x/y/z); PNPR_ERR_NOT_FOUND when they are missing. No directional

@@ -48,7 +48,9 @@ void pnpr_crq_split(const size_t *group_size, size_t group_count, size_t total, 
 typedef struct pnpr_camera {
     double eye[3], target[3], up[3]; /* look-at in world coordinates (double) */
     float fov_y_deg;                 /* vertical field of view; 0 = 45 */
-    float near_plane, far_plane;     /* 0 = automatic from the cloud's bounds */
+    float near_plane, far_plane;     /* 0 = automatic from the cloud's bounds (without its far
+                                      * outliers: pnpr_cloud_inlier_bounds, which the far planes
+                                      * then may clip) */
 } pnpr_camera;
 
 /* An explicit camera as OpenGL matrices (column-major, m[col * 4 + row], like glGetDoublev of
@@ -78,7 +80,8 @@ pnpr_status pnpr_camera_matrices_from_camera(const pnpr_camera *camera, const pn
                                              int width, int height, pnpr_camera_matrices *r_m,
                                              pnpr_error *err);
 
-/* A camera that frames the cloud's finite bounding box from `dir` (world direction from the
+/* A camera that frames the cloud's finite bounding box (of the points that are not far outliers:
+ * pnpr_cloud_inlier_bounds, outliers.h) from `dir` (world direction from the
  * target towards the eye; NULL = the default view (0, -1, 0.5), i.e. from the front, slightly
  * above, z up), with the vertical fov (0 = 45) and the image aspect width/height (0 = 1).
  * PNPR_ERR_EMPTY when the cloud has no finite point. */
@@ -147,9 +150,14 @@ typedef struct pnpr_renderer_options {
     int reserved; /* nothing yet; zero */
 } pnpr_renderer_options;
 
+/* Largest pnpr_upload_options.spacing_k (the upload's kNN lists take count x spacing_k entries:
+ * a larger value is refused rather than slow). */
+#define PNPR_SPACING_K_MAX 64
+
 typedef struct pnpr_upload_options {
     uint32_t spacing_k; /* disk radius of point i = distance to its spacing_k-th nearest other
-                         * point (0 = 4), capped at 4x the median; see docs/rendering.md */
+                         * point (0 = 4, at most PNPR_SPACING_K_MAX), capped at 4x the median;
+                         * see docs/rendering.md */
     uint64_t seed;      /* continuous resolution queue seed (0 is a valid seed) */
     int ignore_features; /* treat the cloud as if it had no feature properties */
     int threads;        /* kNN threads; 0 = all cores */
@@ -278,6 +286,10 @@ pnpr_status pnpr_image_bytes(int width, int height, size_t limit, size_t *r_byte
 /* The largest frame edge this GL allows: min(GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE,
  * GL_MAX_VIEWPORT_DIMS), queried at creation. */
 int pnpr_renderer_max_size(const pnpr_renderer *renderer);
+
+/* Most tiles a snapshot may take (each tile draws the whole cloud): a max_tile_size too small for
+ * the image is refused rather than slow. */
+#define PNPR_SNAPSHOT_TILES_MAX 4096
 
 typedef struct pnpr_snapshot_options {
     int max_tile_size;      /* largest tile edge in px, guard band included (0 = the GL limit); a

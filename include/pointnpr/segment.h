@@ -36,6 +36,14 @@ extern "C" {
 
 #define PNPR_LABEL_NONE 0xFFFFFFFFu
 
+/* Upper ends of the count options (larger values are clamped to them): neighbourhood sizes
+ * (jseg, rgbgrow; kNN lists take count x k entries) and the quantiser's colour classes. */
+#define PNPR_SEGMENT_K_MAX 256
+#define PNPR_JSEG_CLASSES_MAX 255
+/* Deepest nesting of pnpr_segment_covariance_split (2^64 sub-regions: never reached by balanced
+ * splits, only by skewed ones that peel off a few points at a time). */
+#define PNPR_SPLIT_DEPTH_MAX 64
+
 /* What a segmentation call reports besides the labels (all fields written; NULL ok). */
 typedef struct pnpr_segment_info {
     uint32_t segment_count;   /* S: labels are 0 .. S-1 */
@@ -52,9 +60,11 @@ typedef struct pnpr_segment_info {
 /* ---- 3D JSEG ------------------------------------------------------------------------------ */
 
 typedef struct pnpr_jseg_options {
-    uint32_t classes;        /* k-means classes of the quantiser before close centres merge; 0 = 16, max 255 */
+    uint32_t classes;        /* k-means classes of the quantiser before close centres merge; 0 = 16, max
+                              * PNPR_JSEG_CLASSES_MAX */
     float quant_distance;    /* class centres closer than this (CIE76 delta E) become one class; 0 = 12, <0 = none */
-    uint32_t k;              /* J neighbourhood: k nearest points including the point; 0 = 24, max 256 */
+    uint32_t k;              /* J neighbourhood: k nearest points including the point; 0 = 24, max
+                              * PNPR_SEGMENT_K_MAX */
     float radius;            /* > 0: J neighbourhood = those of the k nearest within radius (offset units) */
     float seed_factor;       /* seed points: J <= seed_factor * mean J; 0 = 0.6 */
     float grow_bound;        /* > 0: growth stops at points with J >= grow_bound * mean J (they form their
@@ -137,7 +147,8 @@ pnpr_status pnpr_segment_hierarchy_cut(const uint32_t *labels, size_t count, uin
 /* Covariance splitting within regions (Chi & Lee sec. 3.2, Pauly et al.): every region whose
  * surface variation (PCA: lambda_min / trace) exceeds max_variation (0 = 0.02) is split by the
  * plane through its centroid perpendicular to its direction of greatest variation, recursively,
- * while both halves keep at least min_size points (0 = 32). Output: sub-region labels in
+ * while both halves keep at least min_size points (0 = 32), at most PNPR_SPLIT_DEPTH_MAX levels
+ * deep (the cost is at most that many passes over the points). Output: sub-region labels in
  * r_labels (may equal labels), numbered by first appearance; points with label >= segment_count
  * or non-finite coordinates share one extra label, the last. (segment_split.c) */
 pnpr_status pnpr_segment_covariance_split(const float *xyz, size_t count, const uint32_t *labels,
@@ -167,7 +178,7 @@ float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, siz
 /* ---- colour region growing (Zhan et al.) -------------------------------------------------- */
 
 typedef struct pnpr_rgbgrow_options {
-    uint32_t k;              /* neighbours considered per point; 0 = 16 */
+    uint32_t k;              /* neighbours considered per point; 0 = 16, max PNPR_SEGMENT_K_MAX */
     float distance;          /* neighbours farther than this are ignored; 0 = 3 x median NN distance */
     float point_distance;    /* a neighbour joins when its colour differs from the point's by less
                               * (Euclidean RGB, 0..255 units); 0 = 25 */

@@ -4,7 +4,10 @@
 #define PNPR_CLI_H
 
 #include <pointnpr/io.h>
+#include <pointnpr/outliers.h>
 #include <pointnpr/view.h>
+
+#include <stdio.h>
 
 int cli_info(int argc, char **argv);
 int cli_convert(int argc, char **argv);
@@ -56,7 +59,39 @@ int cli_write_camera_file(const char *path, const double eye[3], const double ta
 const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam);
 #endif
 
+/* Checks, before any work, that OUT can be written and is none of the inputs
+ * (pnpr_output_check); binary: refuses "-" when standard output is a terminal. Prints why and
+ * returns 0 when not. */
+int cli_check_output(const char *cmd, const char *out, const char *const *inputs, size_t input_count, int binary);
+/* The point-cloud output of features/segment/convert: OUT must end in .ply or .pcd (or be "-" or
+ * a special file: PLY) and pass cli_check_output against IN; sets wo->format. Returns 0 when
+ * it may be written, else the exit code (2 a bad name, 1 cannot be written), after saying why. */
+int cli_cloud_output(const char *cmd, const char *out, const char *in, pnpr_write_options *wo);
+/* Whether OUT is "-" or an existing device, FIFO or socket (written through; any name goes). */
+int cli_output_is_stream(const char *out);
+/* Whether the name ends in `ext` (".png"; case-insensitive). */
+int cli_has_ext(const char *path, const char *ext);
+
+/* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
+ * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */
+typedef struct cli_outliers {
+    int drop;
+    double factor; /* 0 = PNPR_OUTLIER_FACTOR */
+} cli_outliers;
+/* argv[*i] is --drop-outliers or --outlier-factor F: parses it (advancing *i past its value)
+ * and returns 1; not one of them (or no value follows): 0; a bad value: prints why, returns -1. */
+int cli_outlier_option(cli_outliers *o, const char *cmd, int argc, char **argv, int *i);
+/* The usage lines of the two options (defaults and range from outliers.h). */
+void cli_outlier_usage(FILE *f);
+/* After reading IN: counts its far outliers and removes them when asked; says so on stderr
+ * (unless quiet) when there are any. r_info (may be NULL) describes the cloud as read. Returns 0,
+ * or 1 after printing why it failed. */
+int cli_outliers_apply(const cli_outliers *o, const char *cmd, const char *in, pnpr_cloud *cloud, int quiet,
+                       pnpr_outlier_info *r_info);
+
 /* Prints "pointnpr <cmd>: <message>" for a failed status (with pnpr_error detail when set). */
 void cli_report_error(const char *cmd, pnpr_status st, const pnpr_error *err);
+/* The same for work on the input IN: the message names IN (unless it does already). */
+void cli_report_error_in(const char *cmd, const char *in, pnpr_status st, const pnpr_error *err);
 
 #endif

@@ -5,11 +5,16 @@
 #include <pointnpr/render.h>
 #endif
 
+#include <pointnpr/output.h>
+
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 int cli_parse_number(const char *s, double lo, double hi, double *r)
 {
@@ -32,6 +37,46 @@ int cli_parse_list(const char *s, int n, double *r)
         if (i + 1 < n) { if (*end != ',') return 0; p = end + 1; }
         else if (*end) return 0;
     }
+    return 1;
+}
+
+int cli_check_output(const char *cmd, const char *out, const char *const *inputs, size_t input_count, int binary)
+{
+    if (binary && !strcmp(out, "-") && isatty(STDOUT_FILENO)) {
+        fprintf(stderr, "pointnpr %s: refusing to write binary data to a terminal (redirect standard output)\n", cmd);
+        return 0;
+    }
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_output_check(out, inputs, input_count, &err);
+    if (st != PNPR_OK) cli_report_error(cmd, st, &err);
+    return st == PNPR_OK;
+}
+
+int cli_output_is_stream(const char *out)
+{
+    struct stat sb;
+    return !strcmp(out, "-") || (stat(out, &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISDIR(sb.st_mode));
+}
+
+int cli_cloud_output(const char *cmd, const char *out, const char *in, pnpr_write_options *wo)
+{
+    pnpr_file_format f = pnpr_format_from_path(out);
+    if (f == PNPR_FORMAT_AUTO && cli_output_is_stream(out)) f = PNPR_FORMAT_PLY;
+    if (f != PNPR_FORMAT_PLY && f != PNPR_FORMAT_PCD) {
+        fprintf(stderr, "pointnpr %s: %s: the output is a point cloud: its name must end in .ply or .pcd "
+                        "(or be - or a device/FIFO for PLY)\n", cmd, out);
+        return 2;
+    }
+    wo->format = f;
+    return cli_check_output(cmd, out, &in, 1, wo->encoding != PNPR_PLY_ASCII || f == PNPR_FORMAT_PCD) ? 0 : 1;
+}
+
+int cli_has_ext(const char *path, const char *ext)
+{
+    size_t n = strlen(path), m = strlen(ext);
+    if (n < m) return 0;
+    for (size_t i = 0; i < m; i++)
+        if (tolower((unsigned char)path[n - m + i]) != tolower((unsigned char)ext[i])) return 0;
     return 1;
 }
 
@@ -82,15 +127,27 @@ static int read_camera_file(cli_view *v, const char *cmd, const char *path)
     return ok;
 }
 
+typedef struct camera_text {
+    const double *eye, *target, *up;
+    double fov;
+} camera_text;
+
+static int print_camera(FILE *f, const void *ctx)
+{
+    const camera_text *c = ctx;
+    return fprintf(f, "# pointnpr camera (world coordinates; pointnpr render/lines --camera FILE)\n"
+                      "eye %.17g %.17g %.17g\ntarget %.17g %.17g %.17g\nup %.17g %.17g %.17g\nfov %.9g\n",
+                   c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2], c->up[0], c->up[1],
+                   c->up[2], c->fov) < 0;
+}
+
 int cli_write_camera_file(const char *path, const double eye[3], const double target[3], const double up[3], double fov)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) return 0;
-    int bad = fprintf(f, "# pointnpr camera (world coordinates; pointnpr render/lines --camera FILE)\n"
-                         "eye %.17g %.17g %.17g\ntarget %.17g %.17g %.17g\nup %.17g %.17g %.17g\nfov %.9g\n",
-                      eye[0], eye[1], eye[2], target[0], target[1], target[2], up[0], up[1], up[2], fov) < 0;
-    bad |= fclose(f) != 0;
-    return !bad;
+    camera_text c = {eye, target, up, fov};
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_output_write(path, print_camera, &c, &err);
+    if (st != PNPR_OK) fprintf(stderr, "pointnpr: %s\n", err.message);
+    return st == PNPR_OK;
 }
 
 /* --up auto|x|y|z|-x|-y|-z (up_mode) or X,Y,Z (a non-zero vector); 1 or -1 as cli_view_option. */
@@ -146,10 +203,31 @@ int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i)
     return 1;
 }
 
+/* |a x b| / (|a| |b|): the sine of the angle between a and b (0 when either is zero). */
+static double sine_between(const double a[3], const double b[3])
+{
+    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+    return la > 0 && lb > 0 ? sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / la / lb : 0;
+}
+
 int cli_view_check(const cli_view *v, const char *cmd)
 {
     if (v->have_eye != v->have_target) {
         fprintf(stderr, "pointnpr %s: --eye and --target go together\n", cmd);
+        return 0;
+    }
+    if (!v->have_eye) return 1;
+    double d[3] = {v->target[0] - v->eye[0], v->target[1] - v->eye[1], v->target[2] - v->eye[2]}, axis[3];
+    if (d[0] == 0 && d[1] == 0 && d[2] == 0) {
+        fprintf(stderr, "pointnpr %s: the eye and the target are the same point (%g,%g,%g); the camera needs a direction\n",
+                cmd, v->eye[0], v->eye[1], v->eye[2]);
+        return 0;
+    }
+    const double *up = v->have_up ? v->up : (v->have_up_mode && pnpr_up_mode_axis(v->up_mode, axis) ? axis : NULL);
+    if (up && sine_between(d, up) < 1e-6) {
+        fprintf(stderr, "pointnpr %s: --up (%g,%g,%g) is parallel to the view direction from the eye to the target; "
+                        "give an up that is not\n", cmd, up[0], up[1], up[2]);
         return 0;
     }
     return 1;
@@ -179,6 +257,11 @@ const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, p
         if (v->have_up_mode && !pnpr_up_mode_axis(v->up_mode, r_cam->up) && cloud &&
             pnpr_scene_frame(cloud, &o, &info) == PNPR_OK)
             memcpy(r_cam->up, info.up, sizeof r_cam->up);
+        double d[3] = {v->target[0] - v->eye[0], v->target[1] - v->eye[1], v->target[2] - v->eye[2]};
+        if (!v->have_up && sine_between(d, r_cam->up) < 1e-6) { /* e.g. straight down with the default +z */
+            double y[3] = {0, 1, 0}, x[3] = {1, 0, 0};
+            memcpy(r_cam->up, sine_between(d, y) > 0.5 ? y : x, sizeof r_cam->up);
+        }
         r_cam->fov_y_deg = (float)v->fov;
         return r_cam;
     }

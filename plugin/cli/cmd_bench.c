@@ -11,6 +11,8 @@
  * their quality measures land (see docs/work-precision.md). */
 #include "cli.h"
 
+#include <pointnpr/output.h>
+
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
 #include <pointnpr/segment.h>
@@ -106,12 +108,21 @@ static int cmp_double(const void *a, const void *b)
 
 typedef struct row { const char *study; double knob, seconds, e1, e2; size_t points; } row;
 
+typedef struct plot_args {
+    const row *rows;
+    size_t n;
+    const char *study, *title, *y1, *y2;
+    double ymax;
+} plot_args;
+
 /* A log-x line plot as SVG: series = rows of one study; y1 (and y2 when named) against time. */
-static void plot(const char *path, const row *rows, size_t n, const char *study, const char *title,
-                 const char *y1, const char *y2, double ymax)
+static int print_plot(FILE *f, const void *ctx)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) return;
+    const plot_args *p = ctx;
+    const row *rows = p->rows;
+    const size_t n = p->n;
+    const char *study = p->study, *title = p->title, *y1 = p->y1, *y2 = p->y2;
+    const double ymax = p->ymax;
     const double W = 640, H = 400, L = 70, R = 20, T = 40, B = 50;
     double tmin = INFINITY, tmax = 0;
     for (size_t i = 0; i < n; i++)
@@ -147,7 +158,30 @@ static void plot(const char *path, const row *rows, size_t n, const char *study,
     fprintf(f, "</svg>\n");
 #undef PX
 #undef PY
-    fclose(f);
+    return ferror(f) != 0;
+}
+
+static void plot(const char *path, const row *rows, size_t n, const char *study, const char *title,
+                 const char *y1, const char *y2, double ymax)
+{
+    plot_args p = {rows, n, study, title, y1, y2, ymax};
+    pnpr_error err = {0};
+    if (pnpr_output_write(path, print_plot, &p, &err) != PNPR_OK) fprintf(stderr, "pointnpr bench: %s\n", err.message);
+}
+
+typedef struct csv_args {
+    const row *rows;
+    size_t n;
+} csv_args;
+
+static int print_csv(FILE *f, const void *ctx)
+{
+    const csv_args *c = ctx;
+    fprintf(f, "study,knob,points,seconds,error1,error2\n");
+    for (size_t i = 0; i < c->n; i++)
+        fprintf(f, "%s,%g,%zu,%.6f,%.6g,%.6g\n", c->rows[i].study, c->rows[i].knob, c->rows[i].points,
+                c->rows[i].seconds, c->rows[i].e1, c->rows[i].e2);
+    return ferror(f) != 0;
 }
 
 /* Segmentation levels: a plane of 4 x 4 coloured patches (16 true segments, colour noise), JSEG,
@@ -380,12 +414,9 @@ static int bench_accuracy(const char *dir, int quick)
     fprintf(stderr, "\n");
     char path[4096];
     snprintf(path, sizeof path, "%s/accuracy.csv", dir);
-    FILE *f = fopen(path, "w");
-    if (!f) { fprintf(stderr, "pointnpr bench: cannot write %s\n", path); return 1; }
-    fprintf(f, "study,knob,points,seconds,error1,error2\n");
-    for (size_t i = 0; i < nr; i++)
-        fprintf(f, "%s,%g,%zu,%.6f,%.6g,%.6g\n", rows[i].study, rows[i].knob, rows[i].points, rows[i].seconds, rows[i].e1, rows[i].e2);
-    fclose(f);
+    csv_args csv = {rows, nr};
+    pnpr_error err = {0};
+    if (pnpr_output_write(path, print_csv, &csv, &err) != PNPR_OK) { fprintf(stderr, "pointnpr bench: %s\n", err.message); return 1; }
     snprintf(path, sizeof path, "%s/normals-k.svg", dir);
     plot(path, rows, nr, "normals-k", "Sphere normals: error vs time, labels = k", "mean error (deg)", "95th percentile (deg)", 1.0);
     snprintf(path, sizeof path, "%s/normals-sampling.svg", dir);

@@ -10,6 +10,8 @@
  * and of the acceptance thresholds. --check: exit 1 when a threshold is missed. */
 #include "cli.h"
 
+#include <pointnpr/output.h>
+
 #include <stdio.h>
 
 #ifndef PNPR_HAVE_RENDER
@@ -391,6 +393,7 @@ static const char *preset_name(pnpr_quality_preset p)
  * for it at any density (cartoon outlines "not in sampling holes, at any density"), so the sparse
  * scene judges it; the others it reports only (the sparse ball's underside is barely sampled by
  * scanners above it: its silhouette there is not in the data). */
+/* Prints the acceptance table to f (NULL: only counts); returns the number of figures missed. */
 static int print_acceptance(FILE *f, const bench *b)
 {
     const figures *L = &b->fig[ROW_LINES], *C = &b->fig[ROW_CARTOON], *S = &b->fig[ROW_SKETCHY];
@@ -406,34 +409,39 @@ static int print_acceptance(FILE *f, const bench *b)
     };
     const int sparse = b->preset == PNPR_QUALITY_PRESET_SPARSE;
     int missed = 0;
-    fprintf(f, "| acceptance (issue 11) | today | threshold | |\n|---|---|---|---|\n");
+    if (f) fprintf(f, "| acceptance (issue 11) | today | threshold | |\n|---|---|---|---|\n");
     for (size_t i = 0; i < sizeof a / sizeof *a; i++) {
         int pass = a[i].at_most ? a[i].value <= a[i].limit : a[i].value >= a[i].limit;
         int judged = !sparse || a[i].any_density;
         missed += judged && !pass;
-        fprintf(f, "| %s | %.3f | %s %.2f | %s |\n", a[i].what, a[i].value, a[i].at_most ? "<=" : ">=", a[i].limit,
-                !judged ? "(not judged when sparse)" : (pass ? "pass" : "**miss**"));
+        if (f)
+            fprintf(f, "| %s | %.3f | %s %.2f | %s |\n", a[i].what, a[i].value, a[i].at_most ? "<=" : ">=", a[i].limit,
+                    !judged ? "(not judged when sparse)" : (pass ? "pass" : "**miss**"));
     }
     return missed;
+}
+
+/* The figures and the acceptance table; 0 when every write succeeded. */
+static int print_report(FILE *out, const void *ctx)
+{
+    const bench *b = ctx;
+    fprintf(out, "Scene: %s, %zu points (ball alone: %zu), %zu crease edges, %dx%d, fixed camera.\n\n",
+            preset_name(b->preset), b->points, b->ball_points, b->scene.edge_count, QW, QH);
+    print_figures(out, b);
+    fprintf(out, "\n");
+    print_acceptance(out, b);
+    return ferror(out) != 0;
 }
 
 static int report(const bench *b)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/figures.md", b->dir);
-    FILE *f = fopen(path, "w");
-    int missed = 0;
-    for (int k = 0; k < 2; k++) {
-        FILE *out = k ? f : stdout;
-        if (!out) continue;
-        fprintf(out, "Scene: %s, %zu points (ball alone: %zu), %zu crease edges, %dx%d, fixed camera.\n\n",
-                preset_name(b->preset), b->points, b->ball_points, b->scene.edge_count, QW, QH);
-        print_figures(out, b);
-        fprintf(out, "\n");
-        missed = print_acceptance(out, b);
-    }
-    if (f) fclose(f);
-    else fprintf(stderr, "pointnpr bench quality: cannot write %s\n", path);
+    pnpr_error err = {0};
+    print_report(stdout, b);
+    if (pnpr_output_write(path, print_report, b, &err) != PNPR_OK)
+        fprintf(stderr, "pointnpr bench quality: %s\n", err.message);
+    int missed = print_acceptance(NULL, b);
     fprintf(stderr, "bench quality: images and figures.md in %s; %d acceptance figure(s) missed\n", b->dir, missed);
     return missed;
 }

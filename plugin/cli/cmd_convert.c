@@ -1,8 +1,8 @@
 /* pointnpr convert IN... -o OUT.ply|OUT.pcd: reads every input (PLY, LAS, OBJ, OFF, PCD; a directory
  * stands for the supported files in it, sorted by name), merges them into one cloud and writes PLY
  * (or binary PCD for a .pcd name).
- * Nothing is written unless every input was read: the output goes to a temporary file next to
- * OUT that is renamed over OUT only when it is complete. */
+ * Nothing is written unless every input was read; the output is written as every output is
+ * (pointnpr/output.h: a temporary renamed over OUT when complete; "-" is standard output). */
 #include "cli.h"
 
 #include <dirent.h>
@@ -22,7 +22,7 @@ static void usage(FILE *f)
             "  files in it, sorted by name), merges them into one cloud and writes it as PLY\n"
             "  (binary PCD when OUT ends in .pcd). Nothing is written if any input cannot be read.\n"
             "options:\n"
-            "  -o, --output OUT.ply  output file (required; OUT.pcd writes binary PCD)\n"
+            "  -o, --output OUT.ply  output file (required; OUT.pcd writes binary PCD, - standard output)\n"
             "  --binary              binary little endian PLY (default)\n"
             "  --ascii               ascii PLY\n"
             "  --big-endian          binary big endian PLY\n"
@@ -110,54 +110,6 @@ static int expand_dir(const char *dir, path_list *out)
     return ok;
 }
 
-/* Whether the directory that will hold `out` exists and is writable (message if not). */
-static int output_dir_writable(const char *out)
-{
-    const char *slash = strrchr(out, '/');
-    size_t n = slash ? (size_t)(slash - out) : 1;
-    char *dir = malloc(n + 1);
-    if (!dir) { fprintf(stderr, "pointnpr convert: out of memory\n"); return 0; }
-    if (!slash) memcpy(dir, ".", 2);
-    else if (n == 0) memcpy(dir, "/", 2);
-    else { memcpy(dir, out, n); dir[n] = '\0'; }
-    int ok = access(dir, W_OK | X_OK) == 0;
-    if (!ok) fprintf(stderr, "pointnpr convert: %s: cannot write the output into %s: %s\n", out, dir, strerror(errno));
-    free(dir);
-    return ok;
-}
-
-/* Writes `cloud` to a temporary file next to `out`, then renames it to `out`. */
-static pnpr_status write_atomically(const char *out, const pnpr_cloud *cloud, const pnpr_write_options *wo,
-                                    pnpr_error *err)
-{
-    size_t n = strlen(out) + 64;
-    char *tmp = malloc(n);
-    if (!tmp) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "out of memory");
-    int fd = -1;
-    for (int attempt = 0; attempt < 100 && fd < 0; attempt++) {
-        snprintf(tmp, n, "%s.partial-%ld-%d", out, (long)getpid(), attempt);
-        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666); /* mode 0666 & ~umask, like any new file */
-        if (fd < 0 && errno != EEXIST) break;
-    }
-    if (fd < 0) {
-        pnpr_status st = pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot create a temporary file next to it: %s", out,
-                                        strerror(errno));
-        free(tmp);
-        return st;
-    }
-    close(fd);
-    pnpr_write_options o = *wo;
-    /* the temporary name has no extension: the format comes from OUT's */
-    o.format = pnpr_format_from_path(out) == PNPR_FORMAT_PCD ? PNPR_FORMAT_PCD : PNPR_FORMAT_PLY;
-    pnpr_status st = pnpr_write_file(tmp, cloud, &o, err);
-    if (st == PNPR_OK && rename(tmp, out) != 0)
-        st = pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot rename the finished temporary file to it: %s", out,
-                            strerror(errno));
-    if (st != PNPR_OK) remove(tmp);
-    free(tmp);
-    return st;
-}
-
 int cli_convert(int argc, char **argv)
 {
     const char *out = NULL;
@@ -204,7 +156,10 @@ int cli_convert(int argc, char **argv)
     }
     if (rc == 0) {
         pnpr_file_format of = pnpr_format_from_path(out);
-        if (of != PNPR_FORMAT_AUTO && of != PNPR_FORMAT_PLY && of != PNPR_FORMAT_PCD) {
+        if (of == PNPR_FORMAT_AUTO && !cli_output_is_stream(out)) {
+            fprintf(stderr, "pointnpr convert: %s: name the output .ply or .pcd (- or a device/FIFO: PLY)\n", out);
+            rc = 2;
+        } else if (of != PNPR_FORMAT_AUTO && of != PNPR_FORMAT_PLY && of != PNPR_FORMAT_PCD) {
             fprintf(stderr, "pointnpr convert: %s: only PLY and PCD output are supported (use a .ply or .pcd name)\n", out);
             rc = 2;
         } else if (of == PNPR_FORMAT_PCD && wo.encoding != PNPR_PLY_BINARY_LE) {
@@ -214,9 +169,6 @@ int cli_convert(int argc, char **argv)
     }
     if (rc == 2) usage(stderr);
     if (rc != 0) { list_free(&args); return rc; }
-
-    /* fail early (before reading what may be many inputs) when the output cannot be created */
-    if (!output_dir_writable(out)) { list_free(&args); return 1; }
 
     /* inputs: files as given, directories expanded */
     path_list inputs = {0};
@@ -230,6 +182,8 @@ int cli_convert(int argc, char **argv)
         }
     }
     list_free(&args);
+    /* fail early (before reading what may be many inputs) when the output cannot be written */
+    if (rc == 0 && !cli_check_output("convert", out, (const char *const *)inputs.items, inputs.count, 1)) rc = 1;
     if (rc != 0) { list_free(&inputs); return rc; }
 
     pnpr_cloud merged = {0}, one = {0};
@@ -268,7 +222,9 @@ int cli_convert(int argc, char **argv)
         wo.progress.fn = quiet ? NULL : cli_progress_stderr;
         wo.progress.user = &ps;
         wo.comment = "pointnpr convert";
-        pnpr_status st = write_atomically(out, &merged, &wo, &err);
+        /* a name without extension (or "-") is PLY */
+        wo.format = pnpr_format_from_path(out) == PNPR_FORMAT_PCD ? PNPR_FORMAT_PCD : PNPR_FORMAT_PLY;
+        pnpr_status st = pnpr_write_file(out, &merged, &wo, &err);
         if (st != PNPR_OK) {
             cli_report_error("convert", st, &err);
             rc = 1;

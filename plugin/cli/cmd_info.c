@@ -9,10 +9,14 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: pointnpr info IN\n"
+            "usage: pointnpr info IN [--outlier-factor F]\n"
             "  Describes a point cloud file (PLY, LAS, OBJ, OFF, PCD): format, point count, origin,\n"
-            "  bounding box in world coordinates, colour/normals/labels, exact source\n"
-            "  coordinates, extra properties with their types, face count, scanner viewpoint.\n");
+            "  far outliers, bounding box in world coordinates, colour/normals/labels, exact source\n"
+            "  coordinates, extra properties with their types, face count, scanner viewpoint.\n"
+            "  Far outliers: points farther than F robust extents (the %g%% quantile of the distances\n"
+            "  from the per-axis median) from the median, or beyond float range; F in [%g, %g]\n"
+            "  (default %g).\n",
+            100 * PNPR_OUTLIER_QUANTILE, PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, PNPR_OUTLIER_FACTOR);
 }
 
 static const char *format_name(pnpr_file_format f)
@@ -49,6 +53,68 @@ static pnpr_file_format detect_format(const char *path, const char **r_how)
     return PNPR_FORMAT_OFF;
 }
 
+/* ---- far outliers: the options and report shared with features, segment, render, lines ---- */
+
+int cli_outlier_option(cli_outliers *o, const char *cmd, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i];
+    if (!strcmp(a, "--drop-outliers")) { o->drop = 1; return 1; }
+    if (strcmp(a, "--outlier-factor") || *i + 1 >= argc) return 0;
+    const char *v = argv[++*i];
+    if (!cli_parse_number(v, PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, &o->factor)) {
+        fprintf(stderr, "pointnpr %s: --outlier-factor wants a number in [%g, %g], got '%s'\n", cmd,
+                PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, v);
+        return -1;
+    }
+    return 1;
+}
+
+void cli_outlier_usage(FILE *f)
+{
+    fprintf(f,
+            "  --drop-outliers      remove far outliers after reading (an output cloud lacks them):\n"
+            "                       points farther than F robust extents (the %g%% quantile of the\n"
+            "                       distances from the per-axis median) from the median, or beyond\n"
+            "                       float range\n"
+            "  --outlier-factor F   F in [%g, %g] (default %g)\n",
+            100 * PNPR_OUTLIER_QUANTILE, PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, PNPR_OUTLIER_FACTOR);
+}
+
+/* A coordinate: 3 decimals, or %.6g where that would print hundreds of digits (1e308). */
+static void print_coord(FILE *f, const char *before, double v)
+{
+    fprintf(f, fabs(v) < 1e15 ? "%s%.3f" : "%s%.6g", before, v);
+}
+
+/* "N far outlier(s) (farther than L from the robust centre X Y Z; B beyond float range)" */
+static void print_outliers(FILE *f, const pnpr_outlier_info *oi)
+{
+    fprintf(f, "%zu far outlier(s) (farther than %.6g from the robust centre", oi->far, oi->limit);
+    for (int a = 0; a < 3; a++) print_coord(f, " ", oi->centre[a]);
+    fprintf(f, "; %zu beyond float range)", oi->beyond_float);
+}
+
+int cli_outliers_apply(const cli_outliers *o, const char *cmd, const char *in, pnpr_cloud *cloud, int quiet,
+                       pnpr_outlier_info *r_info)
+{
+    pnpr_outlier_info local;
+    pnpr_outlier_info *oi = r_info ? r_info : &local;
+    pnpr_outlier_options opts = {o->factor};
+    pnpr_status st = o->drop ? pnpr_cloud_drop_outliers(cloud, &opts, oi) : pnpr_cloud_outliers(cloud, &opts, NULL, oi);
+    if (st != PNPR_OK) {
+        fprintf(stderr, "pointnpr %s: %s: far outliers: %s\n", cmd, in, pnpr_status_string(st));
+        return 1;
+    }
+    if (!quiet && oi->far > 0) {
+        fprintf(stderr, "%s: ", in);
+        print_outliers(stderr, oi);
+        fprintf(stderr, o->drop ? ": dropped\n"
+                                : ": kept (those beyond float range are left out of the analysis); "
+                                  "--drop-outliers removes them\n");
+    }
+    return 0;
+}
+
 static const char *type_name(pnpr_type t)
 {
     const char *s = pnpr_type_ply_name(t);
@@ -58,9 +124,13 @@ static const char *type_name(pnpr_type t)
 int cli_info(int argc, char **argv)
 {
     const char *in = NULL;
+    cli_outliers outliers = {0, 0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
+        int oo = strcmp(a, "--drop-outliers") ? cli_outlier_option(&outliers, "info", argc, argv, &i) : 0;
+        if (oo < 0) return 2;
+        if (oo > 0) continue;
         if (a[0] == '-' && a[1]) {
             fprintf(stderr, "pointnpr info: unknown option: %s\n", a);
             usage(stderr);
@@ -101,10 +171,20 @@ int cli_info(int argc, char **argv)
     if (finite != c.count)
         printf("finite:      %zu (%zu points with NaN/Inf coordinates)\n", finite, c.count - finite);
     printf("origin:      %.3f %.3f %.3f\n", c.origin[0], c.origin[1], c.origin[2]);
+    pnpr_outlier_info oi;
+    pnpr_outlier_options oo = {outliers.factor};
+    if (pnpr_cloud_outliers(&c, &oo, NULL, &oi) == PNPR_OK) {
+        printf("outliers:    ");
+        print_outliers(stdout, &oi);
+        printf("\n");
+    }
     if (finite) {
-        printf("bbox min:    %.3f %.3f %.3f\n", lo[0], lo[1], lo[2]);
-        printf("bbox max:    %.3f %.3f %.3f\n", hi[0], hi[1], hi[2]);
-        printf("extent:      %.3f %.3f %.3f\n", hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+        const char *labels[3] = {"bbox min:   ", "bbox max:   ", "extent:     "};
+        for (int row = 0; row < 3; row++) {
+            printf("%s", labels[row]);
+            for (int a = 0; a < 3; a++) print_coord(stdout, " ", row == 0 ? lo[a] : row == 1 ? hi[a] : hi[a] - lo[a]);
+            printf("\n");
+        }
     } else {
         printf("bbox:        none (no point with finite coordinates)\n");
     }

@@ -45,17 +45,12 @@ static void usage(FILE *f)
             "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default %g)\n"
             "  --k N, --threshold T feature options used when features are computed\n"
             "  --quiet              no progress on stderr\n", (double)PNPR_SVG_OUTLINE_WIDTH, (double)PNPR_OUTLINE_JUMP);
-}
-
-static int ends_with(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), m = strlen(suffix);
-    return n >= m && strcasecmp(s + n - m, suffix) == 0;
+    cli_outlier_usage(f);
 }
 
 /* The SVG drawing's options. */
 typedef struct svg_args {
-    const char *path;
+    const char *path, *in; /* in: the input, for messages */
     int show_hidden, outline; /* outline: 0 default (on), 1 on, -1 off */
     double stroke, taper, outline_width, outline_jump;
 } svg_args;
@@ -126,7 +121,7 @@ static int write_svg(const svg_args *sa, const cli_view *view, const pnpr_polyli
     const pnpr_camera *camp = cli_view_camera(view, cloud, &cam);
     pnpr_status st = pnpr_write_lines_svg(sa->path, lines, camp, &so, &err);
     if (st != PNPR_OK) {
-        cli_report_error("lines", st, &err);
+        cli_report_error_in("lines", sa->in, st, &err);
         return 0;
     }
     if (!quiet) fprintf(stderr, "wrote %s\n", sa->path);
@@ -143,6 +138,7 @@ int cli_lines(int argc, char **argv)
     pnpr_lines_options lo = {0};
     pnpr_features_options fo = {0};
     int quiet = 0;
+    cli_outliers outliers = {0, 0};
     svg_args sa;
     memset(&sa, 0, sizeof sa);
     cli_view view;
@@ -153,6 +149,9 @@ int cli_lines(int argc, char **argv)
         int vo = cli_view_option(&view, "lines", argc, argv, &i);
         if (vo < 0) return 2;
         if (vo > 0) continue;
+        int oo = cli_outlier_option(&outliers, "lines", argc, argv, &i);
+        if (oo < 0) return 2;
+        if (oo > 0) continue;
         int so = svg_option(&sa, argc, argv, &i);
         if (so < 0) return 2;
         if (so > 0) continue;
@@ -186,14 +185,29 @@ int cli_lines(int argc, char **argv)
     }
     if (!in || !out) { usage(stderr); return 2; }
     if (!cli_view_check(&view, "lines")) return 2;
+    sa.in = in;
 #ifndef PNPR_HAVE_RENDER
     if (sa.path) { fprintf(stderr, "pointnpr lines: --svg needs the renderer, which this build does not have\n"); return 2; }
 #endif
-    int as_ply = ends_with(out, ".ply");
-    if (!as_ply && !ends_with(out, ".obj")) {
-        fprintf(stderr, "pointnpr lines: the output must end in .obj or .ply, got '%s'\n", out);
+    int as_ply = cli_has_ext(out, ".ply");
+    if (!as_ply && !cli_has_ext(out, ".obj") && !cli_output_is_stream(out)) {
+        fprintf(stderr, "pointnpr lines: the output must end in .obj or .ply (or be - or a device/FIFO for OBJ), got '%s'\n", out);
         return 2;
     }
+    if (sa.path && !cli_has_ext(sa.path, ".svg") && !cli_output_is_stream(sa.path)) {
+        fprintf(stderr, "pointnpr lines: --svg wants a name ending in .svg (or -), got '%s'\n", sa.path);
+        return 2;
+    }
+    if (sa.path && !strcmp(sa.path, "-") && !strcmp(out, "-")) {
+        fprintf(stderr, "pointnpr lines: -o and --svg cannot both be standard output\n");
+        return 2;
+    }
+    if (sa.path && !strcmp(sa.path, out) && strcmp(out, "-")) {
+        fprintf(stderr, "pointnpr lines: -o and --svg name the same file %s\n", out);
+        return 2;
+    }
+    if (!cli_check_output("lines", out, &in, 1, 0) || (sa.path && !cli_check_output("lines", sa.path, &in, 1, 0)))
+        return 1;
 
     cli_progress_state ps = {{0}, 0, 0};
     pnpr_progress prog = {quiet ? NULL : cli_progress_stderr, &ps};
@@ -205,6 +219,7 @@ int cli_lines(int argc, char **argv)
     pnpr_error err = {0};
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("lines", st, &err); return 1; }
+    if (cli_outliers_apply(&outliers, "lines", in, &cloud, quiet, NULL)) { pnpr_cloud_free(&cloud); return 1; }
     if (!run_plan(in, &cloud, &fo, sa.path && !sa.show_hidden && sa.outline >= 0, quiet)) {
         pnpr_cloud_free(&cloud);
         return 1;

@@ -89,6 +89,7 @@ static void usage(FILE *f)
             "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n",
             (double)PNPR_LINE_MIN_PX, (double)w_lines, (double)w_cartoon, (double)w_sketchy,
             (double)PNPR_OUTLINE_JUMP, (double)PNPR_OUTLINE_HOLE);
+    cli_outlier_usage(f);
 }
 
 /* Reads a style map file: lines "LABEL STYLE" and "* STYLE" (the default), '#' comments, blank
@@ -217,6 +218,7 @@ int cli_render(int argc, char **argv)
     pnpr_tone_options tone;
     memset(&tone, 0, sizeof tone);
     int quiet = 0, alpha = 0, max_tile = 0;
+    cli_outliers outliers = {0, 0};
     const char *save_camera = NULL;
     cli_view view;
     cli_view_init(&view, 1024, 768);
@@ -229,6 +231,9 @@ int cli_render(int argc, char **argv)
         int vo = cli_view_option(&view, "render", argc, argv, &i);
         if (vo < 0) return 2;
         if (vo > 0) continue;
+        int oo = cli_outlier_option(&outliers, "render", argc, argv, &i);
+        if (oo < 0) return 2;
+        if (oo > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--alpha")) alpha = 1;
@@ -332,6 +337,16 @@ int cli_render(int argc, char **argv)
     }
     if (!in || !out) { usage(stderr); return 2; }
     if (!cli_view_check(&view, "render")) return 2;
+    if (!cli_has_ext(out, ".png") && !cli_output_is_stream(out)) {
+        fprintf(stderr, "pointnpr render: the output is a PNG image: its name must end in .png (or be - or a device/FIFO), got '%s'\n", out);
+        return 2;
+    }
+    if (save_camera && !strcmp(save_camera, out)) {
+        fprintf(stderr, "pointnpr render: -o and --save-camera name the same file %s\n", out);
+        return 2;
+    }
+    if (!cli_check_output("render", out, &in, 1, 1) || (save_camera && !cli_check_output("render", save_camera, &in, 1, 0)))
+        return 1;
     const int width = view.width, height = view.height;
     for (int c = 0; c < 3; c++) dopt.background[c] = (float)(bg[c] / 255.0);
     dopt.background[3] = alpha ? 0.0f : 1.0f;
@@ -361,6 +376,7 @@ int cli_render(int argc, char **argv)
     int rc = 1;
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+    if (cli_outliers_apply(&outliers, "render", in, &cloud, quiet, NULL)) goto done;
 
     /* the camera first: its up vector is the tone's "above" (the key light comes from there) */
     pnpr_camera cam;
@@ -374,7 +390,7 @@ int cli_render(int argc, char **argv)
     st = pnpr_renderer_create(NULL, &ren, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
     st = pnpr_renderer_set_cloud(ren, &cloud, &uopt, &err);
-    if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
+    if (st != PNPR_OK) { cli_report_error_in("render", in, st, &err); goto done; }
     if (uses[PNPR_STYLE_LINES] && !set_profile_lines(in, &cloud, ren, quiet, prog)) goto done;
 
     if (save_camera && camp &&
@@ -396,7 +412,8 @@ int cli_render(int argc, char **argv)
     so.progress.fn = quiet ? NULL : tile_progress;
     pnpr_render_stats stats;
     st = pnpr_renderer_snapshot(ren, camp, &dopt, width, height, &so, pixels, &stats, &err);
-    if (st == PNPR_OK) st = pnpr_write_png(out, pixels, width, height, alpha, &err);
+    if (st != PNPR_OK) { cli_report_error_in("render", in, st, &err); goto done; }
+    st = pnpr_write_png(out, pixels, width, height, alpha, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
     if (!quiet)
         fprintf(stderr, "%s: %zu of %zu points drawn, %zu strokes, style %s, %dx%d -> %s\n", in,

@@ -35,6 +35,7 @@ static void usage(FILE *f)
             "  --split-min M    smallest part a split may leave (32)\n"
             "  --property NAME  labels: the property to read\n"
             "  --threads N, --ascii, --quiet\n");
+    cli_outlier_usage(f);
 }
 
 static int is_int(double x) { return x == floor(x); }
@@ -44,10 +45,14 @@ int cli_segment(int argc, char **argv)
     const char *in = NULL, *out = NULL, *method = "jseg", *property = NULL;
     double segments = 0, threshold = 0, radius = 0, min_size = 0, k = 0, classes = 0, threads = 0, split = 0, split_min = 0;
     pnpr_write_options wo = {0};
+    cli_outliers outliers = {0, 0};
     int quiet = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int oo = cli_outlier_option(&outliers, "segment", argc, argv, &i);
+        if (oo < 0) return 2;
+        if (oo > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--ascii")) wo.encoding = PNPR_PLY_ASCII;
@@ -72,10 +77,10 @@ int cli_segment(int argc, char **argv)
             if (!cli_parse_number(v, 1, 4294967295.0, &min_size) || !is_int(min_size)) { fprintf(stderr, "pointnpr segment: --min-size wants an integer >= 1, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--k")) {
-            if (!cli_parse_number(v, 2, 256, &k) || !is_int(k)) { fprintf(stderr, "pointnpr segment: --k wants an integer in 2..256, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 2, PNPR_SEGMENT_K_MAX, &k) || !is_int(k)) { fprintf(stderr, "pointnpr segment: --k wants an integer in 2..%d, got '%s'\n", PNPR_SEGMENT_K_MAX, v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--classes")) {
-            if (!cli_parse_number(v, 1, 255, &classes) || !is_int(classes)) { fprintf(stderr, "pointnpr segment: --classes wants an integer in 1..255, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, PNPR_JSEG_CLASSES_MAX, &classes) || !is_int(classes)) { fprintf(stderr, "pointnpr segment: --classes wants an integer in 1..%d, got '%s'\n", PNPR_JSEG_CLASSES_MAX, v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--split")) {
             if (!cli_parse_number(v, 1e-9, 1.0 / 3.0, &split)) { fprintf(stderr, "pointnpr segment: --split wants a surface variation in (0, 1/3], got '%s'\n", v); return 2; }
@@ -84,7 +89,7 @@ int cli_segment(int argc, char **argv)
             if (!cli_parse_number(v, 1, 4294967295.0, &split_min) || !is_int(split_min)) { fprintf(stderr, "pointnpr segment: --split-min wants an integer >= 1, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--threads")) {
-            if (!cli_parse_number(v, 1, 1024, &threads) || !is_int(threads)) { fprintf(stderr, "pointnpr segment: --threads wants an integer >= 1, got '%s'\n", v); return 2; }
+            if (!cli_parse_number(v, 1, PNPR_THREADS_MAX, &threads) || !is_int(threads)) { fprintf(stderr, "pointnpr segment: --threads wants an integer in 1..%d, got '%s'\n", PNPR_THREADS_MAX, v); return 2; }
             i++;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "pointnpr segment: unknown option or missing value: %s\n", a);
@@ -94,6 +99,8 @@ int cli_segment(int argc, char **argv)
         else { fprintf(stderr, "pointnpr segment: more than one input given ('%s')\n", a); return 2; }
     }
     if (!in || !out) { usage(stderr); return 2; }
+    int out_rc = cli_cloud_output("segment", out, in, &wo);
+    if (out_rc) return out_rc;
     if (segments > 0 && threshold > 0) { fprintf(stderr, "pointnpr segment: give --segments or --threshold, not both\n"); return 2; }
     if (property && strcmp(method, "labels")) { fprintf(stderr, "pointnpr segment: --property needs --method labels\n"); return 2; }
 
@@ -106,6 +113,7 @@ int cli_segment(int argc, char **argv)
     pnpr_error err = {0};
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("segment", st, &err); return 1; }
+    if (cli_outliers_apply(&outliers, "segment", in, &cloud, quiet, NULL)) { pnpr_cloud_free(&cloud); return 1; }
     int rc = 1;
     uint32_t *labels = NULL, *knn = NULL;
     pnpr_segment_merge *merges = NULL;

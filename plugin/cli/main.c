@@ -1,6 +1,8 @@
 /* pointnpr command-line tool: dispatches to the subcommands in cmd_*.c. */
 #include "cli.h"
 
+#include <pointnpr/output.h>
+
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -34,6 +36,15 @@ void cli_report_error(const char *cmd, pnpr_status st, const pnpr_error *err)
         fprintf(stderr, "pointnpr %s: %s\n", cmd, pnpr_status_string(st));
 }
 
+void cli_report_error_in(const char *cmd, const char *in, pnpr_status st, const pnpr_error *err)
+{
+    if (err && err->message[0] && strstr(err->message, in)) cli_report_error(cmd, st, err);
+    else if (err && err->message[0])
+        fprintf(stderr, "pointnpr %s: %s: %s (%s)\n", cmd, in, err->message, pnpr_status_string(st));
+    else
+        fprintf(stderr, "pointnpr %s: %s: %s\n", cmd, in, pnpr_status_string(st));
+}
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -54,6 +65,7 @@ static void usage(FILE *f)
 int main(int argc, char **argv)
 {
     if (argc < 2) { usage(stderr); return 2; }
+    pnpr_output_cleanup_on_signals(); /* an interrupted command leaves no temporary file behind */
     const char *cmd = argv[1];
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) { usage(stdout); return 0; }
     if (!strcmp(cmd, "--version")) { printf("pointnpr %s\n", PNPR_VERSION_STRING); return 0; }

@@ -14,9 +14,11 @@
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/outliers.h>
 #include <pointnpr/segment.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -134,6 +136,87 @@ typename CMeshO::template PerVertexAttributeHandle<T> attributeOfType(CMeshO &m,
 bool finite3(const Point3m &p)
 {
     return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+
+/* MeshLab keeps vertex positions as float (MESHLAB_SCALAR=float): a layer loaded from doubles far
+ * from the origin was rounded to the float step (ulp) at its coordinates' magnitude. The figures
+ * of that rounding against the layer's point spacing as MeshLab holds it: the median distance
+ * between distinct positions (rounding makes vertices coincide; 0 when fewer than 2 are left). */
+struct FloatPrecision {
+    double magnitude = 0; /* largest |coordinate| of a point that is not a far outlier */
+    double ulp = 0;       /* the float step there */
+    size_t distinct = 0;  /* distinct finite positions (counted when the quick test fires) */
+    double spacing = 0;
+    bool lossy = false;   /* spacing < kStepsPerSpacing * ulp */
+};
+
+/* A spacing of fewer float steps than this warns: positions are then off by up to ulp/2 = 1/16
+ * of the spacing. Measured with the CLI on a rotated 51x51x51 grid cube whose coordinates were
+ * rounded to a step of h/k (h the spacing): 526-535 of its 540 edge points are directional and
+ * no face point is a feature for k >= 3, 520 at k = 2, 497 at k = 1.4, and 782 face points become
+ * features at k = 0.7; the unit cube at 1e7 (k = 0.02) has none left. 8 warns with a margin of
+ * 4 before the first measurable change. */
+const double kStepsPerSpacing = 8.0;
+
+using Pos = std::array<float, 3>;
+
+/* The quick test samples at most kSlabSamples points; each scans at most kSlabScan points. */
+const size_t kSlabSamples = 2048, kSlabScan = 4096;
+
+/* Quick test on pts sorted along axis a: whether at least a quarter of a stride sample has a
+ * distinct point closer than c, looked for in its slab |q[a] - p[a]| <= c (a slab that holds
+ * none in its first kSlabScan points counts as none). At most kSlabSamples x kSlabScan
+ * distances: on the lion scan (342k points) ~2 ms after the sort, which takes ~50 ms. */
+bool someCloserThan(const std::vector<Pos> &pts, int a, double c)
+{
+    const size_t step = std::max<size_t>(1, pts.size() / kSlabSamples);
+    size_t tested = 0, close = 0;
+    for (size_t i = 0; i < pts.size(); i += step, tested++) {
+        const Pos &p = pts[i];
+        auto it = std::lower_bound(pts.begin(), pts.end(), static_cast<float>(p[a] - c),
+                                   [a](const Pos &q, float v) { return q[a] < v; });
+        for (size_t s = 0; it != pts.end() && (*it)[a] <= p[a] + c && s < kSlabScan; ++it, ++s) {
+            double d2 = 0;
+            for (int k = 0; k < 3; k++) d2 += (double((*it)[k]) - p[k]) * (double((*it)[k]) - p[k]);
+            if (d2 > 0 && d2 < c * c) { close++; break; }
+        }
+    }
+    return 4 * close >= tested;
+}
+
+FloatPrecision floatPrecision(const pnpr_cloud &cloud)
+{
+    FloatPrecision fp;
+    float lo[3], hi[3];
+    if (pnpr_cloud_inlier_bounds(&cloud, lo, hi) == 0) return fp; /* no finite point */
+    int a = 0; /* the widest axis: the thinnest slabs */
+    for (int c = 0; c < 3; c++) {
+        fp.magnitude = std::max({fp.magnitude, std::fabs(cloud.origin[c] + lo[c]), std::fabs(cloud.origin[c] + hi[c])});
+        if (hi[c] - lo[c] > hi[a] - lo[a]) a = c;
+    }
+    const float m = static_cast<float>(fp.magnitude);
+    fp.ulp = static_cast<double>(std::nextafter(m, std::numeric_limits<float>::infinity())) - m;
+    const double close = kStepsPerSpacing * fp.ulp;
+    std::vector<Pos> pts;
+    pts.reserve(cloud.count);
+    for (size_t i = 0; i < cloud.count; i++) {
+        const float *p = cloud.xyz + 3 * i;
+        if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) pts.push_back({{p[0], p[1], p[2]}});
+    }
+    std::sort(pts.begin(), pts.end(), [a](const Pos &p, const Pos &q) { return p[a] < q[a]; });
+    if (pts.size() < 2 || !someCloserThan(pts, a, close)) return fp; /* the usual case ends here */
+    /* the figures: distinct positions only (the library's spacing looks for a distinct point among
+     * 8 neighbours, which a layer rounded onto a few positions does not have) */
+    std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    fp.distinct = pts.size();
+    pnpr_kdtree *tree = nullptr;
+    if (pts.size() < 2 || pnpr_kdtree_build(pts[0].data(), pts.size(), sizeof pts[0], &tree) != PNPR_OK)
+        return fp; /* no verdict */
+    fp.spacing = pnpr_kdtree_median_spacing(tree, 0);
+    pnpr_kdtree_free(tree);
+    fp.lossy = fp.spacing > 0 && fp.spacing < close;
+    return fp;
 }
 
 } // namespace
@@ -306,8 +389,8 @@ void FilterPointnprPlugin::initParameterSet(QAction *a, MeshModel &, RichParamet
                                "of following them (beta in the edge weight; > 0, default 4). Higher values follow "
                                "the creases more strictly."));
         par.addParam(RichInt("shiftIterations", 4, "Noise-reducing shifts",
-                             "Iterations that move every directional point towards its neighbours across the "
-                             "feature (0 = none, at most 100)."));
+                             QString("Iterations that move every directional point towards its neighbours across "
+                                     "the feature (0 = none, at most %1).").arg(PNPR_LINES_SHIFT_MAX)));
         par.addParam(RichBool("corners", true, "Join at corners",
                               "Join line ends that point at a common corner (and bridge small gaps). Off: lines "
                               "stop short of corners."));
@@ -428,7 +511,7 @@ bool FilterPointnprPlugin::loadLayerCloud(MeshModel &mm, bool withColor, bool wi
     CMeshO &m = mm.cm;
     const QString layer = mm.label();
 
-    /* ---- live vertices, finite bounding box in double ---- */
+    /* ---- live vertices, the finite ones counted ---- */
     lc.verts.clear();
     lc.verts.reserve(m.vert.size());
     for (CMeshO::VertexIterator vi = m.vert.begin(); vi != m.vert.end(); ++vi)
@@ -439,18 +522,8 @@ bool FilterPointnprPlugin::loadLayerCloud(MeshModel &mm, bool withColor, bool wi
         Log("pointnpr: layer '%s' is a mesh with %d faces: the %s use its %zu vertices only; faces are "
             "left unchanged", qUtf8Printable(layer), m.fn, what, n);
 
-    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     size_t finite = 0;
-    for (CMeshO::VertexPointer v : lc.verts) {
-        const Point3m &p = v->cP();
-        if (!finite3(p)) continue;
-        for (int c = 0; c < 3; c++) {
-            const double x = p[c];
-            if (finite == 0 || x < lo[c]) lo[c] = x;
-            if (finite == 0 || x > hi[c]) hi[c] = x;
-        }
-        finite++;
-    }
+    for (CMeshO::VertexPointer v : lc.verts) finite += finite3(v->cP());
     lc.finite = finite;
     if (finite == 0)
         return fail(QString("layer '%1': none of its %2 vertices has finite coordinates").arg(layer).arg(n));
@@ -458,17 +531,32 @@ bool FilterPointnprPlugin::loadLayerCloud(MeshModel &mm, bool withColor, bool wi
         Log("pointnpr: %zu of %zu vertices have NaN/Inf coordinates: they are left out (%s)", n - finite, n,
             leftOutNote);
 
-    /* ---- the cloud: origin = bbox centre (double), float offsets ---- */
+    /* ---- the cloud: the library's robust origin (pnpr_cloud_set_world: the bbox centre of the
+     * points that are not far outliers), float offsets ---- */
     pnpr_cloud &cloud = lc.g.cloud;
     pnpr_status st = pnpr_cloud_alloc(&cloud, n);
     if (st != PNPR_OK) return fail(QString("cannot allocate the cloud: %1").arg(pnpr_status_string(st)));
-    for (int c = 0; c < 3; c++) cloud.origin[c] = 0.5 * (lo[c] + hi[c]);
-    cloud.src_coord_type = PNPR_TYPE_FLOAT32;
-    for (size_t i = 0; i < n; i++) {
-        const Point3m &p = lc.verts[i]->cP();
-        for (int c = 0; c < 3; c++)
-            cloud.xyz[3 * i + c] = static_cast<float>(static_cast<double>(p[c]) - cloud.origin[c]);
+    {
+        std::vector<double> world(3 * n);
+        for (size_t i = 0; i < n; i++) {
+            const Point3m &p = lc.verts[i]->cP();
+            for (int c = 0; c < 3; c++) world[3 * i + c] = static_cast<double>(p[c]);
+        }
+        if ((st = pnpr_cloud_set_world(&cloud, world.data())) != PNPR_OK)
+            return fail(QString("cannot place the cloud: %1").arg(pnpr_status_string(st)));
     }
+    cloud.src_coord_type = PNPR_TYPE_FLOAT32;
+    const FloatPrecision fp = floatPrecision(cloud);
+    if (fp.lossy)
+        Log(GLLogStream::WARNING,
+            "pointnpr: WARNING: layer '%s' lies up to %.9g from the origin, where MeshLab's float coordinates "
+            "step by %.3g; its %zu points sit on %zu distinct positions, a median %.3g apart (%.3g times the "
+            "step): MeshLab keeps positions only to that step (finer coordinates in the file were rounded "
+            "when it was loaded), so the %s are unreliable. Moving the layer now (Filters > Normals, "
+            "Curvatures and Orientation > Transform: Translate, Center, set Origin) cannot restore them: "
+            "move the data near the origin before MeshLab loads it, or run the pointnpr command on the file "
+            "(it keeps double coordinates)",
+            qUtf8Printable(layer), fp.magnitude, fp.ulp, finite, fp.distinct, fp.spacing, fp.spacing / fp.ulp, what);
     lc.hasColor = withColor && mm.hasDataMask(MeshModel::MM_VERTCOLOR);
     if (lc.hasColor) {
         if ((st = pnpr_cloud_alloc_rgb(&cloud)) != PNPR_OK)
@@ -514,7 +602,7 @@ bool FilterPointnprPlugin::checkFeatureParams(const RichParameterList &par, bool
     const int k = par.getInt("k");
     const float threshold = par.getFloat("threshold");
     const float conf = par.getFloat("directionConfidence");
-    if (k < 1 || k > 1024) return fail(QString("k must be in 1..1024 (got %1)").arg(k));
+    if (k < 1 || k > PNPR_FEATURES_K_MAX) return fail(QString("k must be in 1..%1 (got %2)").arg(PNPR_FEATURES_K_MAX).arg(k));
     if (!(threshold >= 0.0f && threshold <= 1.0f))
         return fail(QString("the feature threshold must be in [0,1], 0 = automatic (got %1)").arg(threshold));
     if (!(conf > 0.0f && conf <= 1.0f))
@@ -725,7 +813,8 @@ bool FilterPointnprPlugin::profileLines(MeshDocument &md, const RichParameterLis
     if (!nonNegative(mergeTol)) return fail(QString("the merge tolerance must be >= 0, 0 = h (got %1)").arg(mergeTol));
     if (!nonNegative(minLength)) return fail(QString("the minimum line length must be >= 0, 0 = 5 h (got %1)").arg(minLength));
     if (!(beta > 0.0f && beta <= 1e6f)) return fail(QString("the direction weight must be > 0 (got %1)").arg(beta));
-    if (shifts < 0 || shifts > 100) return fail(QString("the noise-reducing shifts must be in 0..100 (got %1)").arg(shifts));
+    if (shifts < 0 || shifts > PNPR_LINES_SHIFT_MAX)
+        return fail(QString("the noise-reducing shifts must be in 0..%1 (got %2)").arg(PNPR_LINES_SHIFT_MAX).arg(shifts));
     lo.spacing = spacing;
     lo.connect_radius = radius;
     lo.merge_tol = mergeTol;
@@ -929,8 +1018,9 @@ bool FilterPointnprPlugin::segment(MeshDocument &md, const RichParameterList &pa
         const float seed = par.getFloat("seedFactor"), md2 = par.getFloat("mergeDistance");
         if (segmentsWanted < 0) return fail(QString("the segment count must be >= 0, 0 = no hierarchy cut (got %1)").arg(segmentsWanted));
         if (!nonNegative(hThreshold)) return fail(QString("the hierarchy threshold must be >= 0, 0 = none (got %1)").arg(hThreshold));
-        if (classes < 1 || classes > 255) return fail(QString("the colour classes must be in 1..255 (got %1)").arg(classes));
-        if (k < 2 || k > 256) return fail(QString("k must be in 2..256 (got %1)").arg(k));
+        if (classes < 1 || classes > PNPR_JSEG_CLASSES_MAX)
+            return fail(QString("the colour classes must be in 1..%1 (got %2)").arg(PNPR_JSEG_CLASSES_MAX).arg(classes));
+        if (k < 2 || k > PNPR_SEGMENT_K_MAX) return fail(QString("k must be in 2..%1 (got %2)").arg(PNPR_SEGMENT_K_MAX).arg(k));
         if (minSize < 0) return fail(QString("the minimum segment size must be >= 0, 0 = automatic (got %1)").arg(minSize));
         if (!nonNegative(qd)) return fail(QString("the class merge distance must be >= 0, 0 = none (got %1)").arg(qd));
         if (!nonNegative(radius)) return fail(QString("the neighbourhood radius must be >= 0, 0 = none (got %1)").arg(radius));
@@ -950,7 +1040,7 @@ bool FilterPointnprPlugin::segment(MeshDocument &md, const RichParameterList &pa
         if (!nonNegative(dist)) return fail(QString("the neighbour distance must be >= 0, 0 = automatic (got %1)").arg(dist));
         if (minSize < 0) return fail(QString("the minimum segment size must be >= 0 (got %1)").arg(minSize));
         if (method == 1) {
-            if (k < 1 || k > 256) return fail(QString("k must be in 1..256 (got %1)").arg(k));
+            if (k < 1 || k > PNPR_SEGMENT_K_MAX) return fail(QString("k must be in 1..%1 (got %2)").arg(PNPR_SEGMENT_K_MAX).arg(k));
             if (!(pcd > 0.0f && pcd <= 1e6f)) return fail(QString("the point colour distance must be > 0 (got %1)").arg(pcd));
             if (!nonNegative(rcd)) return fail(QString("the region merge distance must be >= 0, 0 = none (got %1)").arg(rcd));
         }

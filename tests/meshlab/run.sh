@@ -95,13 +95,61 @@ mlserver() {
   return 0
 }
 
+# float_offset_cube: MeshLab stores float coordinates. The unit cube (h = 0.02) at the offset test's
+# (1e7, -1e7, 5e6), in a file of doubles: MeshLab rounds it to the float step there (1 at 1e7,
+# 0.5 at 5e6) when it loads it; the plugin must say so with the figures and the remedies. The
+# pointnpr command reads the doubles and finds the cube's edges; MeshLab's layer has lost them,
+# and moving the layer to the origin afterwards (Transform: Translate, Center, set Origin, frozen)
+# does not bring them back (the warning's advice). Rounded positions: x in {1e7, 1e7+1}, y in
+# {-1e7, -1e7+1}, z in {5e6, 5e6+0.5, 5e6+1}: 2 x 2 x 3 = 12 distinct positions (all on the
+# cube's surface, x being 0 or 1), each 0.5 from its z neighbour.
+float_offset_cube() {
+  cube_ply "$T/unit.ply" 1 50 10000000 -10000000 5000000 double
+  mlx "$T/u.mlx" "$(features_xml)"
+  mlserver unit -i "$T/unit.ply" -o "$T/unit-out.ply" -m vq -s "$T/u.mlx" && expect_rc unit 0
+  expect_log unit "LOG: 1 pointnpr: WARNING: layer 'unit.ply' lies up to 10000001 from the origin, where MeshLab's float coordinates step by 1; its 15002 points sit on 12 distinct positions, a median 0.5 apart \\(0.5 times the step\\): MeshLab keeps positions only to that step \\(finer coordinates in the file were rounded when it was loaded\\), so the features are unreliable"
+  expect_log unit "Moving the layer now \\(Filters > Normals, Curvatures and Orientation > Transform: Translate, Center, set Origin\\) cannot restore them: move the data near the origin before MeshLab loads it, or run the pointnpr command on the file \\(it keeps double coordinates\\)"
+  grep -o "pointnpr: WARNING.*" "$T/unit.log" | head -n 1
+  local ml cli moved
+  ml=$(sed -n 's/.*pointnpr: \([0-9]*\) feature points.*/\1/p' "$T/unit.log" | head -n 1)
+  "$CLI" features "$T/unit.ply" -o "$T/unit-cli.ply" --ascii --quiet || fail "pointnpr features on unit.ply failed"
+  cli=$(awk '/^property/ && !b { col[$NF] = np++ } /^end_header/ { b = 1; next }
+             b { c = $(col["feature_class"] + 1); if (c == 1 || c == 2) n++ } END { print n + 0 }' "$T/unit-cli.ply")
+  # translate to the layer's centre, frozen into the vertices, then the features: no warning left
+  # (the coordinates are small now), and still no edges
+  mlx "$T/t.mlx" ' <filter name="Transform: Translate, Center, set Origin">
+  <Param type="RichEnum" name="traslMethod" value="2" enum_cardinality="4" enum_val0="XYZ translation" enum_val1="Center on Scene BBox" enum_val2="Center on Layer BBox" enum_val3="Set new Origin"/>
+  <Param type="RichDynamicFloat" name="axisX" value="0" min="-10" max="10"/>
+  <Param type="RichDynamicFloat" name="axisY" value="0" min="-10" max="10"/>
+  <Param type="RichDynamicFloat" name="axisZ" value="0" min="-10" max="10"/>
+  <Param type="RichPoint3f" name="newOrigin" x="0" y="0" z="0"/>
+  <Param type="RichBool" name="Freeze" value="true"/>
+  <Param type="RichBool" name="allLayers" value="false"/>
+ </filter>' "$(features_xml)"
+  mlserver moved -i "$T/unit.ply" -o "$T/moved-out.ply" -m vq -s "$T/t.mlx" && expect_rc moved 0
+  expect_no_log moved "pointnpr: WARNING"
+  moved=$(sed -n 's/.*pointnpr: \([0-9]*\) feature points.*/\1/p' "$T/moved.log" | head -n 1)
+  log "unit cube at 1e7: feature points: pointnpr command $cli, MeshLab $ml, MeshLab after moving the layer to the origin $moved"
+  holds unit "the pointnpr command finds the cube's edges (540 edge points)" "$cli >= 300"
+  holds unit "MeshLab's rounded layer has lost them" "${ml:-999999} * 10 < $cli && ${moved:-999999} * 10 < $cli"
+  # the rule's edge (a spacing of 8 float steps), on cubes of integer coordinates: h = 7 warns,
+  # h = 9 does not (the side-1000 cube above, h = 20, does not either)
+  cube_ply "$T/h7.ply" 350 50 10000000 -10000000 5000000
+  cube_ply "$T/h9.ply" 450 50 10000000 -10000000 5000000
+  mlserver h7 -i "$T/h7.ply" -o "$T/h7-out.ply" -m vq -s "$T/u.mlx" && expect_rc h7 0
+  expect_log h7 "WARNING: layer 'h7.ply' lies up to 10000350 from the origin, where MeshLab's float coordinates step by 1; its 15002 points sit on 15002 distinct positions, a median 7 apart \\(7 times the step\\)"
+  mlserver h9 -i "$T/h9.ply" -o "$T/h9-out.ply" -m vq -s "$T/u.mlx" && expect_rc h9 0
+  expect_no_log h9 "pointnpr: WARNING"
+}
+
 # ---- inputs ----
-# cube_ply OUT SIDE STEPS OX OY OZ: the surface of the cube [0,SIDE]^3 + (OX,OY,OZ) sampled on a
-# grid of STEPS+1 points per edge (no duplicates), ascii PLY, positions only.
+# cube_ply OUT SIDE STEPS OX OY OZ [TYPE]: the surface of the cube [0,SIDE]^3 + (OX,OY,OZ) sampled on
+# a grid of STEPS+1 points per edge (no duplicates), ascii PLY, positions only, of TYPE (float;
+# double keeps the exact positions in the file).
 cube_ply() {
-  awk -v n="$3" -v s="$2" -v ox="$4" -v oy="$5" -v oz="$6" 'BEGIN {
+  awk -v n="$3" -v s="$2" -v ox="$4" -v oy="$5" -v oz="$6" -v t="${7:-float}" 'BEGIN {
     c = (n + 1) ^ 3 - (n - 1) ^ 3
-    printf "ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\nend_header\n", c
+    printf "ply\nformat ascii 1.0\nelement vertex %d\nproperty %s x\nproperty %s y\nproperty %s z\nend_header\n", c, t, t, t
     for (i = 0; i <= n; i++) for (j = 0; j <= n; j++) for (k = 0; k <= n; k++) {
       if (i > 0 && i < n && j > 0 && j < n && k > 0 && k < n) continue
       printf "%.10g %.10g %.10g\n", ox + s * i / n, oy + s * j / n, oz + s * k / n
@@ -344,6 +392,7 @@ check_cube() {
 }
 
 expect_log() { grep -qE -- "$2" "$T/$1.log" || fail "'$1': expected /$2/ in the output (log: $T/$1.log)"; }
+expect_no_log() { ! grep -qE -- "$2" "$T/$1.log" || fail "'$1': unexpected /$2/ in the output: $(grep -E -- "$2" "$T/$1.log" | head -n 1)"; }
 expect_rc() { [[ "$(cat "$T/$1.rc")" == "$2" ]] || fail "'$1': exit status $(cat "$T/$1.rc"), expected $2"; }
 no_plugin_errors() {
   if grep -iE "pointnpr" "$T/$1.log" | grep -qiE "cannot load|undefined symbol|not a valid|failed to|error"; then
@@ -616,6 +665,7 @@ cube | offset)
     expect_rc run 0
     expect_log run "15002 points \\(15002 valid\\), k 16, threshold [0-9.]+ \\(automatic\\), without colour, normals computed"
     expect_log run "selected [0-9]+ directional feature points"
+    expect_no_log run "pointnpr: WARNING" # h = 20 at 1e7 is 20 float steps: nothing lost
     to_ascii "$T/out.ply" "$T/out-ascii.ply" &&
       { check_cube "$T/out-ascii.ply" $side "$h" $ox $oy $oz || fail "cube known answers (see the line above)"; }
     grep -E "feature points|; [0-9.]+ s" "$T/run.log" | head -3
@@ -631,6 +681,7 @@ cube | offset)
       END { printf "viewpoint at the centre: %d of %d normals point outwards\n", out, n; exit n > 0 && out == 0 ? 0 : 1 }' \
       "$T/vp-a.ply" || fail "normals not oriented towards the viewpoint"
   fi
+  [[ "$TEST" == offset ]] && float_offset_cube
   ;;
 
 select)
@@ -705,7 +756,8 @@ robust)
   # a point cloud of 1e7 offsets along every axis with too few points for k: clamped, no crash
   printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nend_header\n1e7 1e7 1e7\n10000001 1e7 1e7\n1e7 10000001 1e7\n1e7 1e7 10000001\n10000001 10000001 1e7\n' > "$T/tiny.ply"
   mlserver tiny -i "$T/tiny.ply" -o "$T/tiny-out.ply" -m vq -s "$T/f.mlx" && expect_rc tiny 0 &&
-    expect_log tiny "5 points \\(5 valid\\), k 5"
+    expect_log tiny "5 points \\(5 valid\\), k 5" &&
+    expect_log tiny "WARNING: layer 'tiny.ply' lies up to 10000001 from the origin, .* a median 1 apart \\(1 times the step\\)"
 
   # bad parameters and selection before features: an error message, MeshLab keeps running
   cube_ply "$T/cube.ply" 1 10 0 0 0
@@ -732,7 +784,7 @@ lion)
   if [[ ! -s "$LION" ]]; then
     tiles=$(bash "$SRC/scripts/fetch-sample.sh" "$CACHE" | tail -n 1) ||
       die "could not fetch the sample scan (scripts/fetch-sample.sh $CACHE): this test needs it"
-    "$CLI" convert "$tiles" -o "$LION.tmp" --quiet && mv "$LION.tmp" "$LION" || die "pointnpr convert of $tiles failed"
+    "$CLI" convert "$tiles" -o "$LION" --quiet || die "pointnpr convert of $tiles failed" # written whole or not at all
   fi
   mlx "$T/f.mlx" "$(features_xml)"
   if mlserver lion -i "$LION" -o "$T/lion-out.ply" -m vq vc vn -s "$T/f.mlx"; then
@@ -1058,7 +1110,7 @@ snapshot)
   if [[ ! -s "$LION" ]]; then
     tiles=$(bash "$SRC/scripts/fetch-sample.sh" "$CACHE" | tail -n 1) ||
       die "could not fetch the sample scan (scripts/fetch-sample.sh $CACHE): this test needs it"
-    "$CLI" convert "$tiles" -o "$LION.tmp" --quiet && mv "$LION.tmp" "$LION" || die "pointnpr convert of $tiles failed"
+    "$CLI" convert "$tiles" -o "$LION" --quiet || die "pointnpr convert of $tiles failed" # written whole or not at all
   fi
   SNAP="$T/meshlab_snapshot00.png"
   rm -f "$SNAP" "$T"/lion-*

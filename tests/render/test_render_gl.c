@@ -489,10 +489,11 @@ static void test_bad_input(pnpr_renderer *r)
     CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, NULL), PNPR_ERR_NUMERIC);
     cam = look(1, 2, 3, 1, 2, 3);
     memset(&err, 0, sizeof err);
-    CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, &err), PNPR_ERR_NUMERIC);
+    CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, &err), PNPR_ERR_INVALID_ARGUMENT); /* finite, but no direction */
     CHECK(strstr(err.message, "same point") != NULL);
     cam = look(0, 5, 0, 0, 0, 0); /* up (0,1,0) parallel to the view direction */
-    CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, NULL), PNPR_ERR_NUMERIC);
+    CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(err.message, "parallel") != NULL);
     cam = look(0, 0, 5, 0, 0, 0);
     cam.fov_y_deg = 200;
     CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, NULL), PNPR_ERR_INVALID_ARGUMENT);

@@ -1,0 +1,24 @@
+/* kd-tree functions for the library's own filters (not installed; see include/pointnpr/knn.h). */
+#ifndef PNPR_KDTREE_INTERNAL_H
+#define PNPR_KDTREE_INTERNAL_H
+
+#include <pointnpr/knn.h>
+
+/* Connected components of the tree's points at `distance` (two points are connected when their
+ * distance is <= distance, tested exactly as pnpr_kdtree_radius does). r_labels (count entries:
+ * the array the tree was built from) receives for every point the input index of one point of its
+ * component, the same for the whole component; points left out of the tree (NaN/Inf) get their
+ * own index. The cost does not grow with the distance: a subtree whose box lies within reach of a
+ * point is joined at once (each subtree at most once), and a subtree already joined to the point's
+ * component is skipped, so a distance beyond the cloud's diagonal costs O(n). Stage
+ * "components" on progress (may be NULL). */
+/* The first min(n, cap) of the n points that pnpr_kdtree_radius finds (the same points, in the
+ * same order as it writes them), returning how many; unlike it, the search stops there, so a
+ * radius that takes in the whole cloud costs O(cap + depth), not O(n). */
+size_t pnpr_kdtree_radius_first(const pnpr_kdtree *tree, const float q[3], float radius, uint32_t *r_idx,
+                                size_t cap);
+
+pnpr_status pnpr_kdtree_components(const pnpr_kdtree *tree, size_t count, float distance,
+                                   const pnpr_progress *progress, uint32_t *r_labels);
+
+#endif

@@ -1,0 +1,34 @@
+/* An input file as one read-only byte range, for the readers that parse a buffer (io/ply.c,
+ * io/pcd.c, io/las.c); not installed.
+ *
+ * A regular file is mapped (mmap, read-only): its pages come from the page cache when the parser
+ * touches them, and nothing is copied to the heap. Each reader parses its header first and checks
+ * the counts it announces against the size before it allocates or touches the body, so a file
+ * whose header lies (a 2 GB sparse file "with" 10^9 points) costs the header's pages and fails
+ * at once instead of being read whole. Pipes, character devices and files that cannot be mapped
+ * are read into memory (there is no size to check a header against before reading them).
+ *
+ * Caveat, as for every mapping reader (PCL's PCD reader maps too): if another process truncates
+ * the file while it is being parsed, touching the pages that vanished raises SIGBUS. */
+#ifndef PNPR_FILE_BYTES_H
+#define PNPR_FILE_BYTES_H
+
+#include <pointnpr/core.h>
+
+#include <stddef.h>
+
+typedef struct pnpr_file_bytes {
+    const unsigned char *data; /* size bytes; never NULL once opened */
+    size_t size;
+    void *map;                 /* the mapping (unmapped by close), or NULL */
+    unsigned char *copy;       /* the heap copy (freed by close), or NULL */
+} pnpr_file_bytes;
+
+/* Opens path and makes its bytes available; errors name the path (PNPR_ERR_IO with the system's
+ * reason, PNPR_ERR_OUT_OF_MEMORY). On error *fb is zeroed and nothing needs closing. */
+pnpr_status pnpr_file_bytes_open(const char *path, pnpr_file_bytes *fb, pnpr_error *err);
+
+/* Releases what open took; safe on a zeroed struct. */
+void pnpr_file_bytes_close(pnpr_file_bytes *fb);
+
+#endif

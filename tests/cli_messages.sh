@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Error messages say what is wrong and name the option or file (issue: hostile input).
+#   bash cli_messages.sh /path/to/pointnpr SCRATCH_DIR
+set -uo pipefail
+bin=$1
+dir=$2/cli_messages
+rm -rf "$dir"; mkdir -p "$dir"
+fail=0
+check() { if ! eval "$1"; then echo "FAILED: $2" >&2; fail=1; fi; }
+awk 'BEGIN { m = 10; h = 0.1; n = 0
+  for (i = 0; i <= m; i++) for (j = 0; j <= m; j++) for (k = 0; k <= m; k++) {
+    if (i > 0 && i < m && j > 0 && j < m && k > 0 && k < m) continue
+    l[n++] = sprintf("%g %g %g", i * h, j * h, k * h) }
+  print "ply\nformat ascii 1.0\nelement vertex " n "\nproperty float x\nproperty float y\nproperty float z\nend_header"
+  for (q = 0; q < n; q++) print l[q] }' > "$dir/cube.ply"
+has_render=1
+"$bin" render --help 2>&1 | grep -q "no renderer" && has_render=0
+
+# camera: the same point, an up along the view; no "non-finite" for finite input
+for cmd in render lines; do
+  [ $cmd = render ] && [ $has_render = 0 ] && continue
+  out=$dir/o.png; [ $cmd = lines ] && out=$dir/o.obj
+  "$bin" $cmd "$dir/cube.ply" -o "$out" --eye 1,1,1 --target 1,1,1 --quiet 2> "$dir/e.txt"; rc=$?
+  check '[ $rc -eq 2 ] && grep -q "the eye and the target are the same point" "$dir/e.txt" && ! grep -q "non-finite" "$dir/e.txt"' \
+        "$cmd: eye == target says so (rc $rc)"
+  "$bin" $cmd "$dir/cube.ply" -o "$out" --eye 0,0,5 --target 0,0,0 --up 0,0,3 --quiet 2> "$dir/e.txt"; rc=$?
+  check '[ $rc -eq 2 ] && grep -q -- "--up (0,0,3) is parallel to the view direction" "$dir/e.txt"' "$cmd: up along the view names --up (rc $rc)"
+done
+if [ $has_render = 1 ]; then
+  # straight down with the default up (+z) is a plain top view, not an error
+  "$bin" render "$dir/cube.ply" -o "$dir/top.png" --eye 0.5,0.5,5 --target 0.5,0.5,0 --size 64x48 --quiet; rc=$?
+  check '[ $rc -eq 0 ] && [ -s "$dir/top.png" ]' "a top view with the default up renders (rc $rc)"
+fi
+# an option whose value overflows the library's float is refused by name
+"$bin" features "$dir/cube.ply" -o "$dir/w.ply" --weights 1e308,1e308 2> "$dir/e.txt"; rc=$?
+check '[ $rc -eq 2 ] && grep -q -- "--weights wants" "$dir/e.txt"' "--weights 1e308,1e308 names the option (rc $rc)"
+exit $fail
