@@ -5,14 +5,8 @@ set -uo pipefail
 bin=$1
 dir=$2/cli_messages
 rm -rf "$dir"; mkdir -p "$dir"
-fail=0
-check() { if ! eval "$1"; then echo "FAILED: $2" >&2; fail=1; fi; }
-awk 'BEGIN { m = 10; h = 0.1; n = 0
-  for (i = 0; i <= m; i++) for (j = 0; j <= m; j++) for (k = 0; k <= m; k++) {
-    if (i > 0 && i < m && j > 0 && j < m && k > 0 && k < m) continue
-    l[n++] = sprintf("%g %g %g", i * h, j * h, k * h) }
-  print "ply\nformat ascii 1.0\nelement vertex " n "\nproperty float x\nproperty float y\nproperty float z\nend_header"
-  for (q = 0; q < n; q++) print l[q] }' > "$dir/cube.ply"
+. "$(dirname "$0")/lib_cli.sh"
+cube_ply "$dir/cube.ply"
 has_render=1
 "$bin" render --help 2>&1 | grep -q "no renderer" && has_render=0
 
@@ -34,4 +28,10 @@ fi
 # an option whose value overflows the library's float is refused by name
 "$bin" features "$dir/cube.ply" -o "$dir/w.ply" --weights 1e308,1e308 2> "$dir/e.txt"; rc=$?
 check '[ $rc -eq 2 ] && grep -q -- "--weights wants" "$dir/e.txt"' "--weights 1e308,1e308 names the option (rc $rc)"
+# a cloud with no finite point: the camera error names the file
+if [ $has_render = 1 ]; then
+  printf 'ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\nnan nan nan\ninf 0 0\n' > "$dir/nan.ply"
+  "$bin" lines "$dir/nan.ply" -o "$dir/n.obj" --svg "$dir/n.svg" --quiet 2> "$dir/e.txt"; rc=$?
+  check '[ $rc -eq 1 ] && grep -q "nan.ply: svg: nothing to draw and no camera" "$dir/e.txt"' "a camera error names the file (rc $rc)"
+fi
 exit $fail

@@ -8,17 +8,10 @@ set -uo pipefail
 bin=$1
 dir=$2/cli_output
 rm -rf "$dir"; mkdir -p "$dir"
-fail=0
-check() { if ! eval "$1"; then echo "FAILED: $2" >&2; fail=1; fi; }
+. "$(dirname "$0")/lib_cli.sh"
 sum() { md5sum "$1" | cut -d' ' -f1; }
 
-# a sampled unit cube (ascii PLY)
-awk 'BEGIN { m = 10; h = 0.1; n = 0
-  for (i = 0; i <= m; i++) for (j = 0; j <= m; j++) for (k = 0; k <= m; k++) {
-    if (i > 0 && i < m && j > 0 && j < m && k > 0 && k < m) continue
-    l[n++] = sprintf("%g %g %g", i * h, j * h, k * h) }
-  print "ply\nformat ascii 1.0\nelement vertex " n "\nproperty float x\nproperty float y\nproperty float z\nend_header"
-  for (q = 0; q < n; q++) print l[q] }' > "$dir/cube.ply"
+cube_ply "$dir/cube.ply"
 orig=$(sum "$dir/cube.ply")
 
 # 4. an output that is the input (also through a link or a hard link), or of the wrong kind
