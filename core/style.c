@@ -2,6 +2,7 @@
 #include <pointnpr/style.h>
 
 #include <string.h>
+#include <strings.h>
 
 static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon", "painterly"};
 
@@ -14,7 +15,7 @@ pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style)
 {
     if (!name || !r_style) return PNPR_ERR_INVALID_ARGUMENT;
     for (int i = 0; i < PNPR_STYLE_COUNT_; i++)
-        if (!strcmp(name, style_names[i])) { *r_style = (pnpr_style)i; return PNPR_OK; }
+        if (!strcasecmp(name, style_names[i])) { *r_style = (pnpr_style)i; return PNPR_OK; }
     return PNPR_ERR_NOT_FOUND;
 }
 

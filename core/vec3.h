@@ -1,4 +1,4 @@
-/* Small 3-vector helpers in double (not installed), shared by the library's sources. */
+/* Small 3-vector helpers (not installed), shared by the library's sources. */
 #ifndef PNPR_VEC3_H
 #define PNPR_VEC3_H
 
@@ -12,6 +12,10 @@ static inline void pnpr_cross3(const double a[3], const double b[3], double r[3]
     r[1] = a[2] * b[0] - a[0] * b[2];
     r[2] = a[0] * b[1] - a[1] * b[0];
 }
+
+/* Whether all three components are finite (float and double points). */
+static inline int pnpr_finite3f(const float p[3]) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
+static inline int pnpr_finite3d(const double p[3]) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 /* Scales v to unit length when its length is positive and finite; returns the length. */
 static inline double pnpr_normalize3(double v[3])

@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../core/vec3.h"
 
 #define LEAF_SIZE 12
 
@@ -29,11 +30,6 @@ struct pnpr_kdtree {
     node *nodes;
     size_t node_count;
 };
-
-static int finite3(const float *p)
-{
-    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-}
 
 static void swap_pt(pnpr_kdtree *t, size_t a, size_t b)
 {
@@ -161,7 +157,7 @@ pnpr_status pnpr_kdtree_build_threads(const float *xyz, size_t count, size_t str
     size_t n = 0;
     for (size_t i = 0; i < count; i++) {
         const float *p = (const float *)((const char *)xyz + i * stride_bytes);
-        if (!finite3(p)) continue;
+        if (!pnpr_finite3f(p)) continue;
         memcpy(t->pts + 3 * n, p, 3 * sizeof(float));
         t->index[n++] = (uint32_t)i;
     }
@@ -312,7 +308,7 @@ static size_t knn_query(const pnpr_kdtree *t, const float q[3], size_t k, uint32
         r_idx[j] = PNPR_INDEX_NONE;
         if (r_dist2) r_dist2[j] = INFINITY;
     }
-    if (!t || t->count == 0 || !q || !finite3(q)) return 0;
+    if (!t || t->count == 0 || !q || !pnpr_finite3f(q)) return 0;
     size_t kk = k < t->count ? k : t->count;
     /* r_idx doubles as the heap's index storage; distances need their own buffer. */
     float stack_d[64];
@@ -356,7 +352,7 @@ static size_t radius_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], fl
 size_t pnpr_kdtree_radius(const pnpr_kdtree *t, const float q[3], float radius,
                           uint32_t *r_idx, size_t cap)
 {
-    if (!t || t->count == 0 || !q || !finite3(q) || !(radius >= 0) || !isfinite(radius)) return 0;
+    if (!t || t->count == 0 || !q || !pnpr_finite3f(q) || !(radius >= 0) || !isfinite(radius)) return 0;
     if (!r_idx) cap = 0;
     return radius_rec(t, 0, q, radius * radius, r_idx, cap, 0);
 }
@@ -382,7 +378,7 @@ static size_t radius_first_rec(const pnpr_kdtree *t, uint32_t id, const float q[
 
 size_t pnpr_kdtree_radius_first(const pnpr_kdtree *t, const float q[3], float radius, uint32_t *r_idx, size_t cap)
 {
-    if (!t || t->count == 0 || !q || !finite3(q) || !(radius >= 0) || !isfinite(radius) || !r_idx || !cap) return 0;
+    if (!t || t->count == 0 || !q || !pnpr_finite3f(q) || !(radius >= 0) || !isfinite(radius) || !r_idx || !cap) return 0;
     return radius_first_rec(t, 0, q, radius * radius, r_idx, cap, 0);
 }
 

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../core/vec3.h"
 
 /* World coordinates from an array or from a cloud. */
 typedef struct source {
@@ -14,14 +15,13 @@ typedef struct source {
     size_t count;
 } source;
 
-static int finite3d(const double w[3]) { return isfinite(w[0]) && isfinite(w[1]) && isfinite(w[2]); }
 
 /* World point i into w; returns whether it is finite. */
 static int get_world(const source *s, size_t i, double w[3])
 {
     if (s->world) memcpy(w, s->world + 3 * i, 3 * sizeof *w);
     else pnpr_cloud_world(s->cloud, i, w);
-    return finite3d(w);
+    return pnpr_finite3d(w);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -86,7 +86,7 @@ static pnpr_status robust_frame(const source *s, double factor, pnpr_outlier_inf
 
 int pnpr_outlier_is_far(const pnpr_outlier_info *info, const double w[3])
 {
-    return info && w && finite3d(w) && distance(info->centre, w) > info->limit;
+    return info && w && pnpr_finite3d(w) && distance(info->centre, w) > info->limit;
 }
 
 static pnpr_status find_outliers(const source *s, const pnpr_outlier_options *opts, uint8_t *r_far,

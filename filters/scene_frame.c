@@ -47,7 +47,6 @@
 static const double DEG = 3.14159265358979323846 / 180.0;
 
 static void set3(double r[3], double x, double y, double z) { r[0] = x; r[1] = y; r[2] = z; }
-static int finite3f(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 static uint64_t rng_next(uint64_t *s) /* splitmix64 */
 {
@@ -64,7 +63,7 @@ static uint64_t rng_next(uint64_t *s) /* splitmix64 */
 static float *take_sample(const pnpr_cloud *cloud, size_t max, uint64_t seed, size_t *r_m, size_t *r_valid)
 {
     size_t nf = 0;
-    for (size_t i = 0; i < cloud->count; i++) nf += finite3f(cloud->xyz + 3 * i);
+    for (size_t i = 0; i < cloud->count; i++) nf += pnpr_finite3f(cloud->xyz + 3 * i);
     *r_valid = nf;
     size_t m = nf < max ? nf : max;
     *r_m = m;
@@ -73,7 +72,7 @@ static float *take_sample(const pnpr_cloud *cloud, size_t max, uint64_t seed, si
     size_t k = 0;
     for (size_t i = 0; i < cloud->count; i++) {
         const float *p = cloud->xyz + 3 * i;
-        if (!finite3f(p)) continue;
+        if (!pnpr_finite3f(p)) continue;
         size_t j = k < m ? k : (size_t)(rng_next(&seed) % (k + 1));
         if (j < m) memcpy(s + 3 * j, p, 3 * sizeof *p);
         k++;
@@ -142,7 +141,7 @@ static size_t count_outliers(const pnpr_cloud *c, const float lo[3], const float
     size_t n = 0;
     for (size_t i = 0; i < c->count; i++) {
         const float *p = c->xyz + 3 * i;
-        if (finite3f(p)) {
+        if (pnpr_finite3f(p)) {
             double q[3] = {p[0], p[1], p[2]};
             n += box_distance(lo, hi, q) > lim;
         } else if (c->src_xyz) {

@@ -17,10 +17,10 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../core/vec3.h"
 
 #define NN_SAMPLE 10000
 
-static int finite3(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 static int cmp_float(const void *a, const void *b)
 {
@@ -34,7 +34,7 @@ float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, siz
     float *d = malloc((count / step + 1) * sizeof *d);
     if (!d) return 0;
     for (size_t i = 0; i < count; i += step) {
-        if (!finite3(xyz + 3 * i)) continue;
+        if (!pnpr_finite3f(xyz + 3 * i)) continue;
         uint32_t idx[8];
         float dist2[8];
         size_t n = pnpr_kdtree_knn(tree, xyz + 3 * i, 8, idx, dist2);
@@ -67,26 +67,26 @@ pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_c
     if ((st = pnpr_kdtree_components(tree, count, dist, &o.progress, r_labels)) != PNPR_OK) goto done;
     size_t nkept = 0;
     for (size_t i = 0; i < count; i++)
-        if (finite3(xyz + 3 * i)) size[r_labels[i]]++;
+        if (pnpr_finite3f(xyz + 3 * i)) size[r_labels[i]]++;
     if (o.min_size > 1) {
         for (size_t i = 0; i < count; i++)
-            if (finite3(xyz + 3 * i) && size[r_labels[i]] >= o.min_size) nkept++;
+            if (pnpr_finite3f(xyz + 3 * i) && size[r_labels[i]] >= o.min_size) nkept++;
         size_t nvalid = 0;
-        for (size_t i = 0; i < count; i++) nvalid += (size_t)finite3(xyz + 3 * i);
+        for (size_t i = 0; i < count; i++) nvalid += (size_t)pnpr_finite3f(xyz + 3 * i);
         if (nkept && nkept < nvalid) {
             kept = malloc(nkept * sizeof *kept);
             kept_xyz = malloc(3 * nkept * sizeof *kept_xyz);
             if (!kept || !kept_xyz) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
             size_t m = 0;
             for (size_t i = 0; i < count; i++)
-                if (finite3(xyz + 3 * i) && size[r_labels[i]] >= o.min_size) {
+                if (pnpr_finite3f(xyz + 3 * i) && size[r_labels[i]] >= o.min_size) {
                     kept[m] = (uint32_t)i;
                     memcpy(kept_xyz + 3 * m, xyz + 3 * i, 3 * sizeof(float));
                     m++;
                 }
             if ((st = pnpr_kdtree_build_threads(kept_xyz, nkept, 0, o.threads, &kept_tree)) != PNPR_OK) goto done;
             for (size_t i = 0; i < count; i++) {
-                if (!finite3(xyz + 3 * i) || size[r_labels[i]] >= o.min_size) continue;
+                if (!pnpr_finite3f(xyz + 3 * i) || size[r_labels[i]] >= o.min_size) continue;
                 uint32_t nn;
                 if (pnpr_kdtree_knn(kept_tree, xyz + 3 * i, 1, &nn, NULL) == 1)
                     r_labels[i] = r_labels[kept[nn]];

@@ -36,12 +36,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../core/vec3.h"
 
 #define SAMPLE_MAX 20000
 #define ADJ_K 10
 #define KMEANS_ITER 20
 
-static int finite3(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 static uint64_t rng_next(uint64_t *s)
 {
@@ -361,7 +361,7 @@ pnpr_status pnpr_segment_jseg(const float *xyz, const uint8_t *rgb, size_t count
     pnpr_kdtree *tree = NULL;
     size_t nvalid = 0;
     if (!valid) return PNPR_ERR_OUT_OF_MEMORY;
-    for (size_t i = 0; i < count; i++) { valid[i] = (uint8_t)finite3(xyz + 3 * i); nvalid += valid[i]; r_labels[i] = PNPR_LABEL_NONE; }
+    for (size_t i = 0; i < count; i++) { valid[i] = (uint8_t)pnpr_finite3f(xyz + 3 * i); nvalid += valid[i]; r_labels[i] = PNPR_LABEL_NONE; }
     if (!nvalid) { free(valid); st = pnpr_segment_finish(xyz, count, r_labels, r_info); goto out_info; }
     if (k > nvalid) k = nvalid;
     uint32_t seed_min = o.seed_min_size ? o.seed_min_size : (uint32_t)k;

@@ -15,8 +15,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../core/vec3.h"
 
-static int finite3(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 pnpr_status pnpr_segment_rgbgrow(const float *xyz, const uint8_t *rgb, size_t count,
                                  const pnpr_rgbgrow_options *opts, uint32_t *r_labels,
@@ -56,7 +56,7 @@ pnpr_status pnpr_segment_rgbgrow(const float *xyz, const uint8_t *rgb, size_t co
     uint32_t nreg = 0;
     double pd2 = pd * pd;
     for (size_t s = 0; s < count; s++) {
-        if (r_labels[s] != PNPR_LABEL_NONE || !finite3(xyz + 3 * s)) continue;
+        if (r_labels[s] != PNPR_LABEL_NONE || !pnpr_finite3f(xyz + 3 * s)) continue;
         size_t head = 0, tail = 0;
         queue[tail++] = (uint32_t)s;
         r_labels[s] = nreg;

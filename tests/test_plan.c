@@ -105,8 +105,24 @@ static void test_bad(void)
     CHECK_STATUS(pnpr_plan_make(NULL, NULL, &p), PNPR_ERR_INVALID_ARGUMENT);
 }
 
+static void test_style_names(void)
+{
+    pnpr_style s = PNPR_STYLE_POINTS;
+    CHECK_STATUS(pnpr_style_from_name("Sketchy", &s), PNPR_OK);
+    CHECK(s == PNPR_STYLE_SKETCHY);
+    CHECK_STATUS(pnpr_style_from_name("CARTOON", &s), PNPR_OK);
+    CHECK(s == PNPR_STYLE_CARTOON);
+    CHECK_STATUS(pnpr_style_from_name("cartoons", &s), PNPR_ERR_NOT_FOUND);
+    CHECK_STATUS(pnpr_style_from_name("", &s), PNPR_ERR_NOT_FOUND);
+    for (int i = 0; i < PNPR_STYLE_COUNT_; i++) { /* every name reads back as its style */
+        CHECK_STATUS(pnpr_style_from_name(pnpr_style_name((pnpr_style)i), &s), PNPR_OK);
+        CHECK(s == (pnpr_style)i);
+    }
+}
+
 int main(void)
 {
+    test_style_names();
     test_styles();
     test_reuse();
     test_bad();

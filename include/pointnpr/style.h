@@ -31,6 +31,7 @@ typedef enum pnpr_sketch_variant {
 } pnpr_sketch_variant;
 
 const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly"; "" if invalid */
+/* The style of a name, ignoring case ("Sketchy" is sketchy); PNPR_ERR_NOT_FOUND for others. */
 pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 /* Styles drawn from the feature classes (sketchy, stipple, painterly). */
 int pnpr_style_needs_features(pnpr_style style);
