@@ -127,6 +127,497 @@ pnpr_status pnpr_lines_check_options(const pnpr_lines_options *o, pnpr_error *er
     return PNPR_OK;
 }
 
+/* What the stages share: the parameters, the points, the nodes, the forest and the chains. */
+typedef struct lines_ctx {
+    const pnpr_lines_options *opts;
+    pnpr_lines_stats *stats;
+    double h, R, tol_merge, beta, min_len, tol_sample;
+    int shifts;
+    size_t n;                  /* valid input points: pos, dir (unit) */
+    float *pos, *dir;
+    size_t n_nodes;            /* merged nodes: npos, ndir */
+    float *npos, *ndir;
+    pnpr_kdtree *tree;         /* over pos, then over npos */
+    edge *edges;               /* graph edges, then (prefix) the forest's */
+    size_t n_edges, n_forest;
+    uint32_t *deg;             /* forest degree per node */
+    uint32_t *adj_off, *adj;   /* CSR: forest edges per node */
+    uint8_t *alive;            /* forest edge not pruned */
+    chain *chains;
+    uint32_t *chain_nodes;
+    size_t n_chains;
+} lines_ctx;
+
+static void lines_ctx_free(lines_ctx *c)
+{
+    pnpr_kdtree_free(c->tree);
+    free(c->pos); free(c->dir); free(c->npos); free(c->ndir); free(c->deg);
+    free(c->adj_off); free(c->adj); free(c->alive); free(c->edges); free(c->chains); free(c->chain_nodes);
+}
+
+/* The valid input points (finite position, non-zero direction), directions normalised. */
+static pnpr_status lines_collect(lines_ctx *c, const float *xyz_in, const float *dir_in, size_t m)
+{
+    c->pos = malloc((m ? m : 1) * 3 * sizeof *c->pos);
+    c->dir = malloc((m ? m : 1) * 3 * sizeof *c->dir);
+    if (!c->pos || !c->dir) return PNPR_ERR_OUT_OF_MEMORY;
+    size_t n = 0;
+    for (size_t i = 0; i < m; i++) {
+        const float *p = xyz_in + 3 * i, *d = dir_in + 3 * i;
+        double l = sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]) || !(l > 0) || !isfinite(l)) continue;
+        memcpy(c->pos + 3 * n, p, 3 * sizeof(float));
+        for (int a = 0; a < 3; a++) c->dir[3 * n + a] = (float)(d[a] / l);
+        n++;
+    }
+    c->n = n;
+    c->stats->directional_points = n;
+    return PNPR_OK;
+}
+
+/* The parameters that follow from the spacing h (the options, else the defaults above). */
+static void lines_parameters(lines_ctx *c, double h)
+{
+    const pnpr_lines_options *o = c->opts;
+    c->h = h;
+    c->R = o->connect_radius > 0 ? o->connect_radius : 3 * h;
+    c->tol_merge = o->merge_tol > 0 ? o->merge_tol : h;
+    c->shifts = o->shift_iterations == 0 ? 4 : (o->shift_iterations < 0 ? 0 : o->shift_iterations);
+    c->beta = o->direction_weight > 0 ? o->direction_weight : 4.0;
+    c->min_len = o->min_length > 0 ? o->min_length : 5 * h;
+    c->tol_sample = o->sample_tol > 0 ? o->sample_tol : 0.05 * h;
+}
+
+/* 1. shift across the feature direction towards the neighbours' mean (c->npos: scratch). */
+static pnpr_status lines_shift(lines_ctx *c)
+{
+    uint32_t nb[RADIUS_CAP];
+    const size_t n = c->n;
+    float *pos = c->pos;
+    for (int it = 0; it < c->shifts; it++) {
+        for (size_t i = 0; i < n; i++) {
+            const float *p = pos + 3 * i, *d = c->dir + 3 * i;
+            size_t got = pnpr_kdtree_radius_first(c->tree, p, (float)(2 * c->h), nb, RADIUS_CAP);
+            double mean[3] = {0, 0, 0};
+            for (size_t r = 0; r < got; r++)
+                for (int a = 0; a < 3; a++) mean[a] += pos[3 * (size_t)nb[r] + a];
+            double mv[3];
+            for (int a = 0; a < 3; a++) mv[a] = got ? mean[a] / (double)got - p[a] : 0.0;
+            double along = mv[0] * d[0] + mv[1] * d[1] + mv[2] * d[2];
+            for (int a = 0; a < 3; a++) c->npos[3 * i + a] = (float)(p[a] + 0.5 * (mv[a] - along * d[a]));
+        }
+        memcpy(pos, c->npos, n * 3 * sizeof *pos);
+        pnpr_kdtree_free(c->tree);
+        c->tree = NULL;
+        pnpr_status st = pnpr_kdtree_build(pos, n, 0, &c->tree);
+        if (st != PNPR_OK) return st;
+        if (pnpr_progress_report(&c->opts->progress, "lines: shift", (it + 1.0) / (c->shifts + 1.0)))
+            return PNPR_ERR_CANCELLED;
+    }
+    return PNPR_OK;
+}
+
+/* 2. merge points closer than tol_merge into nodes (npos, ndir); the tree then holds the nodes. */
+static pnpr_status lines_merge(lines_ctx *c)
+{
+    uint32_t nb[RADIUS_CAP];
+    const size_t n = c->n;
+    const float *pos = c->pos, *dir = c->dir;
+    uint32_t *cluster = malloc(n * sizeof *cluster);
+    c->ndir = malloc(n * 3 * sizeof *c->ndir);
+    if (!cluster || !c->ndir) { free(cluster); return PNPR_ERR_OUT_OF_MEMORY; }
+    for (size_t i = 0; i < n; i++) cluster[i] = PNPR_INDEX_NONE;
+    size_t n_nodes = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (cluster[i] != PNPR_INDEX_NONE) continue;
+        size_t got = pnpr_kdtree_radius_first(c->tree, pos + 3 * i, (float)c->tol_merge, nb, RADIUS_CAP);
+        const float *d0 = dir + 3 * i;
+        double m[3] = {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]}, dsum[3] = {d0[0], d0[1], d0[2]};
+        size_t cnt = 1;
+        cluster[i] = (uint32_t)n_nodes;
+        for (size_t r = 0; r < got; r++) {
+            uint32_t j = nb[r];
+            if (cluster[j] != PNPR_INDEX_NONE) continue; /* merged already (or i itself) */
+            cluster[j] = (uint32_t)n_nodes;
+            const float *dj = dir + 3 * (size_t)j;
+            double s = dj[0] * d0[0] + dj[1] * d0[1] + dj[2] * d0[2] < 0 ? -1.0 : 1.0;
+            for (int a = 0; a < 3; a++) { m[a] += pos[3 * (size_t)j + a]; dsum[a] += s * dj[a]; }
+            cnt++;
+        }
+        double dl = sqrt(dsum[0] * dsum[0] + dsum[1] * dsum[1] + dsum[2] * dsum[2]);
+        for (int a = 0; a < 3; a++) {
+            c->npos[3 * n_nodes + a] = (float)(m[a] / (double)cnt);
+            c->ndir[3 * n_nodes + a] = dl > 0 ? (float)(dsum[a] / dl) : d0[a];
+        }
+        n_nodes++;
+    }
+    free(cluster);
+    c->n_nodes = n_nodes;
+    c->stats->merged_nodes = n_nodes;
+    pnpr_kdtree_free(c->tree);
+    c->tree = NULL;
+    return pnpr_kdtree_build(c->npos, n_nodes, 0, &c->tree);
+}
+
+/* 3. graph edges: each node to its 8 nearest within R, weighed by length and direction. */
+static pnpr_status lines_graph(lines_ctx *c)
+{
+    size_t cap_edges = c->n_nodes * 8;
+    c->edges = malloc((cap_edges ? cap_edges : 1) * sizeof *c->edges);
+    if (!c->edges) return PNPR_ERR_OUT_OF_MEMORY;
+    const float *npos = c->npos, *ndir = c->ndir;
+    for (size_t a = 0; a < c->n_nodes; a++) {
+        uint32_t idx[9];
+        float d2[9];
+        size_t got = pnpr_kdtree_knn(c->tree, npos + 3 * a, 9, idx, d2);
+        const float *pa = npos + 3 * a, *da = ndir + 3 * a;
+        for (size_t r = 0; r < got; r++) {
+            uint32_t b = idx[r];
+            if (b == a || d2[r] > c->R * c->R) continue;
+            const float *pb = npos + 3 * (size_t)b, *db = ndir + 3 * (size_t)b;
+            double e[3] = {(double)pb[0] - pa[0], (double)pb[1] - pa[1], (double)pb[2] - pa[2]};
+            double len = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+            if (!(len > 0)) continue;
+            double ca = fabs(e[0] * da[0] + e[1] * da[1] + e[2] * da[2]) / len;
+            double cb = fabs(e[0] * db[0] + e[1] * db[1] + e[2] * db[2]) / len;
+            if (ca < 0.5 && cb < 0.5) continue;
+            edge ed = {(float)(len * (1 + c->beta * (1 - 0.5 * (ca + cb)))), (uint32_t)(a < b ? a : b),
+                       (uint32_t)(a < b ? b : a)};
+            c->edges[c->n_edges++] = ed;
+        }
+    }
+    return PNPR_OK;
+}
+
+/* 4. minimum spanning forest (Kruskal; duplicates of an edge are skipped by union-find): the
+ * forest's edges become the prefix of c->edges. */
+static pnpr_status lines_forest(lines_ctx *c)
+{
+    qsort(c->edges, c->n_edges, sizeof *c->edges, cmp_edge);
+    c->stats->graph_edges = c->n_edges;
+    uint32_t *parent = malloc((c->n_nodes ? c->n_nodes : 1) * sizeof *parent);
+    if (!parent) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; i < c->n_nodes; i++) parent[i] = (uint32_t)i;
+    for (size_t e = 0; e < c->n_edges; e++) {
+        uint32_t ra = find(parent, c->edges[e].a), rb = find(parent, c->edges[e].b);
+        if (ra == rb) continue;
+        parent[ra] = rb;
+        c->edges[c->n_forest++] = c->edges[e];
+    }
+    c->stats->forest_edges = c->n_forest;
+    c->deg = parent; /* reused: union-find is done */
+    return PNPR_OK;
+}
+
+/* The forest's adjacency (CSR over its edges) and degrees; every edge alive. */
+static pnpr_status lines_adjacency(lines_ctx *c)
+{
+    const size_t nn = c->n_nodes, nf = c->n_forest;
+    c->adj_off = calloc(nn + 1, sizeof *c->adj_off);
+    c->adj = malloc((2 * nf + 1) * sizeof *c->adj);
+    c->alive = malloc(nf + 1);
+    uint32_t *fill = calloc(nn ? nn : 1, sizeof *fill);
+    if (!c->adj_off || !c->adj || !c->alive || !fill) { free(fill); return PNPR_ERR_OUT_OF_MEMORY; }
+    const edge *edges = c->edges;
+    memset(c->deg, 0, nn * sizeof *c->deg);
+    for (size_t e = 0; e < nf; e++) { c->deg[edges[e].a]++; c->deg[edges[e].b]++; c->alive[e] = 1; }
+    for (size_t i = 0; i < nn; i++) c->adj_off[i + 1] = c->adj_off[i] + c->deg[i];
+    for (size_t e = 0; e < nf; e++) {
+        c->adj[c->adj_off[edges[e].a] + fill[edges[e].a]++] = (uint32_t)e;
+        c->adj[c->adj_off[edges[e].b] + fill[edges[e].b]++] = (uint32_t)e;
+    }
+    free(fill);
+    return PNPR_OK;
+}
+
+/* The other end of forest edge e from node v. */
+static uint32_t other_end(const lines_ctx *c, uint32_t e, uint32_t v)
+{
+    return c->edges[e].a == v ? c->edges[e].b : c->edges[e].a;
+}
+
+/* The first alive edge at v other than `not_e` (and, with `used`, not used); PNPR_INDEX_NONE. */
+static uint32_t next_edge(const lines_ctx *c, uint32_t v, uint32_t not_e, const uint8_t *used)
+{
+    for (uint32_t k = c->adj_off[v]; k < c->adj_off[v + 1]; k++) {
+        uint32_t e = c->adj[k];
+        if (c->alive[e] && e != not_e && !(used && used[e])) return e;
+    }
+    return PNPR_INDEX_NONE;
+}
+
+/* 5. prune spurs: leaf branches shorter than min_len that end at a junction. */
+static void lines_prune(lines_ctx *c)
+{
+    uint32_t *deg = c->deg;
+    for (size_t leaf = 0; leaf < c->n_nodes; leaf++) {
+        if (deg[leaf] != 1) continue;
+        uint32_t v = (uint32_t)leaf, prev_e = PNPR_INDEX_NONE;
+        double len = 0;
+        size_t steps = 0;
+        for (;;) {
+            uint32_t next_e = next_edge(c, v, prev_e, NULL);
+            if (next_e == PNPR_INDEX_NONE) break;
+            uint32_t w = other_end(c, next_e, v);
+            len += dist3(c->npos + 3 * (size_t)v, c->npos + 3 * (size_t)w);
+            prev_e = next_e;
+            v = w;
+            steps++;
+            if (deg[v] != 2 || len >= c->min_len) break;
+        }
+        if (deg[v] >= 3 && len < c->min_len) { /* remove the branch leaf .. v */
+            uint32_t u = (uint32_t)leaf, pe = PNPR_INDEX_NONE;
+            for (size_t s = 0; s < steps; s++) {
+                uint32_t ne = next_edge(c, u, pe, NULL);
+                if (ne == PNPR_INDEX_NONE) break;
+                uint32_t w = other_end(c, ne, u);
+                c->alive[ne] = 0;
+                deg[u]--; deg[w]--;
+                pe = ne;
+                u = w;
+            }
+        }
+    }
+}
+
+/* 6. chains between nodes of degree != 2. */
+static pnpr_status lines_chains(lines_ctx *c)
+{
+    const uint32_t *deg = c->deg;
+    c->chain_nodes = malloc((2 * c->n_forest + c->n_nodes + 1) * sizeof *c->chain_nodes);
+    c->chains = malloc((c->n_forest + 1) * sizeof *c->chains);
+    uint8_t *used = calloc(c->n_forest + 1, 1);
+    if (!c->chain_nodes || !c->chains || !used) { free(used); return PNPR_ERR_OUT_OF_MEMORY; }
+    size_t cn = 0;
+    for (size_t s = 0; s < c->n_nodes; s++) {
+        if (deg[s] == 2 || deg[s] == 0) continue;
+        for (uint32_t k = c->adj_off[s]; k < c->adj_off[s + 1]; k++) {
+            uint32_t e = c->adj[k];
+            if (!c->alive[e] || used[e]) continue;
+            chain *ch = &c->chains[c->n_chains];
+            memset(ch, 0, sizeof *ch);
+            ch->first = cn;
+            c->chain_nodes[cn++] = (uint32_t)s;
+            uint32_t v = (uint32_t)s;
+            for (;;) {
+                used[e] = 1;
+                v = other_end(c, e, v);
+                c->chain_nodes[cn++] = v;
+                if (deg[v] != 2) break;
+                uint32_t ne = next_edge(c, v, PNPR_INDEX_NONE, used);
+                if (ne == PNPR_INDEX_NONE) break;
+                e = ne;
+            }
+            ch->count = cn - ch->first;
+            ch->end_leaf[0] = deg[s] == 1;
+            ch->end_leaf[1] = deg[v] == 1;
+            c->n_chains++;
+        }
+    }
+    free(used);
+    return PNPR_OK;
+}
+
+/* Drops short isolated chains, closes rings. */
+static void lines_trim_chains(lines_ctx *c)
+{
+    for (size_t ci = 0; ci < c->n_chains; ci++) {
+        chain *ch = &c->chains[ci];
+        const uint32_t *nodes = c->chain_nodes + ch->first;
+        double len = 0;
+        for (size_t i = 1; i < ch->count; i++)
+            len += dist3(c->npos + 3 * (size_t)nodes[i - 1], c->npos + 3 * (size_t)nodes[i]);
+        if (ch->end_leaf[0] && ch->end_leaf[1]) {
+            if (len < c->min_len) { ch->count = 0; continue; }
+            if (len >= 3 * c->R && dist3(c->npos + 3 * (size_t)nodes[0], c->npos + 3 * (size_t)nodes[ch->count - 1]) <= c->R)
+                ch->closed = 1;
+        }
+    }
+}
+
+/* Where two chain ends (end point + outward tangent, 6 doubles each) vote for a corner: their
+ * tangent rays meet (or the ends face each other across a gap); returns 1 and the point. */
+static int end_pair_vote(const double *e1, const double *e2, double h, double r_vote[3])
+{
+    const double *t1 = e1 + 3, *t2 = e2 + 3;
+    double w0[3] = {e1[0] - e2[0], e1[1] - e2[1], e1[2] - e2[2]};
+    if (w0[0] * w0[0] + w0[1] * w0[1] + w0[2] * w0[2] > 144 * h * h) return 0;
+    double b = t1[0] * t2[0] + t1[1] * t2[1] + t1[2] * t2[2];
+    if (b < -0.9) { /* facing each other across a gap? */
+        double wl = sqrt(w0[0] * w0[0] + w0[1] * w0[1] + w0[2] * w0[2]);
+        double a1 = -(t1[0] * w0[0] + t1[1] * w0[1] + t1[2] * w0[2]); /* e2 ahead of e1 */
+        double a2 = t2[0] * w0[0] + t2[1] * w0[1] + t2[2] * w0[2];    /* e1 ahead of e2 */
+        if (!(wl > 0 && a1 >= 0.9 * wl && a2 >= 0.9 * wl)) return 0;
+        for (int a = 0; a < 3; a++) r_vote[a] = 0.5 * (e1[a] + e2[a]);
+        return 1;
+    }
+    if (fabs(b) > 0.866) return 0; /* nearly parallel: not a corner */
+    double d = t1[0] * w0[0] + t1[1] * w0[1] + t1[2] * w0[2];
+    double e = t2[0] * w0[0] + t2[1] * w0[1] + t2[2] * w0[2];
+    double den = 1 - b * b;
+    double s = (b * e - d) / den, u = (e - b * d) / den;
+    if (s < -h || u < -h || s > 10 * h || u > 10 * h) return 0;
+    double c1[3], c2[3], gap = 0;
+    for (int a = 0; a < 3; a++) {
+        c1[a] = e1[a] + s * t1[a];
+        c2[a] = e2[a] + u * t2[a];
+        gap += (c1[a] - c2[a]) * (c1[a] - c2[a]);
+    }
+    if (gap > 4 * h * h) return 0;
+    for (int a = 0; a < 3; a++) r_vote[a] = 0.5 * (c1[a] + c2[a]);
+    return 1;
+}
+
+/* Votes (x, y, z, corner id; -1 = not clustered yet) within 2h of each other are one corner, their
+ * mean; every end that voted for it (eref: chain * 2 + end, through vpair) is extended to it. */
+static void cluster_votes(lines_ctx *c, double *votes, const uint32_t *vpair, size_t nv, const uint32_t *eref)
+{
+    const double h = c->h;
+    for (size_t v = 0; v < nv; v++) {
+        if (votes[4 * v + 3] >= 0) continue;
+        double m[3] = {0, 0, 0};
+        size_t cnt = 0;
+        for (size_t w = v; w < nv; w++) {
+            if (votes[4 * w + 3] >= 0) continue;
+            double dd = 0;
+            for (int a = 0; a < 3; a++) dd += (votes[4 * w + a] - votes[4 * v + a]) * (votes[4 * w + a] - votes[4 * v + a]);
+            if (dd > 4 * h * h) continue;
+            votes[4 * w + 3] = (double)v;
+            for (int a = 0; a < 3; a++) m[a] += votes[4 * w + a];
+            cnt++;
+        }
+        for (int a = 0; a < 3; a++) m[a] /= (double)cnt;
+        for (size_t w = v; w < nv; w++) {
+            if (votes[4 * w + 3] != (double)v) continue;
+            for (int pe = 0; pe < 2; pe++) {
+                uint32_t ref = eref[vpair[2 * w + pe]];
+                chain *ch = &c->chains[ref / 2];
+                if (ch->has_ext[ref % 2]) continue;
+                ch->has_ext[ref % 2] = 1;
+                memcpy(ch->ext[ref % 2], m, sizeof m);
+            }
+        }
+        c->stats->corners++;
+    }
+}
+
+/* 7. corners: chain ends whose tangents meet. */
+static pnpr_status lines_corners(lines_ctx *c)
+{
+    size_t ne = 0;
+    for (size_t ci = 0; ci < c->n_chains; ci++)
+        for (int end = 0; end < 2; end++)
+            ne += c->chains[ci].count >= 2 && !c->chains[ci].closed && c->chains[ci].end_leaf[end];
+    double *ep = malloc((ne + 1) * 6 * sizeof *ep);
+    uint32_t *eref = malloc((ne + 1) * sizeof *eref);
+    double *votes = malloc((ne * 8 + 1) * 4 * sizeof *votes); /* x y z, corner id */
+    uint32_t *vpair = malloc((ne * 8 + 1) * 2 * sizeof *vpair);
+    pnpr_status st = ep && eref && votes && vpair ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    size_t k = 0, nv = 0;
+    for (size_t ci = 0; st == PNPR_OK && ci < c->n_chains; ci++)
+        for (int end = 0; end < 2; end++) {
+            const chain *ch = &c->chains[ci];
+            if (ch->count < 2 || ch->closed || !ch->end_leaf[end]) continue;
+            end_tangent(c->npos, c->chain_nodes + ch->first, ch->count, end, c->h, ep + 6 * k, ep + 6 * k + 3);
+            eref[k++] = (uint32_t)(2 * ci + (size_t)end);
+        }
+    for (size_t i = 0; st == PNPR_OK && i < k; i++)
+        for (size_t j = i + 1; j < k && nv < ne * 8; j++) {
+            if (!end_pair_vote(ep + 6 * i, ep + 6 * j, c->h, votes + 4 * nv)) continue;
+            votes[4 * nv + 3] = -1;
+            vpair[2 * nv] = (uint32_t)i;
+            vpair[2 * nv + 1] = (uint32_t)j;
+            nv++;
+        }
+    if (st == PNPR_OK) cluster_votes(c, votes, vpair, nv, eref);
+    free(ep); free(eref); free(votes); free(vpair);
+    return st;
+}
+
+/* Adds the length of the polyline p[0..n) (closed: with the segment back to the start) to *acc,
+ * segment by segment. */
+static void add_polyline_length(const double *p, size_t n, int closed, double *acc)
+{
+    double len = *acc;
+    for (size_t i = 1; i < n; i++) {
+        const double *a = p + 3 * (i - 1), *b = p + 3 * i;
+        len += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    }
+    if (closed) {
+        const double *a = p + 3 * (n - 1), *b = p;
+        len += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    }
+    *acc = len;
+}
+
+/* 8. a B-spline per chain (with its corner extensions) -> the polylines of r_lines. */
+static pnpr_status lines_fit(lines_ctx *c, pnpr_polylines *r_lines)
+{
+    size_t cap_l = c->n_chains + 1;
+    r_lines->offset = malloc((cap_l + 1) * sizeof *r_lines->offset);
+    r_lines->closed = malloc(cap_l);
+    if (!r_lines->offset || !r_lines->closed) return PNPR_ERR_OUT_OF_MEMORY;
+    r_lines->offset[0] = 0;
+    pnpr_lines_buf q = {NULL, 0, 0, 1}, out = {NULL, 0, 0, 1};
+    pnpr_status st = PNPR_OK;
+    for (size_t ci = 0; ci < c->n_chains && st == PNPR_OK; ci++) {
+        const chain *ch = &c->chains[ci];
+        if (ch->count < 2) continue;
+        q.n = 0;
+        if (ch->has_ext[0]) pnpr_lines_buf_push(&q, ch->ext[0]);
+        for (size_t i = 0; i < ch->count; i++) {
+            const float *p = c->npos + 3 * (size_t)c->chain_nodes[ch->first + i];
+            double dp[3] = {p[0], p[1], p[2]};
+            pnpr_lines_buf_push(&q, dp);
+        }
+        if (ch->has_ext[1]) pnpr_lines_buf_push(&q, ch->ext[1]);
+        size_t before = out.n;
+        if (!q.ok || !pnpr_lines_fit_chain(q.p, q.n, ch->closed, c->h, c->tol_sample, &out)) {
+            st = PNPR_ERR_OUT_OF_MEMORY;
+            break;
+        }
+        if (out.n - before < 2) { out.n = before; continue; }
+        add_polyline_length(out.p + 3 * before, out.n - before, ch->closed, &c->stats->total_length);
+        r_lines->closed[r_lines->count] = (uint8_t)ch->closed;
+        r_lines->offset[++r_lines->count] = out.n;
+    }
+    free(q.p);
+    c->stats->chains = r_lines->count;
+    if (st == PNPR_OK) {
+        r_lines->xyz = malloc((out.n ? out.n : 1) * 3 * sizeof *r_lines->xyz);
+        if (!r_lines->xyz) st = PNPR_ERR_OUT_OF_MEMORY;
+        for (size_t i = 0; st == PNPR_OK && i < 3 * out.n; i++) r_lines->xyz[i] = (float)out.p[i];
+    }
+    free(out.p);
+    return st;
+}
+
+/* The stages after the spacing is known; times and progress in the stats. */
+static pnpr_status lines_run(lines_ctx *c, pnpr_polylines *r_lines)
+{
+    double t0 = pnpr_now();
+    c->npos = malloc(c->n * 3 * sizeof *c->npos);
+    if (!c->npos) return PNPR_ERR_OUT_OF_MEMORY;
+    pnpr_status st = lines_shift(c);
+    if (st == PNPR_OK) st = lines_merge(c);
+    if (st == PNPR_OK) st = lines_graph(c);
+    c->stats->seconds_graph = pnpr_now() - t0;
+    t0 = pnpr_now();
+    if (st == PNPR_OK) st = lines_forest(c);
+    c->stats->seconds_mst = pnpr_now() - t0;
+    t0 = pnpr_now();
+    if (st == PNPR_OK && pnpr_progress_report(&c->opts->progress, "lines: tree", 0.5)) st = PNPR_ERR_CANCELLED;
+    if (st == PNPR_OK) st = lines_adjacency(c);
+    if (st == PNPR_OK) lines_prune(c);
+    if (st == PNPR_OK) st = lines_chains(c);
+    if (st == PNPR_OK) lines_trim_chains(c);
+    if (st == PNPR_OK && !c->opts->no_corners) st = lines_corners(c);
+    if (st == PNPR_OK) st = lines_fit(c, r_lines);
+    c->stats->seconds_fit = pnpr_now() - t0;
+    if (st == PNPR_OK) pnpr_progress_report(&c->opts->progress, "lines: fit", 1.0);
+    return st;
+}
+
 pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, size_t m,
                                       const double origin[3], const pnpr_lines_options *opts,
                                       pnpr_polylines *r_lines, pnpr_lines_stats *r_stats)
@@ -143,378 +634,19 @@ pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, 
     if (m >= 0x7FFFFFFFu) return PNPR_ERR_UNSUPPORTED;
     if (pnpr_lines_check_options(opts, NULL) != PNPR_OK) return PNPR_ERR_INVALID_ARGUMENT;
 
-    pnpr_status st = PNPR_OK;
-    /* valid input points: finite position and a nonzero direction */
-    float *pos = malloc((m ? m : 1) * 3 * sizeof *pos), *dir = malloc((m ? m : 1) * 3 * sizeof *dir);
-    float *npos = NULL, *ndir = NULL;
-    uint32_t *cluster = NULL, *parent = NULL, *adj_off = NULL, *adj = NULL, *chain_nodes = NULL;
-    uint8_t *alive = NULL;
-    edge *edges = NULL;
-    chain *chains = NULL;
-    pnpr_kdtree *tree = NULL;
-    pnpr_lines_buf out = {NULL, 0, 0, 1};
-    size_t n_edges = 0, n_forest = 0, n_chains = 0, n_nodes = 0;
-    if (!pos || !dir) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    size_t n = 0;
-    for (size_t i = 0; i < m; i++) {
-        const float *p = xyz_in + 3 * i, *d = dir_in + 3 * i;
-        double l = sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]) || !(l > 0) || !isfinite(l)) continue;
-        memcpy(pos + 3 * n, p, 3 * sizeof(float));
-        for (int a = 0; a < 3; a++) dir[3 * n + a] = (float)(d[a] / l);
-        n++;
+    lines_ctx c;
+    memset(&c, 0, sizeof c);
+    c.opts = opts;
+    c.stats = r_stats;
+    pnpr_status st = lines_collect(&c, xyz_in, dir_in, m);
+    if (st == PNPR_OK && c.n >= 2) st = pnpr_kdtree_build(c.pos, c.n, 0, &c.tree);
+    double h = 0;
+    if (st == PNPR_OK && c.n >= 2) h = opts->spacing > 0 ? opts->spacing : pnpr_kdtree_median_spacing(c.tree, 0);
+    if (st == PNPR_OK && h > 0) { /* else fewer than 2 points, or all coincide: no line */
+        r_stats->spacing_used = (float)h;
+        lines_parameters(&c, h);
+        st = lines_run(&c, r_lines);
     }
-    r_stats->directional_points = n;
-    if (n < 2) goto done;
-    double t0 = pnpr_now();
-
-    if ((st = pnpr_kdtree_build(pos, n, 0, &tree)) != PNPR_OK) goto done;
-    double h = opts->spacing > 0 ? opts->spacing : pnpr_kdtree_median_spacing(tree, 0);
-    if (!(h > 0)) goto done; /* all points coincide: no line */
-    r_stats->spacing_used = (float)h;
-    const double R = opts->connect_radius > 0 ? opts->connect_radius : 3 * h;
-    const double tol_merge = opts->merge_tol > 0 ? opts->merge_tol : h;
-    const int shifts = opts->shift_iterations == 0 ? 4 : (opts->shift_iterations < 0 ? 0 : opts->shift_iterations);
-    const double beta = opts->direction_weight > 0 ? opts->direction_weight : 4.0;
-    const double min_len = opts->min_length > 0 ? opts->min_length : 5 * h;
-    const double tol_sample = opts->sample_tol > 0 ? opts->sample_tol : 0.05 * h;
-    uint32_t nb[RADIUS_CAP];
-
-    /* 1. shift across the feature direction towards the neighbours' mean */
-    npos = malloc(n * 3 * sizeof *npos);
-    if (!npos) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    for (int it = 0; it < shifts; it++) {
-        for (size_t i = 0; i < n; i++) {
-            const float *p = pos + 3 * i, *d = dir + 3 * i;
-            size_t got = pnpr_kdtree_radius_first(tree, p, (float)(2 * h), nb, RADIUS_CAP);
-            double mean[3] = {0, 0, 0};
-            for (size_t r = 0; r < got; r++)
-                for (int a = 0; a < 3; a++) mean[a] += pos[3 * (size_t)nb[r] + a];
-            double mv[3];
-            for (int a = 0; a < 3; a++) mv[a] = got ? mean[a] / (double)got - p[a] : 0.0;
-            double along = mv[0] * d[0] + mv[1] * d[1] + mv[2] * d[2];
-            for (int a = 0; a < 3; a++) npos[3 * i + a] = (float)(p[a] + 0.5 * (mv[a] - along * d[a]));
-        }
-        memcpy(pos, npos, n * 3 * sizeof *pos);
-        pnpr_kdtree_free(tree);
-        tree = NULL;
-        if ((st = pnpr_kdtree_build(pos, n, 0, &tree)) != PNPR_OK) goto done;
-        if (pnpr_progress_report(&opts->progress, "lines: shift", (it + 1.0) / (shifts + 1.0))) { st = PNPR_ERR_CANCELLED; goto done; }
-    }
-
-    /* 2. merge points closer than tol_merge */
-    cluster = malloc(n * sizeof *cluster);
-    ndir = malloc(n * 3 * sizeof *ndir);
-    if (!cluster || !ndir) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    for (size_t i = 0; i < n; i++) cluster[i] = PNPR_INDEX_NONE;
-    for (size_t i = 0; i < n; i++) {
-        if (cluster[i] != PNPR_INDEX_NONE) continue;
-        size_t got = pnpr_kdtree_radius_first(tree, pos + 3 * i, (float)tol_merge, nb, RADIUS_CAP);
-        const float *d0 = dir + 3 * i;
-        double c[3] = {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]}, dsum[3] = {d0[0], d0[1], d0[2]};
-        size_t cnt = 1;
-        cluster[i] = (uint32_t)n_nodes;
-        for (size_t r = 0; r < got; r++) {
-            uint32_t j = nb[r];
-            if (cluster[j] != PNPR_INDEX_NONE) continue; /* merged already (or i itself) */
-            cluster[j] = (uint32_t)n_nodes;
-            const float *dj = dir + 3 * (size_t)j;
-            double s = dj[0] * d0[0] + dj[1] * d0[1] + dj[2] * d0[2] < 0 ? -1.0 : 1.0;
-            for (int a = 0; a < 3; a++) { c[a] += pos[3 * (size_t)j + a]; dsum[a] += s * dj[a]; }
-            cnt++;
-        }
-        double dl = sqrt(dsum[0] * dsum[0] + dsum[1] * dsum[1] + dsum[2] * dsum[2]);
-        for (int a = 0; a < 3; a++) {
-            npos[3 * n_nodes + a] = (float)(c[a] / (double)cnt);
-            ndir[3 * n_nodes + a] = dl > 0 ? (float)(dsum[a] / dl) : d0[a];
-        }
-        n_nodes++;
-    }
-    r_stats->merged_nodes = n_nodes;
-    pnpr_kdtree_free(tree);
-    tree = NULL;
-    if ((st = pnpr_kdtree_build(npos, n_nodes, 0, &tree)) != PNPR_OK) goto done;
-
-    /* 3. graph edges */
-    size_t cap_edges = n_nodes * 8;
-    edges = malloc((cap_edges ? cap_edges : 1) * sizeof *edges);
-    if (!edges) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    for (size_t a = 0; a < n_nodes; a++) {
-        uint32_t idx[9];
-        float d2[9];
-        size_t got = pnpr_kdtree_knn(tree, npos + 3 * a, 9, idx, d2);
-        const float *pa = npos + 3 * a, *da = ndir + 3 * a;
-        for (size_t r = 0; r < got; r++) {
-            uint32_t b = idx[r];
-            if (b == a || d2[r] > R * R) continue;
-            const float *pb = npos + 3 * (size_t)b, *db = ndir + 3 * (size_t)b;
-            double e[3] = {(double)pb[0] - pa[0], (double)pb[1] - pa[1], (double)pb[2] - pa[2]};
-            double len = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-            if (!(len > 0)) continue;
-            double ca = fabs(e[0] * da[0] + e[1] * da[1] + e[2] * da[2]) / len;
-            double cb = fabs(e[0] * db[0] + e[1] * db[1] + e[2] * db[2]) / len;
-            if (ca < 0.5 && cb < 0.5) continue;
-            edge ed = {(float)(len * (1 + beta * (1 - 0.5 * (ca + cb)))), (uint32_t)(a < b ? a : b), (uint32_t)(a < b ? b : a)};
-            edges[n_edges++] = ed;
-        }
-    }
-    r_stats->seconds_graph = pnpr_now() - t0;
-    t0 = pnpr_now();
-
-    /* 4. minimum spanning forest (Kruskal; duplicates of an edge are skipped by union-find) */
-    qsort(edges, n_edges, sizeof *edges, cmp_edge);
-    r_stats->graph_edges = n_edges;
-    parent = malloc(n_nodes * sizeof *parent);
-    if (!parent) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    for (size_t i = 0; i < n_nodes; i++) parent[i] = (uint32_t)i;
-    for (size_t e = 0; e < n_edges; e++) {
-        uint32_t ra = find(parent, edges[e].a), rb = find(parent, edges[e].b);
-        if (ra == rb) continue;
-        parent[ra] = rb;
-        edges[n_forest++] = edges[e];
-    }
-    r_stats->forest_edges = n_forest;
-    r_stats->seconds_mst = pnpr_now() - t0;
-    t0 = pnpr_now();
-    if (pnpr_progress_report(&opts->progress, "lines: tree", 0.5)) { st = PNPR_ERR_CANCELLED; goto done; }
-
-    /* adjacency (CSR over forest edges) and degrees */
-    adj_off = calloc(n_nodes + 1, sizeof *adj_off);
-    adj = malloc((2 * n_forest + 1) * sizeof *adj);
-    alive = malloc(n_forest + 1);
-    uint32_t *deg = parent; /* reuse: union-find is done */
-    if (!adj_off || !adj || !alive) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    memset(deg, 0, n_nodes * sizeof *deg);
-    for (size_t e = 0; e < n_forest; e++) { deg[edges[e].a]++; deg[edges[e].b]++; alive[e] = 1; }
-    for (size_t i = 0; i < n_nodes; i++) adj_off[i + 1] = adj_off[i] + deg[i];
-    {
-        uint32_t *fill = calloc(n_nodes, sizeof *fill);
-        if (!fill) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-        for (size_t e = 0; e < n_forest; e++) {
-            adj[adj_off[edges[e].a] + fill[edges[e].a]++] = (uint32_t)e;
-            adj[adj_off[edges[e].b] + fill[edges[e].b]++] = (uint32_t)e;
-        }
-        free(fill);
-    }
-#define OTHER(e, v) (edges[e].a == (v) ? edges[e].b : edges[e].a)
-
-    /* 5. prune spurs: leaf branches shorter than min_len that end at a junction */
-    for (size_t leaf = 0; leaf < n_nodes; leaf++) {
-        if (deg[leaf] != 1) continue;
-        uint32_t v = (uint32_t)leaf, prev_e = PNPR_INDEX_NONE;
-        double len = 0;
-        size_t steps = 0;
-        for (;;) {
-            uint32_t next_e = PNPR_INDEX_NONE;
-            for (uint32_t k = adj_off[v]; k < adj_off[v + 1]; k++)
-                if (alive[adj[k]] && adj[k] != prev_e) { next_e = adj[k]; break; }
-            if (next_e == PNPR_INDEX_NONE) break;
-            uint32_t w = OTHER(next_e, v);
-            len += dist3(npos + 3 * (size_t)v, npos + 3 * (size_t)w);
-            prev_e = next_e;
-            v = w;
-            steps++;
-            if (deg[v] != 2 || len >= min_len) break;
-        }
-        if (deg[v] >= 3 && len < min_len) { /* remove the branch leaf .. v */
-            uint32_t u = (uint32_t)leaf, pe = PNPR_INDEX_NONE;
-            for (size_t s = 0; s < steps; s++) {
-                uint32_t ne = PNPR_INDEX_NONE;
-                for (uint32_t k = adj_off[u]; k < adj_off[u + 1]; k++)
-                    if (alive[adj[k]] && adj[k] != pe) { ne = adj[k]; break; }
-                if (ne == PNPR_INDEX_NONE) break;
-                uint32_t w = OTHER(ne, u);
-                alive[ne] = 0;
-                deg[u]--; deg[w]--;
-                pe = ne;
-                u = w;
-            }
-        }
-    }
-
-    /* 6. chains between nodes of degree != 2 */
-    chain_nodes = malloc((2 * n_forest + n_nodes + 1) * sizeof *chain_nodes);
-    chains = malloc((n_forest + 1) * sizeof *chains);
-    uint8_t *used = calloc(n_forest + 1, 1);
-    if (!chain_nodes || !chains || !used) { free(used); st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    size_t cn = 0;
-    for (size_t s = 0; s < n_nodes; s++) {
-        if (deg[s] == 2 || deg[s] == 0) continue;
-        for (uint32_t k = adj_off[s]; k < adj_off[s + 1]; k++) {
-            uint32_t e = adj[k];
-            if (!alive[e] || used[e]) continue;
-            chain *c = &chains[n_chains];
-            memset(c, 0, sizeof *c);
-            c->first = cn;
-            chain_nodes[cn++] = (uint32_t)s;
-            uint32_t v = (uint32_t)s;
-            for (;;) {
-                used[e] = 1;
-                v = OTHER(e, v);
-                chain_nodes[cn++] = v;
-                if (deg[v] != 2) break;
-                uint32_t ne = PNPR_INDEX_NONE;
-                for (uint32_t q = adj_off[v]; q < adj_off[v + 1]; q++)
-                    if (alive[adj[q]] && !used[adj[q]]) { ne = adj[q]; break; }
-                if (ne == PNPR_INDEX_NONE) break;
-                e = ne;
-            }
-            c->count = cn - c->first;
-            c->end_leaf[0] = deg[s] == 1;
-            c->end_leaf[1] = deg[v] == 1;
-            n_chains++;
-        }
-    }
-    free(used);
-#undef OTHER
-
-    /* drop short isolated chains, close rings */
-    for (size_t ci = 0; ci < n_chains; ci++) {
-        chain *c = &chains[ci];
-        const uint32_t *nodes = chain_nodes + c->first;
-        double len = 0;
-        for (size_t i = 1; i < c->count; i++) len += dist3(npos + 3 * (size_t)nodes[i - 1], npos + 3 * (size_t)nodes[i]);
-        if (c->end_leaf[0] && c->end_leaf[1]) {
-            if (len < min_len) { c->count = 0; continue; }
-            if (len >= 3 * R && dist3(npos + 3 * (size_t)nodes[0], npos + 3 * (size_t)nodes[c->count - 1]) <= R)
-                c->closed = 1;
-        }
-    }
-
-    /* 7. corners: chain ends whose tangents meet */
-    if (!opts->no_corners) {
-        size_t ne = 0;
-        for (size_t ci = 0; ci < n_chains; ci++)
-            for (int end = 0; end < 2; end++) ne += chains[ci].count >= 2 && !chains[ci].closed && chains[ci].end_leaf[end];
-        double *ep = malloc((ne + 1) * 6 * sizeof *ep);
-        uint32_t *eref = malloc((ne + 1) * sizeof *eref);
-        double *votes = malloc((ne * 8 + 1) * 4 * sizeof *votes); /* x y z, end pair packed */
-        uint32_t *vpair = malloc((ne * 8 + 1) * 2 * sizeof *vpair);
-        if (!ep || !eref || !votes || !vpair) { free(ep); free(eref); free(votes); free(vpair); st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-        size_t k = 0;
-        for (size_t ci = 0; ci < n_chains; ci++)
-            for (int end = 0; end < 2; end++) {
-                chain *c = &chains[ci];
-                if (c->count < 2 || c->closed || !c->end_leaf[end]) continue;
-                end_tangent(npos, chain_nodes + c->first, c->count, end, h, ep + 6 * k, ep + 6 * k + 3);
-                eref[k++] = (uint32_t)(2 * ci + (size_t)end);
-            }
-        size_t nv = 0;
-        for (size_t i = 0; i < k; i++)
-            for (size_t j = i + 1; j < k && nv < ne * 8; j++) {
-                const double *e1 = ep + 6 * i, *t1 = e1 + 3, *e2 = ep + 6 * j, *t2 = e2 + 3;
-                double w0[3] = {e1[0] - e2[0], e1[1] - e2[1], e1[2] - e2[2]};
-                if (w0[0] * w0[0] + w0[1] * w0[1] + w0[2] * w0[2] > 144 * h * h) continue;
-                double b = t1[0] * t2[0] + t1[1] * t2[1] + t1[2] * t2[2];
-                if (b < -0.9) { /* facing each other across a gap? */
-                    double wl = sqrt(w0[0] * w0[0] + w0[1] * w0[1] + w0[2] * w0[2]);
-                    double a1 = -(t1[0] * w0[0] + t1[1] * w0[1] + t1[2] * w0[2]); /* e2 ahead of e1 */
-                    double a2 = t2[0] * w0[0] + t2[1] * w0[1] + t2[2] * w0[2];    /* e1 ahead of e2 */
-                    if (wl > 0 && a1 >= 0.9 * wl && a2 >= 0.9 * wl) {
-                        for (int a = 0; a < 3; a++) votes[4 * nv + a] = 0.5 * (e1[a] + e2[a]);
-                        votes[4 * nv + 3] = -1;
-                        vpair[2 * nv] = (uint32_t)i;
-                        vpair[2 * nv + 1] = (uint32_t)j;
-                        nv++;
-                    }
-                    continue;
-                }
-                if (fabs(b) > 0.866) continue; /* nearly parallel: not a corner */
-                double d = t1[0] * w0[0] + t1[1] * w0[1] + t1[2] * w0[2];
-                double e = t2[0] * w0[0] + t2[1] * w0[1] + t2[2] * w0[2];
-                double den = 1 - b * b;
-                double s = (b * e - d) / den, u = (e - b * d) / den;
-                if (s < -h || u < -h || s > 10 * h || u > 10 * h) continue;
-                double c1[3], c2[3], gap = 0;
-                for (int a = 0; a < 3; a++) {
-                    c1[a] = e1[a] + s * t1[a];
-                    c2[a] = e2[a] + u * t2[a];
-                    gap += (c1[a] - c2[a]) * (c1[a] - c2[a]);
-                }
-                if (gap > 4 * h * h) continue;
-                for (int a = 0; a < 3; a++) votes[4 * nv + a] = 0.5 * (c1[a] + c2[a]);
-                votes[4 * nv + 3] = -1; /* corner id */
-                vpair[2 * nv] = (uint32_t)i;
-                vpair[2 * nv + 1] = (uint32_t)j;
-                nv++;
-            }
-        /* cluster votes within 2h; each end joins the corner of its first vote */
-        for (size_t v = 0; v < nv; v++) {
-            if (votes[4 * v + 3] >= 0) continue;
-            double c[3] = {0, 0, 0};
-            size_t cnt = 0;
-            for (size_t w = v; w < nv; w++) {
-                if (votes[4 * w + 3] >= 0) continue;
-                double dd = 0;
-                for (int a = 0; a < 3; a++) dd += (votes[4 * w + a] - votes[4 * v + a]) * (votes[4 * w + a] - votes[4 * v + a]);
-                if (dd > 4 * h * h) continue;
-                votes[4 * w + 3] = (double)v;
-                for (int a = 0; a < 3; a++) c[a] += votes[4 * w + a];
-                cnt++;
-            }
-            for (int a = 0; a < 3; a++) c[a] /= (double)cnt;
-            for (size_t w = v; w < nv; w++) {
-                if (votes[4 * w + 3] != (double)v) continue;
-                for (int pe = 0; pe < 2; pe++) {
-                    uint32_t ref = eref[vpair[2 * w + pe]];
-                    chain *ch = &chains[ref / 2];
-                    if (ch->has_ext[ref % 2]) continue;
-                    ch->has_ext[ref % 2] = 1;
-                    memcpy(ch->ext[ref % 2], c, sizeof c);
-                }
-            }
-            r_stats->corners++;
-        }
-        free(ep); free(eref); free(votes); free(vpair);
-    }
-
-    /* 8. B-spline per chain -> polylines */
-    {
-        size_t cap_l = n_chains + 1;
-        r_lines->offset = malloc((cap_l + 1) * sizeof *r_lines->offset);
-        r_lines->closed = malloc(cap_l);
-        if (!r_lines->offset || !r_lines->closed) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-        r_lines->offset[0] = 0;
-        pnpr_lines_buf q = {NULL, 0, 0, 1};
-        for (size_t ci = 0; ci < n_chains; ci++) {
-            chain *c = &chains[ci];
-            if (c->count < 2) continue;
-            q.n = 0;
-            if (c->has_ext[0]) pnpr_lines_buf_push(&q, c->ext[0]);
-            for (size_t i = 0; i < c->count; i++) {
-                const float *p = npos + 3 * (size_t)chain_nodes[c->first + i];
-                double dp[3] = {p[0], p[1], p[2]};
-                pnpr_lines_buf_push(&q, dp);
-            }
-            if (c->has_ext[1]) pnpr_lines_buf_push(&q, c->ext[1]);
-            size_t before = out.n;
-            if (!q.ok || !pnpr_lines_fit_chain(q.p, q.n, c->closed, h, tol_sample, &out)) {
-                free(q.p);
-                st = PNPR_ERR_OUT_OF_MEMORY;
-                goto done;
-            }
-            if (out.n - before < 2) { out.n = before; continue; }
-            for (size_t i = before + 1; i < out.n; i++) {
-                const double *a = out.p + 3 * (i - 1), *b = out.p + 3 * i;
-                r_stats->total_length += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-            }
-            if (c->closed) {
-                const double *a = out.p + 3 * (out.n - 1), *b = out.p + 3 * before;
-                r_stats->total_length += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-            }
-            r_lines->closed[r_lines->count] = (uint8_t)c->closed;
-            r_lines->offset[++r_lines->count] = out.n;
-        }
-        free(q.p);
-        r_stats->chains = r_lines->count;
-        r_lines->xyz = malloc((out.n ? out.n : 1) * 3 * sizeof *r_lines->xyz);
-        if (!r_lines->xyz) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-        for (size_t i = 0; i < 3 * out.n; i++) r_lines->xyz[i] = (float)out.p[i];
-    }
-    r_stats->seconds_fit = pnpr_now() - t0;
-    pnpr_progress_report(&opts->progress, "lines: fit", 1.0);
-
-done:
     if (st == PNPR_OK && !r_lines->offset) { /* no lines: a valid empty result */
         r_lines->offset = calloc(1, sizeof *r_lines->offset);
         r_lines->closed = malloc(1);
@@ -527,9 +659,7 @@ done:
         pnpr_lines_free(r_lines);
         memcpy(r_lines->origin, o, sizeof o);
     }
-    pnpr_kdtree_free(tree);
-    free(pos); free(dir); free(npos); free(ndir); free(cluster); free(parent);
-    free(adj_off); free(adj); free(alive); free(edges); free(chains); free(chain_nodes); free(out.p);
+    lines_ctx_free(&c);
     return st;
 }
 
