@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../core/vec3.h"
 
 const char *pnpr_stage_name(pnpr_stage stage)
 {
@@ -105,6 +106,209 @@ pnpr_status pnpr_features_check_options(const pnpr_features_options *o, pnpr_err
     return PNPR_OK;
 }
 
+/* One run of the pipeline: what the stages share. */
+typedef struct feat_run {
+    pnpr_cloud *cloud;
+    const pnpr_features_options *opts;
+    run r;
+    size_t n, m, k;              /* points, valid points (tree positions first), neighbours */
+    int need_dither, need_classify, need_degree, need_oriented, keep_normals;
+    float *out[5];               /* degree, confidence, dir x, y, z (cloud properties) */
+    uint8_t *cls;                /* feature_class (cloud property) */
+    float *normals;              /* the cloud's, or own_normals */
+    float *own_normals, *fit, *xyz;
+    pnpr_kdtree *tree;
+    uint32_t *knn, *perm, *tree_index;
+    char *scratch;
+    int permuted;
+} feat_run;
+
+static const char *const feat_names[5] = {"feature_degree", "feature_confidence", "feature_dir_x", "feature_dir_y",
+                                          "feature_dir_z"};
+
+/* The stages the wanted outputs need (docs/features.md, "Computing only what is needed"), and
+ * the output properties, allocated first: a cloud that cannot hold them fails before the work. */
+static pnpr_status features_outputs(feat_run *f)
+{
+    pnpr_cloud *cloud = f->cloud;
+    const uint32_t want = f->opts->want ? f->opts->want : PNPR_WANT_ALL;
+    f->need_dither = (want & PNPR_WANT_DITHER) != 0;
+    f->need_classify = f->need_dither || (want & PNPR_WANT_CLASSES);
+    f->need_degree = f->need_classify || (want & PNPR_WANT_DEGREE);
+    /* the tone's lighting is two-sided (tone.h): dithering needs no oriented normals */
+    f->need_oriented = (want & PNPR_WANT_NORMALS) != 0;
+    pnpr_status st;
+    int nout = f->need_classify ? 5 : (f->need_degree ? 1 : 0);
+    for (int i = 0; i < nout; i++)
+        if ((st = pnpr_cloud_add_property(cloud, feat_names[i], PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK) return st;
+    if (f->need_classify && (st = pnpr_cloud_add_property(cloud, "feature_class", PNPR_TYPE_UINT8, NULL)) != PNPR_OK)
+        return st;
+    for (int i = 0; i < nout; i++) f->out[i] = pnpr_cloud_find_property(cloud, feat_names[i])->data; /* after all adds */
+    f->cls = f->need_classify ? pnpr_cloud_find_property(cloud, "feature_class")->data : NULL;
+    /* input normals are kept unless asked otherwise, or unless most of them are missing (zero or
+     * non-finite: a layer that carries a normal field without data) */
+    f->keep_normals = cloud->normal && !f->opts->recompute_normals;
+    if (f->keep_normals) {
+        size_t have = 0;
+        for (size_t i = 0; i < f->n; i++) {
+            const float *v = cloud->normal + 3 * i;
+            have += isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]) && (v[0] != 0 || v[1] != 0 || v[2] != 0);
+        }
+        if (2 * have < f->n) f->keep_normals = 0;
+    }
+    /* unoriented normals are not handed out: when nobody wants normals, they live in a scratch
+     * array (the colour term needs the tangent plane) and the cloud gets none */
+    if (f->keep_normals || f->need_oriented || cloud->normal || (want & PNPR_WANT_NORMALS_ANY)) {
+        if ((st = pnpr_cloud_alloc_normals(cloud)) != PNPR_OK) return st;
+        f->normals = cloud->normal;
+    }
+    return PNPR_OK;
+}
+
+/* The kd-tree and the neighbour lists; then the cloud's coordinates, colours and kept normals
+ * take the tree order (the tree's copy is released: 12 bytes/point less for the rest of the run),
+ * the points left out (NaN/Inf) follow in input order. */
+static pnpr_status features_tree_order(feat_run *f)
+{
+    pnpr_cloud *cloud = f->cloud;
+    const size_t n = f->n, m = f->m, k = f->k;
+    if (stage_begin(&f->r, PNPR_STAGE_KDTREE)) return PNPR_ERR_CANCELLED;
+    pnpr_status st = stage_end(&f->r, pnpr_kdtree_build_threads(cloud->xyz, n, 0, f->opts->threads, &f->tree));
+    if (st != PNPR_OK) return st;
+    if (!(f->knn = malloc(m * k * sizeof *f->knn))) return PNPR_ERR_OUT_OF_MEMORY;
+    if (stage_begin(&f->r, PNPR_STAGE_KNN)) return PNPR_ERR_CANCELLED;
+    pnpr_knn_options ko = {f->opts->threads, f->opts->progress, 1};
+    if ((st = stage_end(&f->r, pnpr_knn_self(f->tree, m, k, &ko, f->knn, NULL))) != PNPR_OK) return st;
+    st = pnpr_kdtree_detach(f->tree, &f->xyz, &f->tree_index);
+    f->tree = NULL;
+    if (st != PNPR_OK) return st;
+
+    /* full permutation: tree positions first, then the invalid points in input order */
+    f->perm = malloc(n * sizeof *f->perm);
+    /* scratch for the permutations, sized for what moves now (colours, kept normals); it grows to
+     * a normal per point for the way back, once the neighbour lists are gone */
+    f->scratch = malloc(n * (f->keep_normals ? 3 * sizeof(float) : 3));
+    if (!f->perm || !f->scratch) return PNPR_ERR_OUT_OF_MEMORY;
+    memcpy(f->perm, f->tree_index, m * sizeof *f->perm);
+    pnpr_free(f->tree_index);
+    f->tree_index = NULL;
+    if (m < n) {
+        size_t q = m;
+        for (size_t i = 0; i < n; i++)
+            if (!pnpr_finite3f(cloud->xyz + 3 * i)) f->perm[q++] = (uint32_t)i;
+        float *bad = malloc((n - m) * 3 * sizeof(float));
+        if (!bad) return PNPR_ERR_OUT_OF_MEMORY;
+        for (q = m; q < n; q++) memcpy(bad + 3 * (q - m), cloud->xyz + 3 * (size_t)f->perm[q], 3 * sizeof(float));
+        memcpy(cloud->xyz + 3 * m, bad, (n - m) * 3 * sizeof(float));
+        free(bad);
+    }
+    memcpy(cloud->xyz, f->xyz, m * 3 * sizeof(float));
+    pnpr_free(f->xyz);
+    f->xyz = cloud->xyz;
+    permute(cloud->rgb, 3, n, f->perm, 0, f->scratch);
+    if (f->keep_normals) permute(cloud->normal, 3 * sizeof(float), n, f->perm, 0, f->scratch);
+    f->permuted = 1;
+    free(f->scratch);
+    f->scratch = NULL;
+    return PNPR_OK;
+}
+
+/* Normals (PCA always runs: its fit error drives the feature degree even when normals are kept),
+ * the feature degree (only the tangent plane matters, so it runs before the orientation, and the
+ * fit errors are gone before the orientation's queue is built), the orientation. */
+static pnpr_status features_geometry(feat_run *f)
+{
+    const size_t m = f->m, k = f->k;
+    const pnpr_features_options *o = f->opts;
+    if (f->need_degree && !(f->fit = malloc(m * sizeof *f->fit))) return PNPR_ERR_OUT_OF_MEMORY;
+    if (!f->normals && !(f->normals = f->own_normals = malloc(m * 3 * sizeof *f->normals))) return PNPR_ERR_OUT_OF_MEMORY;
+    if (stage_begin(&f->r, PNPR_STAGE_NORMALS)) return PNPR_ERR_CANCELLED;
+    pnpr_status st = stage_end(&f->r, pnpr_estimate_normals(f->xyz, m, f->knn, k, o->threads,
+                                                            f->keep_normals ? NULL : f->normals, f->fit));
+    if (st != PNPR_OK) return st;
+    if (f->need_degree) {
+        if (stage_begin(&f->r, PNPR_STAGE_FEATURE_DEGREE)) return PNPR_ERR_CANCELLED;
+        st = stage_end(&f->r, pnpr_feature_degree(f->xyz, f->cloud->rgb, f->normals, f->fit, m, f->knn, k,
+                                                  o->weight_geometry, o->weight_color, o->threads, f->out[0]));
+        free(f->fit);
+        f->fit = NULL;
+        if (st != PNPR_OK) return st;
+    }
+    if (!f->keep_normals && f->need_oriented) {
+        if (stage_begin(&f->r, PNPR_STAGE_ORIENT)) return PNPR_ERR_CANCELLED;
+        double vp[3];
+        for (int a = 0; a < 3; a++) vp[a] = o->viewpoint[a] - f->cloud->origin[a];
+        st = stage_end(&f->r, pnpr_orient_normals(f->xyz, m, f->knn, k, o->has_viewpoint ? vp : NULL, f->normals));
+    }
+    return st;
+}
+
+/* The threshold, the classes and the dithering points. */
+static pnpr_status features_classes(feat_run *f)
+{
+    const size_t m = f->m, k = f->k;
+    const pnpr_features_options *o = f->opts;
+    pnpr_features_stats *stats = f->r.stats;
+    float min_conf = o->direction_confidence > 0 ? o->direction_confidence : 0.6f;
+    pnpr_status st = PNPR_OK;
+    if (f->need_degree) stats->threshold_used = o->threshold > 0 ? o->threshold : pnpr_auto_threshold(f->out[0], m);
+    if (f->need_classify) {
+        if (stage_begin(&f->r, PNPR_STAGE_CLASSIFY)) return PNPR_ERR_CANCELLED;
+        st = stage_end(&f->r, pnpr_classify_features(f->xyz, f->out[0], m, 2 * k, stats->threshold_used, min_conf,
+                                                     o->threads, f->cls, f->out[1], f->out[2], f->out[3], f->out[4]));
+        if (st != PNPR_OK) return st;
+        for (size_t i = 0; i < m; i++) {
+            stats->feature_points += f->cls[i] != PNPR_CLASS_NONE;
+            stats->directional_points += f->cls[i] == PNPR_CLASS_DIRECTIONAL;
+        }
+    }
+    if (f->need_dither) {
+        if (stage_begin(&f->r, PNPR_STAGE_DITHER)) return PNPR_ERR_CANCELLED;
+        float *tone = malloc((m ? m : 1) * sizeof *tone);
+        st = tone ? pnpr_tone(f->cloud->rgb, f->normals, m, &o->tone, tone) : PNPR_ERR_OUT_OF_MEMORY;
+        if (st == PNPR_OK)
+            st = pnpr_dither(f->xyz, f->cloud->rgb, f->normals, tone, m, f->knn, k, o->dither_scale, f->cls,
+                             &stats->dither_points);
+        free(tone);
+        st = stage_end(&f->r, st);
+    }
+    return st;
+}
+
+/* Back to input order (inputs always, outputs too: meaningful only on success) and the run's
+ * memory released; returns st, or PNPR_ERR_OUT_OF_MEMORY when there was none for the way back. */
+static pnpr_status features_finish(feat_run *f, pnpr_status st)
+{
+    pnpr_cloud *cloud = f->cloud;
+    const size_t n = f->n;
+    free(f->knn);
+    free(f->fit);
+    free(f->scratch);
+    f->scratch = NULL;
+    if (f->permuted && !(f->scratch = malloc(n * 3 * sizeof(float)))) {
+        /* no memory for the way back: restore the inputs in place (slow but allocation-free) */
+        st = PNPR_ERR_OUT_OF_MEMORY;
+        restore_in_place(cloud->xyz, 3 * sizeof(float), n, f->perm);
+        restore_in_place(cloud->rgb, 3, n, f->perm);
+        restore_in_place(cloud->normal, 3 * sizeof(float), n, f->perm);
+        f->permuted = 0;
+    }
+    if (f->permuted) {
+        permute(cloud->xyz, 3 * sizeof(float), n, f->perm, 1, f->scratch);
+        permute(cloud->rgb, 3, n, f->perm, 1, f->scratch);
+        permute(cloud->normal, 3 * sizeof(float), n, f->perm, 1, f->scratch);
+        for (int i = 0; i < 5; i++) permute(f->out[i], sizeof(float), n, f->perm, 1, f->scratch);
+        permute(f->cls, 1, n, f->perm, 1, f->scratch);
+    }
+    pnpr_kdtree_free(f->tree);
+    if (f->xyz != cloud->xyz) pnpr_free(f->xyz);
+    pnpr_free(f->tree_index);
+    free(f->perm);
+    free(f->scratch);
+    free(f->own_normals);
+    return st;
+}
+
 /* The pipeline works in kd-tree order: the tree's reordered copy of the points is spatially
  * coherent, so the neighbour gathers of every stage hit the cache (on a 1M-point cloud in random
  * order this more than halves the time of the normal, orientation and feature-degree stages).
@@ -123,197 +327,33 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     if (cloud->count >= 0x80000000u) return PNPR_ERR_UNSUPPORTED; /* 2^31 points at most */
     pnpr_status st = pnpr_features_check_options(opts, NULL);
     if (st != PNPR_OK) return st; /* huge k is refused, not slow */
-    const size_t n = cloud->count;
-    size_t k = opts->k ? opts->k : 16;
-    float min_conf = opts->direction_confidence > 0 ? opts->direction_confidence : 0.6f;
-    run r = {r_stats, &opts->progress, 0, 0};
-
-    /* the stages the wanted outputs need (docs/features.md, "Computing only what is needed") */
-    const uint32_t want = opts->want ? opts->want : PNPR_WANT_ALL;
-    const int need_dither = (want & PNPR_WANT_DITHER) != 0;
-    const int need_classify = need_dither || (want & PNPR_WANT_CLASSES);
-    const int need_degree = need_classify || (want & PNPR_WANT_DEGREE);
-    /* the tone's lighting is two-sided (tone.h): dithering needs no oriented normals */
-    const int need_oriented = (want & PNPR_WANT_NORMALS) != 0;
-
-    /* outputs (allocated first: a cloud that cannot hold them fails before the work) */
-    static const char *const fnames[5] = {"feature_degree", "feature_confidence", "feature_dir_x",
-                                          "feature_dir_y", "feature_dir_z"};
-    int nout = need_classify ? 5 : (need_degree ? 1 : 0);
-    for (int f = 0; f < nout; f++)
-        if ((st = pnpr_cloud_add_property(cloud, fnames[f], PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK) return st;
-    if (need_classify && (st = pnpr_cloud_add_property(cloud, "feature_class", PNPR_TYPE_UINT8, NULL)) != PNPR_OK) return st;
-    float *out[5] = {NULL, NULL, NULL, NULL, NULL}; /* degree, confidence, dir x, y, z — looked up
-                                                     * after all adds (props may move) */
-    for (int f = 0; f < nout; f++) out[f] = pnpr_cloud_find_property(cloud, fnames[f])->data;
-    float *degree = out[0], *conf = out[1];
-    uint8_t *cls = need_classify ? pnpr_cloud_find_property(cloud, "feature_class")->data : NULL;
-    /* input normals are kept unless asked otherwise, or unless most of them are missing (zero or
-     * non-finite: a layer that carries a normal field without data) */
-    int keep_normals = cloud->normal && !opts->recompute_normals;
-    if (keep_normals) {
-        size_t have = 0;
-        for (size_t i = 0; i < n; i++) {
-            const float *v = cloud->normal + 3 * i;
-            have += isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]) && (v[0] != 0 || v[1] != 0 || v[2] != 0);
-        }
-        if (2 * have < n) keep_normals = 0;
-    }
-    /* unoriented normals are not handed out: when nobody wants normals, they live in a scratch
-     * array (the colour term needs the tangent plane) and the cloud gets none */
-    const int normals_to_cloud = keep_normals || need_oriented || cloud->normal || (want & PNPR_WANT_NORMALS_ANY);
-    float *normals = NULL;
-    if (normals_to_cloud) {
-        if ((st = pnpr_cloud_alloc_normals(cloud)) != PNPR_OK) return st;
-        normals = cloud->normal;
-    }
+    feat_run f;
+    memset(&f, 0, sizeof f);
+    f.cloud = cloud;
+    f.opts = opts;
+    f.r = (run){r_stats, &opts->progress, 0, 0};
+    f.n = cloud->count;
+    if ((st = features_outputs(&f)) != PNPR_OK) return st;
 
     size_t valid = 0;
-    for (size_t i = 0; i < n; i++) {
-        const float *p = cloud->xyz + 3 * i;
+    for (size_t i = 0; i < f.n; i++) {
         const double *w = cloud->src_xyz ? cloud->src_xyz + 3 * i : NULL;
-        int ok = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+        int ok = pnpr_finite3f(cloud->xyz + 3 * i);
         valid += ok;
-        r_stats->beyond_float += !ok && w && isfinite(w[0]) && isfinite(w[1]) && isfinite(w[2]);
+        r_stats->beyond_float += !ok && w && pnpr_finite3d(w);
     }
-    r_stats->valid_points = valid;
-    if (k > valid) k = valid;
-    r_stats->k_used = (uint32_t)k;
-    if (valid < 3 || k < 3) {
+    r_stats->valid_points = f.m = valid;
+    f.k = opts->k ? opts->k : 16;
+    if (f.k > valid) f.k = valid;
+    r_stats->k_used = (uint32_t)f.k;
+    if (valid < 3 || f.k < 3) {
         /* too few points for any plane: defined empty result */
-        if (normals && !keep_normals) memset(normals, 0, 3 * n * sizeof(float));
+        if (f.normals && !f.keep_normals) memset(f.normals, 0, 3 * f.n * sizeof(float));
         r_stats->threshold_used = opts->threshold;
         return PNPR_OK;
     }
-
-    pnpr_kdtree *tree = NULL;
-    uint32_t *knn = NULL, *perm = NULL, *tree_index = NULL;
-    float *xyz = NULL, *fit = NULL, *own_normals = NULL;
-    char *scratch = NULL;
-    int permuted = 0;
-    const size_t m = valid;
-
-    if (stage_begin(&r, PNPR_STAGE_KDTREE)) return PNPR_ERR_CANCELLED;
-    st = stage_end(&r, pnpr_kdtree_build_threads(cloud->xyz, n, 0, opts->threads, &tree));
-    if (st != PNPR_OK) goto done;
-
-    knn = malloc(m * k * sizeof *knn);
-    if (!knn) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    if (stage_begin(&r, PNPR_STAGE_KNN)) { st = PNPR_ERR_CANCELLED; goto done; }
-    pnpr_knn_options ko = {opts->threads, opts->progress, 1};
-    st = stage_end(&r, pnpr_knn_self(tree, m, k, &ko, knn, NULL));
-    if (st != PNPR_OK) goto done;
-    st = pnpr_kdtree_detach(tree, &xyz, &tree_index);
-    tree = NULL;
-    if (st != PNPR_OK) goto done;
-
-    /* full permutation: tree positions first, then the invalid points in input order */
-    perm = malloc(n * sizeof *perm);
-    /* scratch for the permutations, sized for what moves now (colours, kept normals); it grows to
-     * a normal per point for the way back, once the neighbour lists are gone */
-    scratch = malloc(n * (keep_normals ? 3 * sizeof(float) : 3));
-    if (!perm || !scratch) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    memcpy(perm, tree_index, m * sizeof *perm);
-    pnpr_free(tree_index);
-    tree_index = NULL;
-    if (m < n) {
-        size_t q = m;
-        for (size_t i = 0; i < n; i++) {
-            const float *p = cloud->xyz + 3 * i;
-            if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))) perm[q++] = (uint32_t)i;
-        }
-    }
-    /* the cloud's own coordinates take the tree order (the tree's copy is released: 12 bytes/point
-     * less for the rest of the run); left-out points follow in input order */
-    if (m < n) {
-        float *bad = malloc((n - m) * 3 * sizeof(float));
-        if (!bad) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-        for (size_t q = m; q < n; q++) memcpy(bad + 3 * (q - m), cloud->xyz + 3 * (size_t)perm[q], 3 * sizeof(float));
-        memcpy(cloud->xyz + 3 * m, bad, (n - m) * 3 * sizeof(float));
-        free(bad);
-    }
-    memcpy(cloud->xyz, xyz, m * 3 * sizeof(float));
-    pnpr_free(xyz);
-    xyz = cloud->xyz;
-    permute(cloud->rgb, 3, n, perm, 0, scratch);
-    if (keep_normals) permute(cloud->normal, 3 * sizeof(float), n, perm, 0, scratch);
-    permuted = 1;
-    free(scratch);
-    scratch = NULL;
-
-    /* PCA always runs: its fit error drives the feature degree even when normals are kept */
-    fit = need_degree ? malloc(m * sizeof *fit) : NULL;
-    if (need_degree && !fit) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    if (!normals && !(normals = own_normals = malloc(m * 3 * sizeof *normals))) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    if (stage_begin(&r, PNPR_STAGE_NORMALS)) { st = PNPR_ERR_CANCELLED; goto done; }
-    st = stage_end(&r, pnpr_estimate_normals(xyz, m, knn, k, opts->threads, keep_normals ? NULL : normals, fit));
-    if (st != PNPR_OK) goto done;
-
-    /* the feature degree only needs the tangent plane (the normal's sign does not matter), so it
-     * runs before the orientation and the fit errors are gone before the orientation's queue
-     * is built */
-    if (need_degree) {
-        if (stage_begin(&r, PNPR_STAGE_FEATURE_DEGREE)) { st = PNPR_ERR_CANCELLED; goto done; }
-        st = stage_end(&r, pnpr_feature_degree(xyz, cloud->rgb, normals, fit, m, knn, k, opts->weight_geometry,
-                                               opts->weight_color, opts->threads, degree));
-        free(fit);
-        fit = NULL;
-        if (st != PNPR_OK) goto done;
-    }
-
-    if (!keep_normals && need_oriented) {
-        if (stage_begin(&r, PNPR_STAGE_ORIENT)) { st = PNPR_ERR_CANCELLED; goto done; }
-        double vp[3];
-        for (int a = 0; a < 3; a++) vp[a] = opts->viewpoint[a] - cloud->origin[a];
-        st = stage_end(&r, pnpr_orient_normals(xyz, m, knn, k, opts->has_viewpoint ? vp : NULL, normals));
-        if (st != PNPR_OK) goto done;
-    }
-
-    if (need_degree)
-        r_stats->threshold_used = opts->threshold > 0 ? opts->threshold : pnpr_auto_threshold(degree, m);
-    if (need_classify) {
-        if (stage_begin(&r, PNPR_STAGE_CLASSIFY)) { st = PNPR_ERR_CANCELLED; goto done; }
-        st = stage_end(&r, pnpr_classify_features(xyz, degree, m, 2 * k, r_stats->threshold_used, min_conf, opts->threads,
-                                                  cls, conf, out[2], out[3], out[4]));
-        if (st != PNPR_OK) goto done;
-        for (size_t i = 0; i < m; i++) {
-            r_stats->feature_points += cls[i] != PNPR_CLASS_NONE;
-            r_stats->directional_points += cls[i] == PNPR_CLASS_DIRECTIONAL;
-        }
-    }
-    if (need_dither) {
-        if (stage_begin(&r, PNPR_STAGE_DITHER)) { st = PNPR_ERR_CANCELLED; goto done; }
-        float *tone = malloc((m ? m : 1) * sizeof *tone);
-        st = tone ? pnpr_tone(cloud->rgb, normals, m, &opts->tone, tone) : PNPR_ERR_OUT_OF_MEMORY;
-        if (st == PNPR_OK)
-            st = pnpr_dither(xyz, cloud->rgb, normals, tone, m, knn, k, opts->dither_scale, cls, &r_stats->dither_points);
-        free(tone);
-        st = stage_end(&r, st);
-    }
-done:
-    free(knn);
-    free(fit);
-    if (permuted && !(scratch = malloc(n * 3 * sizeof(float)))) {
-        /* no memory for the way back: restore the inputs in place (slow but allocation-free) */
-        st = PNPR_ERR_OUT_OF_MEMORY;
-        restore_in_place(cloud->xyz, 3 * sizeof(float), n, perm);
-        restore_in_place(cloud->rgb, 3, n, perm);
-        restore_in_place(cloud->normal, 3 * sizeof(float), n, perm);
-        permuted = 0;
-    }
-    if (permuted) {
-        /* back to input order: inputs always, outputs (meaningful only on success) too */
-        permute(cloud->xyz, 3 * sizeof(float), n, perm, 1, scratch);
-        permute(cloud->rgb, 3, n, perm, 1, scratch);
-        permute(cloud->normal, 3 * sizeof(float), n, perm, 1, scratch);
-        for (int f = 0; f < 5; f++) permute(out[f], sizeof(float), n, perm, 1, scratch);
-        permute(cls, 1, n, perm, 1, scratch);
-    }
-    pnpr_kdtree_free(tree);
-    if (xyz != cloud->xyz) pnpr_free(xyz);
-    pnpr_free(tree_index);
-    free(perm);
-    free(scratch);
-    free(own_normals);
-    return st;
+    st = features_tree_order(&f);
+    if (st == PNPR_OK) st = features_geometry(&f);
+    if (st == PNPR_OK) st = features_classes(&f);
+    return features_finish(&f, st);
 }

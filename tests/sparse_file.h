@@ -20,7 +20,6 @@
 
 #define PNPR_SPARSE_SIZE ((off_t)2 << 30)   /* 2 GiB, all of it a hole after the header */
 #define PNPR_SPARSE_MAX_RSS_KB (64L * 1024) /* allowed growth of the peak RSS */
-#define PNPR_SPARSE_MAX_SECONDS 2.0
 
 static inline long pnpr_sparse_peak_kb(void)
 {
@@ -45,7 +44,8 @@ static inline int pnpr_sparse_write(const char *path, const void *head, size_t n
 }
 
 /* Reads the sparse file made of head through pnpr_read_file: expects `expected`, the message
- * "<path>: <message>" exactly, an empty cloud, little time and little memory. */
+ * "<path>: <message>" exactly, an empty cloud and little memory (the old readers read the whole
+ * file first: 2.1 GB). The time is printed, not asserted: a loaded machine must not fail a test. */
 static inline void pnpr_sparse_check(const char *path, const void *head, size_t n, pnpr_status expected,
                                      const char *message)
 {
@@ -69,7 +69,6 @@ static inline void pnpr_sparse_check(const char *path, const void *head, size_t 
     CHECK_STATUS(st, expected);
     CHECK_MSG(strcmp(err.message, want) == 0, "got  \"%s\"\nwant \"%s\"", err.message, want);
     CHECK_MSG(rss0 > 0 && grown < PNPR_SPARSE_MAX_RSS_KB, "%s: peak RSS grew by %ld KB", path, grown);
-    CHECK_MSG(seconds < PNPR_SPARSE_MAX_SECONDS, "%s: %.2f s to fail", path, seconds);
     CHECK(c.count == 0 && c.xyz == NULL);
     pnpr_cloud_free(&c);
 }
