@@ -16,6 +16,10 @@ extern pnpr_status pnpr_read_pcd_file(const char *path, const pnpr_read_options 
                                       pnpr_error *err);
 extern pnpr_status pnpr_write_pcd_file(const char *path, const pnpr_cloud *cloud,
                                        const pnpr_write_options *opts, pnpr_error *err);
+extern pnpr_status pnpr_read_off_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                                      pnpr_error *err);
+extern pnpr_status pnpr_read_text_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                                       pnpr_error *err);
 extern pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
                                       pnpr_error *err);
 
@@ -44,6 +48,10 @@ pnpr_file_format pnpr_format_from_path(const char *path)
     if (io_ext_is(dot, "obj")) return PNPR_FORMAT_OBJ;
     if (io_ext_is(dot, "off")) return PNPR_FORMAT_OFF;
     if (io_ext_is(dot, "pcd")) return PNPR_FORMAT_PCD;
+    if (io_ext_is(dot, "xyz")) return PNPR_FORMAT_XYZ;
+    if (io_ext_is(dot, "pts")) return PNPR_FORMAT_PTS;
+    if (io_ext_is(dot, "pwn")) return PNPR_FORMAT_PWN;
+    if (io_ext_is(dot, "csv") || io_ext_is(dot, "txt")) return PNPR_FORMAT_CSV;
     return PNPR_FORMAT_AUTO;
 }
 
@@ -72,6 +80,13 @@ static pnpr_file_format io_sniff(const unsigned char *b, size_t n)
         (n == i + 3 || b[i + 3] == ' ' || b[i + 3] == '\t' || b[i + 3] == '\n' || b[i + 3] == '\r'))
         return PNPR_FORMAT_OFF;
     return PNPR_FORMAT_AUTO;
+}
+
+static const char *io_format_name(pnpr_file_format f)
+{
+    static const char *const names[PNPR_FORMAT_COUNT_] = {"", "PLY", "LAS", "OBJ", "OFF", "PCD", "XYZ", "PTS", "PWN",
+                                                          "CSV"};
+    return (int)f > 0 && f < PNPR_FORMAT_COUNT_ ? names[f] : "this format";
 }
 
 static pnpr_status io_check_input(const char *path, pnpr_error *err)
@@ -123,11 +138,16 @@ pnpr_status pnpr_read_file(const char *path, const pnpr_read_options *opts, pnpr
     case PNPR_FORMAT_PLY: st = pnpr_read_ply_file(path, &o, cloud, err); break;
     case PNPR_FORMAT_LAS: st = pnpr_read_las_file(path, &o, cloud, err); break;
     case PNPR_FORMAT_PCD: st = pnpr_read_pcd_file(path, &o, cloud, err); break;
-    case PNPR_FORMAT_OBJ:
-    case PNPR_FORMAT_OFF: st = pnpr_read_mesh_file(path, &o, cloud, err); break;
+    case PNPR_FORMAT_OBJ: st = pnpr_read_mesh_file(path, &o, cloud, err); break;
+    case PNPR_FORMAT_OFF: st = pnpr_read_off_file(path, &o, cloud, err); break;
+    case PNPR_FORMAT_XYZ:
+    case PNPR_FORMAT_PTS:
+    case PNPR_FORMAT_PWN:
+    case PNPR_FORMAT_CSV: st = pnpr_read_text_file(path, &o, cloud, err); break;
     default:
         st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
-                            "%s: cannot tell the file format (expected .ply, .las, .obj, .off or .pcd)", path);
+                            "%s: cannot tell the file format (expected .ply, .las, .obj, .off, .pcd, .xyz, .pts, .pwn, "
+                            ".csv or .txt)", path);
         break;
     }
     if (st != PNPR_OK) pnpr_cloud_free(cloud);
@@ -154,8 +174,12 @@ pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud, const pnp
     case PNPR_FORMAT_LAS:
     case PNPR_FORMAT_OBJ:
     case PNPR_FORMAT_OFF:
+    case PNPR_FORMAT_XYZ:
+    case PNPR_FORMAT_PTS:
+    case PNPR_FORMAT_PWN:
+    case PNPR_FORMAT_CSV:
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: writing %s is not supported (PLY and PCD are written)",
-                              path, o.format == PNPR_FORMAT_LAS ? "LAS" : o.format == PNPR_FORMAT_OBJ ? "OBJ" : "OFF");
+                              path, io_format_name(o.format));
     default:
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
                               "%s: cannot tell the output format from the name (use a .ply or .pcd extension)", path);

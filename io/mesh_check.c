@@ -1,4 +1,6 @@
 /* pointnpr — io/mesh_check.c: the validating pre-pass of the OBJ/OFF reader (mesh_check.h).
+ * pnpr_read_file reads ascii OFF with io/off.c; this pass guards OBJ, binary OFF, and ascii OFF
+ * handed to pnpr_read_mesh_file directly (which keeps OpenMesh's OFF rules: no comments).
  *
  * OpenMesh 9 trusts the files it reads: an OFF header's counts drive its loops and its reserve()
  * (a 20-byte file asks for 137 GB, "3 -1 0" loops over 2^32 faces), a number that does not parse

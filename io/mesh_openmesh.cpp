@@ -1,4 +1,6 @@
 // OBJ/OFF input through OpenMesh: a thin adapter from OpenMesh's readers to pnpr_cloud.
+// pnpr_read_file sends OBJ and binary OFF here; ascii OFF is read by io/off.c (comments anywhere,
+// colours as tools write them, which OpenMesh 9 refuses; docs/io.md says which reader reads what).
 //
 // Hostile input. OpenMesh 9 trusts the files it reads (header counts drive its loops and its
 // reserve(), a number that does not parse silently drops an OBJ vertex or derails an OFF

@@ -4,7 +4,10 @@
 #ifndef PNPR_TEXT_TOKEN_H
 #define PNPR_TEXT_TOKEN_H
 
+#include <float.h>
+#include <locale.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct pnpr_token {
@@ -49,6 +52,44 @@ static inline size_t pnpr_token_count(const char *q, const char *e)
     size_t n = 0;
     while (pnpr_token_next(&q, e, &t)) n++;
     return n;
+}
+
+/* A decimal number in the "C" form, whatever LC_NUMERIC says: [+-]digits[.digits][(e|E)[+-]digits]
+ * with at least one mantissa digit (no hex, no nan/inf, no trailing text), at most 256 characters,
+ * finite as a double (1e400 is refused; underflow to 0 is accepted). *has_fraction (may be NULL):
+ * whether it is written with a '.' or an exponent. Used by the OFF and text point readers. */
+static inline int pnpr_token_decimal(pnpr_token t, double *out, int *has_fraction)
+{
+    char buf[257];
+    size_t i = 0;
+    int digits = 0, frac = 0;
+    if (t.n == 0 || t.n >= sizeof buf) return 0;
+    if (t.s[i] == '+' || t.s[i] == '-') i++;
+    for (; i < t.n && t.s[i] >= '0' && t.s[i] <= '9'; i++) digits++;
+    if (i < t.n && t.s[i] == '.') {
+        frac = 1;
+        for (i++; i < t.n && t.s[i] >= '0' && t.s[i] <= '9'; i++) digits++;
+    }
+    if (!digits) return 0;
+    if (i < t.n && (t.s[i] == 'e' || t.s[i] == 'E')) {
+        frac = 1;
+        i++;
+        if (i < t.n && (t.s[i] == '+' || t.s[i] == '-')) i++;
+        if (i == t.n || t.s[i] < '0' || t.s[i] > '9') return 0;
+        while (i < t.n && t.s[i] >= '0' && t.s[i] <= '9') i++;
+    }
+    if (i != t.n) return 0;
+    memcpy(buf, t.s, t.n);
+    buf[t.n] = '\0';
+    const struct lconv *lc = localeconv();
+    char dp = lc && lc->decimal_point && lc->decimal_point[0] ? lc->decimal_point[0] : '.';
+    char *dot = dp != '.' ? memchr(buf, '.', t.n) : NULL;
+    if (dot) *dot = dp;
+    double v = strtod(buf, NULL);
+    if (v != v || v > DBL_MAX || v < -DBL_MAX) return 0;
+    *out = v;
+    if (has_fraction) *has_fraction = frac;
+    return 1;
 }
 
 #endif

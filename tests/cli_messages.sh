@@ -28,6 +28,18 @@ fi
 # an option whose value overflows the library's float is refused by name
 "$bin" features "$dir/cube.ply" -o "$dir/w.ply" --weights 1e308,1e308 2> "$dir/e.txt"; rc=$?
 check '[ $rc -eq 2 ] && grep -q -- "--weights wants" "$dir/e.txt"' "--weights 1e308,1e308 names the option (rc $rc)"
+# a missing -o says what is missing
+"$bin" features "$dir/cube.ply" 2> "$dir/e.txt"; rc=$?
+check '[ $rc -eq 2 ] && grep -q "no output given" "$dir/e.txt" && grep -q -- "-o OUT.ply" "$dir/e.txt"' "features without -o says so (rc $rc)"
+"$bin" segment 2> "$dir/e.txt"; rc=$?
+check '[ $rc -eq 2 ] && grep -q "no input given" "$dir/e.txt"' "segment without input says so (rc $rc)"
+if [ $has_render = 1 ]; then
+  # lines --svg alone is enough; style names ignore case
+  "$bin" lines "$dir/cube.ply" --svg "$dir/alone.svg" --size 160x120 --quiet; rc=$?
+  check '[ $rc -eq 0 ] && grep -q "<svg" "$dir/alone.svg"' "lines --svg without -o draws the SVG (rc $rc)"
+  "$bin" render "$dir/cube.ply" -o "$dir/s.png" --style Sketchy --size 64x48 --quiet; rc=$?
+  check '[ $rc -eq 0 ] && [ -s "$dir/s.png" ]' "--style Sketchy is sketchy (rc $rc)"
+fi
 # a cloud with no finite point: the camera error names the file
 if [ $has_render = 1 ]; then
   printf 'ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\nnan nan nan\ninf 0 0\n' > "$dir/nan.ply"

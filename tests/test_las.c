@@ -548,12 +548,13 @@ static void test_read_file(void)
     free(b);
     /* unknown content with an unknown extension */
     {
-        const char *path = PNPR_TEST_SCRATCH "/las_unknown.xyz";
+        const char *path = PNPR_TEST_SCRATCH "/las_unknown.dat"; /* .xyz is read since issue 19 */
         CHECK(write_bytes(path, "1 2 3\n", 6));
         pnpr_cloud c = {0};
         pnpr_error err;
         CHECK_STATUS(pnpr_read_file(path, NULL, &c, &err), PNPR_ERR_UNSUPPORTED);
-        CHECK_MSG(strstr(err.message, "cannot tell the file format (expected .ply, .las, .obj, .off or .pcd)") != NULL,
+        CHECK_MSG(strstr(err.message, "cannot tell the file format (expected .ply, .las, .obj, .off, .pcd, .xyz, .pts, "
+                                      ".pwn, .csv or .txt)") != NULL,
                   "%s", err.message);
     }
     /* missing file, directory */

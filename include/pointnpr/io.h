@@ -9,7 +9,12 @@
  * LAS  (io/las.c): versions 1.0-1.4, uncompressed, point formats 0-3 and 6-8; world =
  *      X*scale + offset; 16-bit RGB reduced to 8 bit (values that never exceed 255 are taken
  *      as 8-bit); intensity and classification kept as extra properties.
- * OBJ/OFF vertices (io/mesh_openmesh.cpp) through OpenMesh.
+ * OFF  (io/off.c): ascii OFF as Geomview specifies it ('#' comments anywhere, [ST][C][N]OFF,
+ *      colours as floats or bytes, polygonal faces); binary OFF and OBJ through OpenMesh
+ *      (io/mesh_openmesh.cpp, behind the validating pre-pass io/mesh_check.c).
+ * XYZ / PTS / PWN / CSV / TXT (io/text_points.c): text point clouds, one point a line, values
+ *      separated by blanks, commas or semicolons; columns from a header row, opts->columns, or
+ *      the format's defaults; coordinates kept as exact doubles.
  * PCD  (io/pcd.c): PCL's format, header versions 0.5-0.7, DATA ascii, binary and
  *      binary_compressed (LZF); x y z (float or double, double kept exactly as for PLY),
  *      rgb/rgba (packed 0x00RRGGBB) -> colours, normal_x/y/z -> normals, integer label ->
@@ -34,6 +39,10 @@ typedef enum pnpr_file_format {
     PNPR_FORMAT_OBJ,
     PNPR_FORMAT_OFF,
     PNPR_FORMAT_PCD,
+    PNPR_FORMAT_XYZ, /* text point clouds (io/text_points.c): x y z [nx ny nz] per line */
+    PNPR_FORMAT_PTS, /* Leica PTS: count line, x y z [intensity [r g b]] */
+    PNPR_FORMAT_PWN, /* x y z nx ny nz */
+    PNPR_FORMAT_CSV, /* columns from a header row or opts->columns; also .txt */
     PNPR_FORMAT_COUNT_
 } pnpr_file_format;
 
@@ -46,6 +55,10 @@ typedef enum pnpr_ply_encoding {
 typedef struct pnpr_read_options {
     pnpr_file_format format; /* 0 = auto */
     pnpr_progress progress;
+    /* Text point clouds only (XYZ, PTS, PWN, CSV, TXT): the column names, comma-separated
+     * ("x,y,z,nx,ny,nz,r,g,b,intensity,_"; io/text_points.c lists them). NULL = a header row
+     * when the file has one, else the format's defaults. Ignored by the other formats. */
+    const char *columns;
 } pnpr_read_options;
 
 typedef struct pnpr_write_options {
@@ -69,7 +82,12 @@ pnpr_status pnpr_read_las_memory(const void *data, size_t size, const pnpr_read_
                                  pnpr_cloud *cloud, pnpr_error *err);
 pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_options *opts,
                                  pnpr_cloud *cloud, pnpr_error *err);
-/* OBJ/OFF through OpenMesh (vertices, vertex colours and normals when present, faces). */
+/* Text point clouds from memory (format: PNPR_FORMAT_XYZ, _PTS, _PWN or _CSV in opts->format;
+ * AUTO reads as CSV: a header row or the column defaults). */
+pnpr_status pnpr_read_text_memory(const void *data, size_t size, const pnpr_read_options *opts,
+                                  pnpr_cloud *cloud, pnpr_error *err);
+/* OBJ/OFF through OpenMesh (vertices, vertex colours and normals when present, faces).
+ * pnpr_read_file reads ascii OFF with io/off.c instead. */
 pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_options *opts,
                                 pnpr_cloud *cloud, pnpr_error *err);
 

@@ -18,6 +18,7 @@ int cli_segment(int argc, char **argv);
 int cli_bench(int argc, char **argv);
 int cli_bench_quality(int argc, char **argv); /* `bench quality`, argv[1] = "quality" */
 int cli_explain(int argc, char **argv);
+int cli_animate(int argc, char **argv);
 
 /* Progress on stderr; never cancels. user: a cli_progress_state (zeroed before first use).
  * On a terminal: one updating "\r<stage> 42%" line per stage; otherwise (logs, CI) one line
@@ -57,6 +58,10 @@ int cli_write_camera_file(const char *path, const double eye[3], const double ta
  * --up choice); NULL when neither can be made. */
 #include <pointnpr/render.h>
 const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam);
+/* The start camera of an animation preset (camera_path.h) and the axis it turns about: the look-at
+ * camera of the options and its up when given, else pnpr_camera_preset_start of the cloud with
+ * the --up choice. Returns 0 when neither can be made. */
+int cli_view_preset_start(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam, double r_up[3]);
 #endif
 
 /* Checks, before any work, that OUT can be written and is none of the inputs
@@ -88,6 +93,19 @@ void cli_outlier_usage(FILE *f);
  * or 1 after printing why it failed. */
 int cli_outliers_apply(const cli_outliers *o, const char *cmd, const char *in, pnpr_cloud *cloud, int quiet,
                        pnpr_outlier_info *r_info);
+
+/* Says which of IN and OUT is missing ("no output given (-o OUT.ply)", with out_hint as the
+ * example name) and returns 0; 1 when both are there. */
+int cli_need_in_out(const char *cmd, const char *in, const char *out, const char *out_hint);
+
+/* --columns NAMES, shared by info, convert, features, segment, render and lines: the columns of
+ * a text point cloud (XYZ, PTS, PWN, CSV, TXT; pnpr_read_options.columns, io/text_points.c),
+ * e.g. x,y,z,r,g,b or x,y,z,intensity,_,nx,ny,nz. argv[*i] is --columns: sets *columns to its
+ * value (advancing *i) and returns 1; another argument: 0; no value, or not a list of names
+ * with x, y and z: prints why and returns -1. */
+int cli_columns_option(const char **columns, const char *cmd, int argc, char **argv, int *i);
+/* Its usage line. */
+void cli_columns_usage(FILE *f);
 
 /* Prints "pointnpr <cmd>: <message>" for a failed status (with pnpr_error detail when set). */
 void cli_report_error(const char *cmd, pnpr_status st, const pnpr_error *err);

@@ -2,6 +2,7 @@
 #include "cli.h"
 
 #ifdef PNPR_HAVE_RENDER
+#include <pointnpr/camera_path.h>
 #include <pointnpr/render.h>
 #endif
 
@@ -270,4 +271,45 @@ const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, p
         return r_cam;
     return NULL;
 }
+
+int cli_view_preset_start(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam, double r_up[3])
+{
+    if (v->have_eye) {
+        if (!cli_view_camera(v, cloud, r_cam)) return 0;
+        memcpy(r_up, r_cam->up, sizeof r_cam->up);
+        return 1;
+    }
+    pnpr_view_options o = view_up_options(v);
+    return cloud && pnpr_camera_preset_start(cloud, &o, (float)v->fov, (float)v->width / (float)v->height, r_cam, r_up) == PNPR_OK;
+}
 #endif
+
+int cli_columns_option(const char **columns, const char *cmd, int argc, char **argv, int *i)
+{
+    if (strcmp(argv[*i], "--columns") != 0) return 0;
+    if (*i + 1 >= argc) {
+        fprintf(stderr, "pointnpr %s: --columns wants a comma-separated list of names (x,y,z,...)\n", cmd);
+        return -1;
+    }
+    const char *v = argv[++*i];
+    /* the reader checks the names; an empty cloud read from no text says whether they are usable */
+    pnpr_read_options ro = {0};
+    ro.format = PNPR_FORMAT_CSV;
+    ro.columns = v;
+    pnpr_cloud c = {0};
+    pnpr_error err = {0};
+    if (pnpr_read_text_memory("", 0, &ro, &c, &err) != PNPR_OK) {
+        fprintf(stderr, "pointnpr %s: --columns '%s': %s\n", cmd, v, err.message);
+        return -1;
+    }
+    pnpr_cloud_free(&c);
+    *columns = v;
+    return 1;
+}
+
+void cli_columns_usage(FILE *f)
+{
+    fprintf(f, "  --columns NAMES      columns of a text point cloud (.xyz .pts .pwn .csv .txt), e.g.\n"
+               "                       x,y,z,r,g,b; names: x y z nx ny nz r g b label intensity ... _ (skip);\n"
+               "                       default: the file's header row, else the format's columns (docs/io.md)\n");
+}

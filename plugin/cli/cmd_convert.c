@@ -18,8 +18,9 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: pointnpr convert IN... -o OUT.ply [options]\n"
-            "  Reads every input (.ply, .las, .obj, .off, .pcd; a directory stands for all such\n"
-            "  files in it, sorted by name), merges them into one cloud and writes it as PLY\n"
+            "  Reads every input (.ply, .las, .obj, .off, .pcd, .xyz, .pts, .pwn, .csv, .txt; a\n"
+            "  directory stands for all such files in it but .csv and .txt, sorted by name), merges\n"
+            "  them into one cloud and writes it as PLY\n"
             "  (binary PCD when OUT ends in .pcd). Nothing is written if any input cannot be read.\n"
             "options:\n"
             "  -o, --output OUT.ply  output file (required; OUT.pcd writes binary PCD, - standard output)\n"
@@ -27,6 +28,7 @@ static void usage(FILE *f)
             "  --ascii               ascii PLY\n"
             "  --big-endian          binary big endian PLY\n"
             "  --quiet               no progress on stderr\n");
+    cli_columns_usage(f);
 }
 
 /* A growable list of owned strings. */
@@ -78,7 +80,8 @@ static int expand_dir(const char *dir, path_list *out)
     struct dirent *e;
     while (ok && (e = readdir(d)) != NULL) {
         if (e->d_name[0] == '.') continue; /* hidden files, "." and ".." */
-        if (pnpr_format_from_path(e->d_name) == PNPR_FORMAT_AUTO) continue;
+        const pnpr_file_format f = pnpr_format_from_path(e->d_name);
+        if (f == PNPR_FORMAT_AUTO || f == PNPR_FORMAT_CSV) continue; /* .txt/.csv beside tiles: notes, licences */
         ok = list_push(&names, e->d_name);
     }
     closedir(d);
@@ -115,6 +118,7 @@ int cli_convert(int argc, char **argv)
     const char *out = NULL;
     pnpr_write_options wo = {0};
     int encoding_set = 0, quiet = 0;
+    const char *columns = NULL;
     path_list args = {0};
     int rc = 0;
     for (int i = 1; i < argc && rc == 0; i++) {
@@ -138,6 +142,8 @@ int cli_convert(int argc, char **argv)
             return 0;
         } else if (!strcmp(a, "--quiet")) {
             quiet = 1;
+        } else if (!strcmp(a, "--columns")) {
+            if (cli_columns_option(&columns, "convert", argc, argv, &i) < 0) rc = 2;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             if (i + 1 >= argc) { fprintf(stderr, "pointnpr convert: %s needs a file name\n", a); rc = 2; }
             else if (out) { fprintf(stderr, "pointnpr convert: more than one output given\n"); rc = 2; }
@@ -193,6 +199,7 @@ int cli_convert(int argc, char **argv)
         const char *path = inputs.items[i];
         cli_progress_state ps = {{0}, 0, 0}; /* fresh per input: every file reports its stages */
         pnpr_read_options ro = {0};
+        ro.columns = columns;
         ro.progress.fn = quiet ? NULL : cli_progress_stderr;
         ro.progress.user = &ps;
         pnpr_status st = pnpr_read_file(path, &ro, n == 1 ? &merged : &one, &err);

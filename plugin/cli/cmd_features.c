@@ -28,6 +28,7 @@ static void usage(FILE *f)
             "  --ascii              write ascii PLY (default binary little endian)\n"
             "  --quiet              no progress on stderr\n");
     cli_outlier_usage(f);
+    cli_columns_usage(f);
 }
 
 /* Fewer than 3 usable points: says how many points there are and why the others are left out. */
@@ -45,11 +46,13 @@ int cli_features(int argc, char **argv)
     pnpr_features_options fo = {0};
     pnpr_write_options wo = {0};
     cli_outliers outliers = {0, 0};
+    const char *columns = NULL;
     int quiet = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         int oo = cli_outlier_option(&outliers, "features", argc, argv, &i);
+        if (oo == 0) oo = cli_columns_option(&columns, "features", argc, argv, &i);
         if (oo < 0) return 2;
         if (oo > 0) continue;
         double x, xs[3];
@@ -93,13 +96,14 @@ int cli_features(int argc, char **argv)
         } else if (!in) in = a;
         else { fprintf(stderr, "pointnpr features: more than one input given ('%s')\n", a); return 2; }
     }
-    if (!in || !out) { usage(stderr); return 2; }
+    if (!cli_need_in_out("features", in, out, "OUT.ply")) return 2;
     int out_rc = cli_cloud_output("features", out, in, &wo);
     if (out_rc) return out_rc;
 
     cli_progress_state ps = {{0}, 0, 0};
     pnpr_progress prog = {quiet ? NULL : cli_progress_stderr, &ps};
     pnpr_read_options ro = {0};
+    ro.columns = columns;
     ro.progress = prog;
     fo.progress = prog;
     wo.progress = prog;

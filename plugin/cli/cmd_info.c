@@ -9,14 +9,16 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: pointnpr info IN [--outlier-factor F]\n"
-            "  Describes a point cloud file (PLY, LAS, OBJ, OFF, PCD): format, point count, origin,\n"
+            "usage: pointnpr info IN [--outlier-factor F] [--columns NAMES]\n"
+            "  Describes a point cloud file (PLY, LAS, OBJ, OFF, PCD, XYZ, PTS, PWN, CSV/TXT): format,\n"
+            "  point count, origin,\n"
             "  far outliers, bounding box in world coordinates, colour/normals/labels, exact source\n"
             "  coordinates, extra properties with their types, face count, scanner viewpoint.\n"
             "  Far outliers: points farther than F robust extents (the %g%% quantile of the distances\n"
             "  from the per-axis median) from the median, or beyond float range; F in [%g, %g]\n"
             "  (default %g).\n",
             100 * PNPR_OUTLIER_QUANTILE, PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, PNPR_OUTLIER_FACTOR);
+    cli_columns_usage(f);
 }
 
 static const char *format_name(pnpr_file_format f)
@@ -27,6 +29,10 @@ static const char *format_name(pnpr_file_format f)
     case PNPR_FORMAT_OBJ: return "OBJ";
     case PNPR_FORMAT_OFF: return "OFF";
     case PNPR_FORMAT_PCD: return "PCD";
+    case PNPR_FORMAT_XYZ: return "XYZ";
+    case PNPR_FORMAT_PTS: return "PTS";
+    case PNPR_FORMAT_PWN: return "PWN";
+    case PNPR_FORMAT_CSV: return "CSV/TXT";
     default: return "unknown";
     }
 }
@@ -125,10 +131,12 @@ int cli_info(int argc, char **argv)
 {
     const char *in = NULL;
     cli_outliers outliers = {0, 0};
+    pnpr_read_options ro = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         int oo = strcmp(a, "--drop-outliers") ? cli_outlier_option(&outliers, "info", argc, argv, &i) : 0;
+        if (oo == 0) oo = cli_columns_option(&ro.columns, "info", argc, argv, &i);
         if (oo < 0) return 2;
         if (oo > 0) continue;
         if (a[0] == '-' && a[1]) {
@@ -147,7 +155,7 @@ int cli_info(int argc, char **argv)
 
     pnpr_cloud c = {0};
     pnpr_error err = {0};
-    pnpr_status st = pnpr_read_file(in, NULL, &c, &err);
+    pnpr_status st = pnpr_read_file(in, &ro, &c, &err);
     if (st != PNPR_OK) { cli_report_error("info", st, &err); return 1; }
 
     const char *how;

@@ -18,7 +18,8 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: pointnpr lines IN -o OUT.obj|OUT.ply [options]\n"
+            "usage: pointnpr lines IN -o OUT.obj|OUT.ply [--svg OUT.svg] [options]\n"
+            "       pointnpr lines IN --svg OUT.svg [options]\n"
             "  Profile lines (PointWorks): polylines through the directional feature points,\n"
             "  written as OBJ 'l' polylines or as PLY with an edge element (world coordinates).\n"
             "  The features are computed first when IN does not carry them (feature_class,\n"
@@ -46,6 +47,7 @@ static void usage(FILE *f)
             "  --k N, --threshold T feature options used when features are computed\n"
             "  --quiet              no progress on stderr\n", (double)PNPR_SVG_OUTLINE_WIDTH, (double)PNPR_OUTLINE_JUMP);
     cli_outlier_usage(f);
+    cli_columns_usage(f);
 }
 
 /* The SVG drawing's options. */
@@ -132,6 +134,29 @@ static int write_svg(const svg_args *sa, const cli_view *view, const pnpr_polyli
 #endif
 }
 
+/* The output names: kinds from the extensions (or "-" / a special file), not the same file twice,
+ * writable and none of them the input. Returns 0, or the exit code after saying why. OUT may be
+ * NULL when --svg is given. */
+static int check_outputs(const char *in, const char *out, const svg_args *sa)
+{
+    if (out && !cli_has_ext(out, ".ply") && !cli_has_ext(out, ".obj") && !cli_output_is_stream(out)) {
+        fprintf(stderr, "pointnpr lines: the output must end in .obj or .ply (or be - or a device/FIFO for OBJ), got '%s'\n", out);
+        return 2;
+    }
+    if (sa->path && !cli_has_ext(sa->path, ".svg") && !cli_output_is_stream(sa->path)) {
+        fprintf(stderr, "pointnpr lines: --svg wants a name ending in .svg (or -), got '%s'\n", sa->path);
+        return 2;
+    }
+    if (out && sa->path && !strcmp(sa->path, out)) {
+        fprintf(stderr, "pointnpr lines: -o and --svg name the same %s\n",
+                strcmp(out, "-") ? "file" : "output (standard output can take only one)");
+        return 2;
+    }
+    if ((out && !cli_check_output("lines", out, &in, 1, 0)) || (sa->path && !cli_check_output("lines", sa->path, &in, 1, 0)))
+        return 1;
+    return 0;
+}
+
 int cli_lines(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
@@ -139,6 +164,7 @@ int cli_lines(int argc, char **argv)
     pnpr_features_options fo = {0};
     int quiet = 0;
     cli_outliers outliers = {0, 0};
+    const char *columns = NULL;
     svg_args sa;
     memset(&sa, 0, sizeof sa);
     cli_view view;
@@ -150,6 +176,7 @@ int cli_lines(int argc, char **argv)
         if (vo < 0) return 2;
         if (vo > 0) continue;
         int oo = cli_outlier_option(&outliers, "lines", argc, argv, &i);
+        if (oo == 0) oo = cli_columns_option(&columns, "lines", argc, argv, &i);
         if (oo < 0) return 2;
         if (oo > 0) continue;
         int so = svg_option(&sa, argc, argv, &i);
@@ -183,35 +210,20 @@ int cli_lines(int argc, char **argv)
         } else if (!in) in = a;
         else { fprintf(stderr, "pointnpr lines: more than one input given ('%s')\n", a); return 2; }
     }
-    if (!in || !out) { usage(stderr); return 2; }
+    if (!cli_need_in_out("lines", in, out ? out : sa.path, "OUT.obj (or --svg OUT.svg)")) return 2;
     if (!cli_view_check(&view, "lines")) return 2;
     sa.in = in;
 #ifndef PNPR_HAVE_RENDER
     if (sa.path) { fprintf(stderr, "pointnpr lines: --svg needs the renderer, which this build does not have\n"); return 2; }
 #endif
-    int as_ply = cli_has_ext(out, ".ply");
-    if (!as_ply && !cli_has_ext(out, ".obj") && !cli_output_is_stream(out)) {
-        fprintf(stderr, "pointnpr lines: the output must end in .obj or .ply (or be - or a device/FIFO for OBJ), got '%s'\n", out);
-        return 2;
-    }
-    if (sa.path && !cli_has_ext(sa.path, ".svg") && !cli_output_is_stream(sa.path)) {
-        fprintf(stderr, "pointnpr lines: --svg wants a name ending in .svg (or -), got '%s'\n", sa.path);
-        return 2;
-    }
-    if (sa.path && !strcmp(sa.path, "-") && !strcmp(out, "-")) {
-        fprintf(stderr, "pointnpr lines: -o and --svg cannot both be standard output\n");
-        return 2;
-    }
-    if (sa.path && !strcmp(sa.path, out) && strcmp(out, "-")) {
-        fprintf(stderr, "pointnpr lines: -o and --svg name the same file %s\n", out);
-        return 2;
-    }
-    if (!cli_check_output("lines", out, &in, 1, 0) || (sa.path && !cli_check_output("lines", sa.path, &in, 1, 0)))
-        return 1;
+    int rc = check_outputs(in, out, &sa);
+    if (rc) return rc;
+    const int as_ply = out && cli_has_ext(out, ".ply");
 
     cli_progress_state ps = {{0}, 0, 0};
     pnpr_progress prog = {quiet ? NULL : cli_progress_stderr, &ps};
     pnpr_read_options ro = {0};
+    ro.columns = columns;
     ro.progress = prog;
     fo.progress = prog;
     lo.progress = prog;
@@ -246,9 +258,9 @@ int cli_lines(int argc, char **argv)
                 stats.directional_points, stats.merged_nodes, stats.spacing_used, stats.chains, stats.corners,
                 stats.total_length, stats.seconds_graph, stats.seconds_mst, stats.forest_edges, stats.graph_edges,
                 stats.seconds_fit);
-    st = as_ply ? pnpr_write_lines_ply(out, &lines, &err) : pnpr_write_lines_obj(out, &lines, &err);
+    if (out) st = as_ply ? pnpr_write_lines_ply(out, &lines, &err) : pnpr_write_lines_obj(out, &lines, &err);
     pnpr_lines_free(&lines);
     if (st != PNPR_OK) { cli_report_error("lines", st, &err); return 1; }
-    if (!quiet) fprintf(stderr, "wrote %s\n", out);
+    if (!quiet && out) fprintf(stderr, "wrote %s\n", out);
     return 0;
 }

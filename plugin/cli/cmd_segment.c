@@ -36,6 +36,7 @@ static void usage(FILE *f)
             "  --property NAME  labels: the property to read\n"
             "  --threads N, --ascii, --quiet\n");
     cli_outlier_usage(f);
+    cli_columns_usage(f);
 }
 
 static int is_int(double x) { return x == floor(x); }
@@ -46,11 +47,13 @@ int cli_segment(int argc, char **argv)
     double segments = 0, threshold = 0, radius = 0, min_size = 0, k = 0, classes = 0, threads = 0, split = 0, split_min = 0;
     pnpr_write_options wo = {0};
     cli_outliers outliers = {0, 0};
+    const char *columns = NULL;
     int quiet = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         int oo = cli_outlier_option(&outliers, "segment", argc, argv, &i);
+        if (oo == 0) oo = cli_columns_option(&columns, "segment", argc, argv, &i);
         if (oo < 0) return 2;
         if (oo > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
@@ -98,7 +101,7 @@ int cli_segment(int argc, char **argv)
         } else if (!in) in = a;
         else { fprintf(stderr, "pointnpr segment: more than one input given ('%s')\n", a); return 2; }
     }
-    if (!in || !out) { usage(stderr); return 2; }
+    if (!cli_need_in_out("segment", in, out, "OUT.ply")) return 2;
     int out_rc = cli_cloud_output("segment", out, in, &wo);
     if (out_rc) return out_rc;
     if (segments > 0 && threshold > 0) { fprintf(stderr, "pointnpr segment: give --segments or --threshold, not both\n"); return 2; }
@@ -107,6 +110,7 @@ int cli_segment(int argc, char **argv)
     cli_progress_state ps = {{0}, 0, 0};
     pnpr_progress prog = {quiet ? NULL : cli_progress_stderr, &ps};
     pnpr_read_options ro = {0};
+    ro.columns = columns;
     ro.progress = prog;
     wo.progress = prog;
     pnpr_cloud cloud = {0};

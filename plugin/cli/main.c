@@ -45,6 +45,15 @@ void cli_report_error_in(const char *cmd, const char *in, pnpr_status st, const 
         fprintf(stderr, "pointnpr %s: %s: %s\n", cmd, in, pnpr_status_string(st));
 }
 
+int cli_need_in_out(const char *cmd, const char *in, const char *out, const char *out_hint)
+{
+    if (in && out) return 1;
+    fprintf(stderr, "pointnpr %s: %s (pointnpr %s --help lists the options)\n", cmd,
+            !in ? "no input given" : "no output given", cmd);
+    if (in && !out) fprintf(stderr, "  add -o %s\n", out_hint);
+    return 0;
+}
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -54,6 +63,7 @@ static void usage(FILE *f)
             "  convert IN... -o OUT.ply     convert/merge PLY, LAS, OBJ, OFF inputs into one PLY\n"
             "  features IN -o OUT.ply       normals, feature degree, classification, dithering\n"
             "  render IN -o OUT.png         stylised image (sketchy, stipple, painterly, cartoon, points)\n"
+            "  animate IN -o OUT.mp4|DIR/   a camera path (file, --orbit, --flyover) as frames and a video\n"
             "  lines IN -o OUT.obj          profile lines (polylines; OBJ, PLY or SVG)\n"
             "  segment IN -o OUT.ply        segments (jseg, components, rgbgrow, labels)\n"
             "  bench accuracy [--out DIR]   error against run time of the feature analysis\n"
@@ -73,6 +83,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "convert")) return cli_convert(argc - 1, argv + 1);
     if (!strcmp(cmd, "features")) return cli_features(argc - 1, argv + 1);
     if (!strcmp(cmd, "render")) return cli_render(argc - 1, argv + 1);
+    if (!strcmp(cmd, "animate")) return cli_animate(argc - 1, argv + 1);
     if (!strcmp(cmd, "lines")) return cli_lines(argc - 1, argv + 1);
     if (!strcmp(cmd, "segment")) return cli_segment(argc - 1, argv + 1);
     if (!strcmp(cmd, "bench")) return cli_bench(argc - 1, argv + 1);

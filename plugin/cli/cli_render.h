@@ -1,0 +1,58 @@
+/* The render options and steps shared by `render` and `animate` (cli_render_opts.c). Only with
+ * the renderer (PNPR_HAVE_RENDER). */
+#ifndef PNPR_CLI_RENDER_H
+#define PNPR_CLI_RENDER_H
+
+#include "cli.h"
+
+#include <pointnpr/render.h>
+
+typedef struct cli_render_opts {
+    pnpr_draw_options dopt;
+    pnpr_upload_options uopt;
+    pnpr_tone_options tone;
+    double bg[3];                 /* 0..255 */
+    int alpha, quiet, max_tile;
+    cli_outliers outliers;
+    const char *columns;          /* --columns (text point clouds) */
+    cli_view view;
+    const char *style_map_path;
+    pnpr_style_map_entry *smap;   /* read by cli_render_opts_finish */
+    size_t smap_count;
+    int uses[PNPR_STYLE_COUNT_];  /* the styles a frame may draw */
+} cli_render_opts;
+
+void cli_render_opts_init(cli_render_opts *o, int width, int height);
+/* argv[*i] is one of the shared options (style, draw, tone, outline, background, --alpha,
+ * --max-tile, --quiet, the view and outlier options): parses it (advancing *i past its value)
+ * and returns 1; not one of them (or no value follows): 0; a bad value: prints why, returns -1. */
+int cli_render_option(cli_render_opts *o, const char *cmd, int argc, char **argv, int *i);
+/* The usage lines of the shared options (the command's default size). */
+void cli_render_usage(FILE *f, int width, int height);
+/* After parsing: the view check, the background, the style map. Returns 0 after printing why
+ * (a usage error). */
+int cli_render_opts_finish(cli_render_opts *o, const char *cmd);
+void cli_render_opts_free(cli_render_opts *o);
+
+typedef struct cli_render_session {
+    pnpr_cloud cloud;
+    pnpr_gl_context *ctx;
+    pnpr_renderer *ren;
+    cli_progress_state ps;
+    pnpr_progress prog;
+    uint8_t *pixels;              /* view.width x view.height RGBA */
+} cli_render_session;
+
+/* Reads IN and applies the outlier options. Returns 1, or 0 after printing why. */
+int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in);
+/* The key light's "above" is tone_up (the camera's up); then the stage plan, the GL context, the
+ * renderer with the cloud (and the profile lines), the pixel buffer. Returns 1, or 0 after
+ * printing why. */
+int cli_render_start(cli_render_session *s, cli_render_opts *o, const char *cmd, const char *in, const double tone_up[3]);
+/* One image through `camera` (NULL = fit) into s->pixels; tiles report progress unless quiet or
+ * !tile_progress. Returns 1, or 0 after printing why. */
+int cli_render_frame(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in,
+                     const pnpr_camera *camera, int tile_progress, pnpr_render_stats *r_stats);
+void cli_render_end(cli_render_session *s);
+
+#endif

@@ -1,0 +1,425 @@
+#ifdef PNPR_HAVE_RENDER
+/* The options of a stylised frame shared by `render` and `animate` (style, draw, tone, outline,
+ * background, view, outliers), their usage lines, and the steps from a file to pixels: read, the
+ * stage plan, the GL context and renderer, one snapshot. One place, so the two commands draw
+ * the same frame from the same options. */
+#include "cli_render.h"
+
+#include <pointnpr/features.h>
+#include <pointnpr/lines.h>
+#include <pointnpr/plan.h>
+#include <pointnpr/segment.h>
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void cli_render_usage(FILE *f, int width, int height)
+{
+    float w_lines = 0, w_cartoon = 0, w_sketchy = 0; /* the outline widths, as the library says */
+    pnpr_style_outline_default(PNPR_STYLE_LINES, &w_lines);
+    pnpr_style_outline_default(PNPR_STYLE_CARTOON, &w_cartoon);
+    pnpr_style_outline_default(PNPR_STYLE_SKETCHY, &w_sketchy);
+    fprintf(f,
+            "  --style S            points | sketchy | lines | stipple | cartoon | painterly\n"
+            "                       (default points)\n"
+            "  --style-map FILE     intermingled styles: FILE has lines 'LABEL STYLE' (a segment label of\n"
+            "                       IN, PLY property segment or label) and '* STYLE' (the default, else\n"
+            "                       --style); '#' starts a comment\n"
+            "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
+            "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n"
+            "  --stroke-texture T   directional stroke texture 0, 1 or 2 (default 0)\n"
+            "  --size WxH           image size in pixels (default %dx%d)\n"
+            "  --eye X,Y,Z --target X,Y,Z\n"
+            "                       look-at camera in world coordinates (default: the default view,\n"
+            "                       from above the detected ground, framing the content; docs/view.md)\n"
+            "  --up auto|x|y|z|-x|-y|-z|X,Y,Z\n"
+            "                       the up axis (default auto: the file's convention, else the ground\n"
+            "                       plane, else z; with --eye/--target a vector, default 0,0,1)\n"
+            "  --fov DEG            vertical field of view (default 45)\n"
+            "  --camera FILE        the camera from a file (eye/target/up/fov lines, world coordinates)\n"
+            "  --budget N           at most N points per frame (default: all)\n"
+            "  --density D          at most D points per covered screen pixel (default: no limit)\n"
+            "  --seed S             continuous resolution queue seed (default 0)\n"
+            "  --point-scale F      disk radius multiplier (default 1)\n"
+            "  --line-width PX      lines: stroke width in pixels (default 2)\n"
+            "  --line-min PX        lines: profile lines shorter than PX on screen are left out (scan\n"
+            "                       noise scribbles; default %g)\n"
+            "  --dot-size PX        stipple: dot diameter in pixels (default 2.5)\n"
+            "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
+            "                       (PLY property segment or label, pointnpr segment; default 4)\n"
+            "  --outline-scale F    cartoon: the gap-closing disks under the splats are F times their size\n"
+            "                       (default 2; the outline itself: --outline-width)\n"
+            "  --tone S             what sets how dark a point is drawn (hatch and stipple density,\n"
+            "                       the shading of colourless clouds): auto | color | light (a key light\n"
+            "                       on the normals) | both (default auto: both when IN has colours)\n"
+            "  --tone-gamma G       tone curve: darkness^G, > 1 keeps mid tones light (default 1.8)\n"
+            "  --tone-contrast C    tone curve: contrast around mid grey (default 1)\n"
+            "  --light X,Y,Z        direction towards the key light (default: from above, front left)\n"
+            "  --outline on|off     silhouettes and occluding contours (default: on for lines and cartoon,\n"
+            "                       off for the others; sketchy reads well with them on)\n"
+            "  --outline-width PX   their width in pixels (default: lines %g, cartoon %g, sketchy %g)\n"
+            "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default %g)\n"
+            "  --outline-hole F     gaps enclosed within F projected disk extents are sampling holes,\n"
+            "                       not outlines (default %g)\n"
+            "  --paint-bins N       painterly: feature-degree bins = passes, 1..16 (default 4)\n"
+            "  --faint F            lines: draw the cloud faintly under the lines, F in (0,1]\n"
+            "                       of the point colour (default: lines only)\n"
+            "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
+            "  --alpha              transparent background, PNG with alpha\n"
+            "  --max-tile PX        render in tiles of at most PX pixels (default: the GL limit;\n"
+            "                       larger images are always tiled, progress per tile on stderr)\n"
+            "  --quiet              no progress on stderr\n"
+            "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
+            "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
+            "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n",
+            width, height, (double)PNPR_LINE_MIN_PX, (double)w_lines, (double)w_cartoon, (double)w_sketchy,
+            (double)PNPR_OUTLINE_JUMP, (double)PNPR_OUTLINE_HOLE);
+    cli_outlier_usage(f);
+    cli_columns_usage(f);
+}
+
+
+/* Reads a style map file: lines "LABEL STYLE" and "* STYLE" (the default), '#' comments, blank
+ * lines. Returns 0 with a message naming the line on a bad line. */
+static int read_style_map(const char *cmd, const char *path, pnpr_style_map_entry **r_map, size_t *r_count, pnpr_style *r_default,
+                          int *r_have_default)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) { fprintf(stderr, "pointnpr %s: --style-map: cannot open '%s': %s\n", cmd, path, strerror(errno)); return 0; }
+    char line[512];
+    size_t cap = 0, n = 0;
+    pnpr_style_map_entry *map = NULL;
+    int ok = 1, lineno = 0;
+    while (ok && fgets(line, sizeof line, f)) {
+        lineno++;
+        char *hash = strchr(line, '#');
+        if (hash) *hash = 0;
+        char a[256], b[256], extra[2];
+        int got = sscanf(line, "%255s %255s %1s", a, b, extra);
+        if (got <= 0) continue; /* blank */
+        pnpr_style s;
+        if (got != 2) {
+            fprintf(stderr, "pointnpr %s: --style-map %s:%d: want 'LABEL STYLE' or '* STYLE'\n", cmd, path, lineno);
+            ok = 0;
+        } else if (pnpr_style_from_name(b, &s) != PNPR_OK) {
+            fprintf(stderr, "pointnpr %s: --style-map %s:%d: unknown style '%s' (points, sketchy, lines, stipple, cartoon, painterly)\n", cmd, path, lineno, b);
+            ok = 0;
+        } else if (!strcmp(a, "*")) {
+            *r_default = s;
+            *r_have_default = 1;
+        } else {
+            char *end;
+            errno = 0;
+            unsigned long long v = strtoull(a, &end, 10);
+            if (errno || end == a || *end || a[0] == '-' || v > 0xFFFFFFFFull) {
+                fprintf(stderr, "pointnpr %s: --style-map %s:%d: label '%s' is not an integer in 0..4294967295 or '*'\n", cmd, path, lineno, a);
+                ok = 0;
+            } else {
+                if (n == cap) {
+                    cap = cap ? 2 * cap : 16;
+                    pnpr_style_map_entry *m2 = realloc(map, cap * sizeof *m2);
+                    if (!m2) { fprintf(stderr, "pointnpr %s: --style-map: out of memory\n", cmd); ok = 0; break; }
+                    map = m2;
+                }
+                map[n].label = (uint32_t)v;
+                map[n].style = s;
+                n++;
+            }
+        }
+    }
+    fclose(f);
+    if (!ok) { free(map); return 0; }
+    *r_map = map;
+    *r_count = n;
+    return 1;
+}
+
+/* Progress of a tiled snapshot: one line per tile (single-frame images print nothing). */
+static int tile_progress(void *user, const char *stage, double fraction)
+{
+    (void)user;
+    if (strcmp(stage, "tile 1/1") != 0) fprintf(stderr, "render: %s (%.0f %%)\n", stage, 100.0 * fraction);
+    return 0;
+}
+
+/* Runs the stage plan (pnpr_plan_make, the one `pointnpr explain` prints) for the styles this
+ * frame draws: features (only the outputs the styles need, the dithering following `tone`) and
+ * the cartoon's segments. Returns 0 after printing why. */
+static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, const pnpr_draw_options *dopt, const int *uses,
+                    const pnpr_tone_options *tone, int quiet, pnpr_progress prog)
+{
+    pnpr_plan_request req = {0};
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
+        if (uses[s]) req.styles |= 1u << s;
+    req.sketch_variant = dopt->sketch_variant;
+    req.outline = dopt->outline;
+    pnpr_plan plan;
+    pnpr_status st = pnpr_plan_make(&req, cloud, &plan);
+    if (st == PNPR_OK && plan.want) {
+        if (!quiet) fprintf(stderr, "%s: computing %s (pointnpr explain shows the plan; pointnpr features saves them)\n", in,
+                            (plan.want & ~(uint32_t)(PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) ? "features" : "normals");
+        pnpr_features_options fo = {0};
+        fo.progress = prog;
+        fo.want = plan.want;
+        fo.tone = *tone;
+        st = pnpr_compute_features(cloud, &fo, NULL);
+    }
+    if (st != PNPR_OK) { fprintf(stderr, "pointnpr %s: %s: features: %s\n", cmd, in, pnpr_status_string(st)); return 0; }
+    if (plan.segments != PNPR_PLAN_SEGMENTS_JSEG || cloud->count == 0) return 1;
+    if (!quiet) fprintf(stderr, "%s: segmenting the colours (JSEG) for the cartoon's flat regions (pointnpr segment saves them)\n", in);
+    if ((st = pnpr_cloud_alloc_labels(cloud)) == PNPR_OK) {
+        pnpr_jseg_options jo = {0};
+        jo.progress = prog;
+        pnpr_segment_info info;
+        st = pnpr_segment_jseg(cloud->xyz, cloud->rgb, cloud->count, &jo, cloud->label, &info);
+        if (st == PNPR_OK && !quiet) fprintf(stderr, "%s: %u segments\n", in, (unsigned)info.segment_count);
+    }
+    if (st != PNPR_OK) { fprintf(stderr, "pointnpr %s: %s: segments: %s\n", cmd, in, pnpr_status_string(st)); return 0; }
+    return 1;
+}
+
+/* The profile lines of the lines style, handed to the renderer. Returns 0 after printing why. */
+static int set_profile_lines(const char *cmd, const char *in, const pnpr_cloud *cloud, pnpr_renderer *ren, int quiet, pnpr_progress prog)
+{
+    pnpr_polylines lines = {0};
+    pnpr_lines_options lo = {0};
+    lo.progress = prog;
+    pnpr_lines_stats ls;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_profile_lines(cloud, &lo, &lines, &ls);
+    if (st != PNPR_OK) { fprintf(stderr, "pointnpr %s: %s: profile lines: %s\n", cmd, in, pnpr_status_string(st)); return 0; }
+    if (!quiet) fprintf(stderr, "%s: %zu profile lines, total length %.6g\n", in, lines.count, ls.total_length);
+    st = pnpr_renderer_set_lines(ren, &lines, &err);
+    pnpr_lines_free(&lines);
+    if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
+    return 1;
+}
+
+
+#define BAD(...) do { fprintf(stderr, "pointnpr %s: ", cmd); fprintf(stderr, __VA_ARGS__); return -1; } while (0)
+
+/* Style, sizes and counts of the drawing. 1 parsed (*ip advanced), 0 not one of them, -1 bad. */
+static int style_option(cli_render_opts *o, const char *cmd, const char *a, const char *v, int *ip)
+{
+    int i = *ip;
+    double x;
+    if (!v) return 0;
+
+        if (0) {}
+        else if (!strcmp(a, "--style")) {
+            pnpr_style s;
+            if (pnpr_style_from_name(v, &s) != PNPR_OK) { BAD("--style wants points, sketchy, lines, stipple, cartoon or painterly, got '%s'\n", v); }
+            o->dopt.style = s; i++;
+        } else if (v && !strcmp(a, "--style-map")) {
+            o->style_map_path = v; i++;
+        } else if (v && !strcmp(a, "--sketch")) {
+            if (!strcmp(v, "a")) o->dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
+            else if (!strcmp(v, "b")) o->dopt.sketch_variant = PNPR_SKETCH_NONDIRECTIONAL;
+            else if (!strcmp(v, "c")) o->dopt.sketch_variant = PNPR_SKETCH_ALL;
+            else { BAD("--sketch wants a, b or c, got '%s'\n", v); }
+            i++;
+        } else if (v && !strcmp(a, "--stroke-texture")) {
+            if (!cli_parse_number(v, 0, 2, &x) || x != floor(x)) { BAD("--stroke-texture wants 0, 1 or 2, got '%s'\n", v); }
+            o->dopt.stroke_texture = (int)x; i++;
+        } else if (v && !strcmp(a, "--budget")) {
+            if (!cli_parse_number(v, 1, 4e9, &x) || x != floor(x)) { BAD("--budget wants a positive integer, got '%s'\n", v); }
+            o->dopt.budget = (size_t)x; i++;
+        } else if (v && !strcmp(a, "--density")) {
+            if (!cli_parse_number(v, 1e-9, 1e9, &x)) { BAD("--density wants a positive number, got '%s'\n", v); }
+            o->dopt.density = (float)x; i++;
+        } else if (v && !strcmp(a, "--seed")) {
+            char *end;
+            errno = 0;
+            unsigned long long s = strtoull(v, &end, 10);
+            if (errno || end == v || *end || v[0] == '-') { BAD("--seed wants a non-negative integer, got '%s'\n", v); }
+            o->uopt.seed = s; i++;
+        } else if (v && !strcmp(a, "--point-scale")) {
+            if (!cli_parse_number(v, 1e-3, 1e3, &x)) { BAD("--point-scale wants a positive number, got '%s'\n", v); }
+            o->dopt.point_scale = (float)x; i++;
+        } else if (v && !strcmp(a, "--line-width")) {
+            if (!cli_parse_number(v, 1e-2, 1e3, &x)) { BAD("--line-width wants a positive number of pixels, got '%s'\n", v); }
+            o->dopt.line_width = (float)x; i++;
+        } else if (v && !strcmp(a, "--line-min")) {
+            if (!cli_parse_number(v, 0.01, 1e4, &x)) { BAD("--line-min wants a positive number of pixels, got '%s'\n", v); }
+            o->dopt.line_min_px = (float)x; i++;
+        } else if (v && !strcmp(a, "--dot-size")) {
+            if (!cli_parse_number(v, 1e-2, 1e3, &x)) { BAD("--dot-size wants a positive number of pixels, got '%s'\n", v); }
+            o->dopt.dot_size = (float)x; i++;
+        } else if (v && !strcmp(a, "--levels")) {
+            if (!cli_parse_number(v, 2, 256, &x) || x != floor(x)) { BAD("--levels wants an integer in 2..256, got '%s'\n", v); }
+            o->dopt.levels = (int)x; i++;
+        } else if (v && !strcmp(a, "--outline-scale")) {
+            if (!cli_parse_number(v, 1, 100, &x)) { BAD("--outline-scale wants a number >= 1, got '%s'\n", v); }
+            o->dopt.mask_scale = (float)x; i++;
+        } else return 0;
+    *ip = i;
+    return 1;
+}
+
+
+/* Tone, outlines, painterly bins, faint points, background. As style_option. */
+static int look_option(cli_render_opts *o, const char *cmd, const char *a, const char *v, int *ip)
+{
+    int i = *ip;
+    double x;
+    if (!v) return 0;
+    if (0) {}
+
+        else if (v && !strcmp(a, "--tone")) {
+            static const char *const names[] = {"auto", "color", "light", "both"};
+            int t = 0;
+            while (t < 4 && strcmp(v, names[t])) t++;
+            if (t == 4) { BAD("--tone wants auto, color, light or both, got '%s'\n", v); }
+            o->tone.source = (pnpr_tone_source)t; i++;
+        } else if (v && !strcmp(a, "--tone-gamma")) {
+            if (!cli_parse_number(v, 0.05, 20, &x)) { BAD("--tone-gamma wants a number in [0.05, 20], got '%s'\n", v); }
+            o->tone.gamma = (float)x; i++;
+        } else if (v && !strcmp(a, "--tone-contrast")) {
+            if (!cli_parse_number(v, 0.01, 100, &x)) { BAD("--tone-contrast wants a number in [0.01, 100], got '%s'\n", v); }
+            o->tone.contrast = (float)x; i++;
+        } else if (v && !strcmp(a, "--light")) {
+            if (!cli_parse_list(v, 3, o->tone.light) || (o->tone.light[0] == 0 && o->tone.light[1] == 0 && o->tone.light[2] == 0)) {
+                BAD("--light wants a non-zero direction X,Y,Z, got '%s'\n", v);
+            }
+            i++;
+        } else if (v && !strcmp(a, "--outline")) {
+            if (strcmp(v, "on") && strcmp(v, "off")) { BAD("--outline wants on or off, got '%s'\n", v); }
+            o->dopt.outline = !strcmp(v, "on") ? 1 : -1; i++;
+        } else if (v && !strcmp(a, "--outline-width")) {
+            if (!cli_parse_number(v, 0.1, 64, &x)) { BAD("--outline-width wants pixels in [0.1, 64], got '%s'\n", v); }
+            o->dopt.outline_width = (float)x; i++;
+        } else if (v && !strcmp(a, "--outline-jump")) {
+            if (!cli_parse_number(v, 0.01, 1e3, &x)) { BAD("--outline-jump wants a positive number, got '%s'\n", v); }
+            o->dopt.outline_jump = (float)x; i++;
+        } else if (v && !strcmp(a, "--outline-hole")) {
+            if (!cli_parse_number(v, 0.01, 1e3, &x)) { BAD("--outline-hole wants a positive number, got '%s'\n", v); }
+            o->dopt.outline_hole = (float)x; i++;
+        } else if (v && !strcmp(a, "--paint-bins")) {
+            if (!cli_parse_number(v, 1, 16, &x) || x != floor(x)) { BAD("--paint-bins wants an integer in 1..16, got '%s'\n", v); }
+            o->uopt.painterly_bins = (uint32_t)x; i++;
+        } else if (v && !strcmp(a, "--faint")) {
+            if (!cli_parse_number(v, 1e-6, 1, &x)) { BAD("--faint wants a number in (0,1], got '%s'\n", v); }
+            o->dopt.faint = (float)x; i++;
+        } else if (v && !strcmp(a, "--background")) {
+            if (!cli_parse_list(v, 3, o->bg) || o->bg[0] < 0 || o->bg[0] > 255 || o->bg[1] < 0 || o->bg[1] > 255 || o->bg[2] < 0 || o->bg[2] > 255) {
+                BAD("--background wants R,G,B in 0..255, got '%s'\n", v);
+            }
+            i++;
+        } else return 0;
+    *ip = i;
+    return 1;
+}
+
+int cli_render_option(cli_render_opts *o, const char *cmd, int argc, char **argv, int *ip)
+{
+    const char *a = argv[*ip], *v = *ip + 1 < argc ? argv[*ip + 1] : NULL;
+    double x;
+    int r = cli_view_option(&o->view, cmd, argc, argv, ip);
+    if (r == 0) r = cli_outlier_option(&o->outliers, cmd, argc, argv, ip);
+    if (r == 0) r = cli_columns_option(&o->columns, cmd, argc, argv, ip);
+    if (r == 0) r = style_option(o, cmd, a, v, ip);
+    if (r == 0) r = look_option(o, cmd, a, v, ip);
+    if (r != 0) return r;
+    if (!strcmp(a, "--quiet")) o->quiet = 1;
+    else if (!strcmp(a, "--alpha")) o->alpha = 1;
+    else if (v && !strcmp(a, "--max-tile")) {
+        if (!cli_parse_number(v, 16, 1e6, &x) || x != floor(x)) BAD("--max-tile wants an integer >= 16, got '%s'\n", v);
+        o->max_tile = (int)x;
+        (*ip)++;
+    } else return 0;
+    return 1;
+}
+
+void cli_render_opts_init(cli_render_opts *o, int width, int height)
+{
+    memset(o, 0, sizeof *o);
+    cli_view_init(&o->view, width, height);
+    o->bg[0] = o->bg[1] = o->bg[2] = 255;
+}
+
+int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
+{
+    if (!cli_view_check(&o->view, cmd)) return 0;
+    for (int c = 0; c < 3; c++) o->dopt.background[c] = (float)(o->bg[c] / 255.0);
+    o->dopt.background[3] = o->alpha ? 0.0f : 1.0f;
+    int map_has_default = 0;
+    pnpr_style map_default = o->dopt.style;
+    if (o->style_map_path && !read_style_map(cmd, o->style_map_path, &o->smap, &o->smap_count, &map_default, &map_has_default))
+        return 0;
+    if (map_has_default) o->dopt.style = map_default;
+    o->dopt.style_map = o->smap;
+    o->dopt.style_map_count = o->smap_count;
+    memset(o->uses, 0, sizeof o->uses); /* the default and the mapped styles */
+    o->uses[o->dopt.style] = 1;
+    for (size_t m = 0; m < o->smap_count; m++) o->uses[o->smap[m].style] = 1;
+    return 1;
+}
+
+void cli_render_opts_free(cli_render_opts *o)
+{
+    free(o->smap);
+    o->smap = NULL;
+    o->smap_count = 0;
+}
+
+int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in)
+{
+    memset(s, 0, sizeof *s);
+    s->prog.fn = o->quiet ? NULL : cli_progress_stderr;
+    s->prog.user = &s->ps;
+    pnpr_read_options ro = {0};
+    ro.progress = s->prog;
+    ro.columns = o->columns;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_read_file(in, &ro, &s->cloud, &err);
+    if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
+    return cli_outliers_apply(&o->outliers, cmd, in, &s->cloud, o->quiet, NULL) == 0;
+}
+
+int cli_render_start(cli_render_session *s, cli_render_opts *o, const char *cmd, const char *in, const double tone_up[3])
+{
+    if (tone_up) memcpy(o->tone.up, tone_up, sizeof o->tone.up);
+    o->uopt.tone = o->tone;
+    if (!run_plan(cmd, in, &s->cloud, &o->dopt, o->uses, &o->tone, o->quiet, s->prog)) return 0;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_gl_context_create(&s->ctx, &err);
+    if (st == PNPR_OK) st = pnpr_renderer_create(NULL, &s->ren, &err);
+    if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
+    st = pnpr_renderer_set_cloud(s->ren, &s->cloud, &o->uopt, &err);
+    if (st != PNPR_OK) { cli_report_error_in(cmd, in, st, &err); return 0; }
+    if (o->uses[PNPR_STYLE_LINES] && !set_profile_lines(cmd, in, &s->cloud, s->ren, o->quiet, s->prog)) return 0;
+    size_t bytes = 0;
+    st = pnpr_image_bytes(o->view.width, o->view.height, 0, &bytes, &err);
+    if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
+    s->pixels = malloc(bytes);
+    if (!s->pixels) {
+        fprintf(stderr, "pointnpr %s: cannot allocate %zu bytes for a %dx%d image\n", cmd, bytes, o->view.width, o->view.height);
+        return 0;
+    }
+    return 1;
+}
+
+int cli_render_frame(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in,
+                     const pnpr_camera *camera, int tiles, pnpr_render_stats *r_stats)
+{
+    pnpr_snapshot_options so = {0};
+    so.max_tile_size = o->max_tile;
+    so.unpremultiply = o->alpha;
+    so.progress.fn = o->quiet || !tiles ? NULL : tile_progress;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_renderer_snapshot(s->ren, camera, &o->dopt, o->view.width, o->view.height, &so, s->pixels, r_stats, &err);
+    if (st != PNPR_OK) cli_report_error_in(cmd, in, st, &err);
+    return st == PNPR_OK;
+}
+
+void cli_render_end(cli_render_session *s)
+{
+    free(s->pixels);
+    pnpr_renderer_destroy(s->ren);
+    pnpr_gl_context_destroy(s->ctx);
+    pnpr_cloud_free(&s->cloud);
+    memset(s, 0, sizeof *s);
+}
+#endif
