@@ -72,7 +72,12 @@ static pnpr_file_format io_sniff(const unsigned char *b, size_t n)
         return PNPR_FORMAT_PLY;
     if (n >= 4 && memcmp(b, "LASF", 4) == 0)
         return PNPR_FORMAT_LAS;
-    size_t i = 0;
+    size_t i = 0; /* OFF: after blank and '#' comment lines (as CGAL's files have them) */
+    while (i < n) {
+        if (b[i] == ' ' || b[i] == '\t' || b[i] == '\r' || b[i] == '\n') i++;
+        else if (b[i] == '#') while (i < n && b[i] != '\n') i++;
+        else break;
+    }
     static const char prefix[] = "STCN4n";
     for (size_t k = 0; k < sizeof prefix - 1 && i < n; k++)
         if (b[i] == (unsigned char)prefix[k]) i++;
@@ -104,7 +109,7 @@ static pnpr_status io_sniff_file(const char *path, pnpr_file_format *r_format, p
     FILE *f = fopen(path, "rb");
     if (!f)
         return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, strerror(errno));
-    unsigned char head[16];
+    unsigned char head[4096]; /* room for the comment lines before an OFF keyword */
     size_t n = fread(head, 1, sizeof head, f);
     int failed = ferror(f);
     int saved = errno;

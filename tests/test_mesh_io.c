@@ -559,11 +559,26 @@ static void test_progress(void)
     pnpr_cloud_free(&c);
 }
 
+/* An OFF without extension is known by its keyword, also after comment lines (CGAL's files). */
+static void test_off_sniffed(void)
+{
+    pnpr_cloud c = {0};
+    pnpr_error err;
+    CHECK_STATUS(read_text(SCRATCH("commented_noext"), "# written by a tool\n\n# another comment\nOFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                           &c, &err), PNPR_OK);
+    CHECK(c.count == 3 && c.faces.count == 1);
+    pnpr_cloud_free(&c);
+    /* comments alone are no format */
+    CHECK_STATUS(read_text(SCRATCH("comments_noext"), "# nothing\n# else\n", &c, &err), PNPR_ERR_UNSUPPORTED);
+    pnpr_cloud_free(&c);
+}
+
 int main(void)
 {
     test_obj();
     test_off();
     test_off_real();
+    test_off_sniffed();
     test_errors();
     test_off_counts();
     test_off_body();
