@@ -15,6 +15,11 @@ pnpr_status pnpr_parallel_for(size_t n, size_t chunk, int threads, pnpr_range_fn
 /* Prefixes err->message with "path: " (truncating the message's end if needed). NULL err ok. */
 void pnpr_error_prefix_path(pnpr_error *err, const char *path);
 
+/* The lines of a text in memory (core/text_file.c): copies the line that starts at *pos, without
+ * its '\n' (a NUL byte ends its content), into buf (cap bytes, NUL-terminated) and moves *pos
+ * past it. 1: a line; 0: the end of the text; -1: a line of cap - 1 characters or more. */
+int pnpr_text_line(const char *text, size_t size, size_t *pos, char *buf, size_t cap);
+
 /* Monotonic clock in seconds. */
 double pnpr_now(void);
 

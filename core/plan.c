@@ -16,9 +16,9 @@ int pnpr_plan_cloud_has(const pnpr_cloud *c, uint32_t want)
 {
     if (!c) return 0;
     if ((want & (PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) && !c->normal) return 0;
-    if ((want & PNPR_WANT_DEGREE) && !pnpr_cloud_find_property(c, "feature_degree")) return 0;
+    if ((want & PNPR_WANT_DEGREE) && !pnpr_cloud_find_property(c, PNPR_PROP_FEATURE_DEGREE)) return 0;
     if (want & (PNPR_WANT_CLASSES | PNPR_WANT_DITHER)) {
-        static const char *const names[] = {"feature_class", "feature_dir_x", "feature_dir_y", "feature_dir_z"};
+        static const char *const names[] = {PNPR_PROP_FEATURE_CLASS, PNPR_PROP_FEATURE_DIR_X, PNPR_PROP_FEATURE_DIR_Y, PNPR_PROP_FEATURE_DIR_Z};
         for (int i = 0; i < 4; i++)
             if (!pnpr_cloud_find_property(c, names[i])) return 0;
     }

@@ -123,8 +123,8 @@ typedef struct feat_run {
     int permuted;
 } feat_run;
 
-static const char *const feat_names[5] = {"feature_degree", "feature_confidence", "feature_dir_x", "feature_dir_y",
-                                          "feature_dir_z"};
+static const char *const feat_names[5] = {PNPR_PROP_FEATURE_DEGREE, PNPR_PROP_FEATURE_CONFIDENCE, PNPR_PROP_FEATURE_DIR_X, PNPR_PROP_FEATURE_DIR_Y,
+                                          PNPR_PROP_FEATURE_DIR_Z};
 
 /* The stages the wanted outputs need (docs/features.md, "Computing only what is needed"), and
  * the output properties, allocated first: a cloud that cannot hold them fails before the work. */
@@ -141,10 +141,10 @@ static pnpr_status features_outputs(feat_run *f)
     int nout = f->need_classify ? 5 : (f->need_degree ? 1 : 0);
     for (int i = 0; i < nout; i++)
         if ((st = pnpr_cloud_add_property(cloud, feat_names[i], PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK) return st;
-    if (f->need_classify && (st = pnpr_cloud_add_property(cloud, "feature_class", PNPR_TYPE_UINT8, NULL)) != PNPR_OK)
+    if (f->need_classify && (st = pnpr_cloud_add_property(cloud, PNPR_PROP_FEATURE_CLASS, PNPR_TYPE_UINT8, NULL)) != PNPR_OK)
         return st;
     for (int i = 0; i < nout; i++) f->out[i] = pnpr_cloud_find_property(cloud, feat_names[i])->data; /* after all adds */
-    f->cls = f->need_classify ? pnpr_cloud_find_property(cloud, "feature_class")->data : NULL;
+    f->cls = f->need_classify ? pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_CLASS)->data : NULL;
     /* input normals are kept unless asked otherwise, or unless most of them are missing (zero or
      * non-finite: a layer that carries a normal field without data) */
     f->keep_normals = cloud->normal && !f->opts->recompute_normals;

@@ -667,10 +667,10 @@ pnpr_status pnpr_profile_lines(const pnpr_cloud *cloud, const pnpr_lines_options
                                pnpr_polylines *r_lines, pnpr_lines_stats *r_stats)
 {
     if (!cloud || !r_lines || (cloud->count && !cloud->xyz)) return PNPR_ERR_INVALID_ARGUMENT;
-    const pnpr_property *cls = pnpr_cloud_find_property(cloud, "feature_class");
-    const pnpr_property *dx = pnpr_cloud_find_property(cloud, "feature_dir_x");
-    const pnpr_property *dy = pnpr_cloud_find_property(cloud, "feature_dir_y");
-    const pnpr_property *dz = pnpr_cloud_find_property(cloud, "feature_dir_z");
+    const pnpr_property *cls = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_CLASS);
+    const pnpr_property *dx = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_X);
+    const pnpr_property *dy = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_Y);
+    const pnpr_property *dz = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_Z);
     if (!cls || !dx || !dy || !dz) {
         memset(r_lines, 0, sizeof *r_lines);
         return PNPR_ERR_NOT_FOUND;

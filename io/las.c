@@ -259,13 +259,13 @@ static pnpr_status las_read_points(const unsigned char *d, const las_header *h, 
     if (st == PNPR_OK) st = pnpr_cloud_alloc_src_xyz(cloud);
     if (st == PNPR_OK && lay.rgb >= 0) st = pnpr_cloud_alloc_rgb(cloud);
     pnpr_property *intensity = NULL, *klass = NULL;
-    if (st == PNPR_OK) st = pnpr_cloud_add_property(cloud, "intensity", PNPR_TYPE_UINT16, &intensity);
-    if (st == PNPR_OK) st = pnpr_cloud_add_property(cloud, "classification", PNPR_TYPE_UINT8, &klass);
+    if (st == PNPR_OK) st = pnpr_cloud_add_property(cloud, PNPR_PROP_INTENSITY, PNPR_TYPE_UINT16, &intensity);
+    if (st == PNPR_OK) st = pnpr_cloud_add_property(cloud, PNPR_PROP_CLASSIFICATION, PNPR_TYPE_UINT8, &klass);
     if (st != PNPR_OK)
         return las_fail(err, st, -1, "cannot allocate %zu points", n);
     /* add_property may have moved the array: look both up again */
-    intensity = pnpr_cloud_find_property(cloud, "intensity");
-    klass = pnpr_cloud_find_property(cloud, "classification");
+    intensity = pnpr_cloud_find_property(cloud, PNPR_PROP_INTENSITY);
+    klass = pnpr_cloud_find_property(cloud, PNPR_PROP_CLASSIFICATION);
     uint16_t *inten = intensity->data;
     uint8_t *cls = klass->data;
     const uint8_t class_mask = (lay.legacy && h->minor >= 1) ? 0x1Fu : 0xFFu;

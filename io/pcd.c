@@ -474,7 +474,7 @@ static pnpr_status assign_roles(pcd_header *h, pnpr_error *err)
         if (f->role == ROLE_EXTRA && !h->has_rgb && (pnpr_token_is(f->name, "rgb") || pnpr_token_is(f->name, "rgba")) &&
             f->size == 4 && f->count == 1)
             f->role = ROLE_RGB, h->has_rgb = 1;
-        else if (f->role == ROLE_EXTRA && !h->has_label && pnpr_token_is(f->name, "label") && f->type != 'F' && f->size <= 4 &&
+        else if (f->role == ROLE_EXTRA && !h->has_label && pnpr_token_is(f->name, PNPR_PROP_LABEL) && f->type != 'F' && f->size <= 4 &&
                  f->count == 1)
             f->role = ROLE_LABEL, h->has_label = 1;
         if (f->role == ROLE_EXTRA) { f->prop = h->nprops; h->nprops += f->count; }
@@ -1042,8 +1042,8 @@ static void standard_cols(const pnpr_cloud *c, pcd_plan *pl)
     for (size_t a = 0; c->normal && a < 3; a++) add_col(pl, nrm[a], 'F', 4, COL_NX, a);
     if (c->rgb && !pnpr_cloud_find_property(c, "rgb")) add_col(pl, "rgb", 'F', 4, COL_RGB, 0);
     else if (c->rgb && !pnpr_cloud_find_property(c, "rgba")) add_col(pl, "rgba", 'U', 4, COL_RGB, 0);
-    if (c->label && !pnpr_cloud_find_property(c, "label")) add_col(pl, "label", 'U', 4, COL_LABEL, 0);
-    else if (c->label && !pnpr_cloud_find_property(c, "segment")) add_col(pl, "segment", 'U', 4, COL_LABEL, 0);
+    if (c->label && !pnpr_cloud_find_property(c, PNPR_PROP_LABEL)) add_col(pl, PNPR_PROP_LABEL, 'U', 4, COL_LABEL, 0);
+    else if (c->label && !pnpr_cloud_find_property(c, PNPR_PROP_SEGMENT)) add_col(pl, PNPR_PROP_SEGMENT, 'U', 4, COL_LABEL, 0);
 }
 
 static int has_kind(const pcd_plan *pl, int kind)

@@ -487,7 +487,7 @@ static pnpr_status assign_roles(ply_header *h, int *double_xyz, pnpr_error *err)
     }
     for (size_t i = 0; i < v->nprops; i++) {
         ply_prop *p = &v->props[i];
-        if (p->role == ROLE_EXTRA && type_is_int(p->type) && (pnpr_token_is(p->name, "label") || pnpr_token_is(p->name, "segment"))) {
+        if (p->role == ROLE_EXTRA && type_is_int(p->type) && (pnpr_token_is(p->name, PNPR_PROP_LABEL) || pnpr_token_is(p->name, PNPR_PROP_SEGMENT))) {
             p->role = ROLE_LABEL;
             break;
         }
@@ -1580,7 +1580,7 @@ pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
     const pnpr_ply_encoding enc = opts ? opts->encoding : PNPR_PLY_BINARY_LE;
     const int ascii = enc == PNPR_PLY_ASCII;
     int use_double, colour_set = 0, wide_faces = 0;
-    const char *label_name = "segment";
+    const char *label_name = PNPR_PROP_SEGMENT;
     ply_out o;
 
     if (err) { err->message[0] = '\0'; err->line = 0; err->offset = -1; }
@@ -1601,9 +1601,9 @@ pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
             return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                            "write ply: extra properties use every colour name (red, diffuse_red, r ...)");
     }
-    if (cloud->label && name_used(cloud, "segment")) {
-        label_name = "label";
-        if (name_used(cloud, "label"))
+    if (cloud->label && name_used(cloud, PNPR_PROP_SEGMENT)) {
+        label_name = PNPR_PROP_LABEL;
+        if (name_used(cloud, PNPR_PROP_LABEL))
             return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                            "write ply: extra properties 'segment' and 'label' leave no name for the labels");
     }

@@ -193,7 +193,7 @@ static int tx_role_of(pnpr_token t)
     static const char *const names[][3] = {{"x", "", ""}, {"y", "", ""}, {"z", "", ""},
                                            {"nx", "normal_x", ""}, {"ny", "normal_y", ""}, {"nz", "normal_z", ""},
                                            {"r", "red", ""}, {"g", "green", ""}, {"b", "blue", ""},
-                                           {"label", "segment", ""}, {"_", "skip", ""}};
+                                           {PNPR_PROP_LABEL, PNPR_PROP_SEGMENT, ""}, {"_", "skip", ""}};
     for (int role = 0; role <= R_SKIP; role++)
         for (int k = 0; k < 3 && names[role][k][0]; k++)
             if (tx_lower_is(t, names[role][k])) return role;
@@ -269,8 +269,8 @@ static pnpr_status tx_columns_option(tx_rd *r, const char *spec)
 /* The defaults of the format for n values (see the top of the file). */
 static pnpr_status tx_columns_default(tx_rd *r, size_t n)
 {
-    static const char *const pts4[] = {"x", "y", "z", "intensity"}, *const pts6[] = {"x", "y", "z", "r", "g", "b"},
-                             *const pts7[] = {"x", "y", "z", "intensity", "r", "g", "b"},
+    static const char *const pts4[] = {"x", "y", "z", PNPR_PROP_INTENSITY}, *const pts6[] = {"x", "y", "z", "r", "g", "b"},
+                             *const pts7[] = {"x", "y", "z", PNPR_PROP_INTENSITY, "r", "g", "b"},
                              *const n6[] = {"x", "y", "z", "nx", "ny", "nz"};
     if (n < 3)
         return tx_fail(r, PNPR_ERR_FORMAT, r->line, "%zu value%s on the first data line: a point needs x y z", n,

@@ -1,6 +1,10 @@
 /* Camera path files (camera_path.h, docs/export.md): the camera-file lines (eye, target, up, fov)
- * per key, each key opened by "time T", "loop" to close the path. Errors name FILE:LINE. */
+ * per key, each key opened by "time T", "loop" to close the path; and camera files, the same
+ * lines for one camera without "time" and "loop". Both parsed from memory (fuzzed:
+ * tests/fuzz_camera.c). Errors name FILE:LINE. */
 #include "camera_path_internal.h"
+
+#include "../core/internal.h"
 
 #include <pointnpr/output.h>
 
@@ -14,7 +18,9 @@ typedef struct path_reader {
     pnpr_camera_path *path;
     size_t cap;
     int implicit;              /* camera lines came before any "time": one key at time 0 */
-    int have_eye, have_target; /* of the key being read */
+    int single;                /* a camera file: no "time" or "loop", one message for bad lines */
+    int have_eye, have_target;  /* of the key being read */
+    unsigned given;             /* PNPR_CAMERA_GIVEN_* lines of a camera file */
     long key_line;             /* where the key being read starts */
 } path_reader;
 
@@ -25,12 +31,19 @@ static pnpr_status fail(pnpr_error *err, const path_reader *r, long line, const 
     return st;
 }
 
+static pnpr_status camera_file_incomplete(const path_reader *r, pnpr_error *err)
+{
+    return pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: a camera file needs both 'eye' and 'target'", r->file);
+}
+
 /* The key being read is complete and valid on its own. */
 static pnpr_status finish_key(path_reader *r, pnpr_error *err)
 {
     if (r->path->count == 0) return PNPR_OK;
     const pnpr_camera_key *k = &r->path->keys[r->path->count - 1];
     char why[200], msg[300];
+    if (r->single) /* the CLI's --camera checks the view itself (cli_view_check) */
+        return r->have_eye && r->have_target ? PNPR_OK : camera_file_incomplete(r, err);
     if (!r->have_eye || !r->have_target) {
         snprintf(msg, sizeof msg, "the key at time %g needs both 'eye' and 'target'", k->time);
         return fail(err, r, r->key_line, msg);
@@ -84,6 +97,8 @@ static pnpr_status time_line(path_reader *r, const char *line, long ln, pnpr_err
     return new_key(r, t, ln, err);
 }
 
+#define CAMERA_FILE_EXPECTED "expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)"
+
 static pnpr_status camera_line(path_reader *r, const char *key, const char *line, long ln, pnpr_error *err)
 {
     double x[3];
@@ -94,16 +109,18 @@ static pnpr_status camera_line(path_reader *r, const char *key, const char *line
     pnpr_camera_key *k = &r->path->keys[r->path->count - 1];
     if (!strcmp(key, "fov")) {
         if (sscanf(line, " %*s %lf %1s", &x[0], extra) != 1 || !(x[0] > 0 && x[0] < 179))
-            return fail(err, r, ln, "expected 'fov DEG' (0 < DEG < 179)");
+            return fail(err, r, ln, r->single ? CAMERA_FILE_EXPECTED : "expected 'fov DEG' (0 < DEG < 179)");
         k->fov_y_deg = x[0];
+        r->given |= PNPR_CAMERA_GIVEN_FOV;
         return PNPR_OK;
     }
     if (sscanf(line, " %*s %lf %lf %lf %1s", &x[0], &x[1], &x[2], extra) != 3 || !isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]))
-        return fail(err, r, ln, "expected 'eye|target|up X Y Z' (finite numbers)");
+        return fail(err, r, ln, r->single ? CAMERA_FILE_EXPECTED : "expected 'eye|target|up X Y Z' (finite numbers)");
     double *dst = !strcmp(key, "eye") ? k->eye : (!strcmp(key, "target") ? k->target : k->up);
     memcpy(dst, x, sizeof x);
     if (!strcmp(key, "eye")) r->have_eye = 1;
     if (!strcmp(key, "target")) r->have_target = 1;
+    if (!strcmp(key, "up")) r->given |= PNPR_CAMERA_GIVEN_UP;
     return PNPR_OK;
 }
 
@@ -113,29 +130,45 @@ static pnpr_status read_line(path_reader *r, char *line, long ln, pnpr_error *er
     char *hash = strchr(line, '#');
     if (hash) *hash = 0;
     if (sscanf(line, " %31s", key) != 1) return PNPR_OK; /* blank */
+    if (!strcmp(key, "eye") || !strcmp(key, "target") || !strcmp(key, "up") || !strcmp(key, "fov"))
+        return camera_line(r, key, line, ln, err);
+    if (r->single) return fail(err, r, ln, CAMERA_FILE_EXPECTED);
     if (!strcmp(key, "time")) return time_line(r, line, ln, err);
     if (!strcmp(key, "loop")) {
         if (sscanf(line, " %*s %1s", extra) == 1) return fail(err, r, ln, "expected 'loop' alone on its line");
         r->path->loop = 1;
         return PNPR_OK;
     }
-    if (!strcmp(key, "eye") || !strcmp(key, "target") || !strcmp(key, "up") || !strcmp(key, "fov"))
-        return camera_line(r, key, line, ln, err);
     return fail(err, r, ln, "expected 'time T', 'eye|target|up X Y Z', 'fov DEG' or 'loop'");
 }
 
-static pnpr_status read_lines(path_reader *r, FILE *f, long *r_ln, pnpr_error *err)
+static pnpr_status read_lines(path_reader *r, const char *text, size_t size, long *r_ln, pnpr_error *err)
 {
     char line[1024];
+    size_t pos = 0;
     long ln = 0;
     pnpr_status st = PNPR_OK;
-    while (st == PNPR_OK && fgets(line, sizeof line, f)) {
+    for (int got; st == PNPR_OK && (got = pnpr_text_line(text, size, &pos, line, sizeof line)) != 0;) {
         ln++;
-        if (!strchr(line, '\n') && !feof(f)) return fail(err, r, ln, "line longer than 1023 characters");
-        st = read_line(r, line, ln, err);
+        st = got < 0 ? fail(err, r, ln, "line longer than 1022 characters") : read_line(r, line, ln, err);
     }
-    if (st == PNPR_OK && ferror(f)) st = pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", r->file, strerror(errno));
     *r_ln = ln;
+    return st;
+}
+
+pnpr_status pnpr_camera_path_parse(const char *text, size_t size, const char *name, pnpr_camera_path *r_path,
+                                   pnpr_error *err)
+{
+    if ((!text && size) || !name || !r_path) return PNPR_ERR_INVALID_ARGUMENT;
+    memset(r_path, 0, sizeof *r_path);
+    path_reader r = {.file = name, .path = r_path};
+    long ln = 0;
+    pnpr_status st = read_lines(&r, text, size, &ln, err);
+    if (st == PNPR_OK) st = finish_key(&r, err);
+    if (st == PNPR_OK && r_path->count == 0) st = fail(err, &r, ln, "no camera: expected 'time T' with 'eye' and 'target' lines");
+    if (st == PNPR_OK && r_path->loop && !pnpr_camera_path_loop_closed(r_path))
+        st = fail(err, &r, ln, "'loop' needs at least 3 keys, the last repeating the first key's eye, target and up");
+    if (st != PNPR_OK) pnpr_camera_path_free(r_path);
     return st;
 }
 
@@ -143,17 +176,26 @@ pnpr_status pnpr_camera_path_read(const char *filename, pnpr_camera_path *r_path
 {
     if (!filename || !r_path) return PNPR_ERR_INVALID_ARGUMENT;
     memset(r_path, 0, sizeof *r_path);
-    FILE *f = fopen(filename, "r");
-    if (!f) return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", filename, strerror(errno));
-    path_reader r = {filename, r_path, 0, 0, 0, 0, 0};
+    char *text = NULL;
+    size_t size = 0;
+    pnpr_status st = pnpr_text_file_load(filename, PNPR_CAMERA_FILE_MAX, &text, &size, err);
+    if (st == PNPR_OK) st = pnpr_camera_path_parse(text, size, filename, r_path, err);
+    free(text);
+    return st;
+}
+
+pnpr_status pnpr_camera_file_parse(const char *text, size_t size, const char *name, pnpr_camera_key *r_camera,
+                                   unsigned *r_given, pnpr_error *err)
+{
+    if ((!text && size) || !name || !r_camera) return PNPR_ERR_INVALID_ARGUMENT;
+    pnpr_camera_path path = {0};
+    path_reader r = {.file = name, .path = &path, .single = 1};
     long ln = 0;
-    pnpr_status st = read_lines(&r, f, &ln, err);
-    fclose(f);
-    if (st == PNPR_OK) st = finish_key(&r, err);
-    if (st == PNPR_OK && r_path->count == 0) st = fail(err, &r, ln, "no camera: expected 'time T' with 'eye' and 'target' lines");
-    if (st == PNPR_OK && r_path->loop && !pnpr_camera_path_loop_closed(r_path))
-        st = fail(err, &r, ln, "'loop' needs at least 3 keys, the last repeating the first key's eye, target and up");
-    if (st != PNPR_OK) pnpr_camera_path_free(r_path);
+    pnpr_status st = read_lines(&r, text, size, &ln, err);
+    if (st == PNPR_OK) st = path.count ? finish_key(&r, err) : camera_file_incomplete(&r, err);
+    if (st == PNPR_OK) *r_camera = path.keys[0];
+    if (st == PNPR_OK && r_given) *r_given = r.given;
+    pnpr_camera_path_free(&path);
     return st;
 }
 

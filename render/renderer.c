@@ -620,12 +620,12 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
                               (unsigned)o.spacing_k, PNPR_SPACING_K_MAX);
     uint32_t k = o.spacing_k ? o.spacing_k : 4;
 
-    const pnpr_property *pc = pnpr_cloud_find_property(cloud, "feature_class");
-    const pnpr_property *pd[3] = {pnpr_cloud_find_property(cloud, "feature_dir_x"),
-                                  pnpr_cloud_find_property(cloud, "feature_dir_y"),
-                                  pnpr_cloud_find_property(cloud, "feature_dir_z")};
+    const pnpr_property *pc = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_CLASS);
+    const pnpr_property *pd[3] = {pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_X),
+                                  pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_Y),
+                                  pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_Z)};
     int features = !o.ignore_features && pc && pd[0] && pd[1] && pd[2];
-    const pnpr_property *pdeg = features ? pnpr_cloud_find_property(cloud, "feature_degree") : NULL;
+    const pnpr_property *pdeg = features ? pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DEGREE) : NULL;
     if (o.painterly_bins > PAINT_MAX_BINS)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: painterly_bins %u is more than %d",
                               (unsigned)o.painterly_bins, PAINT_MAX_BINS);

@@ -1,5 +1,7 @@
-/* Status strings, property management, append/merge of clouds, origin handling. */
+/* Status strings, property management, append/merge of clouds, origin handling, style maps. */
 #include "testutil.h"
+
+#include <pointnpr/style.h>
 #include <math.h>
 #include <string.h>
 
@@ -69,11 +71,45 @@ static void test_append_georeferenced(void)
     pnpr_cloud_free(&a); pnpr_cloud_free(&b); pnpr_cloud_free(&m);
 }
 
+/* Style maps from memory: entries in file order, the last default, NAME:LINE errors. */
+static void test_style_map(void)
+{
+    static const char text[] = "# map\n0 points\n4294967295 Sketchy # case\n\n* cartoon\n7 lines\n* stipple";
+    pnpr_style_map m;
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_style_map_parse(text, sizeof text - 1, "m.txt", &m, &err), PNPR_OK);
+    CHECK(m.count == 3 && m.have_default && m.default_style == PNPR_STYLE_STIPPLE);
+    CHECK(m.count == 3 && m.entries[0].label == 0 && m.entries[0].style == PNPR_STYLE_POINTS);
+    CHECK(m.count == 3 && m.entries[1].label == 4294967295u && m.entries[1].style == PNPR_STYLE_SKETCHY);
+    CHECK(m.count == 3 && m.entries[2].label == 7 && m.entries[2].style == PNPR_STYLE_LINES);
+    pnpr_style_map_free(&m);
+    CHECK(m.entries == NULL && m.count == 0 && !m.have_default);
+    CHECK_STATUS(pnpr_style_map_parse("", 0, "e.txt", &m, &err), PNPR_OK);
+    CHECK(m.count == 0 && !m.have_default);
+    static const struct { const char *text, *message; } bad[] = {
+        {"1 points\n2 nosuch\n", "b.txt:2: unknown style 'nosuch' (points, sketchy, lines, stipple, cartoon, painterly)"},
+        {"4294967296 points\n", "b.txt:1: label '4294967296' is not an integer in 0..4294967295 or '*'"},
+        {"-1 points\n", "b.txt:1: label '-1' is not an integer in 0..4294967295 or '*'"},
+        {"\n\n1 points extra\n", "b.txt:3: want 'LABEL STYLE' or '* STYLE'"},
+        {"1\n", "b.txt:1: want 'LABEL STYLE' or '* STYLE'"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        CHECK_STATUS(pnpr_style_map_parse(bad[i].text, strlen(bad[i].text), "b.txt", &m, &err), PNPR_ERR_FORMAT);
+        CHECK_MSG(!strcmp(err.message, bad[i].message), "got '%s'", err.message);
+        CHECK(m.entries == NULL && m.count == 0);
+    }
+    char longline[1100];
+    memset(longline, 'x', sizeof longline);
+    CHECK_STATUS(pnpr_style_map_parse(longline, sizeof longline, "l.txt", &m, &err), PNPR_ERR_FORMAT);
+    CHECK_MSG(!strcmp(err.message, "l.txt:1: line longer than 1022 characters") && err.line == 1, "got '%s'", err.message);
+}
+
 int main(void)
 {
     test_status_strings();
     test_zero_cloud_is_valid();
     test_properties();
     test_append_georeferenced();
+    test_style_map();
     return pnpr_test_finish("test_core");
 }

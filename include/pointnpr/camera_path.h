@@ -57,6 +57,26 @@ double pnpr_camera_path_duration(const pnpr_camera_path *path);
  * file is a path). Errors name FILE:LINE (err->line) and what was expected. */
 pnpr_status pnpr_camera_path_read(const char *filename, pnpr_camera_path *r_path, pnpr_error *err);
 
+/* The same from memory: `size` bytes (a NUL byte ends a line's content; a line holds at most 1022
+ * characters), `name` naming the text in messages. r_path is zeroed on failure. */
+pnpr_status pnpr_camera_path_parse(const char *text, size_t size, const char *name, pnpr_camera_path *r_path,
+                                   pnpr_error *err);
+
+/* Largest camera or camera path file read (pnpr_text_file_load). */
+#define PNPR_CAMERA_FILE_MAX ((size_t)256 << 20)
+
+/* A camera file (`pointnpr render|lines --camera FILE`, written by --save-camera) from memory:
+ * the lines "eye X Y Z", "target X Y Z", "up X Y Z" (finite), "fov DEG" (0 < DEG < 179), '#'
+ * comments, blank lines; eye and target required, the last line of a kind counts. r_camera
+ * receives them (up 0 0 1 and fov 45 where not given; time 0); r_given (may be NULL) the
+ * PNPR_CAMERA_GIVEN_* lines that were given, so that a host keeps its own up and fov otherwise.
+ * The view is not checked (eye may equal target: pnpr_camera_path_check does that). Errors:
+ * PNPR_ERR_FORMAT "NAME:LINE: expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)"
+ * (err->line set), or "NAME: a camera file needs both 'eye' and 'target'". */
+enum { PNPR_CAMERA_GIVEN_UP = 1, PNPR_CAMERA_GIVEN_FOV = 2 };
+pnpr_status pnpr_camera_file_parse(const char *text, size_t size, const char *name, pnpr_camera_key *r_camera,
+                                   unsigned *r_given, pnpr_error *err);
+
 /* Writes the path in that format (through pnpr_output_*, output.h); reading it back gives the
  * same keys bit for bit (%.17g). */
 pnpr_status pnpr_camera_path_write(const char *filename, const pnpr_camera_path *path, pnpr_error *err);

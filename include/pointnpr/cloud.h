@@ -15,6 +15,7 @@
 #define POINTNPR_CLOUD_H
 
 #include "core.h"
+#include "props.h" /* PNPR_PROP_*: the names of the per-point properties */
 
 #ifdef __cplusplus
 extern "C" {

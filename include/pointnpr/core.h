@@ -55,6 +55,11 @@ pnpr_status pnpr_error_set(pnpr_error *err, pnpr_status status, const char *fmt,
 #endif
     ;
 
+/* Loads a whole text file (for the memory parsers, e.g. pnpr_style_map_parse): *r_text holds
+ * *r_size bytes and a terminating NUL, owned by the caller (free). A file larger than max_size
+ * bytes is refused (PNPR_ERR_UNSUPPORTED); PNPR_ERR_IO "PATH: reason" when it cannot be read. */
+pnpr_status pnpr_text_file_load(const char *path, size_t max_size, char **r_text, size_t *r_size, pnpr_error *err);
+
 /* Progress/cancel callback. `fraction` in [0,1] for the named stage. Return non-zero to cancel:
  * the running call then stops as soon as it can and returns PNPR_ERR_CANCELLED.
  * May be called from the calling thread only (never from worker threads). */

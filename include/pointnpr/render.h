@@ -168,12 +168,7 @@ typedef struct pnpr_upload_options {
                               * light, the curve is not applied): grey = 240 - 170 * darkness */
 } pnpr_upload_options;
 
-/* One entry of a per-segment style map: points whose segment label (cloud->label) is `label`
- * are drawn in `style`. */
-typedef struct pnpr_style_map_entry {
-    uint32_t label;
-    pnpr_style style;
-} pnpr_style_map_entry;
+/* pnpr_style_map_entry and its file format: style.h. */
 
 /* Default of pnpr_draw_options.line_min_px. */
 #define PNPR_LINE_MIN_PX 8.0f

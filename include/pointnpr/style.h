@@ -48,6 +48,34 @@ int pnpr_style_needs_features(pnpr_style style);
  * it draws them with, also when they are asked for (r_width may be NULL; 0 for an invalid style). */
 int pnpr_style_outline_default(pnpr_style style, float *r_width);
 
+/* One entry of a per-segment style map: points whose segment label (cloud->label) is `label`
+ * are drawn in `style`. */
+typedef struct pnpr_style_map_entry {
+    uint32_t label;
+    pnpr_style style;
+} pnpr_style_map_entry;
+
+/* A parsed style map file (`pointnpr render --style-map`). */
+typedef struct pnpr_style_map {
+    pnpr_style_map_entry *entries; /* owned (pnpr_style_map_free), in file order */
+    size_t count;
+    int have_default;              /* a "* STYLE" line was given: */
+    pnpr_style default_style;      /* the style of labels not listed (the last such line) */
+} pnpr_style_map;
+
+void pnpr_style_map_free(pnpr_style_map *map); /* frees the entries, leaves a zeroed map; NULL ok */
+
+/* Largest style map file the CLI loads (pnpr_text_file_load). */
+#define PNPR_STYLE_MAP_FILE_MAX ((size_t)64 << 20)
+
+/* Parses a style map from memory (`size` bytes; NUL bytes end a line's content): lines
+ * "LABEL STYLE" (LABEL in 0..4294967295, STYLE a name of pnpr_style_from_name) and "* STYLE"
+ * (the default), '#' comments, blank lines; a line holds at most 1023 characters. `name` names
+ * the text in messages (a file name). PNPR_ERR_FORMAT with "NAME:LINE: what is wrong" (err->line
+ * set) on a bad line; r_map is zeroed on failure. */
+pnpr_status pnpr_style_map_parse(const char *text, size_t size, const char *name, pnpr_style_map *r_map,
+                                 pnpr_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -90,42 +90,31 @@ void cli_view_init(cli_view *v, int width, int height)
     v->height = height;
 }
 
-/* A camera file: lines "eye X Y Z", "target X Y Z", "up X Y Z", "fov DEG" (world coordinates;
- * '#' comments and blank lines ignored; eye and target required). Returns 1, or 0 after printing
- * FILE:LINE: what is wrong. */
+/* A camera file (pnpr_camera_file_parse, camera_path.h). Returns 1, or 0 after printing
+ * FILE:LINE: what is wrong. Without the renderer there is no camera to set. */
 static int read_camera_file(cli_view *v, const char *cmd, const char *path)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) { fprintf(stderr, "pointnpr %s: %s: %s\n", cmd, path, strerror(errno)); return 0; }
-    char line[512];
-    int ln = 0, ok = 1, have_eye = 0, have_target = 0;
-    while (ok && fgets(line, sizeof line, f)) {
-        ln++;
-        char key[32], extra[2];
-        double x[3];
-        char *hash = strchr(line, '#');
-        if (hash) *hash = 0;
-        if (sscanf(line, " %31s", key) != 1) continue; /* blank */
-        if (!strcmp(key, "fov")) {
-            ok = sscanf(line, " %*s %lf %1s", &x[0], extra) == 1 && isfinite(x[0]) && x[0] > 0 && x[0] < 179;
-            if (ok) v->fov = x[0];
-        } else if (!strcmp(key, "eye") || !strcmp(key, "target") || !strcmp(key, "up")) {
-            ok = sscanf(line, " %*s %lf %lf %lf %1s", &x[0], &x[1], &x[2], extra) == 3 && isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]);
-            double *dst = !strcmp(key, "eye") ? v->eye : (!strcmp(key, "target") ? v->target : v->up);
-            if (ok) memcpy(dst, x, sizeof x);
-            if (ok && !strcmp(key, "eye")) have_eye = 1;
-            if (ok && !strcmp(key, "target")) have_target = 1;
-            if (ok && !strcmp(key, "up")) v->have_up = 1;
-        } else ok = 0;
-        if (!ok) fprintf(stderr, "pointnpr %s: %s:%d: expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)\n", cmd, path, ln);
-    }
-    fclose(f);
-    if (ok && !(have_eye && have_target)) {
-        fprintf(stderr, "pointnpr %s: %s: a camera file needs both 'eye' and 'target'\n", cmd, path);
-        ok = 0;
-    }
-    if (ok) v->have_eye = v->have_target = 1;
-    return ok;
+#ifdef PNPR_HAVE_RENDER
+    char *text = NULL;
+    size_t size = 0;
+    pnpr_error err = {0};
+    pnpr_camera_key k;
+    unsigned given = 0;
+    pnpr_status st = pnpr_text_file_load(path, PNPR_CAMERA_FILE_MAX, &text, &size, &err);
+    if (st == PNPR_OK) st = pnpr_camera_file_parse(text, size, path, &k, &given, &err);
+    free(text);
+    if (st != PNPR_OK) { fprintf(stderr, "pointnpr %s: %s\n", cmd, err.message); return 0; }
+    memcpy(v->eye, k.eye, sizeof v->eye);
+    memcpy(v->target, k.target, sizeof v->target);
+    if (given & PNPR_CAMERA_GIVEN_UP) { memcpy(v->up, k.up, sizeof v->up); v->have_up = 1; }
+    if (given & PNPR_CAMERA_GIVEN_FOV) v->fov = k.fov_y_deg;
+    v->have_eye = v->have_target = 1;
+    return 1;
+#else
+    (void)v;
+    fprintf(stderr, "pointnpr %s: --camera %s: cameras need the renderer, which this build does not have\n", cmd, path);
+    return 0;
+#endif
 }
 
 typedef struct camera_text {

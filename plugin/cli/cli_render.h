@@ -17,8 +17,7 @@ typedef struct cli_render_opts {
     const char *columns;          /* --columns (text point clouds) */
     cli_view view;
     const char *style_map_path;
-    pnpr_style_map_entry *smap;   /* read by cli_render_opts_finish */
-    size_t smap_count;
+    pnpr_style_map smap;          /* read by cli_render_opts_finish */
     int uses[PNPR_STYLE_COUNT_];  /* the styles a frame may draw */
 } cli_render_opts;
 

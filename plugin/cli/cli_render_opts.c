@@ -81,59 +81,24 @@ void cli_render_usage(FILE *f, int width, int height)
 }
 
 
-/* Reads a style map file: lines "LABEL STYLE" and "* STYLE" (the default), '#' comments, blank
- * lines. Returns 0 with a message naming the line on a bad line. */
-static int read_style_map(const char *cmd, const char *path, pnpr_style_map_entry **r_map, size_t *r_count, pnpr_style *r_default,
-                          int *r_have_default)
+/* Reads a style map file (pnpr_style_map_parse, style.h). Returns 0 after a message naming the
+ * line on a bad line. */
+static int read_style_map(const char *cmd, const char *path, pnpr_style_map *r_map)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) { fprintf(stderr, "pointnpr %s: --style-map: cannot open '%s': %s\n", cmd, path, strerror(errno)); return 0; }
-    char line[512];
-    size_t cap = 0, n = 0;
-    pnpr_style_map_entry *map = NULL;
-    int ok = 1, lineno = 0;
-    while (ok && fgets(line, sizeof line, f)) {
-        lineno++;
-        char *hash = strchr(line, '#');
-        if (hash) *hash = 0;
-        char a[256], b[256], extra[2];
-        int got = sscanf(line, "%255s %255s %1s", a, b, extra);
-        if (got <= 0) continue; /* blank */
-        pnpr_style s;
-        if (got != 2) {
-            fprintf(stderr, "pointnpr %s: --style-map %s:%d: want 'LABEL STYLE' or '* STYLE'\n", cmd, path, lineno);
-            ok = 0;
-        } else if (pnpr_style_from_name(b, &s) != PNPR_OK) {
-            fprintf(stderr, "pointnpr %s: --style-map %s:%d: unknown style '%s' (points, sketchy, lines, stipple, cartoon, painterly)\n", cmd, path, lineno, b);
-            ok = 0;
-        } else if (!strcmp(a, "*")) {
-            *r_default = s;
-            *r_have_default = 1;
-        } else {
-            char *end;
-            errno = 0;
-            unsigned long long v = strtoull(a, &end, 10);
-            if (errno || end == a || *end || a[0] == '-' || v > 0xFFFFFFFFull) {
-                fprintf(stderr, "pointnpr %s: --style-map %s:%d: label '%s' is not an integer in 0..4294967295 or '*'\n", cmd, path, lineno, a);
-                ok = 0;
-            } else {
-                if (n == cap) {
-                    cap = cap ? 2 * cap : 16;
-                    pnpr_style_map_entry *m2 = realloc(map, cap * sizeof *m2);
-                    if (!m2) { fprintf(stderr, "pointnpr %s: --style-map: out of memory\n", cmd); ok = 0; break; }
-                    map = m2;
-                }
-                map[n].label = (uint32_t)v;
-                map[n].style = s;
-                n++;
-            }
-        }
+    char *text = NULL;
+    size_t size = 0;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_text_file_load(path, PNPR_STYLE_MAP_FILE_MAX, &text, &size, &err);
+    size_t n = strlen(path);
+    if (st != PNPR_OK) {
+        const char *why = !strncmp(err.message, path, n) && !strncmp(err.message + n, ": ", 2) ? err.message + n + 2 : err.message;
+        fprintf(stderr, "pointnpr %s: --style-map: cannot open '%s': %s\n", cmd, path, why);
+        return 0;
     }
-    fclose(f);
-    if (!ok) { free(map); return 0; }
-    *r_map = map;
-    *r_count = n;
-    return 1;
+    st = pnpr_style_map_parse(text, size, path, r_map, &err);
+    free(text);
+    if (st != PNPR_OK) fprintf(stderr, "pointnpr %s: --style-map %s\n", cmd, err.message);
+    return st == PNPR_OK;
 }
 
 /* Progress of a tiled snapshot: one line per tile (single-frame images print nothing). */
@@ -344,24 +309,19 @@ int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
     if (!cli_view_check(&o->view, cmd)) return 0;
     for (int c = 0; c < 3; c++) o->dopt.background[c] = (float)(o->bg[c] / 255.0);
     o->dopt.background[3] = o->alpha ? 0.0f : 1.0f;
-    int map_has_default = 0;
-    pnpr_style map_default = o->dopt.style;
-    if (o->style_map_path && !read_style_map(cmd, o->style_map_path, &o->smap, &o->smap_count, &map_default, &map_has_default))
-        return 0;
-    if (map_has_default) o->dopt.style = map_default;
-    o->dopt.style_map = o->smap;
-    o->dopt.style_map_count = o->smap_count;
+    if (o->style_map_path && !read_style_map(cmd, o->style_map_path, &o->smap)) return 0;
+    if (o->smap.have_default) o->dopt.style = o->smap.default_style;
+    o->dopt.style_map = o->smap.entries;
+    o->dopt.style_map_count = o->smap.count;
     memset(o->uses, 0, sizeof o->uses); /* the default and the mapped styles */
     o->uses[o->dopt.style] = 1;
-    for (size_t m = 0; m < o->smap_count; m++) o->uses[o->smap[m].style] = 1;
+    for (size_t m = 0; m < o->smap.count; m++) o->uses[o->smap.entries[m].style] = 1;
     return 1;
 }
 
 void cli_render_opts_free(cli_render_opts *o)
 {
-    free(o->smap);
-    o->smap = NULL;
-    o->smap_count = 0;
+    pnpr_style_map_free(&o->smap);
 }
 
 int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in)

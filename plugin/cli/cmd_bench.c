@@ -393,7 +393,7 @@ static int bench_accuracy(const char *dir, int quick)
         pnpr_status st = pnpr_compute_features(&c, &o, NULL);
         double sec = now() - t0;
         if (st != PNPR_OK) { free(edge); pnpr_cloud_free(&c); return 1; }
-        const uint8_t *cls = pnpr_cloud_find_property(&c, "feature_class")->data;
+        const uint8_t *cls = pnpr_cloud_find_property(&c, PNPR_PROP_FEATURE_CLASS)->data;
         size_t tp = 0, fp = 0, pos = 0;
         for (size_t i = 0; i < c.count; i++) {
             int flagged = cls[i] == PNPR_CLASS_DIRECTIONAL || cls[i] == PNPR_CLASS_NONDIRECTIONAL;

@@ -142,7 +142,7 @@ int cli_render(int argc, char **argv)
     if (!o.quiet)
         fprintf(stderr, "%s: %zu of %zu points drawn, %zu strokes, style %s, %dx%d -> %s\n", r.in,
                 stats.points_drawn, stats.points_total, stats.strokes_drawn,
-                o.smap_count ? "map" : pnpr_style_name(o.dopt.style), o.view.width, o.view.height, r.out);
+                o.smap.count ? "map" : pnpr_style_name(o.dopt.style), o.view.width, o.view.height, r.out);
     rc = 0;
 done:
     cli_render_end(&s);

@@ -149,10 +149,10 @@ int cli_segment(int argc, char **argv)
         o.threads = (int)threads; o.progress = prog;
         st = pnpr_segment_rgbgrow(cloud.xyz, cloud.rgb, cloud.count, &o, labels, &info);
     } else {
-        const char *name = property ? property : "segment";
+        const char *name = property ? property : PNPR_PROP_SEGMENT;
         pnpr_property *p = pnpr_cloud_find_property(&cloud, name);
         if (p) st = pnpr_segment_from_values(p->type, p->data, cloud.count, labels, &info.segment_count);
-        else if (cloud.label && (!strcmp(name, "segment") || !strcmp(name, "label")))
+        else if (cloud.label && (!strcmp(name, PNPR_PROP_SEGMENT) || !strcmp(name, PNPR_PROP_LABEL)))
             st = pnpr_segment_from_values(PNPR_TYPE_UINT32, cloud.label, cloud.count, labels, &info.segment_count);
         else {
             fprintf(stderr, "pointnpr segment: %s has no per-point property '%s'\n", in, name);

@@ -120,9 +120,9 @@ uint64_t layerSignature(MeshDocument &md)
         bool colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
         h.add(colour);
         CMeshO::PerVertexAttributeHandle<float> hc;
-        bool hasClass = findAttribute<float>(m, "feature_class", hc);
+        bool hasClass = findAttribute<float>(m, PNPR_PROP_FEATURE_CLASS, hc);
         CMeshO::PerVertexAttributeHandle<float> hs;
-        bool hasSeg = findAttribute<float>(m, "segment", hs);
+        bool hasSeg = findAttribute<float>(m, PNPR_PROP_SEGMENT, hs);
         h.add(hasClass);
         h.add(hasSeg);
         size_t n = m.vert.size(), step = std::max<size_t>(1, n / 1024);
@@ -445,10 +445,10 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         if (allNormals && !meaningfulNormals(mm)) allNormals = false;
         CMeshO::PerVertexAttributeHandle<float> hc;
         CMeshO::PerVertexAttributeHandle<Point3m> hd;
-        if (!findAttribute<float>(mm->cm, "feature_class", hc) || !findAttribute<Point3m>(mm->cm, "feature_dir", hd))
+        if (!findAttribute<float>(mm->cm, PNPR_PROP_FEATURE_CLASS, hc) || !findAttribute<Point3m>(mm->cm, PNPR_PROP_FEATURE_DIR, hd))
             allClass = false;
         CMeshO::PerVertexAttributeHandle<float> hs;
-        if (!findAttribute<float>(mm->cm, "segment", hs)) allSeg = false;
+        if (!findAttribute<float>(mm->cm, PNPR_PROP_SEGMENT, hs)) allSeg = false;
     }
     layerFeatures = false;
     if (layers.empty() || total == 0) { note = "no visible point layer"; return PNPR_OK; }
@@ -474,8 +474,8 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         bool colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
         CMeshO::PerVertexAttributeHandle<float> hc, hs;
         CMeshO::PerVertexAttributeHandle<Point3m> hd;
-        if (allClass) { findAttribute<float>(m, "feature_class", hc); findAttribute<Point3m>(m, "feature_dir", hd); }
-        if (allSeg) findAttribute<float>(m, "segment", hs);
+        if (allClass) { findAttribute<float>(m, PNPR_PROP_FEATURE_CLASS, hc); findAttribute<Point3m>(m, PNPR_PROP_FEATURE_DIR, hd); }
+        if (allSeg) findAttribute<float>(m, PNPR_PROP_SEGMENT, hs);
         uint32_t maxLabel = 0;
         for (size_t i = 0; i < m.vert.size() && j < total; i++) {
             const CVertexO &v = m.vert[i];
@@ -521,16 +521,16 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         std::memcpy(cloud.normal, normal.data(), 3 * j * sizeof(float));
     if (st == PNPR_OK && allClass) {
         pnpr_property *pc = nullptr, *px = nullptr, *py = nullptr, *pz = nullptr;
-        st = pnpr_cloud_add_property(&cloud, "feature_class", PNPR_TYPE_UINT8, &pc);
-        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, "feature_dir_x", PNPR_TYPE_FLOAT32, &px);
-        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, "feature_dir_y", PNPR_TYPE_FLOAT32, &py);
-        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, "feature_dir_z", PNPR_TYPE_FLOAT32, &pz);
+        st = pnpr_cloud_add_property(&cloud, PNPR_PROP_FEATURE_CLASS, PNPR_TYPE_UINT8, &pc);
+        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, PNPR_PROP_FEATURE_DIR_X, PNPR_TYPE_FLOAT32, &px);
+        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, PNPR_PROP_FEATURE_DIR_Y, PNPR_TYPE_FLOAT32, &py);
+        if (st == PNPR_OK) st = pnpr_cloud_add_property(&cloud, PNPR_PROP_FEATURE_DIR_Z, PNPR_TYPE_FLOAT32, &pz);
         if (st == PNPR_OK) {
             /* pnpr_cloud_add_property may move the property array: look them up again */
-            pc = pnpr_cloud_find_property(&cloud, "feature_class");
-            px = pnpr_cloud_find_property(&cloud, "feature_dir_x");
-            py = pnpr_cloud_find_property(&cloud, "feature_dir_y");
-            pz = pnpr_cloud_find_property(&cloud, "feature_dir_z");
+            pc = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_CLASS);
+            px = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_X);
+            py = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Y);
+            pz = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Z);
             std::memcpy(pc->data, cls.data(), j);
             for (size_t i = 0; i < j; i++) {
                 ((float *)px->data)[i] = dir[3 * i];
@@ -721,8 +721,8 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
      * another tone, are dropped when dithering is needed: the plan then computes them anew. */
     if (pst == PNPR_OK && s->ownFeatures && (plan.needed & PNPR_WANT_DITHER) &&
         (!s->ownDither || s->ditherToneSource != (int)tone.source || s->ditherToneGamma != tone.gamma)) {
-        static const char *const props[] = {"feature_degree", "feature_class", "feature_confidence",
-                                            "feature_dir_x", "feature_dir_y", "feature_dir_z"};
+        static const char *const props[] = {PNPR_PROP_FEATURE_DEGREE, PNPR_PROP_FEATURE_CLASS, PNPR_PROP_FEATURE_CONFIDENCE,
+                                            PNPR_PROP_FEATURE_DIR_X, PNPR_PROP_FEATURE_DIR_Y, PNPR_PROP_FEATURE_DIR_Z};
         for (const char *name : props)
             if (pnpr_cloud_find_property(&s->cloud, name)) pnpr_cloud_remove_property(&s->cloud, name);
         s->ownFeatures = s->ownDither = false;

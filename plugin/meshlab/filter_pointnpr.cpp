@@ -106,9 +106,9 @@ pnpr_progress progressOf(ProgressBridge &pb)
     return p;
 }
 
-const char *const kAttrClass = "feature_class";
-const char *const kAttrConfidence = "feature_confidence";
-const char *const kAttrDir = "feature_dir";
+const char *const kAttrClass = PNPR_PROP_FEATURE_CLASS;
+const char *const kAttrConfidence = PNPR_PROP_FEATURE_CONFIDENCE;
+const char *const kAttrDir = PNPR_PROP_FEATURE_DIR;
 
 /* Class palette of "Colour points by class" (also documented in docs/meshlab.md). */
 const unsigned char kPalette[4][3] = {
@@ -683,12 +683,12 @@ bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameter
     double seconds = 0;
     if (!runFeatures(lc, fo, pb, stats, seconds)) return false;
 
-    const pnpr_property *pDeg = pnpr_cloud_find_property(&cloud, "feature_degree");
-    const pnpr_property *pCls = pnpr_cloud_find_property(&cloud, "feature_class");
-    const pnpr_property *pConf = pnpr_cloud_find_property(&cloud, "feature_confidence");
-    const pnpr_property *pDx = pnpr_cloud_find_property(&cloud, "feature_dir_x");
-    const pnpr_property *pDy = pnpr_cloud_find_property(&cloud, "feature_dir_y");
-    const pnpr_property *pDz = pnpr_cloud_find_property(&cloud, "feature_dir_z");
+    const pnpr_property *pDeg = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DEGREE);
+    const pnpr_property *pCls = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_CLASS);
+    const pnpr_property *pConf = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_CONFIDENCE);
+    const pnpr_property *pDx = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_X);
+    const pnpr_property *pDy = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Y);
+    const pnpr_property *pDz = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Z);
     if (!pDeg || !pCls || !pConf || !pDx || !pDy || !pDz || !cloud.normal)
         return fail("internal error: the library returned no feature properties");
 
@@ -958,7 +958,7 @@ bool FilterPointnprPlugin::profileLines(MeshDocument &md, const RichParameterLis
 
 namespace {
 
-const char *const kAttrSegment = "segment";
+const char *const kAttrSegment = PNPR_PROP_SEGMENT;
 
 /* A distinct colour per label (golden-ratio hue steps) for layers without colours. */
 vcg::Color4b labelColor(uint32_t label)

@@ -202,6 +202,34 @@ static void test_files(void)
     CHECK_STATUS(pnpr_camera_path_read(PNPR_TEST_SCRATCH "/missing.campath", &q, &err), PNPR_ERR_IO);
 }
 
+/* Camera files from memory: the values, which lines were given, NAME:LINE errors; the view is the
+ * host's to check (eye == target parses). */
+static void test_camera_file(void)
+{
+    static const char text[] = "# camera\neye 1 2 3\ntarget 4 5 6 # look\n\nfov 30\neye -1 -2 -3";
+    pnpr_camera_key k;
+    unsigned given = 0;
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_camera_file_parse(text, sizeof text - 1, "c.txt", &k, &given, &err), PNPR_OK);
+    CHECK(k.eye[0] == -1 && k.eye[1] == -2 && k.eye[2] == -3 && k.target[0] == 4 && k.target[1] == 5 && k.target[2] == 6);
+    CHECK(k.fov_y_deg == 30 && given == PNPR_CAMERA_GIVEN_FOV && k.up[2] == 1);
+    static const char same[] = "eye 1 1 1\ntarget 1 1 1\nup 0 1 0\n";
+    CHECK_STATUS(pnpr_camera_file_parse(same, sizeof same - 1, "s.txt", &k, &given, &err), PNPR_OK);
+    CHECK(given == PNPR_CAMERA_GIVEN_UP && k.up[1] == 1 && k.fov_y_deg == 45);
+    static const struct { const char *text, *message; } bad[] = {
+        {"eye 1 2 3\ntarget 0 0 0\ntime 1\n", "b.txt:3: expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)"},
+        {"eye 1 2\n", "b.txt:1: expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)"},
+        {"\nfov 179\n", "b.txt:2: expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)"},
+        {"loop\n", "b.txt:1: expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)"},
+        {"eye 1 2 3\n", "b.txt: a camera file needs both 'eye' and 'target'"},
+        {"# empty\n", "b.txt: a camera file needs both 'eye' and 'target'"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        CHECK_STATUS(pnpr_camera_file_parse(bad[i].text, strlen(bad[i].text), "b.txt", &k, &given, &err), PNPR_ERR_FORMAT);
+        CHECK_MSG(!strcmp(err.message, bad[i].message), "got '%s', want '%s'", err.message, bad[i].message);
+    }
+}
+
 /* The preset start frames the content from every side: a long flat strip (8 x 1) is in frame
  * (without the 5% margin) from 72 azimuths about z, and the distance is tight (some point touches
  * the frame's edge with the margin at one of the 36 azimuths fitted). */
@@ -248,6 +276,7 @@ int main(void)
     test_orbits();
     test_flyover();
     test_files();
+    test_camera_file();
     test_preset_start();
     return pnpr_test_finish("test_camera_path");
 }
