@@ -179,12 +179,7 @@ static int parse_u64(pcd_tok t, uint64_t *out)
 static int c_number(pcd_tok t, char buf[PCD_TOKEN_MAX + 1])
 {
     if (t.n == 0 || t.n > PCD_TOKEN_MAX) return 0;
-    memcpy(buf, t.s, t.n);
-    buf[t.n] = '\0';
-    const struct lconv *lc = localeconv();
-    char dp = lc && lc->decimal_point && lc->decimal_point[0] ? lc->decimal_point[0] : '.';
-    char *dot = dp != '.' ? memchr(buf, '.', t.n) : NULL;
-    if (dot) *dot = dp;
+    pnpr_token_c_number(t.s, t.n, buf);
     return 1;
 }
 

@@ -54,6 +54,19 @@ static inline size_t pnpr_token_count(const char *q, const char *e)
     return n;
 }
 
+/* Copies n characters of a number in the "C" form into buf (n + 1 bytes, NUL-terminated) with
+ * '.' replaced by the locale's decimal point, so that strtod/strtof read it whatever LC_NUMERIC
+ * says. */
+static inline void pnpr_token_c_number(const char *s, size_t n, char *buf)
+{
+    memcpy(buf, s, n);
+    buf[n] = '\0';
+    const struct lconv *lc = localeconv();
+    char dp = lc && lc->decimal_point && lc->decimal_point[0] ? lc->decimal_point[0] : '.';
+    char *dot = dp != '.' ? memchr(buf, '.', n) : NULL;
+    if (dot) *dot = dp;
+}
+
 /* A decimal number in the "C" form, whatever LC_NUMERIC says: [+-]digits[.digits][(e|E)[+-]digits]
  * with at least one mantissa digit (no hex, no nan/inf, no trailing text), at most 256 characters,
  * finite as a double (1e400 is refused; underflow to 0 is accepted). *has_fraction (may be NULL):
@@ -79,12 +92,7 @@ static inline int pnpr_token_decimal(pnpr_token t, double *out, int *has_fractio
         while (i < t.n && t.s[i] >= '0' && t.s[i] <= '9') i++;
     }
     if (i != t.n) return 0;
-    memcpy(buf, t.s, t.n);
-    buf[t.n] = '\0';
-    const struct lconv *lc = localeconv();
-    char dp = lc && lc->decimal_point && lc->decimal_point[0] ? lc->decimal_point[0] : '.';
-    char *dot = dp != '.' ? memchr(buf, '.', t.n) : NULL;
-    if (dot) *dot = dp;
+    pnpr_token_c_number(t.s, t.n, buf);
     double v = strtod(buf, NULL);
     if (v != v || v > DBL_MAX || v < -DBL_MAX) return 0;
     *out = v;
