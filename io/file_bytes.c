@@ -1,5 +1,6 @@
 /* Input files as one read-only byte range (io/file_bytes.h): mapped when regular, read otherwise. */
 #include "file_bytes.h"
+#include "../core/internal.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -88,4 +89,17 @@ void pnpr_file_bytes_close(pnpr_file_bytes *fb)
     if (fb->map) munmap(fb->map, fb->size);
     free(fb->copy);
     memset(fb, 0, sizeof *fb);
+}
+
+pnpr_status pnpr_file_bytes_read(const char *path, pnpr_memory_reader read, const pnpr_read_options *opts,
+                                 pnpr_cloud *cloud, pnpr_error *err)
+{
+    pnpr_cloud_free(cloud);
+    pnpr_file_bytes fb; /* mapped: each reader checks its header against the size before the body */
+    pnpr_status st = pnpr_file_bytes_open(path, &fb, err);
+    if (st != PNPR_OK) return st;
+    st = read(fb.data, fb.size, opts, cloud, err);
+    pnpr_file_bytes_close(&fb);
+    if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
+    return st;
 }

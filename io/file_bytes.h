@@ -13,7 +13,7 @@
 #ifndef PNPR_FILE_BYTES_H
 #define PNPR_FILE_BYTES_H
 
-#include <pointnpr/core.h>
+#include <pointnpr/io.h>
 
 #include <stddef.h>
 
@@ -30,5 +30,14 @@ pnpr_status pnpr_file_bytes_open(const char *path, pnpr_file_bytes *fb, pnpr_err
 
 /* Releases what open took; safe on a zeroed struct. */
 void pnpr_file_bytes_close(pnpr_file_bytes *fb);
+
+/* A reader of a whole file's bytes (pnpr_read_ply_memory, ...). */
+typedef pnpr_status (*pnpr_memory_reader)(const void *data, size_t size, const pnpr_read_options *opts,
+                                          pnpr_cloud *cloud, pnpr_error *err);
+
+/* The file entry point of a buffer reader: opens path (above), runs read on its bytes, closes;
+ * the reader's errors are prefixed with the path. cloud is freed first. */
+pnpr_status pnpr_file_bytes_read(const char *path, pnpr_memory_reader read, const pnpr_read_options *opts,
+                                 pnpr_cloud *cloud, pnpr_error *err);
 
 #endif

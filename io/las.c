@@ -334,12 +334,5 @@ pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, 
 {
     if (!path || !cloud)
         return las_fail(err, PNPR_ERR_INVALID_ARGUMENT, -1, "pnpr_read_las_file: NULL argument");
-    pnpr_cloud_free(cloud);
-    pnpr_file_bytes fb; /* mapped: the header is checked against the size before a point is touched */
-    pnpr_status st = pnpr_file_bytes_open(path, &fb, err);
-    if (st != PNPR_OK) return st;
-    st = pnpr_read_las_memory(fb.data, fb.size, opts, cloud, err);
-    pnpr_file_bytes_close(&fb);
-    if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
-    return st;
+    return pnpr_file_bytes_read(path, pnpr_read_las_memory, opts, cloud, err);
 }

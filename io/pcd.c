@@ -916,14 +916,7 @@ pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_
 pnpr_status pnpr_read_pcd_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud, pnpr_error *err)
 {
     if (!path || !cloud) return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read pcd: NULL path or cloud");
-    pnpr_cloud_free(cloud);
-    pnpr_file_bytes fb; /* mapped: the header is checked against the size before the data are touched */
-    pnpr_status st = pnpr_file_bytes_open(path, &fb, err);
-    if (st != PNPR_OK) return st;
-    st = pnpr_read_pcd_memory(fb.data, fb.size, opts, cloud, err);
-    pnpr_file_bytes_close(&fb);
-    if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
-    return st;
+    return pnpr_file_bytes_read(path, pnpr_read_pcd_memory, opts, cloud, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */

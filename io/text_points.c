@@ -536,12 +536,5 @@ pnpr_status pnpr_read_text_memory(const void *data, size_t size, const pnpr_read
 pnpr_status pnpr_read_text_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud, pnpr_error *err)
 {
     if (!path || !cloud) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "read text: NULL path or cloud");
-    pnpr_cloud_free(cloud);
-    pnpr_file_bytes fb;
-    pnpr_status st = pnpr_file_bytes_open(path, &fb, err);
-    if (st != PNPR_OK) return st;
-    st = pnpr_read_text_memory(fb.data, fb.size, opts, cloud, err);
-    pnpr_file_bytes_close(&fb);
-    if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
-    return st;
+    return pnpr_file_bytes_read(path, pnpr_read_text_memory, opts, cloud, err);
 }
