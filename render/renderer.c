@@ -1,9 +1,8 @@
 /* The PointWorks renderer: two-pass visibility mask (section 4.3), continuous resolution queue
  * (4.4), `points`, `sketchy` (5.1), `lines` (5.2), `stipple` and `cartoon` (5.4) styles, per-segment
  * style maps (intermingled styles, figure 12). See docs/rendering.md. */
-#include "render_internal.h"
+#include "renderer_internal.h"
 #include "gl_state.h"
-#include "edges.h"
 #include "pnpr_shaders.h"
 
 #include <pointnpr/features.h>
@@ -17,75 +16,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Queue groups: with features, one queue per class (as the paper groups them); else one. */
-enum { GROUP_DIRECTIONAL = 0, GROUP_NONDIRECTIONAL, GROUP_DITHER, GROUP_NONE, GROUP_MAX };
-
-enum { PNPR_PAINT_MAX_BRUSH = 4 }; /* painterly: the largest brush, in disk radii */
-enum { LINE_FLOATS = 7 }; /* a line segment: its two ends and its polyline's length */
-enum { STROKE_TEX_W = 128, STROKE_TEX_H = 32, STROKE_LAYERS = 4, STROKE_LAYER_HATCH = 3 };
-
-typedef struct pnpr_vertex {
-    float pos[3];
-    float radius;
-    uint8_t rgba[4];
-    float dir[3];
-    uint8_t flat[4]; /* cartoon: the segment's mean colour (the point colour without labels) */
-    int8_t normal[4]; /* unit normal * 127 (orientation does not matter); all 0 = unknown */
-} pnpr_vertex;
-
-typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin; } splat_uniforms;
-typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho, ppu, min_px; } line_uniforms;
-typedef struct stroke_uniforms {
-    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin;
-} stroke_uniforms;
-
-typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
-
-enum { PAINT_MAX_BINS = 16, PAINT_K = 12, BRUSH_TEX = 64 };
-
-struct pnpr_renderer {
-    GLuint prog_splat, prog_stroke, prog_composite, prog_line, prog_paint;
-    paint_uniforms up;
-    /* painterly (section 5.3): the points again, sorted by feature degree into bins (each bin a
-     * queue), and one blended colour per point and pass (level-major) */
-    GLuint paint_vbo, paint_col_vbo, vao_paint, brush_tex;
-    size_t paint_bins;                       /* 0: no painterly data (no feature degree) */
-    size_t paint_start[PAINT_MAX_BINS + 2];
-    splat_uniforms us;
-    line_uniforms ul;
-    stroke_uniforms ut;
-    GLint uc_frame, uc_origin;
-    GLuint vbo, vao_points, vao_strokes, vao_empty, vao_flat;
-    GLuint line_vbo, vao_lines;
-    GLuint stroke_tex;
-    GLuint fbo, color_tex, depth_rb;
-    GLuint info_tex;     /* attachment 1: the mask's surface info (eye distance, depth extent, radius) */
-    pnpr_edges edges;    /* outlines from it (edges.c) */
-    int fb_w, fb_h;
-    float max_point_size;
-    GLint max_size;      /* min of GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS */
-    float max_radius;    /* largest disk radius of the uploaded cloud (tile guard bands) */
-    float mean_radius;   /* mean disk radius (the lines' depth tolerance) */
-    /* the uploaded cloud */
-    size_t count;
-    size_t group_start[GROUP_MAX + 2];
-    size_t group_count;
-    int has_features, has_labels, has_rgb;
-    double origin[3];
-    float bmin[3], bmax[3];
-    /* style maps (intermingled styles): one style byte per vertex (attribute 4) in the main
-     * order (style_vbo) and in the painterly order (paint_style_vbo); the labels and the
-     * painterly order's main indices to fill them; the bytes last uploaded */
-    GLuint style_vbo, paint_style_vbo;
-    GLint us_filter, ut_filter;
-    uint32_t *vlabel;    /* label of each vertex (main order); NULL: the cloud has no labels */
-    uint32_t *paint_src; /* main-order index of each painterly vertex */
-    uint8_t *vstyle;     /* the style bytes in style_vbo (main order) */
-    /* the profile lines: segments as pairs of float offsets from line_origin */
-    size_t line_segments;
-    double line_origin[3];
-};
 
 /* ---- stroke textures (paper figure 5 a-c, plus the hatch), generated once ------------------- */
 
@@ -106,7 +36,7 @@ static float band(float v, float centre, float half_width)
     return d * d >= 1 ? 0 : (1 - d * d) * (1 - d * d);
 }
 
-static void make_stroke_textures(uint8_t *out)
+void pnpr_stroke_textures(uint8_t *out)
 {
     for (int layer = 0; layer < STROKE_LAYERS; layer++)
         for (int y = 0; y < STROKE_TEX_H; y++)
@@ -319,7 +249,7 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
 
     uint8_t *tex = malloc((size_t)STROKE_TEX_W * STROKE_TEX_H * STROKE_LAYERS);
     if (!tex) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    make_stroke_textures(tex);
+    pnpr_stroke_textures(tex);
     glGenTextures(1, &r->stroke_tex);
     glBindTexture(GL_TEXTURE_2D_ARRAY, r->stroke_tex);
     glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R8, STROKE_TEX_W, STROKE_TEX_H, STROKE_LAYERS, 0,
@@ -1392,7 +1322,7 @@ static size_t draw_mapped(pnpr_renderer *r, const pnpr_frame_camera *fc, const p
 
 static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
                              const pnpr_target *target, const tile_rect *tile, pnpr_render_stats *r_stats,
-                             pnpr_error *err)
+                             pnpr_frame_record *rec, pnpr_error *err)
 {
     if (!r || !target) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: NULL renderer or target");
     if (r_stats) memset(r_stats, 0, sizeof *r_stats);
@@ -1472,6 +1402,23 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
     if (o.outline) outline = o.outline > 0;
     if (o.outline_width > 0) outline_width = o.outline_width;
     outline = outline && !mapped && o.style != PNPR_STYLE_PAINTERLY && o.style != PNPR_STYLE_POINTS && n_draw > 0;
+    if (rec) {
+        memset(rec, 0, sizeof *rec);
+        rec->o = o;
+        rec->o.style_map = NULL;
+        rec->o.style_map_count = 0;
+        rec->fc = fc;
+        rec->width = fw;
+        rec->height = fh;
+        rec->n_draw = n_draw;
+        memcpy(rec->gdraw, gdraw, sizeof gdraw);
+        rec->point_scale = point_scale;
+        rec->lod = lod;
+        memcpy(rec->ink, ink, sizeof ink);
+        rec->outline = outline;
+        rec->outline_width = outline_width > 0 ? outline_width : 2;
+        rec->mapped = mapped;
+    }
     int sketchy = o.style == PNPR_STYLE_SKETCHY, lines = o.style == PNPR_STYLE_LINES;
     int stipple = o.style == PNPR_STYLE_STIPPLE, cartoon = o.style == PNPR_STYLE_CARTOON;
     int masked = sketchy || lines || stipple; /* pass 1 is a depth-only visibility mask */
@@ -1582,7 +1529,14 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
                                const pnpr_draw_options *opts, const pnpr_target *target,
                                pnpr_render_stats *r_stats, pnpr_error *err)
 {
-    return draw_impl(r, camera, opts, target, NULL, r_stats, err);
+    return draw_impl(r, camera, opts, target, NULL, r_stats, NULL, err);
+}
+
+pnpr_status pnpr_renderer_draw_recorded(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
+                                        int width, int height, pnpr_frame_record *rec, pnpr_error *err)
+{
+    pnpr_target tgt = {0, 0, 0, width, height, 1};
+    return draw_impl(r, camera, opts, &tgt, NULL, NULL, rec, err);
 }
 
 /* GL's rows go bottom-up: flip in place; then optionally un-premultiply. */
@@ -1655,7 +1609,7 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, 
     if (so.max_tile_size > 0 && so.max_tile_size < tmax) tmax = so.max_tile_size;
     pnpr_target tgt = {0, 0, 0, width, height, 1};
     if (width <= tmax && height <= tmax) { /* one frame: exactly pnpr_renderer_draw */
-        pnpr_status st = draw_impl(r, camera, opts, &tgt, NULL, r_stats, err);
+        pnpr_status st = draw_impl(r, camera, opts, &tgt, NULL, r_stats, NULL, err);
         if (st != PNPR_OK) return st;
         pnpr_progress_report(&so.progress, "tile 1/1", 1.0);
         return pnpr_renderer_read_frame(r, r_rgba, so.unpremultiply);
@@ -1703,7 +1657,7 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, 
             int iw = width - x0 < inner ? width - x0 : inner, ih = height - y0 < inner ? height - y0 : inner;
             tile_rect t = {width, height, x0 - margin, y0 - margin, tmax, tmax};
             pnpr_render_stats ts;
-            st = draw_impl(r, camera, &o, &tgt, &t, &ts, err);
+            st = draw_impl(r, camera, &o, &tgt, &t, &ts, NULL, err);
             if (st != PNPR_OK) return st;
             if (r_stats && done == 0) *r_stats = ts;
             pnpr_gl_state saved;

@@ -18,6 +18,7 @@
 #define POINTNPR_RENDER_H
 
 #include "cloud.h"
+#include "drawing.h"
 #include "lines.h"
 #include "style.h"
 #include "tone.h"
@@ -303,6 +304,21 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *renderer, const pnpr_camera *c
                                    const pnpr_draw_options *opts, int width, int height,
                                    const pnpr_snapshot_options *sopts, uint8_t *r_rgba,
                                    pnpr_render_stats *r_stats, pnpr_error *err);
+
+/* ---- vector drawings ---- */
+
+/* The frame of `opts` at width x height (within the GL limit) as a vector drawing (drawing.h):
+ * the strokes and hatches of `sketchy`, the dots of `stipple`, the profile lines of `lines` and
+ * the outlines of `lines`, `sketchy`, `stipple` and `cartoon` (its colour areas are not drawn),
+ * each placed as the shaders place it, the hidden ones removed with the frame's own visibility
+ * mask (docs/export.md, "Vector drawings"). The renderer's frame afterwards holds this frame.
+ * *r_drawing is replaced (release it with pnpr_drawing_free). PNPR_ERR_UNSUPPORTED for the
+ * other styles and for style maps, with a message. */
+/* Whether pnpr_renderer_drawing draws `opts` (a check before any work): PNPR_OK or
+ * PNPR_ERR_UNSUPPORTED with the reason. */
+pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *err);
+pnpr_status pnpr_renderer_drawing(pnpr_renderer *renderer, const pnpr_camera *camera, const pnpr_draw_options *opts,
+                                  int width, int height, pnpr_drawing *r_drawing, pnpr_error *err);
 
 /* Copies the last frame (width*height*4 bytes, RGBA8, top row first). unpremultiply: colours of
  * partly transparent pixels divided by alpha (for PNGs with alpha). */

@@ -1,10 +1,44 @@
-/* pointnpr render IN -o OUT.png: a stylised image of a point cloud, rendered headless
- * (EGL surfaceless, OpenGL 3.3 core) by the PointWorks renderer (render/, docs/rendering.md). */
+/* pointnpr render IN -o OUT.png|OUT.svg|OUT.pdf: a stylised image of a point cloud, rendered
+ * headless (EGL surfaceless, OpenGL 3.3 core) by the PointWorks renderer (render/,
+ * docs/rendering.md), or the same frame's strokes as a vector drawing (docs/export.md). */
 #include "cli.h"
 
 #include <stdio.h>
 
 #ifndef PNPR_HAVE_RENDER
+/* The frame as a vector drawing: merged and ordered when asked, written as SVG or PDF. */
+static int write_vector(cli_render_session *s, const cli_render_opts *o, const render_args *r, const pnpr_camera *camera)
+{
+    pnpr_error err = {0};
+    pnpr_drawing d;
+    pnpr_status st = pnpr_renderer_drawing(s->ren, camera, &o->dopt, o->view.width, o->view.height, &d, &err);
+    if (st != PNPR_OK) { cli_report_error_in("render", r->in, st, &err); return 0; }
+    size_t merged = 0, m = 0;
+    if (r->merge_hatches && st == PNPR_OK) st = pnpr_drawing_merge_collinear(&d, PNPR_LAYER_HATCHES, 1, 0.5f, 1, &merged);
+    if (r->merge_hatches && st == PNPR_OK) st = pnpr_drawing_merge_collinear(&d, PNPR_LAYER_TONE, 1, 0.5f, 1, &m);
+    double travel = pnpr_drawing_travel(&d);
+    if (r->plot_order && st == PNPR_OK) st = pnpr_drawing_order_for_plotter(&d);
+    if (st == PNPR_OK)
+        st = r->kind == OUT_SVG ? pnpr_drawing_write_svg(&d, r->out, &err) : pnpr_drawing_write_pdf(&d, r->out, &err);
+    else pnpr_error_set(&err, st, "render: %s: out of memory", r->out);
+    if (st != PNPR_OK) cli_report_error("render", st, &err);
+    else if (!o->quiet) {
+        fprintf(stderr, "%s: %zu paths (", r->in, d.count);
+        for (int L = 0; L < PNPR_LAYER_COUNT_; L++) {
+            size_t n = 0;
+            for (size_t i = 0; i < d.count; i++) n += d.layer[i] == L;
+            if (n) fprintf(stderr, "%s %zu, ", pnpr_drawing_layer_name((pnpr_drawing_layer)L), n);
+        }
+        fprintf(stderr, "%.0f px of ink), style %s, %dx%d", pnpr_drawing_ink_length(&d, PNPR_LAYER_COUNT_),
+                pnpr_style_name(o->dopt.style), o->view.width, o->view.height);
+        if (r->merge_hatches) fprintf(stderr, ", %zu hatches merged", merged + m);
+        if (r->plot_order) fprintf(stderr, ", pen-up travel %.0f -> %.0f px", travel, pnpr_drawing_travel(&d));
+        fprintf(stderr, " -> %s\n", r->out);
+    }
+    pnpr_drawing_free(&d);
+    return st == PNPR_OK;
+}
+
 int cli_render(int argc, char **argv)
 {
     (void)argc; (void)argv;
@@ -24,9 +58,14 @@ int cli_render(int argc, char **argv)
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: pointnpr render IN -o OUT.png [options]\n"
-            "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG.\n"
+            "usage: pointnpr render IN -o OUT.png|OUT.svg|OUT.pdf [options]\n"
+            "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG, or draws the\n"
+            "  frame's strokes, dots, lines and outlines as vector paths (SVG, PDF; styles sketchy,\n"
+            "  stipple, lines, cartoon).\n"
             "options:\n"
+            "  --plot-order         vector: order the paths of each layer for a pen plotter (shorter\n"
+            "                       pen-up travel)\n"
+            "  --merge-hatches      vector: hatches on one line become one path\n"
             "  --save-camera FILE   write the camera used (e.g. the automatic one) to FILE, to edit\n"
             "  --camera-path FILE --camera-at T\n"
             "                       the camera of a camera path (pointnpr animate, docs/export.md) at\n"
@@ -34,10 +73,14 @@ static void usage(FILE *f)
     cli_render_usage(f, 1024, 768);
 }
 
+typedef enum out_kind { OUT_PNG = 0, OUT_SVG, OUT_PDF } out_kind;
+
 typedef struct render_args {
     const char *in, *out, *save_camera, *camera_path;
     double camera_at;
     int have_camera_at;
+    int plot_order, merge_hatches;
+    out_kind kind;
     pnpr_camera_path path; /* the --camera-path file, read before any work */
 } render_args;
 
@@ -45,6 +88,8 @@ typedef struct render_args {
 static int render_option(render_args *r, int argc, char **argv, int *i)
 {
     const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (!strcmp(a, "--plot-order")) { r->plot_order = 1; return 1; }
+    if (!strcmp(a, "--merge-hatches")) { r->merge_hatches = 1; return 1; }
     if (!v) return 0;
     if (!strcmp(a, "-o") || !strcmp(a, "--output")) r->out = v;
     else if (!strcmp(a, "--save-camera")) r->save_camera = v;
@@ -94,9 +139,18 @@ static int check_args(render_args *r, cli_render_opts *o)
     pnpr_error err = {0};
     pnpr_status st = r->camera_path ? pnpr_camera_path_read(r->camera_path, &r->path, &err) : PNPR_OK;
     if (st != PNPR_OK) { cli_report_error("render", st, &err); return 2; }
-    if (!cli_has_ext(r->out, ".png") && !cli_output_is_stream(r->out)) {
-        fprintf(stderr, "pointnpr render: the output is a PNG image: its name must end in .png (or be - or a device/FIFO), got '%s'\n", r->out);
+    r->kind = cli_has_ext(r->out, ".svg") ? OUT_SVG : cli_has_ext(r->out, ".pdf") ? OUT_PDF : OUT_PNG;
+    if (r->kind == OUT_PNG && !cli_has_ext(r->out, ".png") && !cli_output_is_stream(r->out)) {
+        fprintf(stderr, "pointnpr render: the output's name must end in .png, .svg or .pdf (or be - or a device/FIFO: PNG), got '%s'\n", r->out);
         return 2;
+    }
+    if ((r->plot_order || r->merge_hatches) && r->kind == OUT_PNG) {
+        fprintf(stderr, "pointnpr render: --plot-order and --merge-hatches are for vector output (.svg, .pdf)\n");
+        return 2;
+    }
+    if (r->kind != OUT_PNG) {
+        st = pnpr_drawing_supported(&o->dopt, &err);
+        if (st != PNPR_OK) { cli_report_error("render", st, &err); return 2; }
     }
     if (r->save_camera && !strcmp(r->save_camera, r->out)) {
         fprintf(stderr, "pointnpr render: -o and --save-camera name the same file %s\n", r->out);
@@ -105,6 +159,39 @@ static int check_args(render_args *r, cli_render_opts *o)
     if (!cli_check_output("render", r->out, &r->in, 1, 1) || (r->save_camera && !cli_check_output("render", r->save_camera, &r->in, 1, 0)))
         return 1;
     return -1;
+}
+
+/* The frame as a vector drawing: merged and ordered when asked, written as SVG or PDF. */
+static int write_vector(cli_render_session *s, const cli_render_opts *o, const render_args *r, const pnpr_camera *camera)
+{
+    pnpr_error err = {0};
+    pnpr_drawing d;
+    pnpr_status st = pnpr_renderer_drawing(s->ren, camera, &o->dopt, o->view.width, o->view.height, &d, &err);
+    if (st != PNPR_OK) { cli_report_error_in("render", r->in, st, &err); return 0; }
+    size_t merged = 0, m = 0;
+    if (r->merge_hatches && st == PNPR_OK) st = pnpr_drawing_merge_collinear(&d, PNPR_LAYER_HATCHES, 1, 0.5f, 1, &merged);
+    if (r->merge_hatches && st == PNPR_OK) st = pnpr_drawing_merge_collinear(&d, PNPR_LAYER_TONE, 1, 0.5f, 1, &m);
+    double travel = pnpr_drawing_travel(&d);
+    if (r->plot_order && st == PNPR_OK) st = pnpr_drawing_order_for_plotter(&d);
+    if (st == PNPR_OK)
+        st = r->kind == OUT_SVG ? pnpr_drawing_write_svg(&d, r->out, &err) : pnpr_drawing_write_pdf(&d, r->out, &err);
+    else pnpr_error_set(&err, st, "render: %s: out of memory", r->out);
+    if (st != PNPR_OK) cli_report_error("render", st, &err);
+    else if (!o->quiet) {
+        fprintf(stderr, "%s: %zu paths (", r->in, d.count);
+        for (int L = 0; L < PNPR_LAYER_COUNT_; L++) {
+            size_t n = 0;
+            for (size_t i = 0; i < d.count; i++) n += d.layer[i] == L;
+            if (n) fprintf(stderr, "%s %zu, ", pnpr_drawing_layer_name((pnpr_drawing_layer)L), n);
+        }
+        fprintf(stderr, "%.0f px of ink), style %s, %dx%d", pnpr_drawing_ink_length(&d, PNPR_LAYER_COUNT_),
+                pnpr_style_name(o->dopt.style), o->view.width, o->view.height);
+        if (r->merge_hatches) fprintf(stderr, ", %zu hatches merged", merged + m);
+        if (r->plot_order) fprintf(stderr, ", pen-up travel %.0f -> %.0f px", travel, pnpr_drawing_travel(&d));
+        fprintf(stderr, " -> %s\n", r->out);
+    }
+    pnpr_drawing_free(&d);
+    return st == PNPR_OK;
 }
 
 int cli_render(int argc, char **argv)
@@ -132,6 +219,10 @@ int cli_render(int argc, char **argv)
     if (r.save_camera && camp &&
         !cli_write_camera_file(r.save_camera, camp->eye, camp->target, camp->up, camp->fov_y_deg > 0 ? camp->fov_y_deg : 45)) {
         fprintf(stderr, "pointnpr render: cannot write the camera file %s\n", r.save_camera);
+        goto done;
+    }
+    if (r.kind != OUT_PNG) {
+        rc = write_vector(&s, &o, &r, camp) ? 0 : 1;
         goto done;
     }
     pnpr_render_stats stats;

@@ -151,4 +151,20 @@ for bad in "--outline maybe" "--outline-width 0" "--outline-width 100" "--outlin
 done
 "$bin" render "$dir/cube.ply" -o "$dir/light.png" --style sketchy --tone light --tone-gamma 1.5 --light 1,0,1 --outline-width 3 --size 120x90 --quiet
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/light.png")" -eq 120 ]' "tone and outline options render"
+
+# vector drawings (docs/export.md): SVG with named layers, PDF with the drawing's page size,
+# plotter order and merged hatches reported; fill styles and PNG-only options refused up front
+"$bin" render "$dir/cube.ply" -o "$dir/sketch.svg" --style sketchy --size 200x150 --plot-order --merge-hatches 2> "$dir/svg.log"
+check '[ $? -eq 0 ] && grep -q "<svg" "$dir/sketch.svg" && grep -q "inkscape:label=\"strokes\"" "$dir/sketch.svg"' "sketchy SVG with a strokes layer ($(cat "$dir/svg.log"))"
+check 'grep -q "pen-up travel" "$dir/svg.log" && grep -q "hatches merged" "$dir/svg.log"' "plotter order and merging reported"
+check 'grep -q "width=\"200px\" height=\"150px\"" "$dir/sketch.svg"' "SVG is 200x150 px"
+"$bin" render "$dir/cube.ply" -o "$dir/dots.pdf" --style stipple --size 200x150 --quiet
+check '[ $? -eq 0 ] && [ "$(head -c 5 "$dir/dots.pdf")" = "%PDF-" ]' "stipple PDF written"
+if command -v pdfinfo > /dev/null; then
+  check 'pdfinfo "$dir/dots.pdf" | grep -q "Page size: *150 x 112.5 pts"' "PDF page is 200x150 px at 0.75 pt"
+fi
+"$bin" render "$dir/cube.ply" -o "$dir/fill.svg" --style points --quiet 2> "$dir/fill.log"
+check '[ $? -eq 2 ] && grep -q "fills areas" "$dir/fill.log" && [ ! -e "$dir/fill.svg" ]' "points as SVG refused before any work"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --plot-order --quiet 2> "$dir/po.log"
+check '[ $? -eq 2 ] && grep -q "vector output" "$dir/po.log"' "--plot-order with a PNG refused"
 exit $fail

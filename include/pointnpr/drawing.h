@@ -1,0 +1,99 @@
+/* Vector drawings: the strokes, dots, lines and outlines of a rendered frame as paths, for SVG and
+ * PDF export (docs/export.md, "Vector drawings"). Pure CPU: the renderer fills a drawing
+ * (pnpr_renderer_drawing in render.h, from the frame it drew); this header orders, merges and
+ * writes it. */
+#ifndef PNPR_DRAWING_H
+#define PNPR_DRAWING_H
+
+#include <pointnpr/core.h>
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The layers of a drawing, bottom to top (the order the renderer draws them in). */
+typedef enum pnpr_drawing_layer {
+    PNPR_LAYER_TONE = 0,   /* sketchy: hatches of the dithering points (tone) */
+    PNPR_LAYER_HATCHES,    /* sketchy: hatches of the non-directional feature points */
+    PNPR_LAYER_STROKES,    /* sketchy: strokes along the directional feature points */
+    PNPR_LAYER_DOTS,       /* stipple: feature and tone dots */
+    PNPR_LAYER_LINES,      /* lines: the profile lines */
+    PNPR_LAYER_OUTLINES,   /* silhouettes and occluding contours */
+    PNPR_LAYER_COUNT_
+} pnpr_drawing_layer;
+
+/* Layer names as written in the SVG (inkscape:label) and in messages. */
+const char *pnpr_drawing_layer_name(pnpr_drawing_layer layer);
+
+enum {
+    PNPR_PATH_CLOSED = 1, /* the last vertex joins the first */
+    PNPR_PATH_DOT = 2     /* one vertex: a filled disk of diameter `width` */
+};
+
+/* Path i has vertices offset[i] .. offset[i+1]-1 (xy: 2 floats each, pixels, x right, y down,
+ * pixel (i, j) covers [i, i+1) x [j, j+1)), is stroked `width[i]` px wide with butt caps and
+ * round joins in colour rgba[4 i ..] (straight alpha), and belongs to layer[i]. Paths are in
+ * drawing order (the renderer's). Owned by the library: pnpr_drawing_free. */
+typedef struct pnpr_drawing {
+    int width, height;       /* px; 1 px = 0.75 pt in the PDF (CSS pixels) */
+    uint8_t background[4];   /* rgba; alpha 0: no background rectangle */
+    size_t count;
+    size_t *offset;          /* count + 1 */
+    float *xy;
+    float *stroke_width;
+    uint8_t *rgba;
+    uint8_t *layer;
+    uint8_t *flags;          /* PNPR_PATH_* */
+    size_t cap_paths, cap_vertices;
+} pnpr_drawing;
+
+void pnpr_drawing_free(pnpr_drawing *d);
+
+/* Appends a path of n >= 1 vertices. PNPR_ERR_OUT_OF_MEMORY (the drawing unchanged) or
+ * PNPR_ERR_INVALID_ARGUMENT (n == 0, a non-finite coordinate or width, an unknown layer). */
+pnpr_status pnpr_drawing_add(pnpr_drawing *d, const float *xy, size_t n, float width, const uint8_t rgba[4],
+                             pnpr_drawing_layer layer, uint8_t flags);
+
+/* Appends the vertex (x, y) to the last path. PNPR_ERR_INVALID_ARGUMENT without paths or for a
+ * non-finite vertex; PNPR_ERR_OUT_OF_MEMORY (the drawing unchanged). */
+pnpr_status pnpr_drawing_extend(pnpr_drawing *d, float x, float y);
+
+/* Total length of the paths of `layer` (PNPR_LAYER_COUNT_: all), px. */
+double pnpr_drawing_ink_length(const pnpr_drawing *d, pnpr_drawing_layer layer);
+
+/* Pen-up travel: the sum of the distances from each path's last vertex to the next path's first
+ * (starting at (0, 0)), px. */
+double pnpr_drawing_travel(const pnpr_drawing *d);
+
+/* Merges the straight two-vertex paths of `layer` (hatches) that lie on one line: the same
+ * direction within `angle_deg`, the same offset across it within `offset_px`, the same width and
+ * colour, and overlapping or separated by at most `gap_px` along it, become one path spanning
+ * them. Returns PNPR_OK (the drawing keeps its order: a merged path takes the place of its first
+ * part) or PNPR_ERR_OUT_OF_MEMORY (the drawing unchanged). r_merged (may be NULL): paths removed. */
+pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_drawing_layer layer, float angle_deg, float offset_px,
+                                         float gap_px, size_t *r_merged);
+
+/* Orders the paths of each layer for a pen plotter: greedy nearest neighbour from the previous
+ * pen position over the ends of the remaining paths (an open path may be drawn backwards),
+ * layers kept in order. PNPR_ERR_OUT_OF_MEMORY leaves the drawing unchanged. */
+pnpr_status pnpr_drawing_order_for_plotter(pnpr_drawing *d);
+
+/* SVG 1.1: one <g> per non-empty layer, in layer order, marked as an Inkscape layer with its name;
+ * paths with their widths and colours; coordinates with 2 decimals; width and height in px.
+ * Written through pnpr_output (output.h): a temporary beside `path` renamed over it, "-" =
+ * standard output. */
+pnpr_status pnpr_drawing_write_svg(const pnpr_drawing *d, const char *path, pnpr_error *err);
+
+/* PDF 1.5 through cairo, one page of width x height px at 0.75 pt a px, the same paths (PDF has no
+ * named layers in cairo 1.16: the layers are drawn in order). PNPR_ERR_UNSUPPORTED when the
+ * library was built without cairo. */
+pnpr_status pnpr_drawing_write_pdf(const pnpr_drawing *d, const char *path, pnpr_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

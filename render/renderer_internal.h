@@ -1,0 +1,106 @@
+/* The renderer's state, shared by its sources (renderer.c draws, vector.c reads a drawn frame
+ * back as paths). Not installed. */
+#ifndef PNPR_RENDERER_INTERNAL_H
+#define PNPR_RENDERER_INTERNAL_H
+
+#include "render_internal.h"
+#include "edges.h"
+
+#include <epoxy/gl.h>
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Queue groups: with features, one queue per class (as the paper groups them); else one. */
+enum { GROUP_DIRECTIONAL = 0, GROUP_NONDIRECTIONAL, GROUP_DITHER, GROUP_NONE, GROUP_MAX };
+
+enum { PNPR_PAINT_MAX_BRUSH = 4 }; /* painterly: the largest brush, in disk radii */
+enum { LINE_FLOATS = 7 }; /* a line segment: its two ends and its polyline's length */
+enum { STROKE_TEX_W = 128, STROKE_TEX_H = 32, STROKE_LAYERS = 4, STROKE_LAYER_HATCH = 3 };
+
+typedef struct pnpr_vertex {
+    float pos[3];
+    float radius;
+    uint8_t rgba[4];
+    float dir[3];
+    uint8_t flat[4]; /* cartoon: the segment's mean colour (the point colour without labels) */
+    int8_t normal[4]; /* unit normal * 127 (orientation does not matter); all 0 = unknown */
+} pnpr_vertex;
+
+typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin; } splat_uniforms;
+typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho, ppu, min_px; } line_uniforms;
+typedef struct stroke_uniforms {
+    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin;
+} stroke_uniforms;
+
+typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
+
+enum { PAINT_MAX_BINS = 16, PAINT_K = 12, BRUSH_TEX = 64 };
+
+struct pnpr_renderer {
+    GLuint prog_splat, prog_stroke, prog_composite, prog_line, prog_paint;
+    paint_uniforms up;
+    /* painterly (section 5.3): the points again, sorted by feature degree into bins (each bin a
+     * queue), and one blended colour per point and pass (level-major) */
+    GLuint paint_vbo, paint_col_vbo, vao_paint, brush_tex;
+    size_t paint_bins;                       /* 0: no painterly data (no feature degree) */
+    size_t paint_start[PAINT_MAX_BINS + 2];
+    splat_uniforms us;
+    line_uniforms ul;
+    stroke_uniforms ut;
+    GLint uc_frame, uc_origin;
+    GLuint vbo, vao_points, vao_strokes, vao_empty, vao_flat;
+    GLuint line_vbo, vao_lines;
+    GLuint stroke_tex;
+    GLuint fbo, color_tex, depth_rb;
+    GLuint info_tex;     /* attachment 1: the mask's surface info (eye distance, depth extent, radius) */
+    pnpr_edges edges;    /* outlines from it (edges.c) */
+    int fb_w, fb_h;
+    float max_point_size;
+    GLint max_size;      /* min of GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS */
+    float max_radius;    /* largest disk radius of the uploaded cloud (tile guard bands) */
+    float mean_radius;   /* mean disk radius (the lines' depth tolerance) */
+    /* the uploaded cloud */
+    size_t count;
+    size_t group_start[GROUP_MAX + 2];
+    size_t group_count;
+    int has_features, has_labels, has_rgb;
+    double origin[3];
+    float bmin[3], bmax[3];
+    /* style maps (intermingled styles): one style byte per vertex (attribute 4) in the main
+     * order (style_vbo) and in the painterly order (paint_style_vbo); the labels and the
+     * painterly order's main indices to fill them; the bytes last uploaded */
+    GLuint style_vbo, paint_style_vbo;
+    GLint us_filter, ut_filter;
+    uint32_t *vlabel;    /* label of each vertex (main order); NULL: the cloud has no labels */
+    uint32_t *paint_src; /* main-order index of each painterly vertex */
+    uint8_t *vstyle;     /* the style bytes in style_vbo (main order) */
+    /* the profile lines: segments as pairs of float offsets from line_origin */
+    size_t line_segments;
+    double line_origin[3];
+};
+
+/* The stroke textures (STROKE_LAYERS layers of STROKE_TEX_W x STROKE_TEX_H alpha bytes, u along
+ * the stroke), generated once (paper figure 5 a-c, plus the hatch). */
+void pnpr_stroke_textures(uint8_t *out);
+
+/* What a drawn frame was made of: the resolved options, the camera and the queue prefixes, so that
+ * its strokes, dots and lines can be computed again on the CPU (vector.c). */
+typedef struct pnpr_frame_record {
+    pnpr_draw_options o;        /* options with the style map resolved (o.style_map stays NULL) */
+    pnpr_frame_camera fc;
+    int width, height;
+    size_t n_draw;
+    size_t gdraw[GROUP_MAX + 1];
+    float point_scale, lod, ink[4];
+    int outline;                /* the frame drew outlines (the info attachment holds the mask's surface) */
+    float outline_width;
+    int mapped;                 /* several styles (a style map): not recorded further */
+} pnpr_frame_record;
+
+/* Draws one offscreen frame of width x height (within the GL limit) like pnpr_renderer_draw and
+ * fills *rec. */
+pnpr_status pnpr_renderer_draw_recorded(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
+                                        int width, int height, pnpr_frame_record *rec, pnpr_error *err);
+
+#endif

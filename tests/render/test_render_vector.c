@@ -1,0 +1,264 @@
+/* Vector drawings (issue 16, docs/export.md "Vector drawings"):
+ * 1. Known answer, a back plane of directional points (strokes along x) seen from above, half of
+ *    it under an opaque front plane without features: with nothing in front, one path per stroke
+ *    the frame drew; with the occluder, no path reaches into the occluded half and the count lies
+ *    between the strokes whose centre is visible and those whose half length reaches past the
+ *    occluder's edge.
+ * 2. The SVG rasterised by rsvg-convert against the PNG of the same view and size: at most 2% of
+ *    the pixels differ in ink / no ink (ink: grey below 160 on white) for the strokes of sketchy,
+ *    the dots of stipple and the profile lines of lines on the generated house scene of `bench
+ *    quality`; with outlines (lines, cartoon) at most 3.5% (measured 2.7% and 2.9%: the outlines
+ *    are traced differently, docs/export.md).
+ * 3. The PDF (cairo) opens in pdfinfo with the page size of the drawing (0.75 pt a px).
+ * 4. Merging collinear hatches keeps the ink length; plotter order shortens the pen-up travel and
+ *    keeps every path. Unsupported styles fail with a message.
+ * Exits 77 (skipped) without headless GL. */
+#include "testutil.h"
+#include "quality.h"
+
+#include <pointnpr/drawing.h>
+#include <pointnpr/features.h>
+#include <pointnpr/lines.h>
+#include <pointnpr/props.h>
+#include <pointnpr/render.h>
+
+#include <math.h>
+#include <png.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { W = 320, H = 240, GRID = 60 };
+
+/* The back plane z = 0 (GRID x GRID points over [0,1]^2, directional along x) and, when `occluder`,
+ * a front plane at z = 0.3 over x in [0, 0.5] without features (class none). */
+static void planes(pnpr_cloud *c, int occluder)
+{
+    size_t nb = GRID * GRID, nf = occluder ? (GRID / 2 + 6) * GRID : 0;
+    CHECK_STATUS(pnpr_cloud_alloc(c, nb + nf), PNPR_OK);
+    pnpr_property *cls = NULL, *dx = NULL, *dy = NULL, *dz = NULL;
+    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_CLASS, PNPR_TYPE_UINT8, &cls), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_X, PNPR_TYPE_FLOAT32, &dx), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_Y, PNPR_TYPE_FLOAT32, &dy), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_Z, PNPR_TYPE_FLOAT32, &dz), PNPR_OK);
+    size_t k = 0;
+    for (int j = 0; j < GRID; j++)
+        for (int i = 0; i < GRID; i++, k++) {
+            c->xyz[3 * k] = (i + 0.5f) / GRID;
+            c->xyz[3 * k + 1] = (j + 0.5f) / GRID;
+            ((uint8_t *)cls->data)[k] = PNPR_CLASS_DIRECTIONAL;
+            ((float *)dx->data)[k] = 1;
+        }
+    for (int j = 0; j < GRID && occluder; j++) /* the front plane reaches x = 0.5 exactly */
+        for (int i = -6; i < GRID / 2; i++, k++) {
+            c->xyz[3 * k] = 0.5f - (GRID / 2 - 1 - i + 0.5f) / GRID - 0.5f / GRID;
+            c->xyz[3 * k + 1] = (j + 0.5f) / GRID;
+            c->xyz[3 * k + 2] = 0.3f;
+        }
+}
+
+/* Strokes of the back plane, from above: the known answer of the occluder. */
+static void check_occlusion(pnpr_renderer *r)
+{
+    pnpr_camera cam = {{0.5, 0.5, 3}, {0.5, 0.5, 0}, {0, 1, 0}, 40, 0, 0};
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.style = PNPR_STYLE_SKETCHY;
+    o.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
+    o.outline = -1;
+    pnpr_error err = {0};
+    pnpr_drawing d = {0};
+    for (int occ = 0; occ < 2; occ++) {
+        pnpr_cloud c = {0};
+        planes(&c, occ);
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, &err), PNPR_OK);
+        static uint8_t px[W * H * 4];
+        pnpr_render_stats st;
+        CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px, &st, &err), PNPR_OK);
+        CHECK_STATUS(pnpr_renderer_drawing(r, &cam, &o, W, H, &d, &err), PNPR_OK);
+        /* screen x of world x = 0.5 (the occluder's edge on the back plane): the image centre */
+        double edge = 0.5 * W, half_len = 0;
+        size_t visible_centre = 0;
+        for (size_t i = 0; i < d.count; i++) {
+            const float *p = d.xy + 2 * d.offset[i];
+            half_len = fmax(half_len, 0.5 * fabs(p[2] - p[0]));
+        }
+        for (size_t k = 0; k < GRID * GRID; k++) visible_centre += c.xyz[3 * k] > 0.5f;
+        if (!occ) {
+            printf("no occluder: %zu strokes drawn, %zu paths\n", st.strokes_drawn, d.count);
+            CHECK_MSG(d.count == st.strokes_drawn, "%zu paths for %zu strokes", d.count, st.strokes_drawn);
+        } else {
+            double leftmost = INFINITY;
+            for (size_t i = 0; i < d.count; i++)
+                for (size_t v = d.offset[i]; v < d.offset[i + 1]; v++) leftmost = fmin(leftmost, d.xy[2 * v]);
+            /* strokes whose half length (in world units: px / px-per-unit at depth 3) reaches over the edge */
+            double ppu = 0.5 * H / tan(20 * 3.14159265358979 / 180) / 3, reach = half_len / ppu;
+            size_t upper = 0;
+            for (size_t k = 0; k < GRID * GRID; k++) upper += c.xyz[3 * k] > 0.5 - reach;
+            printf("occluder: %zu paths, strokes with a visible centre %zu, reaching past the edge %zu; "
+                   "leftmost ink x %.2f, edge %.2f\n", d.count, visible_centre, upper, leftmost, edge);
+            CHECK_MSG(leftmost >= edge - 1.0, "ink at x %.2f behind the occluder (edge %.2f)", leftmost, edge);
+            CHECK(d.count >= visible_centre && d.count <= upper);
+        }
+        pnpr_drawing_free(&d);
+        pnpr_cloud_free(&c);
+    }
+}
+
+/* Reads a PNG of W x H as grey on white (alpha composited); 0 on failure. */
+static int read_grey(const char *path, uint8_t *grey)
+{
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&img, path)) return 0;
+    img.format = PNG_FORMAT_GRAY;
+    if (img.width != W || img.height != H) { png_image_free(&img); return 0; }
+    png_color bg = {255, 255, 255};
+    return png_image_finish_read(&img, &bg, grey, 0, NULL);
+}
+
+static double luma(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+/* The fraction of pixels where the PNG and the rasterised SVG disagree on ink. Ink in the PNG: grey
+ * below 160; with `under` (the same frame without outlines: cartoon's colour areas), the pixels
+ * the outlines darkened by more than 40 instead. */
+static double ink_difference(const uint8_t *rgba, const uint8_t *under, const uint8_t *grey)
+{
+    size_t diff = 0, ink = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++) {
+        double g = luma(rgba + 4 * i);
+        int a = under ? g < luma(under + 4 * i) - 40 : g < 160, b = grey[i] < 160;
+        diff += a != b;
+        ink += a;
+    }
+    printf(" (ink %.2f%% of the pixels)", 100.0 * ink / ((double)W * H));
+    return (double)diff / ((double)W * H);
+}
+
+/* The page size pdfinfo reads, in pt; 0 on failure. */
+static int pdf_page(const char *pdf, double *w, double *h)
+{
+    char cmd[700];
+    snprintf(cmd, sizeof cmd, "pdfinfo '%s' 2>/dev/null", pdf);
+    FILE *p = popen(cmd, "r");
+    if (!p) return 0;
+    char line[256];
+    int ok = 0;
+    while (fgets(line, sizeof line, p))
+        if (sscanf(line, "Page size: %lf x %lf pts", w, h) == 2) ok = 1;
+    return pclose(p) == 0 && ok;
+}
+
+/* bound: the largest share of pixels allowed to differ in ink (outline -1: the marks alone). */
+static void check_style(pnpr_renderer *r, const pnpr_camera *cam, pnpr_style style, int outline, double bound)
+{
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.style = style;
+    o.outline = outline;
+    for (int k = 0; k < 4; k++) o.background[k] = 1;
+    pnpr_error err = {0};
+    static uint8_t px[W * H * 4], under[W * H * 4], grey[W * H];
+    int areas = style == PNPR_STYLE_CARTOON;
+    if (areas) {
+        o.outline = -1;
+        CHECK_STATUS(pnpr_renderer_snapshot(r, cam, &o, W, H, NULL, under, NULL, &err), PNPR_OK);
+        o.outline = outline;
+    }
+    CHECK_STATUS(pnpr_renderer_snapshot(r, cam, &o, W, H, NULL, px, NULL, &err), PNPR_OK);
+    pnpr_drawing d = {0};
+    CHECK_STATUS(pnpr_renderer_drawing(r, cam, &o, W, H, &d, &err), PNPR_OK);
+    char svg[512], png[512], pdf[512], raster[512], cmd[1600];
+    snprintf(raster, sizeof raster, "%s/vector-%s.png", PNPR_TEST_SCRATCH, pnpr_style_name(style));
+    CHECK_STATUS(pnpr_write_png(raster, px, W, H, 0, &err), PNPR_OK);
+    snprintf(svg, sizeof svg, "%s/vector-%s.svg", PNPR_TEST_SCRATCH, pnpr_style_name(style));
+    snprintf(png, sizeof png, "%s/vector-%s-svg.png", PNPR_TEST_SCRATCH, pnpr_style_name(style));
+    snprintf(pdf, sizeof pdf, "%s/vector-%s.pdf", PNPR_TEST_SCRATCH, pnpr_style_name(style));
+    CHECK_STATUS(pnpr_drawing_write_svg(&d, svg, &err), PNPR_OK);
+    snprintf(cmd, sizeof cmd, "rsvg-convert '%s' -o '%s'", svg, png);
+    CHECK(system(cmd) == 0);
+    CHECK(read_grey(png, grey));
+    printf("%-8s outlines %-3s %6zu paths", pnpr_style_name(style), outline < 0 ? "off" : "on", d.count);
+    double diff = ink_difference(px, areas ? under : NULL, grey);
+    printf(", ink differs at %.2f%% of the pixels\n", 100 * diff);
+    CHECK_MSG(diff <= bound, "%s: the SVG differs from the PNG at %.2f%% of the pixels", pnpr_style_name(style), 100 * diff);
+    CHECK(d.count > 0);
+    CHECK_STATUS(pnpr_drawing_write_pdf(&d, pdf, &err), PNPR_OK);
+    double pw = 0, ph = 0;
+    CHECK_MSG(pdf_page(pdf, &pw, &ph), "pdfinfo cannot read %s", pdf);
+    CHECK(fabs(pw - 0.75 * W) < 0.01 && fabs(ph - 0.75 * H) < 0.01);
+    pnpr_drawing_free(&d);
+}
+
+/* Merging keeps the ink; plotter order keeps the paths and shortens the travel. */
+static void check_plot(pnpr_renderer *r, const pnpr_camera *cam)
+{
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.style = PNPR_STYLE_SKETCHY;
+    pnpr_error err = {0};
+    pnpr_drawing d = {0};
+    CHECK_STATUS(pnpr_renderer_drawing(r, cam, &o, W, H, &d, &err), PNPR_OK);
+    size_t n = d.count, merged = 9;
+    double ink = pnpr_drawing_ink_length(&d, PNPR_LAYER_COUNT_), travel = pnpr_drawing_travel(&d);
+    CHECK_STATUS(pnpr_drawing_order_for_plotter(&d), PNPR_OK);
+    double after = pnpr_drawing_travel(&d);
+    printf("plotter order: %zu paths, pen-up travel %.0f -> %.0f px\n", d.count, travel, after);
+    CHECK(d.count == n && fabs(pnpr_drawing_ink_length(&d, PNPR_LAYER_COUNT_) - ink) < 1e-3 * ink && after < 0.5 * travel);
+    CHECK_STATUS(pnpr_drawing_merge_collinear(&d, PNPR_LAYER_HATCHES, 1, 0.5f, 1, &merged), PNPR_OK);
+    printf("merged %zu hatches\n", merged);
+    CHECK(d.count == n - merged);
+    /* merging never adds ink, and loses at most the overlaps */
+    CHECK(pnpr_drawing_ink_length(&d, PNPR_LAYER_COUNT_) <= ink * (1 + 1e-6));
+    pnpr_drawing_free(&d);
+    o.style = PNPR_STYLE_POINTS;
+    CHECK_STATUS(pnpr_renderer_drawing(r, cam, &o, W, H, &d, &err), PNPR_ERR_UNSUPPORTED);
+    CHECK(strstr(err.message, "points") != NULL);
+    o.style = PNPR_STYLE_SKETCHY;
+    CHECK_STATUS(pnpr_renderer_drawing(r, cam, &o, 0, H, &d, &err), PNPR_ERR_INVALID_ARGUMENT);
+}
+
+int main(void)
+{
+    if (system("rsvg-convert --version > /dev/null 2>&1") != 0 || system("pdfinfo -v > /dev/null 2>&1") != 0) {
+        fprintf(stderr, "test_render_vector: rsvg-convert or pdfinfo is missing (packaging/deps/vector.txt installs them)\n");
+        return 1;
+    }
+    pnpr_error err = {0};
+    pnpr_gl_context *ctx = NULL;
+    if (pnpr_gl_context_create(&ctx, &err) != PNPR_OK) {
+        fprintf(stderr, "test_render_vector: skipped: %s\n", err.message);
+        return 77;
+    }
+    pnpr_renderer *r = NULL;
+    CHECK_STATUS(pnpr_renderer_create(NULL, &r, &err), PNPR_OK);
+    if (r) check_occlusion(r);
+    pnpr_quality_scene scene;
+    pnpr_quality_scene_init(&scene, PNPR_QUALITY_PRESET_SPARSE);
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_quality_scan(&scene, 0, &c, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_compute_features(&c, NULL, NULL), PNPR_OK);
+    pnpr_polylines lines = {0};
+    CHECK_STATUS(pnpr_profile_lines(&c, NULL, &lines, NULL), PNPR_OK);
+    if (r && pnpr_test_failures == 0) {
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, &err), PNPR_OK);
+        CHECK_STATUS(pnpr_renderer_set_lines(r, &lines, &err), PNPR_OK);
+        pnpr_camera cam;
+        pnpr_camera_fit(&c, NULL, 45, (float)W / H, &cam);
+        /* the strokes, dots and lines: at most 2% (the issue's bound) */
+        check_style(r, &cam, PNPR_STYLE_SKETCHY, -1, 0.02);
+        check_style(r, &cam, PNPR_STYLE_STIPPLE, -1, 0.02);
+        check_style(r, &cam, PNPR_STYLE_LINES, -1, 0.02);
+        /* with outlines: the SVG's are traced on the CPU (smooth centre lines, svg_outline.c), the
+         * PNG's drawn by the outline shaders (a jagged band): measured 2.7% and 2.9%, asserted
+         * as a regression guard (docs/export.md) */
+        check_style(r, &cam, PNPR_STYLE_LINES, 1, 0.035);
+        check_style(r, &cam, PNPR_STYLE_CARTOON, 0, 0.035);
+        check_plot(r, &cam);
+    }
+    pnpr_lines_free(&lines);
+    pnpr_cloud_free(&c);
+    pnpr_renderer_destroy(r);
+    pnpr_gl_context_destroy(ctx);
+    return pnpr_test_finish("test_render_vector");
+}

@@ -1,0 +1,90 @@
+/* SVG writer of vector drawings (include/pointnpr/drawing.h). Written here rather than through
+ * cairo's SVG surface: cairo 1.16 (Debian 12) cannot name groups, so the layers an artist edits in
+ * Inkscape would be lost, and it repeats a full style on every path (about 5x the bytes). The
+ * PDF goes through cairo (drawing_pdf.c) from the same paths. */
+#include <pointnpr/drawing.h>
+#include <pointnpr/output.h>
+
+#include <stdio.h>
+#include <string.h>
+
+static void colour_attr(FILE *f, const char *what, const uint8_t *c)
+{
+    fprintf(f, " %s=\"#%02x%02x%02x\"", what, c[0], c[1], c[2]);
+    if (c[3] != 255) fprintf(f, " %s-opacity=\"%.3f\"", what, c[3] / 255.0);
+}
+
+/* Opens a group for a run of paths of one colour, width and kind. */
+static void open_run(FILE *f, const pnpr_drawing *d, size_t i)
+{
+    const uint8_t *c = d->rgba + 4 * i;
+    fputs("<g", f);
+    if (d->flags[i] & PNPR_PATH_DOT) {
+        colour_attr(f, "fill", c);
+    } else {
+        fputs(" fill=\"none\"", f);
+        colour_attr(f, "stroke", c);
+        fprintf(f, " stroke-width=\"%.2f\"", d->stroke_width[i]);
+    }
+    fputs(">\n", f);
+}
+
+static int same_run(const pnpr_drawing *d, size_t a, size_t b)
+{
+    return !memcmp(d->rgba + 4 * a, d->rgba + 4 * b, 4) && d->stroke_width[a] == d->stroke_width[b] &&
+           ((d->flags[a] ^ d->flags[b]) & PNPR_PATH_DOT) == 0;
+}
+
+static void write_path(FILE *f, const pnpr_drawing *d, size_t i)
+{
+    size_t a = d->offset[i], b = d->offset[i + 1];
+    if (d->flags[i] & PNPR_PATH_DOT) {
+        fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", d->xy[2 * a], d->xy[2 * a + 1], 0.5 * d->stroke_width[i]);
+        return;
+    }
+    fprintf(f, "<path d=\"M%.2f %.2f", d->xy[2 * a], d->xy[2 * a + 1]);
+    for (size_t v = a + 1; v < b; v++) fprintf(f, "L%.2f %.2f", d->xy[2 * v], d->xy[2 * v + 1]);
+    fputs((d->flags[i] & PNPR_PATH_CLOSED) ? "Z\"/>\n" : "\"/>\n", f);
+}
+
+static int print_svg(FILE *f, const void *ctx)
+{
+    const pnpr_drawing *d = ctx;
+    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+               "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+               "xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" version=\"1.1\" "
+               "width=\"%dpx\" height=\"%dpx\" viewBox=\"0 0 %d %d\">\n",
+            d->width, d->height, d->width, d->height);
+    if (d->background[3]) {
+        fprintf(f, "<rect x=\"0\" y=\"0\" width=\"%d\" height=\"%d\"", d->width, d->height);
+        colour_attr(f, "fill", d->background);
+        fputs("/>\n", f);
+    }
+    for (int L = 0; L < PNPR_LAYER_COUNT_; L++) {
+        size_t prev = SIZE_MAX;
+        for (size_t i = 0; i < d->count; i++) {
+            if (d->layer[i] != L) continue;
+            if (prev == SIZE_MAX)
+                fprintf(f, "<g id=\"%s\" inkscape:groupmode=\"layer\" inkscape:label=\"%s\" stroke-linecap=\"butt\" "
+                           "stroke-linejoin=\"round\">\n",
+                        pnpr_drawing_layer_name((pnpr_drawing_layer)L), pnpr_drawing_layer_name((pnpr_drawing_layer)L));
+            if (prev == SIZE_MAX || !same_run(d, prev, i)) {
+                if (prev != SIZE_MAX) fputs("</g>\n", f);
+                open_run(f, d, i);
+            }
+            write_path(f, d, i);
+            prev = i;
+        }
+        if (prev != SIZE_MAX) fputs("</g>\n</g>\n", f);
+    }
+    fputs("</svg>\n", f);
+    return ferror(f) != 0;
+}
+
+pnpr_status pnpr_drawing_write_svg(const pnpr_drawing *d, const char *path, pnpr_error *err)
+{
+    if (!d || !path || d->width <= 0 || d->height <= 0)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: no drawing or a drawing of size %dx%d",
+                              d ? d->width : 0, d ? d->height : 0);
+    return pnpr_output_write(path, print_svg, d, err);
+}
