@@ -1402,8 +1402,10 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
     if (o.outline) outline = o.outline > 0;
     if (o.outline_width > 0) outline_width = o.outline_width;
     outline = outline && !mapped && o.style != PNPR_STYLE_PAINTERLY && o.style != PNPR_STYLE_POINTS && n_draw > 0;
+    int ink_only = rec && rec->outline_ink_only;
     if (rec) {
         memset(rec, 0, sizeof *rec);
+        rec->outline_ink_only = ink_only;
         rec->o = o;
         rec->o.style_map = NULL;
         rec->o.style_map_count = 0;
@@ -1492,6 +1494,11 @@ static pnpr_status draw_impl(pnpr_renderer *r, const pnpr_camera *camera, const 
                                o.outline_hole > 0 ? o.outline_hole : PNPR_OUTLINE_HOLE, PNPR_EDGE_MAX_REACH, fc.pixels_per_unit,
                                fc.ortho, {ink[0], ink[1], ink[2], ink[3]}, inset,
                                {o.background[0] * a, o.background[1] * a, o.background[2] * a, a}};
+        if (ink_only) { /* vector drawings: the outlines' ink alone (vector.c) */
+            const float clear[4] = {0, 0, 0, 0};
+            glClearBufferfv(GL_COLOR, 0, clear);
+            memset(ep.background, 0, sizeof ep.background);
+        }
         st = pnpr_edges_draw(&r->edges, r->info_tex, r->fbo, fw, fh, &ep, err);
         if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     }

@@ -87,6 +87,8 @@ void pnpr_stroke_textures(uint8_t *out);
 /* What a drawn frame was made of: the resolved options, the camera and the queue prefixes, so that
  * its strokes, dots and lines can be computed again on the CPU (vector.c). */
 typedef struct pnpr_frame_record {
+    int outline_ink_only;       /* in: the colour attachment holds only the outlines' ink (cleared
+                                 * to transparent before the outline pass) */
     pnpr_draw_options o;        /* options with the style map resolved (o.style_map stays NULL) */
     pnpr_frame_camera fc;
     int width, height;

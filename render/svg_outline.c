@@ -670,64 +670,27 @@ void pnpr_outline_set_free(pnpr_outline_set *s)
     memset(s, 0, sizeof *s);
 }
 
-/* Step 1 from a cloud: its disks splatted into c->raw. */
-static pnpr_status raw_from_cloud(outline_ctx *c, const pnpr_cloud *cloud, const double shift[3])
-{
-    float *radius = malloc(cloud->count * sizeof *radius);
-    if (!radius) return PNPR_ERR_OUT_OF_MEMORY;
-    pnpr_status st = disk_radii(cloud, radius);
-    if (st == PNPR_OK) splat_all(c, cloud, shift, radius);
-    free(radius);
-    return st;
-}
-
-/* Step 1 from the renderer's mask: its surface info (RGBA32F, GL rows bottom-up: eye distance,
- * depth extent, radius, coverage) is the raw buffer. */
-static void raw_from_info(outline_ctx *c, const float *info)
-{
-    for (int y = 0; y < c->h; y++)
-        for (int x = 0; x < c->w; x++) {
-            const float *v = info + 4 * ((size_t)(c->h - 1 - y) * (size_t)c->w + (size_t)x);
-            int ok = v[3] > 0 && v[0] > 0 && isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-            c->raw[pix(c, x, y)] = ok ? (px_info){v[0], v[1], v[2]} : (px_info){INFINITY, 0, 0};
-        }
-}
-
-/* Steps 1 to 5: the surface buffer (from the cloud, or from `info` when it is not NULL), holes
- * closed into c->fill (the raw buffer and its summed-area table are released before the
- * crossings' arrays are allocated: at most 28 bytes a pixel at a time), then the chains. */
-static pnpr_status outlines(outline_ctx *c, const pnpr_cloud *cloud, const double shift[3], const float *info,
-                            pnpr_outline_set *r)
+/* Steps 1 and 2: the hole-closed surface buffer c->fill (the raw buffer and its summed-area table
+ * are released before the crossings' arrays are allocated: at most 28 bytes a pixel at a time). */
+static pnpr_status surface(outline_ctx *c, const pnpr_cloud *cloud, const double shift[3])
 {
     size_t npx = (size_t)c->w * (size_t)c->h;
-    c->nh = (size_t)(c->w - 1) * (size_t)c->h;
-    c->ne = c->nh + (size_t)c->w * (size_t)(c->h - 1);
+    float *radius = malloc(cloud->count * sizeof *radius);
     c->raw = malloc(npx * sizeof *c->raw);
     c->fill = malloc(npx * sizeof *c->fill);
     c->sat = malloc(((size_t)c->w + 1) * ((size_t)c->h + 1) * sizeof *c->sat);
-    pnpr_status st = c->raw && c->fill && c->sat ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
-    if (st == PNPR_OK && info) raw_from_info(c, info);
-    else if (st == PNPR_OK) st = raw_from_cloud(c, cloud, shift);
+    pnpr_status st = radius && c->raw && c->fill && c->sat ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    if (st == PNPR_OK) st = disk_radii(cloud, radius);
     if (st == PNPR_OK) {
+        splat_all(c, cloud, shift, radius);
         build_sat(c);
         fill_holes(c);
     }
+    free(radius);
     free(c->raw);
     free(c->sat);
     c->raw = NULL;
     c->sat = NULL;
-    if (st == PNPR_OK) {
-        c->next = malloc(c->ne * sizeof *c->next);
-        c->flag = malloc(c->ne);
-        if (!c->next || !c->flag) st = PNPR_ERR_OUT_OF_MEMORY;
-    }
-    if (st == PNPR_OK) {
-        mark_crossings(c);
-        link_cells(c);
-        st = trace_all(c, r);
-    }
-    free(c->fill); free(c->next); free(c->flag);
-    if (st != PNPR_OK) pnpr_outline_set_free(r);
     return st;
 }
 
@@ -742,25 +705,23 @@ pnpr_status pnpr_svg_outlines(const pnpr_cloud *cloud, const double shift[3], co
     c.w = w;
     c.h = h;
     c.jump = jump;
-    pnpr_status st = outlines(&c, cloud, shift, NULL, r);
-    if (st != PNPR_OK)
+    c.nh = (size_t)(w - 1) * (size_t)h;
+    c.ne = c.nh + (size_t)w * (size_t)(h - 1);
+    pnpr_status st = surface(&c, cloud, shift);
+    if (st == PNPR_OK) {
+        c.next = malloc(c.ne * sizeof *c.next);
+        c.flag = malloc(c.ne);
+        if (!c.next || !c.flag) st = PNPR_ERR_OUT_OF_MEMORY;
+    }
+    if (st == PNPR_OK) {
+        mark_crossings(&c);
+        link_cells(&c);
+        st = trace_all(&c, r);
+    }
+    free(c.fill); free(c.next); free(c.flag);
+    if (st != PNPR_OK) {
+        pnpr_outline_set_free(r);
         return pnpr_error_set(err, st, "svg: outlines of a %dx%d drawing: %s", w, h, pnpr_status_string(st));
-    return PNPR_OK;
-}
-
-pnpr_status pnpr_svg_outlines_from_info(const float *info, const pnpr_frame_camera *fc, int w, int h, float jump,
-                                        pnpr_outline_set *r, pnpr_error *err)
-{
-    memset(r, 0, sizeof *r);
-    if (!info || w < 2 || h < 2) return PNPR_OK;
-    outline_ctx c;
-    memset(&c, 0, sizeof c);
-    c.fc = fc;
-    c.w = w;
-    c.h = h;
-    c.jump = jump;
-    pnpr_status st = outlines(&c, NULL, NULL, info, r);
-    if (st != PNPR_OK)
-        return pnpr_error_set(err, st, "vector: outlines of a %dx%d frame: %s", w, h, pnpr_status_string(st));
+    }
     return PNPR_OK;
 }

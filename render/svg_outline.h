@@ -31,11 +31,6 @@ enum {
  * not fit; an empty or all-NaN cloud gives no polylines. */
 pnpr_status pnpr_svg_outlines(const pnpr_cloud *cloud, const double shift[3], const pnpr_frame_camera *fc,
                               int w, int h, float jump, pnpr_outline_set *r, pnpr_error *err);
-/* The same from the renderer's visibility mask instead of a cloud: `info` is its surface info
- * attachment read back (w x h RGBA32F, GL rows bottom-up: eye distance, depth extent, disk radius
- * in world units, coverage), so the outlines follow the disks the frame drew (vector.c). */
-pnpr_status pnpr_svg_outlines_from_info(const float *info, const pnpr_frame_camera *fc, int w, int h, float jump,
-                                        pnpr_outline_set *r, pnpr_error *err);
 void pnpr_outline_set_free(pnpr_outline_set *s);
 
 #endif

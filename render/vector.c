@@ -12,11 +12,11 @@
  *   quarter of its peak (measured on the generated textures: pnpr_stroke_textures);
  * - profile lines (the `lines` style) follow line.vert (pulled towards the eye, the near plane,
  *   the minimum on-screen length), sampled and split the same way, joined across segments;
- * - outlines come from the mask's surface info read back, traced by svg_outline.c into centre
- *   lines (the rules of the renderer's outline shaders). */
+ * - outlines: the frame is drawn with only the outlines' ink in its colour attachment; that ink
+ *   is read back and traced into centre lines (pnpr_drawing_trace_ink), so they are the
+ *   outlines of the PNG, hidden parts already gone. */
 #include "renderer_internal.h"
 #include "gl_state.h"
-#include "svg_outline.h"
 
 #include <pointnpr/drawing.h>
 
@@ -347,30 +347,24 @@ static pnpr_status line_marks(vec_ctx *c)
     return st;
 }
 
-/* The outlines of the frame, from the mask's surface info. */
+/* The outlines of the frame: the ink the outline shaders drew (alone in the colour attachment:
+ * pnpr_frame_record.outline_ink_only), traced into centre lines where its coverage is at least
+ * half. */
 static pnpr_status outline_marks(vec_ctx *c, pnpr_error *err)
 {
     const pnpr_frame_record *rec = c->rec;
     if (!rec->outline) return PNPR_OK;
-    float *info = malloc((size_t)c->w * (size_t)c->h * 4 * sizeof *info);
-    if (!info) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: outlines of a %dx%d frame: out of memory", c->w, c->h);
-    glReadBuffer(GL_COLOR_ATTACHMENT1);
-    glReadPixels(0, 0, c->w, c->h, GL_RGBA, GL_FLOAT, info);
-    pnpr_outline_set set;
-    float jump = rec->o.outline_jump > 0 ? rec->o.outline_jump : PNPR_OUTLINE_JUMP;
-    pnpr_status st = pnpr_svg_outlines_from_info(info, &rec->fc, c->w, c->h, jump, &set, err);
-    free(info);
-    for (size_t i = 0; i < set.count && st == PNPR_OK; i++) {
-        size_t a = set.offset[i], n = set.offset[i + 1] - a;
-        float *xy = malloc(2 * n * sizeof *xy);
-        if (!xy) { st = PNPR_ERR_OUT_OF_MEMORY; break; }
-        for (size_t v = 0; v < 2 * n; v++) xy[v] = (float)set.xy[2 * a + v];
-        st = pnpr_drawing_add(c->out, xy, n, rec->outline_width, c->ink, PNPR_LAYER_OUTLINES,
-                              set.closed[i] ? PNPR_PATH_CLOSED : 0);
-        free(xy);
-    }
-    pnpr_outline_set_free(&set);
-    if (st != PNPR_OK && err && !err->message[0]) pnpr_error_set(err, st, "vector: outlines: out of memory");
+    size_t n = (size_t)c->w * (size_t)c->h;
+    uint8_t *rgba = malloc(4 * n);
+    if (!rgba) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: outlines of a %dx%d frame: out of memory", c->w, c->h);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, c->w, c->h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    for (size_t i = 0; i < n; i++) rgba[i] = rgba[4 * i + 3]; /* alpha, in place */
+    uint8_t threshold = (uint8_t)(c->ink[3] / 2 > 0 ? c->ink[3] / 2 : 1);
+    pnpr_status st = pnpr_drawing_trace_ink(c->out, rgba, c->w, c->h, 1, threshold, rec->outline_width, c->ink,
+                                            PNPR_LAYER_OUTLINES);
+    free(rgba);
+    if (st != PNPR_OK) pnpr_error_set(err, st, "vector: outlines of a %dx%d frame: out of memory", c->w, c->h);
     return st;
 }
 
@@ -419,6 +413,8 @@ pnpr_status pnpr_renderer_drawing(pnpr_renderer *r, const pnpr_camera *camera, c
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "vector: drawing size %dx%d is not within 1..%d (this GL's frame limit)",
                               width, height, (int)r->max_size);
     pnpr_frame_record rec;
+    memset(&rec, 0, sizeof rec);
+    rec.outline_ink_only = 1;
     st = pnpr_renderer_draw_recorded(r, camera, opts, width, height, &rec, err);
     if (st != PNPR_OK) return st;
     r_drawing->width = width;

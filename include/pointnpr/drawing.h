@@ -61,6 +61,13 @@ pnpr_status pnpr_drawing_add(pnpr_drawing *d, const float *xy, size_t n, float w
  * non-finite vertex; PNPR_ERR_OUT_OF_MEMORY (the drawing unchanged). */
 pnpr_status pnpr_drawing_extend(pnpr_drawing *d, float x, float y);
 
+/* Appends the centre lines of the ink in a w x h alpha mask (alpha >= threshold; rows top first,
+ * or bottom first when bottom_up) as paths of `width` px in `rgba` on `layer`: the mask thinned to
+ * one-pixel curves (Zhang-Suen), traced between ends and junctions (loops closed), smoothed and
+ * simplified to 0.5 px; specks of fewer than 3 pixels are dropped (vector/ink_trace.c). */
+pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w, int h, int bottom_up, uint8_t threshold,
+                                   float width, const uint8_t rgba[4], pnpr_drawing_layer layer);
+
 /* Total length of the paths of `layer` (PNPR_LAYER_COUNT_: all), px. */
 double pnpr_drawing_ink_length(const pnpr_drawing *d, pnpr_drawing_layer layer);
 
