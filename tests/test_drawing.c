@@ -36,7 +36,7 @@ static void check_ring(void)
 }
 
 /* A horizontal bar 3 px thick from x = 20 to 100 (rows bottom-up): one open path along y = 64.5,
- * about 80 px long; a cross of two 88 px bars: 2 to 4 paths (crossing strokes or arms from a
+ * about 80 px long and 3 px wide; a cross of two 88 px bars: 2 to 4 paths (crossing strokes or arms from a
  * junction) of their length; a 2 x 1 speck: nothing. */
 static void check_bar_cross_speck(void)
 {
@@ -47,8 +47,9 @@ static void check_bar_cross_speck(void)
     pnpr_drawing d = {0};
     CHECK_STATUS(pnpr_drawing_trace_ink(&d, a, S, S, 1, 128, 2, INK, PNPR_LAYER_LINES), PNPR_OK);
     double len = pnpr_drawing_ink_length(&d, PNPR_LAYER_LINES);
-    printf("bar: %zu paths, length %.1f\n", d.count, len);
+    printf("bar: %zu paths, length %.1f, width %.1f\n", d.count, len, d.count ? d.stroke_width[0] : 0);
     CHECK(d.count == 1 && !(d.flags[0] & PNPR_PATH_CLOSED) && len > 74 && len <= 80);
+    CHECK(d.count == 1 && fabs(d.stroke_width[0] - 3) < 0.2); /* as wide as the 3 px bar */
     for (size_t v = 0; d.count && v < d.offset[1]; v++) CHECK(fabs(d.xy[2 * v + 1] - 64.5) < 0.6);
     pnpr_drawing_free(&d);
     memset(a, 0, sizeof a);

@@ -8,7 +8,10 @@
  * 3. Chains: from every end and junction (crossing numbers 1 and >= 3), along unvisited pixels
  *    (4-neighbours before diagonal ones) to the next end or junction; what is left are loops.
  *    Vertices at pixel centres; chains of fewer than 3 pixels are specks and dropped.
- * 4. Two passes of (1/4, 1/2, 1/4) smoothing (ends kept), then Douglas-Peucker to 0.5 px. */
+ * 4. Two passes of (1/4, 1/2, 1/4) smoothing (ends kept), then Douglas-Peucker to 0.5 px.
+ * 5. Width: 2 d - 1 px for the chain's mean chessboard distance d to the nearest pixel without
+ *    ink (a band of 2k - 1 pixels has d = k at its centre), at least the given width: where
+ *    outlines run together into a wider band, the path is as wide. */
 #include <pointnpr/drawing.h>
 
 #include <math.h>
@@ -22,7 +25,8 @@ enum { SMOOTH_PASSES = 2, MIN_PIXELS = 3 };
 static const int NX[8] = {0, 1, 1, 1, 0, -1, -1, -1}, NY[8] = {-1, -1, 0, 1, 1, 1, 0, -1};
 
 typedef struct ink_img {
-    uint8_t *m;   /* 1 = ink (skeleton after thinning), 2 = visited */
+    uint8_t *m;    /* 1 = ink (skeleton after thinning), 2 = visited */
+    uint8_t *dist; /* chessboard distance of each ink pixel to the nearest pixel without ink */
     int w, h;
 } ink_img;
 
@@ -64,11 +68,33 @@ static int crossings(const ink_img *g, int x, int y)
     return a;
 }
 
-/* A chain being walked: pixel centres. */
-typedef struct chain { float *xy; size_t n, cap; } chain;
-
-static int chain_push(chain *c, int x, int y)
+/* Chessboard distance transform of the ink (two passes), capped at 255. */
+static void distances(ink_img *g)
 {
+    int w = g->w, h = g->h;
+    for (int pass = 0; pass < 2; pass++)
+        for (int k = 0; k < w * h; k++) {
+            int i = pass ? w * h - 1 - k : k, x = i % w, y = i / w, d = g->m[i] ? 255 : 0;
+            int s = pass ? 1 : -1; /* the neighbours already visited in this pass */
+            if (d) {
+                d = pass ? g->dist[i] : 255;
+                int nb[4][2] = {{x + s, y}, {x - 1, y + s}, {x, y + s}, {x + 1, y + s}};
+                for (int q = 0; q < 4; q++) {
+                    int qx = nb[q][0], qy = nb[q][1];
+                    int v = qx >= 0 && qy >= 0 && qx < w && qy < h ? g->dist[qy * w + qx] : 0;
+                    if (v + 1 < d) d = v + 1;
+                }
+            }
+            g->dist[i] = (uint8_t)d;
+        }
+}
+
+/* A chain being walked: pixel centres; the sum of the ink's distances along it. */
+typedef struct chain { float *xy; size_t n, cap; double dsum; } chain;
+
+static int chain_push(chain *c, const ink_img *g, int x, int y)
+{
+    c->dsum += g->dist[(size_t)y * (size_t)g->w + (size_t)x];
     if (c->n == c->cap) {
         size_t cap = c->cap ? 2 * c->cap : 64;
         float *q = realloc(c->xy, 2 * cap * sizeof *q);
@@ -163,24 +189,29 @@ typedef struct trace_out {
     pnpr_drawing_layer layer;
 } trace_out;
 
+/* A chain as a path: as wide as the ink it came from (2 d - 1 for a mean distance d, where
+ * outlines ran together), at least the given width. */
 static pnpr_status emit(const trace_out *o, chain *c, int closed, size_t pixels)
 {
     if (pixels < MIN_PIXELS) return PNPR_OK;
+    double band = 2.0 * c->dsum / (double)c->n - 1.0;
+    float width = band > o->width ? (float)band : o->width;
     smooth(c, closed);
     simplify(c);
-    return pnpr_drawing_add(o->d, c->xy, c->n, o->width, o->rgba, o->layer, closed ? PNPR_PATH_CLOSED : 0);
+    return pnpr_drawing_add(o->d, c->xy, c->n, width, o->rgba, o->layer, closed ? PNPR_PATH_CLOSED : 0);
 }
 
 /* Walks from (x, y) through (nx, ny) until an end or a junction; pixels passed become visited. */
 static pnpr_status walk(ink_img *g, const uint8_t *junction, const trace_out *o, chain *c, int x, int y, int nx, int ny)
 {
     c->n = 0;
-    if (!chain_push(c, x, y)) return PNPR_ERR_OUT_OF_MEMORY;
+    c->dsum = 0;
+    if (!chain_push(c, g, x, y)) return PNPR_ERR_OUT_OF_MEMORY;
     int px = x, py = y;
     size_t pixels = 1;
     for (;;) {
         size_t i = (size_t)ny * (size_t)g->w + (size_t)nx;
-        if (!chain_push(c, nx, ny)) return PNPR_ERR_OUT_OF_MEMORY;
+        if (!chain_push(c, g, nx, ny)) return PNPR_ERR_OUT_OF_MEMORY;
         pixels++;
         if (junction[i]) break;
         g->m[i] = 2;
@@ -215,13 +246,14 @@ static pnpr_status trace_chains(ink_img *g, const uint8_t *junction, const trace
             if (g->m[i] != 1) continue;
             g->m[i] = 2;
             c.n = 0;
+            c.dsum = 0;
             size_t pixels = 1;
             int px = -1, py = -1, cx = x, cy = y, nx, ny;
-            st = chain_push(&c, x, y) ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+            st = chain_push(&c, g, x, y) ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
             while (st == PNPR_OK && next_pixel(g, junction, cx, cy, px, py, &nx, &ny) &&
                    g->m[(size_t)ny * (size_t)g->w + (size_t)nx] == 1) {
                 g->m[(size_t)ny * (size_t)g->w + (size_t)nx] = 2;
-                if (!chain_push(&c, nx, ny)) st = PNPR_ERR_OUT_OF_MEMORY;
+                if (!chain_push(&c, g, nx, ny)) st = PNPR_ERR_OUT_OF_MEMORY;
                 pixels++;
                 px = cx; py = cy; cx = nx; cy = ny;
             }
@@ -238,12 +270,13 @@ pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w,
     if (!d || !alpha || w <= 0 || h <= 0 || !rgba || (unsigned)layer >= PNPR_LAYER_COUNT_ || !(width >= 0))
         return PNPR_ERR_INVALID_ARGUMENT;
     size_t n = (size_t)w * (size_t)h;
-    ink_img g = {malloc(n), w, h};
+    ink_img g = {malloc(n), malloc(n), w, h};
     uint8_t *aux = malloc(n);
-    if (!g.m || !aux) { free(g.m); free(aux); return PNPR_ERR_OUT_OF_MEMORY; }
+    if (!g.m || !g.dist || !aux) { free(g.m); free(g.dist); free(aux); return PNPR_ERR_OUT_OF_MEMORY; }
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)
             g.m[(size_t)y * (size_t)w + (size_t)x] = alpha[(size_t)(bottom_up ? h - 1 - y : y) * (size_t)w + (size_t)x] >= threshold;
+    distances(&g);
     while (thin_step(&g, 0, aux) + thin_step(&g, 1, aux) > 0) {}
     for (int y = 0; y < h; y++) /* junctions */
         for (int x = 0; x < w; x++) {
@@ -253,6 +286,7 @@ pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w,
     trace_out o = {d, width, rgba, layer};
     pnpr_status st = trace_chains(&g, aux, &o);
     free(g.m);
+    free(g.dist);
     free(aux);
     return st;
 }
