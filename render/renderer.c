@@ -184,6 +184,8 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->us.levels = glGetUniformLocation(p, "u_levels");
     r->us.ortho = glGetUniformLocation(p, "u_ortho");
     r->us.thin = glGetUniformLocation(p, "u_thin");
+    r->us.queue_end = glGetUniformLocation(p, "u_queue_end");
+    r->us.queue_fade = glGetUniformLocation(p, "u_queue_fade");
     p = r->prog_line;
     r->ul.view = glGetUniformLocation(p, "u_view");
     r->ul.proj = glGetUniformLocation(p, "u_proj");
@@ -209,6 +211,8 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     r->ut.ink = glGetUniformLocation(p, "u_ink");
     r->ut.ink_from_points = glGetUniformLocation(p, "u_ink_from_points");
     r->ut.thin = glGetUniformLocation(p, "u_thin");
+    r->ut.queue_end = glGetUniformLocation(p, "u_queue_end");
+    r->ut.queue_fade = glGetUniformLocation(p, "u_queue_fade");
     r->us_filter = glGetUniformLocation(r->prog_splat, "u_style_filter");
     r->ut_filter = glGetUniformLocation(r->prog_stroke, "u_style_filter");
     /* no style filter unless a style map is drawn (uniforms are program state) */
@@ -832,7 +836,7 @@ static pnpr_status check_options(const pnpr_renderer *r, const pnpr_draw_options
     if (!finite4(o->background) || !finite4(o->ink) || !isfinite(o->density) || o->density < 0 ||
         !isfinite(o->point_scale) || o->point_scale < 0 || !isfinite(o->mask_scale) || o->mask_scale < 0 ||
         !isfinite(o->stroke_length) || o->stroke_length < 0 || !isfinite(o->stroke_width) || o->stroke_width < 0 ||
-        !isfinite(o->line_width) || o->line_width < 0 || !(o->faint >= 0 && o->faint <= 1) ||
+        !isfinite(o->line_width) || o->line_width < 0 || !(o->faint >= 0 && o->faint <= 1) || !isfinite(o->queue_fade) ||
         !isfinite(o->dot_size) || o->dot_size < 0 || o->levels < 0 || o->levels == 1 || o->levels > 256 ||
         !isfinite(o->outline_width) || o->outline_width < 0 || o->outline_width > 64 ||
         !isfinite(o->line_min_px) || o->line_min_px < 0 ||
@@ -1047,6 +1051,14 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_camera *fc, cons
     return dabs;
 }
 
+float pnpr_queue_fade_length(size_t drawn, size_t size, float fraction)
+{
+    if (fraction < 0 || drawn == 0 || drawn >= size) return 0;
+    double f = (fraction > 0 ? fraction : PNPR_QUEUE_FADE) * (double)drawn, left = (double)(size - drawn) + 1;
+    if (f > left) f = left;
+    return f >= 1 ? (float)f : 1.0f;
+}
+
 /* Pass 2 of `sketchy`: directional strokes and hatches of the groups' queue prefixes, depth-tested
  * against the mask, no depth writes, blended. Returns the strokes drawn. */
 static size_t draw_sketchy(pnpr_renderer *r, const pnpr_frame_camera *fc, const pnpr_draw_options *o, int fw,
@@ -1060,6 +1072,8 @@ static size_t draw_sketchy(pnpr_renderer *r, const pnpr_frame_camera *fc, const 
     glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     stroke_program(r, fc, fw, fh, o->stroke_width > 0 ? o->stroke_width : 2, point_scale, ink, o->ink_from_points);
     int draw_group[3] = {1, o->sketch_variant != PNPR_SKETCH_DIRECTIONAL, o->sketch_variant == PNPR_SKETCH_ALL};
+    /* the dithering hatches (tone) in a lighter pencil than the strokes and hatches of features */
+    float tone_ink[4] = {ink[0], ink[1], ink[2], ink[3] * SKETCH_TONE_INK};
     for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
         if (!draw_group[g] || !gdraw[g]) continue;
         int directional = g == GROUP_DIRECTIONAL;
@@ -1067,11 +1081,16 @@ static size_t draw_sketchy(pnpr_renderer *r, const pnpr_frame_camera *fc, const 
         glUniform1f(r->ut.layer, directional ? (float)o->stroke_texture : (float)STROKE_LAYER_HATCH);
         glUniform1f(r->ut.length, directional ? stroke_length : 0.5f * stroke_length);
         glUniform1i(r->ut.thin, g == GROUP_DITHER);
+        glUniform4fv(r->ut.ink, 1, g == GROUP_DITHER ? tone_ink : ink);
+        glUniform1f(r->ut.queue_end, (float)gdraw[g]);
+        glUniform1f(r->ut.queue_fade, pnpr_queue_fade_length(gdraw[g], r->group_start[g + 1] - r->group_start[g], o->queue_fade));
         set_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->group_start[g], 1, 0);
         glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)gdraw[g]);
         strokes += gdraw[g];
     }
     glUniform1i(r->ut.thin, 0);
+    glUniform1f(r->ut.queue_fade, 0.0f);
+    glUniform4fv(r->ut.ink, 1, ink);
     return strokes;
 }
 
@@ -1094,10 +1113,13 @@ static size_t draw_stipple(pnpr_renderer *r, const pnpr_draw_options *o, const s
     for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
         if (!gdraw[g]) continue;
         glUniform1i(r->us.thin, g == GROUP_DITHER);
+        glUniform1f(r->us.queue_end, (float)(r->group_start[g] + gdraw[g]));
+        glUniform1f(r->us.queue_fade, pnpr_queue_fade_length(gdraw[g], r->group_start[g + 1] - r->group_start[g], o->queue_fade));
         glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)gdraw[g]);
         dots += gdraw[g];
     }
     glUniform1i(r->us.thin, 0);
+    glUniform1f(r->us.queue_fade, 0.0f);
     glUniform1f(r->us.fade, 0.0f);
     glUniform1f(r->us.fixed_size, 0.0f);
     return dots;

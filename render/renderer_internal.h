@@ -17,6 +17,15 @@ enum { GROUP_DIRECTIONAL = 0, GROUP_NONDIRECTIONAL, GROUP_DITHER, GROUP_NONE, GR
 enum { PNPR_PAINT_MAX_BRUSH = 4 }; /* painterly: the largest brush, in disk radii */
 enum { LINE_FLOATS = 7 }; /* a line segment: its two ends and its polyline's length */
 enum { STROKE_TEX_W = 128, STROKE_TEX_H = 32, STROKE_LAYERS = 4, STROKE_LAYER_HATCH = 3 };
+/* sketchy: the ink alpha of the dithering (tone) hatches, relative to the feature strokes: they
+ * cover most of the picture, and how much a mark moving by a fraction of a pixel changes the
+ * pixels goes with its darkness (docs/export.md, "Temporal coherence") */
+#define SKETCH_TONE_INK 0.8f
+/* sketchy: hatches follow the surface: the world direction HATCH_DIR projected onto the point's
+ * tangent plane, HATCH_DIR2 where the normal lies within about 18 degrees of HATCH_DIR
+ * (stroke.vert.glsl; vector.c repeats it) */
+#define HATCH_DIR 0.57735027f, 0.57735027f, 0.57735027f
+#define HATCH_DIR2 0.70710678f, -0.70710678f, 0.0f
 
 typedef struct pnpr_vertex {
     float pos[3];
@@ -27,10 +36,10 @@ typedef struct pnpr_vertex {
     int8_t normal[4]; /* unit normal * 127 (orientation does not matter); all 0 = unknown */
 } pnpr_vertex;
 
-typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin; } splat_uniforms;
+typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin, queue_end, queue_fade; } splat_uniforms;
 typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho, ppu, min_px; } line_uniforms;
 typedef struct stroke_uniforms {
-    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin;
+    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin, queue_end, queue_fade;
 } stroke_uniforms;
 
 typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
@@ -79,6 +88,13 @@ struct pnpr_renderer {
     size_t line_segments;
     double line_origin[3];
 };
+
+/* The continuous resolution queue's fade-in (issue 16): of the `drawn` first points of a group of
+ * `size`, the last ones are drawn with alpha ramping from 1 down to 0 over this many points, so a
+ * stroke appears and vanishes gradually as the budget moves across it; `fraction` of the drawn
+ * points (pnpr_draw_options.queue_fade), at most the points left undrawn + 1 (a whole group is
+ * drawn at full alpha), 0 = no fade. */
+float pnpr_queue_fade_length(size_t drawn, size_t size, float fraction);
 
 /* The stroke textures (STROKE_LAYERS layers of STROKE_TEX_W x STROKE_TEX_H alpha bytes, u along
  * the stroke), generated once (paper figure 5 a-c, plus the hatch). */

@@ -36,7 +36,16 @@ typedef struct vec_ctx {
     float ink_frac_len[STROKE_LAYERS], ink_frac_wid[STROKE_LAYERS];
     pnpr_drawing *out;
     uint8_t ink[4];
+    float queue_end, queue_fade; /* the group being read: its prefix and fade-in (as the shaders) */
 } vec_ctx;
+
+/* The queue's fade-in of the k-th point of the group being read (stroke.vert, splat.vert). */
+static double queue_alpha(const vec_ctx *c, size_t k)
+{
+    if (!(c->queue_fade > 0)) return 1;
+    double a = ((double)c->queue_end - (double)k) / c->queue_fade;
+    return a < 0 ? 0 : a > 1 ? 1 : a;
+}
 
 static uint8_t unit_byte(float v) { return (uint8_t)(v <= 0 ? 0 : v >= 1 ? 255 : (int)(v * 255.0f + 0.5f)); }
 
@@ -129,7 +138,30 @@ static void to_window(const vec_ctx *c, const double clip[4], double w, double r
     *r_z = clip[2] / w * 0.5 + 0.5;
 }
 
-/* One stroke of stroke.vert (mode 0: along dir; mode 1: the 45-degree hatch; thin: tone). */
+/* The direction of a stroke in world space (stroke.vert): the feature direction (mode 0), or the
+ * hatch direction fixed on the surface (mode 1; zero without a normal: the 45-degree screen hatch). */
+static void stroke_dir(const pnpr_vertex *v, int mode, double dir[3])
+{
+    for (int k = 0; k < 3; k++) dir[k] = mode == 0 ? v->dir[k] : 0;
+    if (mode == 0) return;
+    double n[3] = {v->normal[0] / 127.0, v->normal[1] / 127.0, v->normal[2] / 127.0};
+    double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (!(nn > 0.25)) return;
+    for (int k = 0; k < 3; k++) n[k] /= sqrt(nn);
+    const double h1[3] = {HATCH_DIR}, h2[3] = {HATCH_DIR2};
+    for (int pass = 0; pass < 2; pass++) {
+        const double *h = pass ? h2 : h1;
+        double d = n[0] * h[0] + n[1] * h[1] + n[2] * h[2], t2 = 0;
+        for (int k = 0; k < 3; k++) { dir[k] = h[k] - n[k] * d; t2 += dir[k] * dir[k]; }
+        if (t2 >= 0.1 || pass == 1) {
+            double l = sqrt(t2);
+            for (int k = 0; k < 3; k++) dir[k] = l > 0 ? dir[k] / l : 0;
+            return;
+        }
+    }
+}
+
+/* One stroke of stroke.vert (mode 0: along dir; mode 1: the hatch; thin: tone, lighter). */
 static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instance, int mode, int thin, float length,
                                int tex_layer, pnpr_drawing_layer layer)
 {
@@ -138,10 +170,10 @@ static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instan
     double p[3] = {v->pos[0], v->pos[1], v->pos[2]}, clip[4];
     to_clip(fc->view, fc->proj, p, clip);
     if (!(clip[3] > 1e-6) || fabs(clip[2]) > clip[3]) return PNPR_OK; /* outside the depth range: clipped */
-    double w = clip[3], axis[2] = {0.70710678, 0.70710678};
-    if (mode == 0) {
-        double q[3] = {p[0] + (double)v->dir[0] * v->radius, p[1] + (double)v->dir[1] * v->radius,
-                       p[2] + (double)v->dir[2] * v->radius}, c2[4];
+    double w = clip[3], axis[2] = {0.70710678, 0.70710678}, dir[3];
+    stroke_dir(v, mode, dir);
+    if (dir[0] != 0 || dir[1] != 0 || dir[2] != 0) {
+        double q[3] = {p[0] + dir[0] * v->radius, p[1] + dir[1] * v->radius, p[2] + dir[2] * v->radius}, c2[4];
         to_clip(fc->view, fc->proj, q, c2);
         if (c2[3] > 1e-6) {
             double sx = (c2[0] / c2[3] - clip[0] / w) * c->w, sy = (c2[1] / c2[3] - clip[1] / w) * c->h;
@@ -163,11 +195,13 @@ static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instan
     uint8_t rgba[4];
     memcpy(rgba, c->ink, 4);
     if (rec->o.ink_from_points) memcpy(rgba, v->rgba, 3);
+    rgba[3] = (uint8_t)(rgba[3] * queue_alpha(c, instance) * (thin ? SKETCH_TONE_INK : 1) + 0.5);
+    if (!rgba[3]) return PNPR_OK;
     return add_visible(c, a, b, z, z, (float)(2 * half_wid * c->ink_frac_wid[tex_layer]), rgba, layer);
 }
 
 /* One stipple dot of splat.vert (fixed size; thin: tone), kept when DOT_VISIBLE of it passes. */
-static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id, int thin)
+static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id, size_t k, int thin)
 {
     const pnpr_frame_record *rec = c->rec;
     const pnpr_frame_camera *fc = &rec->fc;
@@ -193,7 +227,11 @@ static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id
         }
     if (in == 0 || vis < DOT_VISIBLE * in) return PNPR_OK;
     float xy[2] = {(float)centre[0], (float)(c->h - centre[1])};
-    return pnpr_drawing_add(c->out, xy, 1, (float)size, c->ink, PNPR_LAYER_DOTS, PNPR_PATH_DOT);
+    uint8_t rgba[4];
+    memcpy(rgba, c->ink, 4);
+    rgba[3] = (uint8_t)(rgba[3] * queue_alpha(c, k) + 0.5);
+    if (!rgba[3]) return PNPR_OK;
+    return pnpr_drawing_add(c->out, xy, 1, (float)size, rgba, PNPR_LAYER_DOTS, PNPR_PATH_DOT);
 }
 
 /* The queue prefix of group g read back in chunks; each vertex becomes a mark. */
@@ -202,6 +240,8 @@ static pnpr_status group_marks(vec_ctx *c, int g, int kind, pnpr_vertex *buf)
     const pnpr_frame_record *rec = c->rec;
     size_t first = c->r->group_start[g], n = rec->gdraw[g];
     float length = rec->o.stroke_length > 0 ? rec->o.stroke_length : 6;
+    c->queue_end = (float)n;
+    c->queue_fade = pnpr_queue_fade_length(n, c->r->group_start[g + 1] - first, rec->o.queue_fade);
     pnpr_status st = PNPR_OK;
     for (size_t k0 = 0; k0 < n && st == PNPR_OK; k0 += READ_CHUNK) {
         size_t m = n - k0 < READ_CHUNK ? n - k0 : READ_CHUNK;
@@ -215,7 +255,7 @@ static pnpr_status group_marks(vec_ctx *c, int g, int kind, pnpr_vertex *buf)
                                  dir ? rec->o.stroke_texture : STROKE_LAYER_HATCH,
                                  dir ? PNPR_LAYER_STROKES : g == GROUP_DITHER ? PNPR_LAYER_TONE : PNPR_LAYER_HATCHES);
             } else {
-                st = dot_mark(c, buf + k, (uint32_t)(first + k0 + k), g == GROUP_DITHER);
+                st = dot_mark(c, buf + k, (uint32_t)(first + k0 + k), k0 + k, g == GROUP_DITHER);
             }
         }
     }

@@ -21,6 +21,8 @@ uniform float u_fixed_size;      // > 0: a dot of this diameter in pixels (stipp
 uniform float u_levels;          // >= 2: colour quantised to this many levels per channel (cartoon)
 uniform int u_ortho;             // orthographic projection: view rays along -z
 uniform int u_thin;              // 1: tone dots, thinned so that ink coverage follows the tone
+uniform float u_queue_end;       // stipple dots: the end of the group's queue prefix drawn (vertex id)
+uniform float u_queue_fade;      // > 0: its last u_queue_fade points fade in (pnpr_queue_fade_length)
 
 out vec4 v_color;
 out float v_sprite_px;           // the sprite's size in pixels
@@ -77,6 +79,8 @@ void main()
     // keep the disk's screen position, take the pushed depth
     gl_Position = vec4(clip.xy / clip.w * pushed.w, pushed.z, pushed.w);
     v_color = mix(a_color, u_fade_color, u_fade);
+    if (u_queue_fade > 0.0)
+        v_color.a *= clamp((u_queue_end - float(gl_VertexID)) / u_queue_fade, 0.0, 1.0);
     if (u_levels >= 2.0)
         v_color.rgb = floor(v_color.rgb * (u_levels - 1.0) + 0.5) / (u_levels - 1.0);
 }

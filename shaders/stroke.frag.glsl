@@ -1,6 +1,7 @@
 #version 330 core
 in vec2 v_uv;
 in vec4 v_color;
+in float v_fade;       // the queue's fade-in (stroke.vert)
 out vec4 o_color;
 
 uniform sampler2DArray u_strokes; // alpha of the stroke textures in .r, one layer each
@@ -12,7 +13,7 @@ void main()
 {
     float a = texture(u_strokes, vec3(v_uv, u_layer)).r;
     vec4 c = u_ink_from_points != 0 ? vec4(v_color.rgb, u_ink.a) : u_ink;
-    a *= c.a;
+    a *= c.a * v_fade;
     if (a <= 0.0)
         discard;
     o_color = vec4(c.rgb * a, a); // premultiplied; blended with (1, 1 - src alpha)

@@ -1,12 +1,18 @@
 #version 330 core
 // Pass 2 of the sketchy style: one textured quad per point (instanced, 4 vertices as a strip).
 // u_mode 0: directional stroke along the point's feature direction projected to the screen;
-// u_mode 1: hatch in the constant screen direction of 45 degrees.
+// u_mode 1: hatch along a direction fixed on the surface: the fixed world direction (1,1,1)/sqrt 3
+// projected onto the point's tangent plane (the same for either orientation of the normal, so
+// neighbours agree), projected to the screen like mode 0; the hatches then move rigidly with the
+// surface as the camera moves instead of keeping a screen angle while the surface slides under
+// them (HATCH_DIR in render/renderer_internal.h). Without a normal: the constant screen direction
+// of 45 degrees.
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in float a_radius;
 layout(location = 2) in vec4 a_color;
 layout(location = 3) in vec3 a_dir;
 layout(location = 4) in uint a_style; // the point's style under a style map
+layout(location = 5) in vec4 a_normal; // unit normal (either orientation); zero = unknown
 
 uniform int u_style_filter;      // >= 0: draw only points whose a_style equals it (style maps)
 uniform mat4 u_view;
@@ -18,9 +24,12 @@ uniform float u_width;            // stroke width in pixels
 uniform float u_radius_scale;
 uniform int u_mode;
 uniform int u_thin;               // 1: tone hatches, thinned so that ink coverage follows the tone
+uniform float u_queue_end;        // the queue prefix drawn (instances 0 .. u_queue_end - 1)
+uniform float u_queue_fade;       // > 0: its last u_queue_fade instances fade in (pnpr_queue_fade_length)
 
 out vec2 v_uv;
 out vec4 v_color;
+out float v_fade;
 
 void main()
 {
@@ -28,6 +37,7 @@ void main()
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         v_color = vec4(0.0);
         v_uv = vec2(0.0);
+        v_fade = 0.0;
         return;
     }
     int corner = gl_VertexID & 3;
@@ -35,8 +45,21 @@ void main()
     vec4 clip = u_proj * (u_view * vec4(a_pos, 1.0));
     float w = max(clip.w, 1e-6);
     vec2 axis = vec2(0.70710678, 0.70710678);
-    if (u_mode == 0) {
-        vec4 clip2 = u_proj * (u_view * vec4(a_pos + a_dir * a_radius, 1.0));
+    vec3 dir = a_dir;
+    if (u_mode == 1) {
+        vec3 n = a_normal.xyz;
+        dir = vec3(0.0);
+        if (dot(n, n) > 0.25) {
+            n = normalize(n);
+            vec3 t = vec3(0.57735027) - n * dot(n, vec3(0.57735027));
+            // the normal within about 18 degrees of (1,1,1): a second world direction, orthogonal
+            if (dot(t, t) < 0.1)
+                t = vec3(0.70710678, -0.70710678, 0.0) - n * dot(n, vec3(0.70710678, -0.70710678, 0.0));
+            dir = normalize(t);
+        }
+    }
+    if (dot(dir, dir) > 0.0) {
+        vec4 clip2 = u_proj * (u_view * vec4(a_pos + dir * a_radius, 1.0));
         if (clip2.w > 1e-6) {
             vec2 s = (clip2.xy / clip2.w - clip.xy / w) * u_viewport;
             float len = length(s);
@@ -60,6 +83,7 @@ void main()
             gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
             v_color = vec4(0.0);
             v_uv = vec2(0.0);
+            v_fade = 0.0;
             return;
         }
     }
@@ -68,4 +92,5 @@ void main()
     gl_Position = clip + vec4(off_px * 2.0 / u_viewport * clip.w, 0.0, 0.0);
     v_uv = q * 0.5 + 0.5;
     v_color = a_color;
+    v_fade = u_queue_fade > 0.0 ? clamp((u_queue_end - float(gl_InstanceID)) / u_queue_fade, 0.0, 1.0) : 1.0;
 }

@@ -171,6 +171,9 @@ typedef struct pnpr_upload_options {
 
 /* pnpr_style_map_entry and its file format: style.h. */
 
+/* Default of pnpr_draw_options.queue_fade. */
+#define PNPR_QUEUE_FADE 0.1f
+
 /* Default of pnpr_draw_options.line_min_px. */
 #define PNPR_LINE_MIN_PX 8.0f
 
@@ -215,6 +218,10 @@ typedef struct pnpr_draw_options {
     float outline_jump;    /* a contour is a depth jump of more than this many depth extents (0 = PNPR_OUTLINE_JUMP) */
     float outline_hole;    /* gaps enclosed on all sides within this many projected mask-disk radii
                             * are sampling holes, not outlines (0 = PNPR_OUTLINE_HOLE; at most 32 px) */
+    float queue_fade;      /* sketchy, stipple: the last fraction of each group's queue prefix fades
+                            * in (alpha ramp), so that strokes and dots appear and vanish over
+                            * several frames when the budget (--budget, --density) changes
+                            * (0 = PNPR_QUEUE_FADE; negative = none: they pop) */
     int paint_no_sky_mask; /* painterly: no stencil test in the large passes (paper fig. 8 left) */
     int paint_no_strokes;  /* painterly: no directional strokes on top */
     /* An explicit camera (pnpr_camera_matrices, caller-owned, read during the call only) that

@@ -47,6 +47,9 @@ void cli_render_usage(FILE *f, int width, int height)
             "  --line-min PX        lines: profile lines shorter than PX on screen are left out (scan\n"
             "                       noise scribbles; default %g)\n"
             "  --dot-size PX        stipple: dot diameter in pixels (default 2.5)\n"
+            "  --queue-fade F       sketchy, stipple: under a budget, the last fraction F of the points\n"
+            "                       drawn fade in, so marks appear gradually as the budget moves\n"
+            "                       (default %g; 0 = none)\n"
             "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
             "                       (PLY property segment or label, pointnpr segment; default 4)\n"
             "  --outline-scale F    cartoon: the gap-closing disks under the splats are F times their size\n"
@@ -74,7 +77,7 @@ void cli_render_usage(FILE *f, int width, int height)
             "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
             "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
             "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n",
-            width, height, (double)PNPR_LINE_MIN_PX, (double)w_lines, (double)w_cartoon, (double)w_sketchy,
+            width, height, (double)PNPR_LINE_MIN_PX, (double)PNPR_QUEUE_FADE, (double)w_lines, (double)w_cartoon, (double)w_sketchy,
             (double)PNPR_OUTLINE_JUMP, (double)PNPR_OUTLINE_HOLE);
     cli_outlier_usage(f);
     cli_columns_usage(f);
@@ -209,6 +212,9 @@ static int style_option(cli_render_opts *o, const char *cmd, const char *a, cons
         } else if (v && !strcmp(a, "--line-min")) {
             if (!cli_parse_number(v, 0.01, 1e4, &x)) { BAD("--line-min wants a positive number of pixels, got '%s'\n", v); }
             o->dopt.line_min_px = (float)x; i++;
+        } else if (v && !strcmp(a, "--queue-fade")) {
+            if (!cli_parse_number(v, 0, 1, &x)) { BAD("--queue-fade wants a fraction in 0..1, got '%s'\n", v); }
+            o->dopt.queue_fade = x > 0 ? (float)x : -1.0f; i++;
         } else if (v && !strcmp(a, "--dot-size")) {
             if (!cli_parse_number(v, 1e-2, 1e3, &x)) { BAD("--dot-size wants a positive number of pixels, got '%s'\n", v); }
             o->dopt.dot_size = (float)x; i++;

@@ -1,9 +1,10 @@
 /* Temporal coherence (issue 16): the mean per-pixel change between consecutive frames of a slow
  * orbit (0.5 degrees a frame, the orbit preset around the preset start of the generated house
  * scene, bench/quality, sparse), for every style, relative to the plain `points` style on the
- * same path. Issue 16 asks sketchy <= 1.5x points; measured here 1.58x (docs/export.md says why),
- * so this asserts the measured figure with a margin (1.7x) as a regression guard, and that the
- * directional strokes alone (variant a) stay below points. The figures are printed for docs.
+ * same path. Issue 16 asks sketchy <= 1.5x points: asserted at 160x120 and 320x240 (measured
+ * 1.44x and 1.39x since the hatches follow the surface and the tone hatches are lighter,
+ * docs/export.md), and that the directional strokes alone (variant a) stay below points. The
+ * figures are printed for docs.
  * Per-point stroke randomness is seeded by the point (its queue position, fixed at upload), so
  * a still camera gives identical frames: checked too. Writes the scene (with its features) to
  * SCRATCH/coherence-scene.ply for docs/export.md. Exits 77 (skipped) without headless GL. */
@@ -21,18 +22,19 @@
 
 enum { W = 160, H = 120, FRAMES = 7 };
 
-/* Mean |a - b| over the RGB channels of every pixel, in 0..1. */
-static double mean_change(const uint8_t *a, const uint8_t *b)
+/* Mean |a - b| over the RGB channels of n pixels, in 0..1. */
+static double mean_change(const uint8_t *a, const uint8_t *b, int n)
 {
     double s = 0;
-    for (int i = 0; i < W * H; i++)
+    for (int i = 0; i < n; i++)
         for (int c = 0; c < 3; c++) s += abs((int)a[4 * i + c] - (int)b[4 * i + c]);
-    return s / (3.0 * 255.0 * W * H);
+    return s / (3.0 * 255.0 * n);
 }
 
-/* The mean change over FRAMES-1 consecutive pairs of the orbit in `style`; -1 on failure. */
-static double orbit_change(pnpr_renderer *r, const pnpr_camera_path *path, pnpr_style style, pnpr_sketch_variant variant,
-                           uint8_t *px[2])
+/* The mean change over FRAMES-1 consecutive pairs of the orbit in `style` at w x h (px holds two
+ * frames of that size); -1 on failure. */
+static double orbit_change_at(pnpr_renderer *r, const pnpr_camera_path *path, pnpr_style style, pnpr_sketch_variant variant,
+                              int w, int h, uint8_t *px[2])
 {
     pnpr_draw_options o;
     memset(&o, 0, sizeof o);
@@ -44,11 +46,85 @@ static double orbit_change(pnpr_renderer *r, const pnpr_camera_path *path, pnpr_
     for (int k = 0; k < FRAMES; k++) {
         pnpr_camera cam;
         CHECK_STATUS(pnpr_camera_path_eval(path, (double)k, &cam), PNPR_OK);
-        pnpr_status st = pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px[k & 1], NULL, &err);
+        pnpr_status st = pnpr_renderer_snapshot(r, &cam, &o, w, h, NULL, px[k & 1], NULL, &err);
         if (st != PNPR_OK) { fprintf(stderr, "%s: %s\n", pnpr_style_name(style), err.message); return -1; }
-        if (k > 0) sum += mean_change(px[0], px[1]);
+        if (k > 0) sum += mean_change(px[0], px[1], w * h);
     }
     return sum / (FRAMES - 1);
+}
+
+static double orbit_change(pnpr_renderer *r, const pnpr_camera_path *path, pnpr_style style, pnpr_sketch_variant variant,
+                           uint8_t *px[2])
+{
+    return orbit_change_at(r, path, style, variant, W, H, px);
+}
+
+/* Pixels that change by more than a quarter of the range between two frames (a pop). */
+static size_t pops(const uint8_t *a, const uint8_t *b, int n)
+{
+    size_t p = 0;
+    for (int i = 0; i < n; i++) {
+        int d = 0;
+        for (int c = 0; c < 3; c++) d = abs((int)a[4 * i + c] - (int)b[4 * i + c]) > d ? abs((int)a[4 * i + c] - (int)b[4 * i + c]) : d;
+        p += d > 64;
+    }
+    return p;
+}
+
+/* The queue's fade-in (pnpr_draw_options.queue_fade): a still view whose budget grows by 2% a
+ * frame (as an animated --budget does). Strokes and dots that pop in change their pixels at once
+ * by the full ink; fading in (the default, over the last 10% of the prefix) they darken by at most
+ * 2/10 of it a frame. Pixels still pop where the mask's disks, which grow as fewer points are
+ * drawn (the queue's lod), uncover or hide a mark: measured 39 of 62 (sketchy) and 53 of 89
+ * (stipple) pops remain, asserted below 3/4. Without a budget the fade changes nothing. */
+static void check_fade(pnpr_renderer *r, const pnpr_camera_path *path, uint8_t *px[2])
+{
+    pnpr_camera start;
+    pnpr_camera_path_eval(path, 0, &start);
+    const pnpr_style styles[2] = {PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE};
+    for (int s = 0; s < 2; s++) {
+        size_t popped[2] = {0, 0};
+        for (int fade = 0; fade < 2; fade++) {
+            pnpr_draw_options o;
+            memset(&o, 0, sizeof o);
+            o.style = styles[s];
+            o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+            o.queue_fade = fade ? 0 : -1; /* 0: the default fade; -1: none */
+            for (int k = 0; k < FRAMES; k++) {
+                o.budget = (size_t)(10000 * (1 + 0.02 * k));
+                CHECK_STATUS(pnpr_renderer_snapshot(r, &start, &o, W, H, NULL, px[k & 1], NULL, NULL), PNPR_OK);
+                if (k > 0) popped[fade] += pops(px[0], px[1], W * H);
+            }
+        }
+        printf("  budget growing 2%% a frame, %s: %zu pixels pop without the fade, %zu with it\n", pnpr_style_name(styles[s]),
+               popped[0], popped[1]);
+        CHECK_MSG(popped[0] > 50 && popped[1] < 0.75 * popped[0], "%s: %zu pixels pop with the fade, %zu without",
+                  pnpr_style_name(styles[s]), popped[1], popped[0]);
+    }
+    /* everything drawn: no fade at all, the same pixels */
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.style = PNPR_STYLE_SKETCHY;
+    CHECK_STATUS(pnpr_renderer_snapshot(r, &start, &o, W, H, NULL, px[0], NULL, NULL), PNPR_OK);
+    o.queue_fade = -1;
+    CHECK_STATUS(pnpr_renderer_snapshot(r, &start, &o, W, H, NULL, px[1], NULL, NULL), PNPR_OK);
+    CHECK_MSG(!memcmp(px[0], px[1], (size_t)W * H * 4), "the fade changed a frame that draws every point");
+    o.queue_fade = NAN;
+    CHECK_STATUS(pnpr_renderer_snapshot(r, &start, &o, W, H, NULL, px[1], NULL, NULL), PNPR_ERR_INVALID_ARGUMENT);
+}
+
+/* Sketchy against points at twice the size (320 x 240): the bound holds there too. */
+static void check_larger(pnpr_renderer *r, const pnpr_camera_path *path)
+{
+    uint8_t *big[2] = {malloc((size_t)4 * W * H * 4), malloc((size_t)4 * W * H * 4)};
+    if (big[0] && big[1]) {
+        double base = orbit_change_at(r, path, PNPR_STYLE_POINTS, PNPR_SKETCH_ALL, 2 * W, 2 * H, big);
+        double v = orbit_change_at(r, path, PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL, 2 * W, 2 * H, big);
+        printf("  %dx%d: points %.4f, sketchy %.4f (%.2fx)\n", 2 * W, 2 * H, base, v, v / base);
+        CHECK_MSG(base > 0 && v >= 0 && v <= 1.5 * base, "sketchy changes %.2fx as much as points at %dx%d", v / base, 2 * W, 2 * H);
+    }
+    free(big[0]);
+    free(big[1]);
 }
 
 /* A still camera: two frames of the same view are the same pixels (nothing depends on the frame). */
@@ -112,12 +188,14 @@ int main(void)
             double v = s == PNPR_STYLE_POINTS ? base : orbit_change(r, &path, (pnpr_style)s, PNPR_SKETCH_ALL, px);
             CHECK(v >= 0);
             printf("  %-10s %.4f (%.2fx)\n", pnpr_style_name((pnpr_style)s), v, v / base);
-            if (s == PNPR_STYLE_SKETCHY) CHECK_MSG(v <= 1.7 * base, "sketchy changes %.2fx as much as points", v / base);
+            if (s == PNPR_STYLE_SKETCHY) CHECK_MSG(v <= 1.5 * base, "sketchy changes %.2fx as much as points", v / base);
         }
         double va = orbit_change(r, &path, PNPR_STYLE_SKETCHY, PNPR_SKETCH_DIRECTIONAL, px);
         double vb = orbit_change(r, &path, PNPR_STYLE_SKETCHY, PNPR_SKETCH_NONDIRECTIONAL, px);
         printf("  sketchy a  %.4f (%.2fx)\n  sketchy b  %.4f (%.2fx)\n", va, va / base, vb, vb / base);
         CHECK_MSG(va >= 0 && va < base, "directional strokes alone change %.2fx as much as points", va / base);
+        check_larger(r, &path);
+        check_fade(r, &path, px);
     }
     free(px[0]);
     free(px[1]);
