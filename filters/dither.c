@@ -20,6 +20,7 @@
  * sample therefore follows the tone. */
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
+#include <pointnpr/options.h>
 
 #include <math.h>
 #include <stdlib.h>
@@ -46,7 +47,7 @@ pnpr_status pnpr_dither(const float *xyz, const uint8_t *rgb, const float *norma
 {
     if (r_chosen) *r_chosen = 0;
     if (count && (!xyz || !knn || !io_class || k == 0)) return PNPR_ERR_INVALID_ARGUMENT;
-    if (tone_scale == 0) tone_scale = 1.0f;
+    if (tone_scale == 0) tone_scale = pnpr_features_defaults().dither_scale; /* options.h */
     if (!(tone_scale > 0) || !isfinite(tone_scale)) return PNPR_ERR_INVALID_ARGUMENT;
     if (count == 0) return PNPR_OK;
     float *err = calloc(count, sizeof *err);

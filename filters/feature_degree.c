@@ -21,6 +21,7 @@
  *    cloud keeps degrees near 0 instead of amplifying noise to 1. */
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
+#include <pointnpr/options.h>
 
 #include "../core/internal.h"
 
@@ -156,7 +157,11 @@ pnpr_status pnpr_feature_degree(const float *xyz, const uint8_t *rgb, const floa
     if (count && (!xyz || !fit_error || !knn || !r_degree || k == 0)) return PNPR_ERR_INVALID_ARGUMENT;
     double wg = weight_geometry, wc = weight_color;
     if (!(wg >= 0) || !(wc >= 0) || !isfinite(wg) || !isfinite(wc)) return PNPR_ERR_INVALID_ARGUMENT;
-    if (wg == 0 && wc == 0) wg = wc = 0.5;
+    if (wg == 0 && wc == 0) { /* both 0: the defaults (options.h) */
+        const pnpr_features_options d = pnpr_features_defaults();
+        wg = d.weight_geometry;
+        wc = d.weight_color;
+    }
     if (!rgb) wc = 0;
     if (wg + wc == 0) wg = 1; /* colour-only weights on a colourless cloud: geometry decides */
     double s = wg + wc;

@@ -2,6 +2,7 @@
  * -> feature degree -> classification -> dithering, with per-stage timings and run counters. */
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
+#include <pointnpr/options.h>
 
 #include "../core/internal.h"
 
@@ -80,27 +81,15 @@ static void restore_in_place(void *data, size_t size, size_t n, uint32_t *perm)
     for (size_t s = 0; s < n; s++) perm[s] &= ~DONE;
 }
 
-static int finite_in(double v, double lo, double hi) { return isfinite(v) && v >= lo && v <= hi; }
-
 pnpr_status pnpr_features_check_options(const pnpr_features_options *o, pnpr_error *err)
 {
     if (!o) return PNPR_OK;
     if (o->want & ~(uint32_t)(PNPR_WANT_ALL | PNPR_WANT_NORMALS_ANY))
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: want 0x%x has unknown bits", (unsigned)o->want);
-    if (o->k > PNPR_FEATURES_K_MAX)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: k %u is more than %d", (unsigned)o->k,
-                              PNPR_FEATURES_K_MAX);
-    if (!finite_in(o->threshold, 0, 1))
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: threshold %g is not in [0,1]", o->threshold);
-    if (!finite_in(o->direction_confidence, 0, 1))
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: direction_confidence %g is not in [0,1]",
-                              o->direction_confidence);
-    if (!finite_in(o->weight_geometry, 0, HUGE_VAL) || !finite_in(o->weight_color, 0, HUGE_VAL))
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: weights %g, %g must be finite and >= 0",
-                              o->weight_geometry, o->weight_color);
-    if (!finite_in(o->dither_scale, 0, HUGE_VAL))
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: dither_scale %g must be finite and >= 0",
-                              o->dither_scale);
+    size_t n;
+    const pnpr_option_desc *table = pnpr_features_option_table(&n);
+    pnpr_status st = pnpr_option_check(table, n, o, err);
+    if (st != PNPR_OK) return st;
     if (o->has_viewpoint && !(isfinite(o->viewpoint[0]) && isfinite(o->viewpoint[1]) && isfinite(o->viewpoint[2])))
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "features: the viewpoint is not finite");
     return PNPR_OK;
@@ -249,7 +238,7 @@ static pnpr_status features_classes(feat_run *f)
     const size_t m = f->m, k = f->k;
     const pnpr_features_options *o = f->opts;
     pnpr_features_stats *stats = f->r.stats;
-    float min_conf = o->direction_confidence > 0 ? o->direction_confidence : 0.6f;
+    float min_conf = o->direction_confidence; /* filled from the options table */
     pnpr_status st = PNPR_OK;
     if (f->need_degree) stats->threshold_used = o->threshold > 0 ? o->threshold : pnpr_auto_threshold(f->out[0], m);
     if (f->need_classify) {
@@ -318,15 +307,18 @@ static pnpr_status features_finish(feat_run *f, pnpr_status st)
 pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options *opts,
                                   pnpr_features_stats *r_stats)
 {
-    static const pnpr_features_options defaults;
+    pnpr_features_options filled = opts ? *opts : pnpr_features_defaults();
     pnpr_features_stats local;
     if (!r_stats) r_stats = &local;
     memset(r_stats, 0, sizeof *r_stats);
     if (!cloud || (cloud->count && !cloud->xyz)) return PNPR_ERR_INVALID_ARGUMENT;
-    if (!opts) opts = &defaults;
     if (cloud->count >= 0x80000000u) return PNPR_ERR_UNSUPPORTED; /* 2^31 points at most */
-    pnpr_status st = pnpr_features_check_options(opts, NULL);
+    pnpr_status st = pnpr_features_check_options(&filled, NULL);
     if (st != PNPR_OK) return st; /* huge k is refused, not slow */
+    size_t table_count;
+    const pnpr_option_desc *table = pnpr_features_option_table(&table_count);
+    pnpr_option_fill_defaults(table, table_count, &filled); /* zeros -> the table's defaults */
+    opts = &filled;
     feat_run f;
     memset(&f, 0, sizeof f);
     f.cloud = cloud;
@@ -343,7 +335,7 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
         r_stats->beyond_float += !ok && w && pnpr_finite3d(w);
     }
     r_stats->valid_points = f.m = valid;
-    f.k = opts->k ? opts->k : 16;
+    f.k = opts->k;
     if (f.k > valid) f.k = valid;
     r_stats->k_used = (uint32_t)f.k;
     if (valid < 3 || f.k < 3) {

@@ -31,6 +31,7 @@
 
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
+#include <pointnpr/options.h>
 
 #include "../core/internal.h"
 #include "kdtree_internal.h"
@@ -112,19 +113,9 @@ static void end_tangent(const float *pos, const uint32_t *nodes, size_t count, i
 
 pnpr_status pnpr_lines_check_options(const pnpr_lines_options *o, pnpr_error *err)
 {
-    if (!o) return PNPR_OK;
-    static const char *const names[6] = {"spacing", "connect_radius", "merge_tol", "direction_weight",
-                                         "min_length", "sample_tol"};
-    const float vals[6] = {o->spacing, o->connect_radius, o->merge_tol, o->direction_weight, o->min_length,
-                           o->sample_tol};
-    for (int i = 0; i < 6; i++)
-        if (!isfinite(vals[i]) || vals[i] < 0)
-            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "lines: %s %g must be finite and >= 0", names[i],
-                                  vals[i]);
-    if (o->shift_iterations > PNPR_LINES_SHIFT_MAX)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "lines: shift_iterations %d is more than %d",
-                              o->shift_iterations, PNPR_LINES_SHIFT_MAX);
-    return PNPR_OK;
+    size_t n;
+    const pnpr_option_desc *table = pnpr_lines_option_table(&n);
+    return pnpr_option_check(table, n, o, err);
 }
 
 /* What the stages share: the parameters, the points, the nodes, the forest and the chains. */
@@ -175,17 +166,26 @@ static pnpr_status lines_collect(lines_ctx *c, const float *xyz_in, const float 
     return PNPR_OK;
 }
 
-/* The parameters that follow from the spacing h (the options, else the defaults above). */
+/* A length option: its value, else its table default, a multiple of h (options.h). */
+static double length_or_auto(const pnpr_option_desc *table, size_t n, const char *name, float v, double h)
+{
+    return v > 0 ? v : pnpr_option_find(table, n, name)->auto_scale * h;
+}
+
+/* The parameters that follow from the spacing h (the options, else the table's defaults). */
 static void lines_parameters(lines_ctx *c, double h)
 {
-    const pnpr_lines_options *o = c->opts;
+    pnpr_lines_options o = *c->opts;
+    size_t n;
+    const pnpr_option_desc *table = pnpr_lines_option_table(&n);
+    pnpr_option_fill_defaults(table, n, &o);
     c->h = h;
-    c->R = o->connect_radius > 0 ? o->connect_radius : 3 * h;
-    c->tol_merge = o->merge_tol > 0 ? o->merge_tol : h;
-    c->shifts = o->shift_iterations == 0 ? 4 : (o->shift_iterations < 0 ? 0 : o->shift_iterations);
-    c->beta = o->direction_weight > 0 ? o->direction_weight : 4.0;
-    c->min_len = o->min_length > 0 ? o->min_length : 5 * h;
-    c->tol_sample = o->sample_tol > 0 ? o->sample_tol : 0.05 * h;
+    c->R = length_or_auto(table, n, "radius", o.connect_radius, h);
+    c->tol_merge = length_or_auto(table, n, "merge-tol", o.merge_tol, h);
+    c->shifts = o.shift_iterations < 0 ? 0 : o.shift_iterations;
+    c->beta = o.direction_weight;
+    c->min_len = length_or_auto(table, n, "min-length", o.min_length, h);
+    c->tol_sample = length_or_auto(table, n, "sample-tol", o.sample_tol, h);
 }
 
 /* 1. shift across the feature direction towards the neighbours' mean (c->npos: scratch). */

@@ -1,6 +1,7 @@
 /* Far outliers (include/pointnpr/outliers.h): the robust centre (per-axis median) and extent
  * (a quantile of the distances from it) over a deterministic stride sample, then the far test
  * on every point, in double. */
+#include <pointnpr/options.h>
 #include <pointnpr/outliers.h>
 
 #include <math.h>
@@ -95,8 +96,12 @@ static pnpr_status find_outliers(const source *s, const pnpr_outlier_options *op
     pnpr_outlier_info local;
     pnpr_outlier_info *info = r_info ? r_info : &local;
     memset(info, 0, sizeof *info);
-    double factor = opts && opts->factor != 0 ? opts->factor : PNPR_OUTLIER_FACTOR;
-    if (!(factor >= PNPR_OUTLIER_FACTOR_MIN && factor <= PNPR_OUTLIER_FACTOR_MAX)) return PNPR_ERR_INVALID_ARGUMENT;
+    size_t table_count;
+    const pnpr_option_desc *table = pnpr_outlier_option_table(&table_count);
+    pnpr_outlier_options o = opts ? *opts : pnpr_outlier_defaults();
+    if (pnpr_option_check(table, table_count, &o, NULL) != PNPR_OK) return PNPR_ERR_INVALID_ARGUMENT;
+    pnpr_option_fill_defaults(table, table_count, &o); /* 0 -> the table's default (options.h) */
+    const double factor = o.factor;
     pnpr_status st = robust_frame(s, factor, info);
     if (st != PNPR_OK) return st;
     for (size_t i = 0; i < s->count; i++) {

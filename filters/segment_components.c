@@ -9,6 +9,7 @@
  * are not dropped (every point keeps a label): each of their points joins the component of its
  * nearest point in a kept component; when no component is large enough, all are kept. */
 #include <pointnpr/segment.h>
+#include <pointnpr/options.h>
 #include <pointnpr/knn.h>
 
 #include "../core/internal.h"
@@ -61,7 +62,11 @@ pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_c
     float *kept_xyz = NULL;
     pnpr_status st = pnpr_kdtree_build_threads(xyz, count, 0, o.threads, &tree);
     if (st != PNPR_OK) return st;
-    float dist = o.distance > 0 ? o.distance : 3.0f * pnpr_segment_median_spacing(tree, xyz, count);
+    size_t table_count;
+    const pnpr_option_desc *table = pnpr_components_option_table(&table_count);
+    float dist = o.distance > 0 ? o.distance
+                                : (float)pnpr_option_find(table, table_count, "radius")->auto_scale *
+                                      pnpr_segment_median_spacing(tree, xyz, count);
     size = calloc(count, sizeof *size);
     if (!size) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     if ((st = pnpr_kdtree_components(tree, count, dist, &o.progress, r_labels)) != PNPR_OK) goto done;

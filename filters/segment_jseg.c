@@ -29,6 +29,7 @@
  *    merge_distance (delta E of region means) then min_size.
  * The region hierarchy (eq. 4) is a separate call (pnpr_segment_hierarchy) over these regions. */
 #include <pointnpr/segment.h>
+#include <pointnpr/options.h>
 #include <pointnpr/knn.h>
 
 #include "../core/internal.h"
@@ -345,11 +346,15 @@ pnpr_status pnpr_segment_jseg(const float *xyz, const uint8_t *rgb, size_t count
     if (!count) return PNPR_OK;
     if (!xyz || !rgb || !r_labels || count >= 0x7FFFFFFFu) return PNPR_ERR_INVALID_ARGUMENT;
     pnpr_jseg_options o = opts ? *opts : (pnpr_jseg_options){0};
-    uint32_t kc = o.classes ? (o.classes > PNPR_JSEG_CLASSES_MAX ? PNPR_JSEG_CLASSES_MAX : o.classes) : 16;
-    double qdist = o.quant_distance > 0 ? o.quant_distance : (o.quant_distance < 0 ? 0 : 12);
-    size_t k = o.k ? (o.k > PNPR_SEGMENT_K_MAX ? PNPR_SEGMENT_K_MAX : o.k) : 24;
-    double seed_factor = o.seed_factor > 0 ? o.seed_factor : 0.6;
-    double merge_distance = o.merge_distance > 0 ? o.merge_distance : (o.merge_distance < 0 ? 0 : 10);
+    size_t table_count;
+    const pnpr_option_desc *table = pnpr_jseg_option_table(&table_count);
+    pnpr_option_fill_defaults(table, table_count, &o); /* zeros -> the table's defaults (options.h) */
+    uint32_t kc = o.classes > PNPR_JSEG_CLASSES_MAX ? PNPR_JSEG_CLASSES_MAX : o.classes;
+    const pnpr_jseg_options def = pnpr_jseg_defaults();
+    double qdist = o.quant_distance > 0 ? o.quant_distance : (o.quant_distance < 0 ? 0 : def.quant_distance); /* NaN */
+    size_t k = o.k > PNPR_SEGMENT_K_MAX ? PNPR_SEGMENT_K_MAX : o.k;
+    double seed_factor = o.seed_factor > 0 ? o.seed_factor : def.seed_factor; /* < 0: default */
+    double merge_distance = o.merge_distance > 0 ? o.merge_distance : (o.merge_distance < 0 ? 0 : def.merge_distance);
 
     pnpr_status st = PNPR_OK;
     uint8_t *valid = malloc(count), *mask = NULL, *cls = NULL, *queued = NULL;

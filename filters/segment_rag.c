@@ -36,6 +36,7 @@
  * level is a prefix of that list: by segment count (the first S-N merges) or by a threshold on
  * the monotone `level` (running maximum of d_HSI), so levels nest. */
 #include <pointnpr/segment.h>
+#include <pointnpr/options.h>
 #include <pointnpr/knn.h>
 
 #include <math.h>
@@ -423,7 +424,8 @@ pnpr_status pnpr_segment_hierarchy(const uint8_t *rgb, size_t count, const pnpr_
     if (segment_count <= 1) return PNPR_OK;
     if (!r_merges || !rgb || (count && (!labels || !graph || !graph->knn))) return PNPR_ERR_INVALID_ARGUMENT;
     pnpr_hierarchy_options o = opts ? *opts : (pnpr_hierarchy_options){0};
-    double alpha = o.alpha > 0 ? o.alpha : 0.3, eps = o.epsilon > 0 ? o.epsilon : 0.05;
+    const pnpr_hierarchy_options d = pnpr_hierarchy_defaults(); /* options.h */
+    double alpha = o.alpha > 0 ? o.alpha : d.alpha, eps = o.epsilon > 0 ? o.epsilon : d.epsilon;
     rag g;
     pnpr_status st = rag_build(&g, rgb, count, graph, labels, segment_count);
     if (st != PNPR_OK) { rag_free(&g); return st; }

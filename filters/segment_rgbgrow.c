@@ -8,6 +8,7 @@
  *  3. regions smaller than min_size merge into the adjacent region of closest mean colour.
  * Steps 2-3 are pnpr_segment_merge_regions over the same neighbour graph. */
 #include <pointnpr/segment.h>
+#include <pointnpr/options.h>
 #include <pointnpr/knn.h>
 
 #include "../core/internal.h"
@@ -28,10 +29,14 @@ pnpr_status pnpr_segment_rgbgrow(const float *xyz, const uint8_t *rgb, size_t co
     if (!xyz || !rgb || !r_labels || count >= 0x7FFFFFFFu) return PNPR_ERR_INVALID_ARGUMENT;
     pnpr_rgbgrow_options o = opts ? *opts : (pnpr_rgbgrow_options){0};
     if (!(o.distance >= 0) || isinf(o.distance)) return PNPR_ERR_INVALID_ARGUMENT;
-    size_t k = o.k ? (o.k > PNPR_SEGMENT_K_MAX ? PNPR_SEGMENT_K_MAX : o.k) : 16;
-    double pd = o.point_distance > 0 ? o.point_distance : 25;
-    double rd = o.region_distance > 0 ? o.region_distance : (o.region_distance < 0 ? 0 : 10);
-    uint32_t min_size = o.min_size ? o.min_size : 10;
+    size_t table_count;
+    const pnpr_option_desc *table = pnpr_rgbgrow_option_table(&table_count);
+    pnpr_option_fill_defaults(table, table_count, &o); /* zeros -> the table's defaults (options.h) */
+    size_t k = o.k > PNPR_SEGMENT_K_MAX ? PNPR_SEGMENT_K_MAX : o.k;
+    const pnpr_rgbgrow_options d = pnpr_rgbgrow_defaults();
+    double pd = o.point_distance > 0 ? o.point_distance : d.point_distance;
+    double rd = o.region_distance > 0 ? o.region_distance : (o.region_distance < 0 ? 0 : d.region_distance);
+    uint32_t min_size = o.min_size;
     pnpr_kdtree *tree = NULL;
     uint32_t *knn = NULL, *queue = NULL;
     float *d2 = NULL;
@@ -40,7 +45,9 @@ pnpr_status pnpr_segment_rgbgrow(const float *xyz, const uint8_t *rgb, size_t co
     size_t nvalid = pnpr_kdtree_size(tree);
     if (!nvalid) { pnpr_kdtree_free(tree); st = pnpr_segment_finish(xyz, count, r_labels, r_info); goto out; }
     if (k > nvalid) k = nvalid;
-    float dist = o.distance > 0 ? o.distance : 3.0f * pnpr_segment_median_spacing(tree, xyz, count);
+    float dist = o.distance > 0 ? o.distance
+                                : (float)pnpr_option_find(table, table_count, "radius")->auto_scale *
+                                      pnpr_segment_median_spacing(tree, xyz, count);
     knn = malloc(count * k * sizeof *knn);
     d2 = malloc(count * k * sizeof *d2);
     queue = malloc(count * sizeof *queue);

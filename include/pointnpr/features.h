@@ -53,15 +53,17 @@ enum {
  * neighbours, so a larger k is refused rather than slow. */
 #define PNPR_FEATURES_K_MAX 1024
 
+/* Zero means the default in every numeric member; the defaults and ranges are the table of
+ * options.h (pnpr_features_defaults, pnpr_features_option_table), written nowhere else. */
 typedef struct pnpr_features_options {
     uint32_t want;           /* PNPR_WANT_* bits; 0 = all */
-    uint32_t k;              /* neighbourhood size; 0 = 16, at most PNPR_FEATURES_K_MAX. Clamped to
-                              * the number of valid points. */
+    uint32_t k;              /* neighbourhood size, at most PNPR_FEATURES_K_MAX. Clamped to the number
+                              * of valid points. */
     float threshold;         /* feature-degree threshold for feature points; 0 = automatic */
-    float weight_geometry;   /* weights of the two terms; both 0 = 0.5 / 0.5. */
+    float weight_geometry;   /* weights of the two terms; both 0 = the defaults */
     float weight_color;      /*   they are normalised to sum 1; colourless clouds use geometry only */
-    float direction_confidence; /* min line-fit confidence of a directional point; 0 = 0.6 */
-    float dither_scale;      /* multiplies the tone before dithering (density); 0 = 1 */
+    float direction_confidence; /* min line-fit confidence of a directional point */
+    float dither_scale;      /* multiplies the tone before dithering (density) */
     pnpr_tone_options tone;  /* the tone the dithering points follow (tone.h); zero = automatic */
     int has_viewpoint;       /* orient normals towards `viewpoint` (world coordinates) */
     double viewpoint[3];
@@ -97,9 +99,9 @@ typedef struct pnpr_features_stats {
 } pnpr_features_stats;
 
 /* Checks the options as pnpr_compute_features does: PNPR_ERR_INVALID_ARGUMENT, with a message
- * naming the option in err (may be NULL), for unknown want bits, k above PNPR_FEATURES_K_MAX, a
- * threshold or direction_confidence outside [0,1], negative or non-finite weights or dither_scale,
- * a non-finite viewpoint. opts NULL = all defaults (valid). */
+ * naming the option and its range in err (may be NULL), for unknown want bits, a non-finite
+ * viewpoint, or a numeric member outside its range in the options table (options.h:
+ * pnpr_option_check; e.g. k above PNPR_FEATURES_K_MAX). opts NULL = all defaults (valid). */
 pnpr_status pnpr_features_check_options(const pnpr_features_options *opts, pnpr_error *err);
 
 /* ---- the whole pipeline on a cloud ---------------------------------------------------------

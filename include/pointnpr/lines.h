@@ -25,16 +25,17 @@ extern "C" {
 #define PNPR_LINES_SHIFT_MAX 64
 #define PNPR_LINES_NEIGHBOURS_MAX 256
 
+/* Zero means the default in every numeric member; the defaults (some of them multiples of h) and
+ * the ranges are the table of options.h (pnpr_lines_defaults, pnpr_lines_option_table). */
 typedef struct pnpr_lines_options {
     float spacing;          /* sample spacing h (world units); 0 = median nearest-neighbour
                              * distance among the directional points */
-    float connect_radius;   /* graph neighbourhood radius; 0 = 3 h */
-    float merge_tol;        /* points closer than this are merged; 0 = h */
-    int shift_iterations;   /* noise-reducing shifts; 0 = 4, negative = none, at most
-                             * PNPR_LINES_SHIFT_MAX */
-    float direction_weight; /* beta in the edge weight (see docs); 0 = 4 */
-    float min_length;       /* spurs and isolated chains shorter than this are dropped; 0 = 5 h */
-    float sample_tol;       /* max chord deviation of the output polylines; 0 = 0.05 h */
+    float connect_radius;   /* graph neighbourhood radius */
+    float merge_tol;        /* points closer than this are merged */
+    int shift_iterations;   /* noise-reducing shifts; negative = none, at most PNPR_LINES_SHIFT_MAX */
+    float direction_weight; /* beta in the edge weight (see docs) */
+    float min_length;       /* spurs and isolated chains shorter than this are dropped */
+    float sample_tol;       /* max chord deviation of the output polylines */
     int no_corners;         /* 1 = do not join chain ends at corners */
     pnpr_progress progress;
 } pnpr_lines_options;
@@ -59,9 +60,10 @@ typedef struct pnpr_lines_stats {
     double seconds_graph, seconds_mst, seconds_fit;
 } pnpr_lines_stats;
 
-/* Checks the options as pnpr_profile_lines does: PNPR_ERR_INVALID_ARGUMENT, with a message naming
- * the option in err (may be NULL), for a negative or non-finite length or weight, or
- * shift_iterations above PNPR_LINES_SHIFT_MAX. opts NULL = all defaults (valid). */
+/* Checks the options as pnpr_profile_lines does (pnpr_option_check over the options table,
+ * options.h): PNPR_ERR_INVALID_ARGUMENT, with a message naming the option and its range in err (may
+ * be NULL), for a negative or non-finite length or weight, or shift_iterations above
+ * PNPR_LINES_SHIFT_MAX. opts NULL = all defaults (valid). */
 pnpr_status pnpr_lines_check_options(const pnpr_lines_options *opts, pnpr_error *err);
 
 /* Profile lines of a cloud that carries the feature properties of pnpr_compute_features

@@ -23,7 +23,9 @@
  *    label S-1, reported as info.invalid_segment (PNPR_LABEL_NONE when there are none).
  *  - Labels are numbered in order of first appearance along the point array, so results are
  *    deterministic and independent of the number of threads.
- *  - Options structs are valid when zero-initialised; every zero means the documented default. */
+ *  - Options structs are valid when zero-initialised; every zero means the default. The defaults
+ *    and ranges of the options structs are the tables of options.h (pnpr_jseg_defaults,
+ *    pnpr_jseg_option_table, ...), written nowhere else. */
 #ifndef POINTNPR_SEGMENT_H
 #define POINTNPR_SEGMENT_H
 
@@ -60,17 +62,17 @@ typedef struct pnpr_segment_info {
 /* ---- 3D JSEG ------------------------------------------------------------------------------ */
 
 typedef struct pnpr_jseg_options {
-    uint32_t classes;        /* k-means classes of the quantiser before close centres merge; 0 = 16, max
+    uint32_t classes;        /* k-means classes of the quantiser before close centres merge; max
                               * PNPR_JSEG_CLASSES_MAX */
-    float quant_distance;    /* class centres closer than this (CIE76 delta E) become one class; 0 = 12, <0 = none */
-    uint32_t k;              /* J neighbourhood: k nearest points including the point; 0 = 24, max
+    float quant_distance;    /* class centres closer than this (CIE76 delta E) become one class; <0 = none */
+    uint32_t k;              /* J neighbourhood: k nearest points including the point; max
                               * PNPR_SEGMENT_K_MAX */
     float radius;            /* > 0: J neighbourhood = those of the k nearest within radius (offset units) */
-    float seed_factor;       /* seed points: J <= seed_factor * mean J; 0 = 0.6 */
+    float seed_factor;       /* seed points: J <= seed_factor * mean J */
     float grow_bound;        /* > 0: growth stops at points with J >= grow_bound * mean J (they form their
                               * own regions, merged later); 0 = no bound */
     uint32_t seed_min_size;  /* seed regions smaller than this are dropped; 0 = k */
-    float merge_distance;    /* adjacent regions whose mean L*a*b* colours differ less merge; 0 = 10, <0 = none */
+    float merge_distance;    /* adjacent regions whose mean L*a*b* colours differ less merge; <0 = none */
     uint32_t min_size;       /* regions smaller than this merge into their closest-coloured neighbour;
                               * 0 = max(k, valid points / 1000) */
     uint64_t seed;           /* seed of the k-means++ initialisation; 0 = a fixed default */
@@ -118,8 +120,8 @@ typedef struct pnpr_segment_merge {
 } pnpr_segment_merge;
 
 typedef struct pnpr_hierarchy_options {
-    float alpha;       /* size rule: "small" = size < alpha * mean initial size; 0 = 0.3 */
-    float epsilon;     /* factor of pairs that are not both small; 0 = 0.05 */
+    float alpha;       /* size rule: "small" = size < alpha * mean initial size */
+    float epsilon;     /* factor of pairs that are not both small */
     int no_join;       /* 0: after the graph is exhausted, disconnected parts are joined by colour
                         * (at most 1024 of them) so the hierarchy has one root; 1: do not join */
     pnpr_progress progress; /* stage "hierarchy" */
@@ -159,9 +161,10 @@ pnpr_status pnpr_segment_covariance_split(const float *xyz, size_t count, const 
 /* ---- connected components ----------------------------------------------------------------- */
 
 typedef struct pnpr_components_options {
-    float distance;     /* points closer than this (<=) are connected; 0 = 3 x median nearest-neighbour distance */
+    float distance;     /* points closer than this (<=) are connected; 0 = a multiple (options.h) of the
+                         * median nearest-neighbour distance */
     uint32_t min_size;  /* components smaller than this join the component of their nearest
-                         * point in a kept component; 0 or 1 = keep all */
+                         * point in a kept component; 1 = keep all */
     int threads;
     pnpr_progress progress; /* stages "knn", "components" */
 } pnpr_components_options;
@@ -172,19 +175,20 @@ pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_c
 
 /* Median distance from a point to its nearest distinct neighbour, over a stride sample of at most
  * 10000 of the tree's points (xyz/count: the array the tree was built from); 0 when all points
- * coincide. The default distances of components and rgbgrow are 3x this. */
+ * coincide. The default distances of components and rgbgrow are a multiple of this (options.h). */
 float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, size_t count);
 
 /* ---- colour region growing (Zhan et al.) -------------------------------------------------- */
 
 typedef struct pnpr_rgbgrow_options {
-    uint32_t k;              /* neighbours considered per point; 0 = 16, max PNPR_SEGMENT_K_MAX */
-    float distance;          /* neighbours farther than this are ignored; 0 = 3 x median NN distance */
+    uint32_t k;              /* neighbours considered per point; max PNPR_SEGMENT_K_MAX */
+    float distance;          /* neighbours farther than this are ignored; 0 = a multiple (options.h) of the
+                              * median nearest-neighbour distance */
     float point_distance;    /* a neighbour joins when its colour differs from the point's by less
-                              * (Euclidean RGB, 0..255 units); 0 = 25 */
+                              * (Euclidean RGB, 0..255 units) */
     float region_distance;   /* adjacent regions whose mean colours differ less (CIE76 delta E) merge;
-                              * 0 = 10, <0 = none */
-    uint32_t min_size;       /* smaller regions merge into their closest-coloured neighbour; 0 = 10 */
+                              * <0 = none */
+    uint32_t min_size;       /* smaller regions merge into their closest-coloured neighbour */
     int threads;
     pnpr_progress progress;  /* stages "knn", "grow", "merge" */
 } pnpr_rgbgrow_options;

@@ -33,6 +33,22 @@ int cli_progress_stderr(void *user, const char *stage, double fraction);
 int cli_parse_number(const char *s, double lo, double hi, double *r);
 int cli_parse_list(const char *s, int n, double *r);
 
+/* Options described by the library's tables (options.h: name, default, range, help), so that the
+ * usage text and the parser show and accept exactly what the library does (cli_args.c). */
+#include <pointnpr/options.h>
+/* "  --k N                neighbourhood size (default 16, in 1..1024)" */
+void cli_option_usage(FILE *f, const pnpr_option_desc *d, const char *metavar);
+/* The usage line of the table entry called `name` (it must exist). */
+void cli_table_usage(FILE *f, const pnpr_option_desc *table, size_t count, const char *name, const char *metavar);
+/* Parses v as a value of d: a finite number in d's range (an integer for integer options).
+ * Returns 1, or 0 after printing "pointnpr CMD: --NAME wants an integer in 1..1024, got 'v'". */
+int cli_option_value(const pnpr_option_desc *d, const char *cmd, const char *v, double *r);
+/* argv[*i] is --NAME of one of the table's entries in `names` (NULL-terminated list of the names
+ * this command takes): parses its value into the struct at opts (advancing *i) and returns 1;
+ * another argument (or no value follows): 0; a bad value: prints why and returns -1. */
+int cli_table_option(const pnpr_option_desc *table, size_t count, const char *const *names, void *opts,
+                     const char *cmd, int argc, char **argv, int *i);
+
 /* The view options shared by render and lines: --eye X,Y,Z --target X,Y,Z --up X,Y,Z (look-at,
  * world coordinates), --fov DEG, --size WxH, or --camera FILE (the same look-at camera as text:
  * "eye X Y Z", "target X Y Z", "up X Y Z", "fov DEG" lines; cli_write_camera_file writes one).

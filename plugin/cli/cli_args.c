@@ -27,6 +27,49 @@ int cli_parse_number(const char *s, double lo, double hi, double *r)
     return 1;
 }
 
+void cli_option_usage(FILE *f, const pnpr_option_desc *d, const char *metavar)
+{
+    char left[64], def[64], range[64];
+    snprintf(left, sizeof left, "--%s %s", d->name, metavar);
+    pnpr_option_default_text(d, def, sizeof def);
+    pnpr_option_range_text(d, range, sizeof range);
+    int width = fprintf(f, "  %-20s %s", left, d->help);
+    fprintf(f, width + (int)(strlen(def) + strlen(range)) > 88 ? "\n%23s(default %s, %s)\n" : "%s (default %s, %s)\n", "",
+            def, range);
+}
+
+void cli_table_usage(FILE *f, const pnpr_option_desc *table, size_t count, const char *name, const char *metavar)
+{
+    const pnpr_option_desc *d = pnpr_option_find(table, count, name);
+    if (d) cli_option_usage(f, d, metavar);
+}
+
+int cli_option_value(const pnpr_option_desc *d, const char *cmd, const char *v, double *r)
+{
+    if (cli_parse_number(v, -HUGE_VAL, HUGE_VAL, r) && pnpr_option_in_range(d, *r)) return 1;
+    char range[64];
+    pnpr_option_range_text(d, range, sizeof range);
+    const int integer = d->type == PNPR_OPTION_INT || d->type == PNPR_OPTION_UINT;
+    fprintf(stderr, "pointnpr %s: --%s wants %s %s, got '%s'\n", cmd, d->name, integer ? "an integer" : "a number",
+            range, v);
+    return 0;
+}
+
+int cli_table_option(const pnpr_option_desc *table, size_t count, const char *const *names, void *opts,
+                     const char *cmd, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i];
+    if (strncmp(a, "--", 2) != 0 || *i + 1 >= argc) return 0;
+    const pnpr_option_desc *d = NULL;
+    for (size_t n = 0; names[n] && !d; n++)
+        if (!strcmp(a + 2, names[n])) d = pnpr_option_find(table, count, names[n]);
+    if (!d) return 0;
+    double x;
+    if (!cli_option_value(d, cmd, argv[++*i], &x)) return -1;
+    pnpr_option_set(d, opts, x);
+    return 1;
+}
+
 int cli_parse_list(const char *s, int n, double *r)
 {
     const char *p = s;

@@ -9,19 +9,36 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The options read from the library's table (options.h), in usage order, and their metavars. */
+static const char *const table_names[] = {"k", "threshold", "confidence", "dither-scale", NULL};
+static const char *const table_metavars[] = {"N", "T", "C", "S"};
+
+/* --weights G,C: the two weight entries of the table. */
+static void weights_usage(FILE *f, const pnpr_option_desc *table, size_t n)
+{
+    const pnpr_option_desc *g = pnpr_option_find(table, n, "weight-geometry");
+    const pnpr_option_desc *c = pnpr_option_find(table, n, "weight-color");
+    char range[64];
+    pnpr_option_range_text(g, range, sizeof range);
+    fprintf(f, "  --weights G,C        weights of the geometry and colour terms (default %g,%g, each %s,\n"
+               "                       not both 0; only their ratio matters)\n", g->def, c->def, range);
+}
+
 static void usage(FILE *f)
 {
+    size_t n;
+    const pnpr_option_desc *table = pnpr_features_option_table(&n);
     fprintf(f,
             "usage: pointnpr features IN -o OUT.ply [options]\n"
             "  Computes, per point, nx ny nz, feature_degree (0..1), feature_class (0 none,\n"
             "  1 non-directional, 2 directional, 3 dithering point), feature_confidence and\n"
             "  feature_dir_x/y/z, and writes them with every input property, in input order.\n"
-            "options:\n"
-            "  --k N                neighbourhood size (default 16)\n"
-            "  --threshold T        feature-degree threshold in (0,1] (default: automatic)\n"
-            "  --weights G,C        weights of the geometry and colour terms (default 0.5,0.5)\n"
-            "  --confidence C       min line-fit confidence of directional points (default 0.6)\n"
-            "  --dither-scale S     tone multiplier for the dithering density (default 1)\n"
+            "options:\n");
+    for (size_t i = 0; table_names[i]; i++) {
+        cli_table_usage(f, table, n, table_names[i], table_metavars[i]);
+        if (!strcmp(table_names[i], "threshold")) weights_usage(f, table, n);
+    }
+    fprintf(f,
             "  --viewpoint X,Y,Z    orient normals towards this point (world coordinates)\n"
             "  --recompute-normals  recompute normals even when the input has them\n"
             "  --threads N          worker threads (default: all cores)\n"
@@ -29,6 +46,27 @@ static void usage(FILE *f)
             "  --quiet              no progress on stderr\n");
     cli_outlier_usage(f);
     cli_columns_usage(f);
+}
+
+/* --weights G,C: two values in the weight entries' range, not both 0. 0 after saying why. */
+static int parse_weights(pnpr_features_options *fo, const char *v)
+{
+    size_t n;
+    const pnpr_option_desc *table = pnpr_features_option_table(&n);
+    const pnpr_option_desc *g = pnpr_option_find(table, n, "weight-geometry");
+    const pnpr_option_desc *c = pnpr_option_find(table, n, "weight-color");
+    double xs[2];
+    if (!cli_parse_list(v, 2, xs) || !pnpr_option_in_range(g, xs[0]) || !pnpr_option_in_range(c, xs[1]) ||
+        xs[0] + xs[1] <= 0) {
+        char range[64];
+        pnpr_option_range_text(g, range, sizeof range);
+        fprintf(stderr, "pointnpr features: --weights wants G,C (two numbers %s, not both 0; "
+                        "only their ratio matters), got '%s'\n", range, v);
+        return 0;
+    }
+    pnpr_option_set(g, fo, xs[0]);
+    pnpr_option_set(c, fo, xs[1]);
+    return 1;
 }
 
 /* Fewer than 3 usable points: says how many points there are and why the others are left out. */
@@ -55,34 +93,20 @@ int cli_features(int argc, char **argv)
         if (oo == 0) oo = cli_columns_option(&columns, "features", argc, argv, &i);
         if (oo < 0) return 2;
         if (oo > 0) continue;
-        double x, xs[3];
+        size_t tn;
+        const pnpr_option_desc *table = pnpr_features_option_table(&tn);
+        int to = cli_table_option(table, tn, table_names, &fo, "features", argc, argv, &i);
+        if (to < 0) return 2;
+        if (to > 0) continue;
+        double x;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--ascii")) wo.encoding = PNPR_PLY_ASCII;
         else if (!strcmp(a, "--recompute-normals")) fo.recompute_normals = 1;
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
-        else if (v && !strcmp(a, "--k")) {
-            if (!cli_parse_number(v, 1, PNPR_FEATURES_K_MAX, &x) || x != floor(x)) {
-                fprintf(stderr, "pointnpr features: --k wants an integer in 1..%d, got '%s'\n", PNPR_FEATURES_K_MAX, v);
-                return 2;
-            }
-            fo.k = (uint32_t)x; i++;
-        } else if (v && !strcmp(a, "--threshold")) {
-            if (!cli_parse_number(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr features: --threshold wants a number in (0,1], got '%s'\n", v); return 2; }
-            fo.threshold = (float)x; i++;
-        } else if (v && !strcmp(a, "--weights")) {
-            if (!cli_parse_list(v, 2, xs) || xs[0] < 0 || xs[1] < 0 || xs[0] + xs[1] <= 0 || xs[0] > 1e6 || xs[1] > 1e6) {
-                fprintf(stderr, "pointnpr features: --weights wants G,C (two numbers in [0, 1e6], not both 0; "
-                                "only their ratio matters), got '%s'\n", v);
-                return 2;
-            }
-            fo.weight_geometry = (float)xs[0]; fo.weight_color = (float)xs[1]; i++;
-        } else if (v && !strcmp(a, "--confidence")) {
-            if (!cli_parse_number(v, 1e-6, 1, &x)) { fprintf(stderr, "pointnpr features: --confidence wants a number in (0,1], got '%s'\n", v); return 2; }
-            fo.direction_confidence = (float)x; i++;
-        } else if (v && !strcmp(a, "--dither-scale")) {
-            if (!cli_parse_number(v, 1e-6, 1e6, &x)) { fprintf(stderr, "pointnpr features: --dither-scale wants a positive number, got '%s'\n", v); return 2; }
-            fo.dither_scale = (float)x; i++;
+        else if (v && !strcmp(a, "--weights")) {
+            if (!parse_weights(&fo, v)) return 2;
+            i++;
         } else if (v && !strcmp(a, "--viewpoint")) {
             if (!cli_parse_list(v, 3, fo.viewpoint)) { fprintf(stderr, "pointnpr features: --viewpoint wants X,Y,Z, got '%s'\n", v); return 2; }
             fo.has_viewpoint = 1; i++;

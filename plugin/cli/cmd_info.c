@@ -6,6 +6,14 @@
 #include <stdio.h>
 #include <string.h>
 
+/* --outlier-factor: the entry of the library's table (options.h). */
+static const pnpr_option_desc *outlier_factor(void)
+{
+    size_t n;
+    const pnpr_option_desc *table = pnpr_outlier_option_table(&n);
+    return pnpr_option_find(table, n, "outlier-factor");
+}
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -15,9 +23,9 @@ static void usage(FILE *f)
             "  far outliers, bounding box in world coordinates, colour/normals/labels, exact source\n"
             "  coordinates, extra properties with their types, face count, scanner viewpoint.\n"
             "  Far outliers: points farther than F robust extents (the %g%% quantile of the distances\n"
-            "  from the per-axis median) from the median, or beyond float range; F in [%g, %g]\n"
-            "  (default %g).\n",
-            100 * PNPR_OUTLIER_QUANTILE, PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, PNPR_OUTLIER_FACTOR);
+            "  from the per-axis median) from the median, or beyond float range:\n",
+            100 * PNPR_OUTLIER_QUANTILE);
+    cli_option_usage(f, outlier_factor(), "F");
     cli_columns_usage(f);
 }
 
@@ -66,13 +74,7 @@ int cli_outlier_option(cli_outliers *o, const char *cmd, int argc, char **argv, 
     const char *a = argv[*i];
     if (!strcmp(a, "--drop-outliers")) { o->drop = 1; return 1; }
     if (strcmp(a, "--outlier-factor") || *i + 1 >= argc) return 0;
-    const char *v = argv[++*i];
-    if (!cli_parse_number(v, PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, &o->factor)) {
-        fprintf(stderr, "pointnpr %s: --outlier-factor wants a number in [%g, %g], got '%s'\n", cmd,
-                PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, v);
-        return -1;
-    }
-    return 1;
+    return cli_option_value(outlier_factor(), cmd, argv[++*i], &o->factor) ? 1 : -1;
 }
 
 void cli_outlier_usage(FILE *f)
@@ -81,9 +83,9 @@ void cli_outlier_usage(FILE *f)
             "  --drop-outliers      remove far outliers after reading (an output cloud lacks them):\n"
             "                       points farther than F robust extents (the %g%% quantile of the\n"
             "                       distances from the per-axis median) from the median, or beyond\n"
-            "                       float range\n"
-            "  --outlier-factor F   F in [%g, %g] (default %g)\n",
-            100 * PNPR_OUTLIER_QUANTILE, PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, PNPR_OUTLIER_FACTOR);
+            "                       float range\n",
+            100 * PNPR_OUTLIER_QUANTILE);
+    cli_option_usage(f, outlier_factor(), "F");
 }
 
 /* A coordinate: 3 decimals, or %.6g where that would print hundreds of digits (1e308). */

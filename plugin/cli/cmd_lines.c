@@ -15,6 +15,12 @@
 #include <string.h>
 #include <strings.h>
 
+/* The options read from the library's tables (options.h), in usage order, and their metavars. */
+static const char *const lines_names[] = {"spacing", "radius", "merge-tol", "min-length", "direction-weight", NULL};
+static const char *const lines_metavars[] = {"H", "R", "T", "L", "B"};
+static const char *const feature_names[] = {"k", "threshold", NULL};
+static const char *const feature_metavars[] = {"N", "T"};
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -24,12 +30,11 @@ static void usage(FILE *f)
             "  written as OBJ 'l' polylines or as PLY with an edge element (world coordinates).\n"
             "  The features are computed first when IN does not carry them (feature_class,\n"
             "  feature_dir_x/y/z, as written by 'pointnpr features').\n"
-            "options (h = point spacing, estimated from the directional points):\n"
-            "  --spacing H          the spacing h in world units (default: estimated)\n"
-            "  --radius R           graph neighbourhood radius (default 3h)\n"
-            "  --merge-tol T        merge points closer than T (default h)\n"
-            "  --min-length L       drop spurs and isolated lines shorter than L (default 5h)\n"
-            "  --direction-weight B how much edges across the feature direction cost (default 4)\n"
+            "options (h = point spacing, estimated from the directional points):\n");
+    size_t n, fn;
+    const pnpr_option_desc *table = pnpr_lines_option_table(&n), *ftable = pnpr_features_option_table(&fn);
+    for (size_t i = 0; lines_names[i]; i++) cli_table_usage(f, table, n, lines_names[i], lines_metavars[i]);
+    fprintf(f,
             "  --no-corners         do not join line ends at corners and across gaps\n"
             "  --svg OUT.svg        also draw the lines as SVG through a camera, hidden parts removed\n"
             "                       by a depth test against IN's points\n"
@@ -44,8 +49,9 @@ static void usage(FILE *f)
             "                       (default on; docs/lines.md)\n"
             "  --outline-width PX   their stroke width (default %g)\n"
             "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default %g)\n"
-            "  --k N, --threshold T feature options used when features are computed\n"
-            "  --quiet              no progress on stderr\n", (double)PNPR_SVG_OUTLINE_WIDTH, (double)PNPR_OUTLINE_JUMP);
+            "  --quiet              no progress on stderr\n"
+            "feature options, used when features are computed:\n", (double)PNPR_SVG_OUTLINE_WIDTH, (double)PNPR_OUTLINE_JUMP);
+    for (size_t i = 0; feature_names[i]; i++) cli_table_usage(f, ftable, fn, feature_names[i], feature_metavars[i]);
     cli_outlier_usage(f);
     cli_columns_usage(f);
 }
@@ -171,7 +177,6 @@ int cli_lines(int argc, char **argv)
     cli_view_init(&view, 1024, 768);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        double x;
         int vo = cli_view_option(&view, "lines", argc, argv, &i);
         if (vo < 0) return 2;
         if (vo > 0) continue;
@@ -182,28 +187,17 @@ int cli_lines(int argc, char **argv)
         int so = svg_option(&sa, argc, argv, &i);
         if (so < 0) return 2;
         if (so > 0) continue;
+        size_t n, fn;
+        const pnpr_option_desc *table = pnpr_lines_option_table(&n), *ftable = pnpr_features_option_table(&fn);
+        int to = cli_table_option(table, n, lines_names, &lo, "lines", argc, argv, &i);
+        if (to == 0) to = cli_table_option(ftable, fn, feature_names, &fo, "lines", argc, argv, &i);
+        if (to < 0) return 2;
+        if (to > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--no-corners")) lo.no_corners = 1;
         else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
-        else if (v && (!strcmp(a, "--spacing") || !strcmp(a, "--radius") || !strcmp(a, "--merge-tol") ||
-                       !strcmp(a, "--min-length") || !strcmp(a, "--direction-weight") || !strcmp(a, "--k") ||
-                       !strcmp(a, "--threshold"))) {
-            if (!cli_parse_number(v, 1e-30, 1e30, &x)) { fprintf(stderr, "pointnpr lines: %s wants a positive number, got '%s'\n", a, v); return 2; }
-            if (!strcmp(a, "--spacing")) lo.spacing = (float)x;
-            else if (!strcmp(a, "--radius")) lo.connect_radius = (float)x;
-            else if (!strcmp(a, "--merge-tol")) lo.merge_tol = (float)x;
-            else if (!strcmp(a, "--min-length")) lo.min_length = (float)x;
-            else if (!strcmp(a, "--direction-weight")) lo.direction_weight = (float)x;
-            else if (!strcmp(a, "--k")) {
-                if (x != floor(x) || x > 1024) { fprintf(stderr, "pointnpr lines: --k wants an integer in 1..1024\n"); return 2; }
-                fo.k = (uint32_t)x;
-            } else {
-                if (x > 1) { fprintf(stderr, "pointnpr lines: --threshold wants a number in (0,1]\n"); return 2; }
-                fo.threshold = (float)x;
-            }
-            i++;
-        } else if (a[0] == '-' && a[1]) {
+        else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "pointnpr lines: unknown option or missing value: %s\n", a);
             usage(stderr);
             return 2;

@@ -2,6 +2,7 @@
  * or labels imported from a property), optionally a level of the region hierarchy. */
 #include "cli.h"
 
+#include <pointnpr/options.h>
 #include <pointnpr/segment.h>
 
 #include <errno.h>
@@ -9,6 +10,86 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+static int is_int(double x) { return x == floor(x); }
+
+/* The methods' options tables (options.h); the first that has an option gives its range. */
+typedef const pnpr_option_desc *(*table_fn)(size_t *r_count);
+static const struct { const char *method; table_fn table; } method_tables[3] = {
+    {"jseg", pnpr_jseg_option_table}, {"rgbgrow", pnpr_rgbgrow_option_table}, {"components", pnpr_components_option_table}};
+
+/* The options that set a field of the method's struct (the values: 0 = not given). */
+typedef struct method_option {
+    const char *name, *metavar, *help;
+} method_option;
+static const method_option method_options[] = {
+    {"radius", "R", "jseg: J neighbourhood radius; components/rgbgrow: neighbour distance"},
+    {"min-size", "M", "smaller segments merge into a neighbour"},
+    {"k", "N", "neighbourhood size"},
+    {"classes", "C", "colour classes of the quantiser"},
+};
+enum { METHOD_OPTIONS = sizeof method_options / sizeof method_options[0] };
+
+static const pnpr_option_desc *first_entry(const char *name)
+{
+    for (int t = 0; t < 3; t++) {
+        size_t n;
+        const pnpr_option_desc *table = method_tables[t].table(&n);
+        const pnpr_option_desc *d = pnpr_option_find(table, n, name);
+        if (d) return d;
+    }
+    return NULL;
+}
+
+/* "  --k N            neighbourhood size (default jseg 24, rgbgrow 16; in 2..256)" */
+static void method_usage(FILE *f, const method_option *m)
+{
+    char left[64], range[64], def[64];
+    snprintf(left, sizeof left, "--%s %s", m->name, m->metavar);
+    fprintf(f, "  %-16s %s\n                   (default", left, m->help);
+    const char *sep = " ";
+    for (int t = 0; t < 3; t++) {
+        size_t n;
+        const pnpr_option_desc *table = method_tables[t].table(&n);
+        const pnpr_option_desc *d = pnpr_option_find(table, n, m->name);
+        if (!d) continue;
+        pnpr_option_default_text(d, def, sizeof def);
+        fprintf(f, "%s%s %s", sep, method_tables[t].method, def);
+        sep = ", ";
+    }
+    pnpr_option_range_text(first_entry(m->name), range, sizeof range);
+    fprintf(f, "; %s)\n", range);
+}
+
+/* Sets the given values (0 = not given) in the method's struct and checks it through its table;
+ * 0 after saying why. */
+static int apply_options(const char *method, const double *values, void *opts)
+{
+    size_t n = 0;
+    const pnpr_option_desc *table = NULL;
+    for (int t = 0; t < 3; t++)
+        if (!strcmp(method, method_tables[t].method)) table = method_tables[t].table(&n);
+    for (int o = 0; o < METHOD_OPTIONS; o++) {
+        const pnpr_option_desc *d = pnpr_option_find(table, n, method_options[o].name);
+        if (d && values[o] > 0) pnpr_option_set(d, opts, values[o]);
+    }
+    pnpr_error err = {0};
+    if (pnpr_option_check(table, n, opts, &err) == PNPR_OK) return 1;
+    fprintf(stderr, "pointnpr segment: --method %s: %s\n", method, err.message);
+    return 0;
+}
+
+/* argv[*i] is one of method_options: its value (checked against the first table that has it) in
+ * values[]; 1 taken, 0 not one of them, -1 a bad value (reported). */
+static int method_option_arg(double *values, int argc, char **argv, int *i)
+{
+    if (*i + 1 >= argc || strncmp(argv[*i], "--", 2) != 0) return 0;
+    for (int o = 0; o < METHOD_OPTIONS; o++) {
+        if (strcmp(argv[*i] + 2, method_options[o].name)) continue;
+        return cli_option_value(first_entry(method_options[o].name), "segment", argv[++*i], &values[o]) ? 1 : -1;
+    }
+    return 0;
+}
 
 static void usage(FILE *f)
 {
@@ -24,12 +105,9 @@ static void usage(FILE *f)
             "  labels      segments from a per-point property (--property, default 'segment')\n"
             "options:\n"
             "  --segments N     cut the region hierarchy (HSI colour, size rule) at N segments\n"
-            "  --threshold T    cut the region hierarchy where the HSI colour distance exceeds T\n"
-            "  --radius R       jseg: J neighbourhood radius; components/rgbgrow: neighbour distance\n"
-            "                   (default: 3 x the median point spacing)\n"
-            "  --min-size M     smaller segments merge into a neighbour\n"
-            "  --k N            neighbourhood size (jseg 24, rgbgrow 16)\n"
-            "  --classes C      jseg: colour classes of the quantiser (16)\n"
+            "  --threshold T    cut the region hierarchy where the HSI colour distance exceeds T\n");
+    for (int i = 0; i < METHOD_OPTIONS; i++) method_usage(f, &method_options[i]);
+    fprintf(f,
             "  --split V        then split every segment whose surface variation exceeds V along\n"
             "                   its direction of greatest variation (Chi & Lee; e.g. 0.02)\n"
             "  --split-min M    smallest part a split may leave (32)\n"
@@ -39,12 +117,11 @@ static void usage(FILE *f)
     cli_columns_usage(f);
 }
 
-static int is_int(double x) { return x == floor(x); }
-
 int cli_segment(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *method = "jseg", *property = NULL;
-    double segments = 0, threshold = 0, radius = 0, min_size = 0, k = 0, classes = 0, threads = 0, split = 0, split_min = 0;
+    double segments = 0, threshold = 0, threads = 0, split = 0, split_min = 0;
+    double values[METHOD_OPTIONS] = {0}; /* method_options */
     pnpr_write_options wo = {0};
     cli_outliers outliers = {0, 0};
     const char *columns = NULL;
@@ -56,6 +133,9 @@ int cli_segment(int argc, char **argv)
         if (oo == 0) oo = cli_columns_option(&columns, "segment", argc, argv, &i);
         if (oo < 0) return 2;
         if (oo > 0) continue;
+        int mo = method_option_arg(values, argc, argv, &i);
+        if (mo < 0) return 2;
+        if (mo > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--ascii")) wo.encoding = PNPR_PLY_ASCII;
@@ -72,18 +152,6 @@ int cli_segment(int argc, char **argv)
             i++;
         } else if (v && !strcmp(a, "--threshold")) {
             if (!cli_parse_number(v, 1e-9, 1e9, &threshold)) { fprintf(stderr, "pointnpr segment: --threshold wants a positive number, got '%s'\n", v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--radius")) {
-            if (!cli_parse_number(v, 1e-30, 1e30, &radius)) { fprintf(stderr, "pointnpr segment: --radius wants a positive number, got '%s'\n", v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--min-size")) {
-            if (!cli_parse_number(v, 1, 4294967295.0, &min_size) || !is_int(min_size)) { fprintf(stderr, "pointnpr segment: --min-size wants an integer >= 1, got '%s'\n", v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--k")) {
-            if (!cli_parse_number(v, 2, PNPR_SEGMENT_K_MAX, &k) || !is_int(k)) { fprintf(stderr, "pointnpr segment: --k wants an integer in 2..%d, got '%s'\n", PNPR_SEGMENT_K_MAX, v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--classes")) {
-            if (!cli_parse_number(v, 1, PNPR_JSEG_CLASSES_MAX, &classes) || !is_int(classes)) { fprintf(stderr, "pointnpr segment: --classes wants an integer in 1..%d, got '%s'\n", PNPR_JSEG_CLASSES_MAX, v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--split")) {
             if (!cli_parse_number(v, 1e-9, 1.0 / 3.0, &split)) { fprintf(stderr, "pointnpr segment: --split wants a surface variation in (0, 1/3], got '%s'\n", v); return 2; }
@@ -136,16 +204,17 @@ int cli_segment(int argc, char **argv)
     pnpr_segment_info info = {0};
     if (!strcmp(method, "jseg")) {
         pnpr_jseg_options o = {0};
-        o.k = (uint32_t)k; o.classes = (uint32_t)classes; o.radius = (float)radius;
-        o.min_size = (uint32_t)min_size; o.threads = (int)threads; o.progress = prog;
+        if (!apply_options(method, values, &o)) goto done;
+        o.threads = (int)threads; o.progress = prog;
         st = pnpr_segment_jseg(cloud.xyz, cloud.rgb, cloud.count, &o, labels, &info);
     } else if (!strcmp(method, "components")) {
         pnpr_components_options o = {0};
-        o.distance = (float)radius; o.min_size = (uint32_t)min_size; o.threads = (int)threads; o.progress = prog;
+        if (!apply_options(method, values, &o)) goto done;
+        o.threads = (int)threads; o.progress = prog;
         st = pnpr_segment_components(cloud.xyz, cloud.count, &o, labels, &info);
     } else if (!strcmp(method, "rgbgrow")) {
         pnpr_rgbgrow_options o = {0};
-        o.k = (uint32_t)k; o.distance = (float)radius; o.min_size = (uint32_t)min_size;
+        if (!apply_options(method, values, &o)) goto done;
         o.threads = (int)threads; o.progress = prog;
         st = pnpr_segment_rgbgrow(cloud.xyz, cloud.rgb, cloud.count, &o, labels, &info);
     } else {

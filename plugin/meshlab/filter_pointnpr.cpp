@@ -14,6 +14,7 @@
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/options.h>
 #include <pointnpr/outliers.h>
 #include <pointnpr/segment.h>
 
@@ -324,28 +325,242 @@ int FilterPointnprPlugin::postCondition(QAction *a) const
     return MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTNORMAL | MeshModel::MM_VERTCOLOR;
 }
 
+namespace {
+/* Every default and range the dialogs show comes from the library's options tables (options.h):
+ * no numeric default or range of these options is written in this file. */
+typedef const pnpr_option_desc *(*OptionTable)(size_t *);
+
+const pnpr_option_desc *optionOf(OptionTable table, const char *name)
+{
+    size_t n = 0;
+    const pnpr_option_desc *t = table(&n);
+    return pnpr_option_find(t, n, name);
+}
+
+/* "in 1..1024", "> 0" */
+QString rangeOf(OptionTable table, const char *name)
+{
+    char buf[64];
+    pnpr_option_range_text(optionOf(table, name), buf, sizeof buf);
+    return QString::fromUtf8(buf);
+}
+
+/* "16", "3h", "max(k, points / 1000)" */
+QString defaultOf(OptionTable table, const char *name)
+{
+    char buf[64];
+    pnpr_option_default_text(optionOf(table, name), buf, sizeof buf);
+    return QString::fromUtf8(buf);
+}
+
+/* A dialog parameter and the option it sets (the option's CLI name in the table). */
+struct DialogLabel {
+    const char *option;
+    const char *label;
+};
+
+/* The dialogs show each default as a value, so there 0 stands for itself (refused where the range
+ * excludes it) unless the default is computed from the data (0 = automatic / none). Checks opts
+ * against the table's ranges; false with "the seed factor must be > 0 (got 0)" in why. */
+bool dialogOptionsOk(OptionTable table, const void *opts, const DialogLabel *labels, size_t count, QString &why)
+{
+    size_t n = 0;
+    const pnpr_option_desc *t = table(&n);
+    for (size_t i = 0; i < count; i++) {
+        const pnpr_option_desc *d = pnpr_option_find(t, n, labels[i].option);
+        const double v = pnpr_option_get(d, opts);
+        if ((v == 0 && d->def == 0) || (v < 0 && (d->flags & PNPR_OPTION_NEGATIVE_OFF)) || pnpr_option_in_range(d, v))
+            continue;
+        why = QString("%1 must be %2 (got %3)").arg(labels[i].label).arg(rangeOf(table, d->name)).arg(v);
+        return false;
+    }
+    pnpr_error err;
+    std::memset(&err, 0, sizeof err);
+    if (pnpr_option_check(t, n, opts, &err) == PNPR_OK) return true;
+    why = QString::fromUtf8(err.message);
+    return false;
+}
+
+const DialogLabel kFeatureLabels[] = {{"k", "k"}, {"threshold", "the feature threshold"},
+                                      {"confidence", "the directional confidence"}, {"dither-scale", "the dither scale"}};
+const DialogLabel kLinesLabels[] = {{"spacing", "the sample spacing"}, {"radius", "the neighbourhood radius"},
+                                    {"merge-tol", "the merge tolerance"}, {"min-length", "the minimum line length"},
+                                    {"direction-weight", "the direction weight"},
+                                    {"shift-iterations", "the noise-reducing shifts"}};
+const DialogLabel kJsegLabels[] = {{"classes", "the colour classes"}, {"k", "k"}, {"radius", "the neighbourhood radius"},
+                                   {"seed-factor", "the seed factor"}, {"min-size", "the minimum segment size"},
+                                   {"quant-distance", "the class merge distance"},
+                                   {"merge-distance", "the region merge distance"}};
+const DialogLabel kGrowLabels[] = {{"k", "k"}, {"radius", "the neighbour distance"},
+                                   {"point-distance", "the point colour distance"},
+                                   {"region-distance", "the region merge distance"},
+                                   {"min-size", "the minimum segment size"}};
+const DialogLabel kComponentsLabels[] = {{"radius", "the neighbour distance"}, {"min-size", "the minimum segment size"}};
+#define LABELS(a) a, sizeof(a) / sizeof((a)[0])
+
+/* An integer parameter into an unsigned option; false when it is negative. */
+bool uintParam(const RichParameterList &par, const char *name, uint32_t &r)
+{
+    const int v = par.getInt(name);
+    if (v < 0) return false;
+    r = static_cast<uint32_t>(v);
+    return true;
+}
+
+void featureParameters(RichParameterList &par)
+{
+    const pnpr_features_options fd = pnpr_features_defaults();
+    const OptionTable F = pnpr_features_option_table;
+    par.addParam(RichInt("k", static_cast<int>(fd.k), "Neighbours (k)",
+                         QString("Number of nearest neighbours of each point (the point itself included), %1. "
+                                 "The default suits typical scans; raise it for noisy scans. Clamped to the number "
+                                 "of points.").arg(rangeOf(F, "k"))));
+    par.addParam(RichFloat("threshold", fd.threshold, "Feature threshold",
+                           QString("Feature-degree threshold %1 above which a point is a feature point. "
+                                   "0 = automatic (Otsu split of the degree histogram, never below 0.15).")
+                               .arg(rangeOf(F, "threshold"))));
+    par.addParam(RichFloat("weightGeometry", fd.weight_geometry, "Geometry weight",
+                           "Weight of the geometric term (variation of the plane-fit error: creases, corners). "
+                           "The two weights are normalised to sum 1."));
+    par.addParam(RichFloat("weightColor", fd.weight_color, "Colour weight",
+                           "Weight of the colour term (colour gradient across the neighbourhood). Ignored "
+                           "(geometry only) when the layer has no per-vertex colour."));
+    par.addParam(RichFloat("directionConfidence", fd.direction_confidence, "Directional confidence",
+                           QString("Minimum line-fit confidence %1 for a feature point to be directional "
+                                   "(class 2); below it the point is non-directional (class 1).")
+                               .arg(rangeOf(F, "confidence"))));
+    par.addParam(RichFloat("ditherScale", fd.dither_scale, "Dither scale",
+                           QString("Multiplies the tone (darkness from the colour, else from the normal lit from +z) "
+                                   "before dithering: more or fewer dithering points (class 3), %1.")
+                               .arg(rangeOf(F, "dither-scale"))));
+}
+
+void linesParameters(RichParameterList &par)
+{
+    const pnpr_lines_options ld = pnpr_lines_defaults();
+    const pnpr_features_options fd = pnpr_features_defaults();
+    const OptionTable L = pnpr_lines_option_table, F = pnpr_features_option_table;
+    par.addParam(RichFloat("spacing", ld.spacing, "Sample spacing h",
+                           "Sample spacing h of the directional points, in the layer's units. 0 = automatic "
+                           "(median nearest-neighbour distance among the directional points). The defaults "
+                           "below are multiples of h."));
+    par.addParam(RichFloat("radius", ld.connect_radius, "Neighbourhood radius",
+                           QString("Directional points closer than this are linked in the graph. 0 = %1. Larger "
+                                   "values bridge gaps in sparse scans but may link neighbouring parallel creases.")
+                               .arg(defaultOf(L, "radius"))));
+    par.addParam(RichFloat("mergeTolerance", ld.merge_tol, "Merge tolerance",
+                           QString("Shifted points closer than this are merged into one node. 0 = %1.")
+                               .arg(defaultOf(L, "merge-tol"))));
+    par.addParam(RichFloat("minLength", ld.min_length, "Minimum line length",
+                           QString("Spurs and isolated lines shorter than this are dropped. 0 = %1; raise it to keep "
+                                   "only long profile lines.").arg(defaultOf(L, "min-length"))));
+    par.addParam(RichFloat("directionWeight", ld.direction_weight, "Direction weight",
+                           QString("How much more an edge costs when it crosses the points' feature directions "
+                                   "instead of following them (beta in the edge weight; %1, default %2). Higher "
+                                   "values follow the creases more strictly.")
+                               .arg(rangeOf(L, "direction-weight")).arg(defaultOf(L, "direction-weight"))));
+    par.addParam(RichInt("shiftIterations", ld.shift_iterations, "Noise-reducing shifts",
+                         QString("Iterations that move every directional point towards its neighbours across "
+                                 "the feature (0 = none, at most %1).").arg(optionOf(L, "shift-iterations")->max)));
+    par.addParam(RichBool("corners", true, "Join at corners",
+                          "Join line ends that point at a common corner (and bridge small gaps). Off: lines "
+                          "stop short of corners."));
+    par.addParam(RichBool("recomputeFeatures", false, "Recompute features",
+                          "Always run the feature analysis (with the three parameters below) instead of using "
+                          "the layer's feature_class/feature_dir attributes. Layers without those attributes "
+                          "are analysed anyway; the layer itself is never changed by this filter."));
+    par.addParam(RichInt("k", static_cast<int>(fd.k), "Neighbours (k)",
+                         QString("Feature analysis (when it runs): nearest neighbours of each point, %1.")
+                             .arg(rangeOf(F, "k"))));
+    par.addParam(RichFloat("threshold", fd.threshold, "Feature threshold",
+                           QString("Feature analysis (when it runs): feature-degree threshold %1; 0 = automatic.")
+                               .arg(rangeOf(F, "threshold"))));
+    par.addParam(RichFloat("directionConfidence", fd.direction_confidence, "Directional confidence",
+                           QString("Feature analysis (when it runs): minimum line-fit confidence %1 of a "
+                                   "directional point.").arg(rangeOf(F, "confidence"))));
+}
+
+void labelToQualityParameter(RichParameterList &par)
+{
+    par.addParam(RichBool("labelToQuality", false, "Label to vertex quality",
+                          "Also store the segment label in the vertex quality (overwriting e.g. the feature "
+                          "degree): then 'Select by Vertex Quality' selects segments and meshlabserver's "
+                          "'-m vq' saves the labels."));
+}
+
+void jsegParameters(RichParameterList &par)
+{
+    const pnpr_jseg_options jd = pnpr_jseg_defaults();
+    const OptionTable J = pnpr_jseg_option_table;
+    par.addParam(RichInt("segments", 0, "Segment count (hierarchy)",
+                         "> 0: cut the region hierarchy (HSI colour distance, size rule) of the JSEG regions at "
+                         "this many segments (fewer when JSEG found fewer). 0 = the JSEG regions as they are."));
+    par.addParam(RichFloat("hierarchyThreshold", 0.0f, "Hierarchy threshold",
+                           "> 0: cut the region hierarchy where the HSI colour distance of a merge exceeds this "
+                           "(0..~1.5; e.g. 0.1). Combined with the segment count, the coarser limit wins. "
+                           "0 = no threshold."));
+    par.addParam(RichInt("classes", static_cast<int>(jd.classes), "Colour classes",
+                         QString("k-means colour classes of the quantiser (%1) before close class centres merge.")
+                             .arg(rangeOf(J, "classes"))));
+    par.addParam(RichFloat("quantDistance", jd.quant_distance, "Class merge distance",
+                           "Class centres closer than this CIE76 colour difference (delta E) become one class. "
+                           "0 = never merge classes."));
+    par.addParam(RichInt("k", static_cast<int>(jd.k), "Neighbours (k)",
+                         QString("J neighbourhood: the k nearest points (the point included), %1.").arg(rangeOf(J, "k"))));
+    par.addParam(RichFloat("radius", jd.radius, "Neighbourhood radius",
+                           "> 0: the J neighbourhood keeps only those of the k nearest within this distance "
+                           "(layer units). 0 = no radius limit."));
+    par.addParam(RichFloat("seedFactor", jd.seed_factor, "Seed factor",
+                           QString("Seed points are those with J <= factor x mean J (%1; smaller: fewer, more "
+                                   "uniform seeds, fewer segments).").arg(rangeOf(J, "seed-factor"))));
+    par.addParam(RichFloat("mergeDistance", jd.merge_distance, "Region merge distance",
+                           "Adjacent regions whose mean colours differ by less (CIE76 delta E) merge. "
+                           "0 = no colour merge."));
+    par.addParam(RichInt("minSize", static_cast<int>(jd.min_size), "Minimum segment size",
+                         QString("Regions with fewer points merge into the closest-coloured neighbour. "
+                                 "0 = automatic (%1).").arg(defaultOf(J, "min-size"))));
+    par.addParam(RichBool("colorBySegment", true, "Colour vertices by segment",
+                          "OVERWRITES the vertex colours with each segment's mean colour (the flat-shaded look "
+                          "artists want to see; on by default). Off: only the 'segment' attribute is written."));
+    labelToQualityParameter(par);
+}
+
+void growParameters(RichParameterList &par)
+{
+    const pnpr_rgbgrow_options rd = pnpr_rgbgrow_defaults();
+    const OptionTable R = pnpr_rgbgrow_option_table;
+    par.addParam(RichEnum("method", 0, QStringList() << "Connected components" << "Colour region growing",
+                          "Method", "Connected components: geometry only (points closer than the distance "
+                          "are connected). Colour region growing: neighbours of similar colour join a region "
+                          "(needs per-vertex colour)."));
+    par.addParam(RichFloat("distance", rd.distance, "Neighbour distance",
+                           QString("Points farther apart than this are never connected (layer units). 0 = %1.")
+                               .arg(defaultOf(R, "radius"))));
+    par.addParam(RichInt("minSize", static_cast<int>(rd.min_size), "Minimum segment size",
+                         "Components: smaller components join the component of their nearest point in a kept "
+                         "one (1 = keep all). Region growing: smaller regions merge into the closest-coloured "
+                         "neighbour."));
+    par.addParam(RichInt("k", static_cast<int>(rd.k), "Neighbours (k)",
+                         QString("Region growing: neighbours considered per point, %1 (components use all points "
+                                 "within the distance).").arg(rangeOf(R, "k"))));
+    par.addParam(RichFloat("pointColorDistance", rd.point_distance, "Point colour distance",
+                           QString("Region growing: a neighbour joins when its RGB colour differs from the point's "
+                                   "by less than this (Euclidean, 0..255 units; %1).").arg(rangeOf(R, "point-distance"))));
+    par.addParam(RichFloat("regionColorDistance", rd.region_distance, "Region merge distance",
+                           "Region growing: adjacent regions whose mean colours differ less (CIE76 delta E) "
+                           "merge. 0 = no merge."));
+    par.addParam(RichBool("colorBySegment", false, "Colour vertices by segment",
+                          "OVERWRITES the vertex colours: each segment's mean colour, or for a layer without "
+                          "colours a distinct colour per segment. Off: only the 'segment' attribute is written."));
+    labelToQualityParameter(par);
+}
+} // namespace
+
 void FilterPointnprPlugin::initParameterSet(QAction *a, MeshModel &, RichParameterList &par)
 {
     switch (ID(a)) {
     case FP_FEATURES:
-        par.addParam(RichInt("k", 16, "Neighbours (k)",
-                             "Number of nearest neighbours of each point (the point itself included), 1..1024. "
-                             "16 suits typical scans; raise it for noisy scans. Clamped to the number of points."));
-        par.addParam(RichFloat("threshold", 0.0f, "Feature threshold",
-                               "Feature-degree threshold in [0,1] above which a point is a feature point. "
-                               "0 = automatic (Otsu split of the degree histogram, never below 0.15)."));
-        par.addParam(RichFloat("weightGeometry", 0.5f, "Geometry weight",
-                               "Weight of the geometric term (variation of the plane-fit error: creases, corners). "
-                               "The two weights are normalised to sum 1."));
-        par.addParam(RichFloat("weightColor", 0.5f, "Colour weight",
-                               "Weight of the colour term (colour gradient across the neighbourhood). Ignored "
-                               "(geometry only) when the layer has no per-vertex colour."));
-        par.addParam(RichFloat("directionConfidence", 0.6f, "Directional confidence",
-                               "Minimum line-fit confidence in (0,1] for a feature point to be directional "
-                               "(class 2); below it the point is non-directional (class 1)."));
-        par.addParam(RichFloat("ditherScale", 1.0f, "Dither scale",
-                               "Multiplies the tone (darkness from the colour, else from the normal lit from +z) "
-                               "before dithering: more or fewer dithering points (class 3). Must be > 0."));
+        featureParameters(par);
         par.addParam(RichBool("recomputeNormals", false, "Recompute normals",
                               "Always estimate new normals (PCA over the k neighbours) and write them into the layer. "
                               "When off, the layer's normals are kept if they are meaningful (almost all finite and "
@@ -371,105 +586,9 @@ void FilterPointnprPlugin::initParameterSet(QAction *a, MeshModel &, RichParamet
         par.addParam(RichBool("addToSelection", false, "Add to current selection",
                               "Keep the current vertex selection and add the class to it; off: replace it."));
         break;
-    case FP_PROFILE_LINES:
-        par.addParam(RichFloat("spacing", 0.0f, "Sample spacing h",
-                               "Sample spacing h of the directional points, in the layer's units. 0 = automatic "
-                               "(median nearest-neighbour distance among the directional points). The defaults "
-                               "below are multiples of h."));
-        par.addParam(RichFloat("radius", 0.0f, "Neighbourhood radius",
-                               "Directional points closer than this are linked in the graph. 0 = 3 h. Larger values "
-                               "bridge gaps in sparse scans but may link neighbouring parallel creases."));
-        par.addParam(RichFloat("mergeTolerance", 0.0f, "Merge tolerance",
-                               "Shifted points closer than this are merged into one node. 0 = h."));
-        par.addParam(RichFloat("minLength", 0.0f, "Minimum line length",
-                               "Spurs and isolated lines shorter than this are dropped. 0 = 5 h; raise it to keep "
-                               "only long profile lines."));
-        par.addParam(RichFloat("directionWeight", 4.0f, "Direction weight",
-                               "How much more an edge costs when it crosses the points' feature directions instead "
-                               "of following them (beta in the edge weight; > 0, default 4). Higher values follow "
-                               "the creases more strictly."));
-        par.addParam(RichInt("shiftIterations", 4, "Noise-reducing shifts",
-                             QString("Iterations that move every directional point towards its neighbours across "
-                                     "the feature (0 = none, at most %1).").arg(PNPR_LINES_SHIFT_MAX)));
-        par.addParam(RichBool("corners", true, "Join at corners",
-                              "Join line ends that point at a common corner (and bridge small gaps). Off: lines "
-                              "stop short of corners."));
-        par.addParam(RichBool("recomputeFeatures", false, "Recompute features",
-                              "Always run the feature analysis (with the three parameters below) instead of using "
-                              "the layer's feature_class/feature_dir attributes. Layers without those attributes "
-                              "are analysed anyway; the layer itself is never changed by this filter."));
-        par.addParam(RichInt("k", 16, "Neighbours (k)",
-                             "Feature analysis (when it runs): nearest neighbours of each point, 1..1024."));
-        par.addParam(RichFloat("threshold", 0.0f, "Feature threshold",
-                               "Feature analysis (when it runs): feature-degree threshold in [0,1]; 0 = automatic."));
-        par.addParam(RichFloat("directionConfidence", 0.6f, "Directional confidence",
-                               "Feature analysis (when it runs): minimum line-fit confidence in (0,1] of a "
-                               "directional point."));
-        break;
-    case FP_SEGMENT_JSEG:
-        par.addParam(RichInt("segments", 0, "Segment count (hierarchy)",
-                             "> 0: cut the region hierarchy (HSI colour distance, size rule) of the JSEG regions at "
-                             "this many segments (fewer when JSEG found fewer). 0 = the JSEG regions as they are."));
-        par.addParam(RichFloat("hierarchyThreshold", 0.0f, "Hierarchy threshold",
-                               "> 0: cut the region hierarchy where the HSI colour distance of a merge exceeds this "
-                               "(0..~1.5; e.g. 0.1). Combined with the segment count, the coarser limit wins. "
-                               "0 = no threshold."));
-        par.addParam(RichInt("classes", 16, "Colour classes",
-                             "k-means colour classes of the quantiser (1..255) before close class centres merge."));
-        par.addParam(RichFloat("quantDistance", 12.0f, "Class merge distance",
-                               "Class centres closer than this CIE76 colour difference (delta E) become one class. "
-                               "0 = never merge classes."));
-        par.addParam(RichInt("k", 24, "Neighbours (k)",
-                             "J neighbourhood: the k nearest points (the point included), 2..256."));
-        par.addParam(RichFloat("radius", 0.0f, "Neighbourhood radius",
-                               "> 0: the J neighbourhood keeps only those of the k nearest within this distance "
-                               "(layer units). 0 = no radius limit."));
-        par.addParam(RichFloat("seedFactor", 0.6f, "Seed factor",
-                               "Seed points are those with J <= factor x mean J (> 0; smaller: fewer, more uniform "
-                               "seeds, fewer segments)."));
-        par.addParam(RichFloat("mergeDistance", 10.0f, "Region merge distance",
-                               "Adjacent regions whose mean colours differ by less (CIE76 delta E) merge. "
-                               "0 = no colour merge."));
-        par.addParam(RichInt("minSize", 0, "Minimum segment size",
-                             "Regions with fewer points merge into the closest-coloured neighbour. "
-                             "0 = automatic (max(k, points / 1000))."));
-        par.addParam(RichBool("colorBySegment", true, "Colour vertices by segment",
-                              "OVERWRITES the vertex colours with each segment's mean colour (the flat-shaded look "
-                              "artists want to see; on by default). Off: only the 'segment' attribute is written."));
-        par.addParam(RichBool("labelToQuality", false, "Label to vertex quality",
-                              "Also store the segment label in the vertex quality (overwriting e.g. the feature "
-                              "degree): then 'Select by Vertex Quality' selects segments and meshlabserver's "
-                              "'-m vq' saves the labels."));
-        break;
-    case FP_SEGMENT_GROW:
-        par.addParam(RichEnum("method", 0, QStringList() << "Connected components" << "Colour region growing",
-                              "Method", "Connected components: geometry only (points closer than the distance "
-                              "are connected). Colour region growing: neighbours of similar colour join a region "
-                              "(needs per-vertex colour)."));
-        par.addParam(RichFloat("distance", 0.0f, "Neighbour distance",
-                               "Points farther apart than this are never connected (layer units). "
-                               "0 = 3 x the median point spacing."));
-        par.addParam(RichInt("minSize", 10, "Minimum segment size",
-                             "Components: smaller components join the component of their nearest point in a kept "
-                             "one (1 = keep all). Region growing: smaller regions merge into the closest-coloured "
-                             "neighbour."));
-        par.addParam(RichInt("k", 16, "Neighbours (k)",
-                             "Region growing: neighbours considered per point, 1..256 (components use all points "
-                             "within the distance)."));
-        par.addParam(RichFloat("pointColorDistance", 25.0f, "Point colour distance",
-                               "Region growing: a neighbour joins when its RGB colour differs from the point's by "
-                               "less than this (Euclidean, 0..255 units; > 0)."));
-        par.addParam(RichFloat("regionColorDistance", 10.0f, "Region merge distance",
-                               "Region growing: adjacent regions whose mean colours differ less (CIE76 delta E) "
-                               "merge. 0 = no merge."));
-        par.addParam(RichBool("colorBySegment", false, "Colour vertices by segment",
-                              "OVERWRITES the vertex colours: each segment's mean colour, or for a layer without "
-                              "colours a distinct colour per segment. Off: only the 'segment' attribute is written."));
-        par.addParam(RichBool("labelToQuality", false, "Label to vertex quality",
-                              "Also store the segment label in the vertex quality (overwriting e.g. the feature "
-                              "degree): then 'Select by Vertex Quality' selects segments and meshlabserver's "
-                              "'-m vq' saves the labels."));
-        break;
+    case FP_PROFILE_LINES: linesParameters(par); break;
+    case FP_SEGMENT_JSEG: jsegParameters(par); break;
+    case FP_SEGMENT_GROW: growParameters(par); break;
     default: break;
     }
 }
@@ -598,31 +717,24 @@ bool FilterPointnprPlugin::loadLayerCloud(MeshModel &mm, bool withColor, bool wi
  * dither scale), checked before anything changes. */
 bool FilterPointnprPlugin::checkFeatureParams(const RichParameterList &par, bool all, pnpr_features_options &fo)
 {
-    std::memset(&fo, 0, sizeof fo);
-    const int k = par.getInt("k");
-    const float threshold = par.getFloat("threshold");
-    const float conf = par.getFloat("directionConfidence");
-    if (k < 1 || k > PNPR_FEATURES_K_MAX) return fail(QString("k must be in 1..%1 (got %2)").arg(PNPR_FEATURES_K_MAX).arg(k));
-    if (!(threshold >= 0.0f && threshold <= 1.0f))
-        return fail(QString("the feature threshold must be in [0,1], 0 = automatic (got %1)").arg(threshold));
-    if (!(conf > 0.0f && conf <= 1.0f))
-        return fail(QString("the directional confidence must be in (0,1] (got %1)").arg(conf));
-    fo.k = static_cast<uint32_t>(k);
-    fo.threshold = threshold;
-    fo.direction_confidence = conf;
-    fo.weight_geometry = fo.weight_color = 0.5f;
-    fo.dither_scale = 1.0f;
+    fo = pnpr_features_defaults();
+    if (!uintParam(par, "k", fo.k)) return fail(QString("k must not be negative (got %1)").arg(par.getInt("k")));
+    fo.threshold = par.getFloat("threshold");
+    fo.direction_confidence = par.getFloat("directionConfidence");
     if (all) {
-        const float wg = par.getFloat("weightGeometry"), wc = par.getFloat("weightColor");
-        const float dither = par.getFloat("ditherScale");
-        if (!(wg >= 0.0f && wc >= 0.0f && wg + wc > 0.0f && std::isfinite(wg + wc)))
-            return fail(QString("the weights must be non-negative and not both 0 (got %1, %2)").arg(wg).arg(wc));
-        if (!(dither > 0.0f && dither <= 1e6f))
-            return fail(QString("the dither scale must be a positive number (got %1)").arg(dither));
-        fo.weight_geometry = wg;
-        fo.weight_color = wc;
-        fo.dither_scale = dither;
+        fo.weight_geometry = par.getFloat("weightGeometry");
+        fo.weight_color = par.getFloat("weightColor");
+        fo.dither_scale = par.getFloat("ditherScale");
+        const pnpr_option_desc *w = optionOf(pnpr_features_option_table, "weight-geometry");
+        const pnpr_option_desc *wc = optionOf(pnpr_features_option_table, "weight-color");
+        if (!pnpr_option_in_range(w, fo.weight_geometry) || !pnpr_option_in_range(wc, fo.weight_color) ||
+            !(fo.weight_geometry + fo.weight_color > 0))
+            return fail(QString("the weights must be non-negative and not both 0, each %1 (got %2, %3)")
+                            .arg(rangeOf(pnpr_features_option_table, "weight-geometry"))
+                            .arg(fo.weight_geometry).arg(fo.weight_color));
     }
+    QString why;
+    if (!dialogOptionsOk(pnpr_features_option_table, &fo, LABELS(kFeatureLabels), why)) return fail(why);
     return true;
 }
 
@@ -802,26 +914,18 @@ bool FilterPointnprPlugin::profileLines(MeshDocument &md, const RichParameterLis
     const QString layer = mm->label();
 
     /* ---- parameters, checked before anything changes ---- */
-    pnpr_lines_options lo;
-    std::memset(&lo, 0, sizeof lo);
-    const float spacing = par.getFloat("spacing"), radius = par.getFloat("radius");
-    const float mergeTol = par.getFloat("mergeTolerance"), minLength = par.getFloat("minLength");
-    const float beta = par.getFloat("directionWeight");
+    pnpr_lines_options lo = pnpr_lines_defaults();
+    lo.spacing = par.getFloat("spacing");
+    lo.connect_radius = par.getFloat("radius");
+    lo.merge_tol = par.getFloat("mergeTolerance");
+    lo.min_length = par.getFloat("minLength");
+    lo.direction_weight = par.getFloat("directionWeight");
     const int shifts = par.getInt("shiftIterations");
-    if (!nonNegative(spacing)) return fail(QString("the sample spacing must be >= 0, 0 = automatic (got %1)").arg(spacing));
-    if (!nonNegative(radius)) return fail(QString("the neighbourhood radius must be >= 0, 0 = 3 h (got %1)").arg(radius));
-    if (!nonNegative(mergeTol)) return fail(QString("the merge tolerance must be >= 0, 0 = h (got %1)").arg(mergeTol));
-    if (!nonNegative(minLength)) return fail(QString("the minimum line length must be >= 0, 0 = 5 h (got %1)").arg(minLength));
-    if (!(beta > 0.0f && beta <= 1e6f)) return fail(QString("the direction weight must be > 0 (got %1)").arg(beta));
-    if (shifts < 0 || shifts > PNPR_LINES_SHIFT_MAX)
-        return fail(QString("the noise-reducing shifts must be in 0..%1 (got %2)").arg(PNPR_LINES_SHIFT_MAX).arg(shifts));
-    lo.spacing = spacing;
-    lo.connect_radius = radius;
-    lo.merge_tol = mergeTol;
-    lo.min_length = minLength;
-    lo.direction_weight = beta;
-    lo.shift_iterations = shifts == 0 ? -1 : shifts;
+    if (shifts < 0) return fail(QString("the noise-reducing shifts must not be negative, 0 = none (got %1)").arg(shifts));
+    lo.shift_iterations = shifts == 0 ? -1 : shifts; /* the dialog's 0 is "none" */
     lo.no_corners = par.getBool("corners") ? 0 : 1;
+    QString why;
+    if (!dialogOptionsOk(pnpr_lines_option_table, &lo, LABELS(kLinesLabels), why)) return fail(why);
     pnpr_features_options fo;
     if (!checkFeatureParams(par, false, fo)) return false;
 
@@ -1002,55 +1106,40 @@ bool FilterPointnprPlugin::segment(MeshDocument &md, const RichParameterList &pa
     const bool needColor = jseg || method == 1;
 
     /* ---- parameters, checked before anything changes ---- */
-    pnpr_jseg_options jo;
-    pnpr_components_options co;
-    pnpr_rgbgrow_options ro;
-    std::memset(&jo, 0, sizeof jo);
-    std::memset(&co, 0, sizeof co);
-    std::memset(&ro, 0, sizeof ro);
+    pnpr_jseg_options jo = pnpr_jseg_defaults();
+    pnpr_components_options co = pnpr_components_defaults();
+    pnpr_rgbgrow_options ro = pnpr_rgbgrow_defaults();
     int segmentsWanted = 0;
     float hThreshold = 0;
+    QString why;
     if (jseg) {
         segmentsWanted = par.getInt("segments");
         hThreshold = par.getFloat("hierarchyThreshold");
-        const int classes = par.getInt("classes"), k = par.getInt("k"), minSize = par.getInt("minSize");
-        const float qd = par.getFloat("quantDistance"), radius = par.getFloat("radius");
-        const float seed = par.getFloat("seedFactor"), md2 = par.getFloat("mergeDistance");
         if (segmentsWanted < 0) return fail(QString("the segment count must be >= 0, 0 = no hierarchy cut (got %1)").arg(segmentsWanted));
         if (!nonNegative(hThreshold)) return fail(QString("the hierarchy threshold must be >= 0, 0 = none (got %1)").arg(hThreshold));
-        if (classes < 1 || classes > PNPR_JSEG_CLASSES_MAX)
-            return fail(QString("the colour classes must be in 1..%1 (got %2)").arg(PNPR_JSEG_CLASSES_MAX).arg(classes));
-        if (k < 2 || k > PNPR_SEGMENT_K_MAX) return fail(QString("k must be in 2..%1 (got %2)").arg(PNPR_SEGMENT_K_MAX).arg(k));
-        if (minSize < 0) return fail(QString("the minimum segment size must be >= 0, 0 = automatic (got %1)").arg(minSize));
-        if (!nonNegative(qd)) return fail(QString("the class merge distance must be >= 0, 0 = none (got %1)").arg(qd));
-        if (!nonNegative(radius)) return fail(QString("the neighbourhood radius must be >= 0, 0 = none (got %1)").arg(radius));
-        if (!(seed > 0.0f && seed <= 1e6f)) return fail(QString("the seed factor must be > 0 (got %1)").arg(seed));
-        if (!nonNegative(md2)) return fail(QString("the region merge distance must be >= 0, 0 = none (got %1)").arg(md2));
-        jo.classes = static_cast<uint32_t>(classes);
-        jo.quant_distance = qd > 0 ? qd : -1.0f;
-        jo.k = static_cast<uint32_t>(k);
-        jo.radius = radius;
-        jo.seed_factor = seed;
+        if (!uintParam(par, "classes", jo.classes) || !uintParam(par, "k", jo.k) || !uintParam(par, "minSize", jo.min_size))
+            return fail("the colour classes, k and the minimum segment size must not be negative");
+        const float qd = par.getFloat("quantDistance"), md2 = par.getFloat("mergeDistance");
+        jo.quant_distance = qd > 0 ? qd : -1.0f; /* the dialog's 0 is "none" */
+        jo.radius = par.getFloat("radius");
+        jo.seed_factor = par.getFloat("seedFactor");
         jo.merge_distance = md2 > 0 ? md2 : -1.0f;
-        jo.min_size = static_cast<uint32_t>(minSize);
+        if (!dialogOptionsOk(pnpr_jseg_option_table, &jo, LABELS(kJsegLabels), why)) return fail(why);
     } else {
         const float dist = par.getFloat("distance");
-        const int minSize = par.getInt("minSize"), k = par.getInt("k");
-        const float pcd = par.getFloat("pointColorDistance"), rcd = par.getFloat("regionColorDistance");
-        if (!nonNegative(dist)) return fail(QString("the neighbour distance must be >= 0, 0 = automatic (got %1)").arg(dist));
-        if (minSize < 0) return fail(QString("the minimum segment size must be >= 0 (got %1)").arg(minSize));
-        if (method == 1) {
-            if (k < 1 || k > PNPR_SEGMENT_K_MAX) return fail(QString("k must be in 1..%1 (got %2)").arg(PNPR_SEGMENT_K_MAX).arg(k));
-            if (!(pcd > 0.0f && pcd <= 1e6f)) return fail(QString("the point colour distance must be > 0 (got %1)").arg(pcd));
-            if (!nonNegative(rcd)) return fail(QString("the region merge distance must be >= 0, 0 = none (got %1)").arg(rcd));
-        }
+        uint32_t minSize = 0;
+        if (!uintParam(par, "minSize", minSize) || !uintParam(par, "k", ro.k))
+            return fail("k and the minimum segment size must not be negative");
         co.distance = dist;
-        co.min_size = static_cast<uint32_t>(minSize);
-        ro.k = static_cast<uint32_t>(k);
+        co.min_size = minSize > 1 ? minSize : 1u; /* 0 and 1: keep all */
         ro.distance = dist;
-        ro.point_distance = pcd;
-        ro.region_distance = rcd > 0 ? rcd : -1.0f;
-        ro.min_size = minSize > 1 ? static_cast<uint32_t>(minSize) : 1u;
+        ro.point_distance = par.getFloat("pointColorDistance");
+        const float rcd = par.getFloat("regionColorDistance");
+        ro.region_distance = rcd > 0 ? rcd : -1.0f; /* the dialog's 0 is "none" */
+        ro.min_size = minSize > 1 ? minSize : 1u;
+        const bool ok = method == 1 ? dialogOptionsOk(pnpr_rgbgrow_option_table, &ro, LABELS(kGrowLabels), why)
+                                    : dialogOptionsOk(pnpr_components_option_table, &co, LABELS(kComponentsLabels), why);
+        if (!ok) return fail(why);
     }
     const bool colorBy = par.getBool("colorBySegment");
     const bool toQuality = par.getBool("labelToQuality");

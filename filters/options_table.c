@@ -1,0 +1,116 @@
+/* The defaults and ranges of the filters' options structs (options.h): the one place they are
+ * written. The library fills zeros from here, the CLI's usage text and parser and the MeshLab
+ * dialogs read these entries; tests/test_options_table.c and tests/cli_options.sh hold them to it. */
+#include <pointnpr/options.h>
+
+#include <stddef.h>
+
+#define UNB PNPR_OPTION_UNBOUNDED
+#define EXCL PNPR_OPTION_MIN_EXCLUSIVE
+#define NEG_OFF PNPR_OPTION_NEGATIVE_OFF
+#define ZERO_VALUE PNPR_OPTION_ZERO_IS_VALUE
+/* name, struct, member, type, default, min, max, flags, auto scale, auto text, help */
+#define OPT(group, S, name, m, type, def, lo, hi, flags, scale, atext, help)                                          \
+    { name, #m, group, PNPR_OPTION_##type, offsetof(S, m), def, lo, hi, flags, scale, atext, help }
+#define COUNT(t) (sizeof(t) / sizeof((t)[0]))
+
+#define F(...) OPT("features", pnpr_features_options, __VA_ARGS__)
+static const pnpr_option_desc features_table[] = {
+    F("k", k, UINT, 16, 1, PNPR_FEATURES_K_MAX, 0, 0, NULL, "neighbourhood size"),
+    F("threshold", threshold, FLOAT, 0, 0, 1, EXCL, 0, "automatic", "feature-degree threshold"),
+    F("weight-geometry", weight_geometry, FLOAT, 0.5, 0, 1e6, ZERO_VALUE, 0, NULL,
+      "weight of the geometry term (normalised with the colour weight; both 0 = the defaults)"),
+    F("weight-color", weight_color, FLOAT, 0.5, 0, 1e6, ZERO_VALUE, 0, NULL,
+      "weight of the colour term (colourless clouds use geometry only)"),
+    F("confidence", direction_confidence, FLOAT, 0.6, 0, 1, EXCL, 0, NULL,
+      "min line-fit confidence of directional points"),
+    F("dither-scale", dither_scale, FLOAT, 1, 0, 1e6, EXCL, 0, NULL, "tone multiplier for the dithering density"),
+};
+
+#define L(...) OPT("lines", pnpr_lines_options, __VA_ARGS__)
+static const pnpr_option_desc lines_table[] = {
+    L("spacing", spacing, FLOAT, 0, 0, UNB, EXCL, 0, "estimated", "the spacing h in world units"),
+    L("radius", connect_radius, FLOAT, 0, 0, UNB, EXCL, 3, "h", "graph neighbourhood radius"),
+    L("merge-tol", merge_tol, FLOAT, 0, 0, UNB, EXCL, 1, "h", "merge points closer than this"),
+    L("shift-iterations", shift_iterations, INT, 4, 1, PNPR_LINES_SHIFT_MAX, NEG_OFF, 0, NULL,
+      "noise-reducing shifts across the feature"),
+    L("direction-weight", direction_weight, FLOAT, 4, 0, UNB, EXCL, 0, NULL,
+      "how much edges across the feature direction cost"),
+    L("min-length", min_length, FLOAT, 0, 0, UNB, EXCL, 5, "h", "drop spurs and isolated lines shorter than this"),
+    L("sample-tol", sample_tol, FLOAT, 0, 0, UNB, EXCL, 0.05, "h", "max chord deviation of the output polylines"),
+};
+
+#define J(...) OPT("jseg", pnpr_jseg_options, __VA_ARGS__)
+static const pnpr_option_desc jseg_table[] = {
+    J("classes", classes, UINT, 16, 1, PNPR_JSEG_CLASSES_MAX, 0, 0, NULL, "colour classes of the quantiser"),
+    J("quant-distance", quant_distance, FLOAT, 12, 0, UNB, EXCL | NEG_OFF, 0, NULL,
+      "class centres closer than this (CIE76 delta E) become one class"),
+    J("k", k, UINT, 24, 2, PNPR_SEGMENT_K_MAX, 0, 0, NULL, "J neighbourhood size"),
+    J("radius", radius, FLOAT, 0, 0, UNB, EXCL, 0, "none", "J neighbourhood radius"),
+    J("seed-factor", seed_factor, FLOAT, 0.6, 0, UNB, EXCL, 0, NULL, "seed points: J <= this x mean J"),
+    J("grow-bound", grow_bound, FLOAT, 0, 0, UNB, EXCL, 0, "none", "growth stops at J >= this x mean J"),
+    J("seed-min-size", seed_min_size, UINT, 0, 1, UNB, 0, 1, "k", "seed regions smaller than this are dropped"),
+    J("merge-distance", merge_distance, FLOAT, 10, 0, UNB, EXCL | NEG_OFF, 0, NULL,
+      "adjacent regions closer in mean colour (CIE76 delta E) merge"),
+    J("min-size", min_size, UINT, 0, 1, UNB, 0, 0, "max(k, points / 1000)", "smaller segments merge into a neighbour"),
+};
+
+#define R(...) OPT("rgbgrow", pnpr_rgbgrow_options, __VA_ARGS__)
+static const pnpr_option_desc rgbgrow_table[] = {
+    R("k", k, UINT, 16, 2, PNPR_SEGMENT_K_MAX, 0, 0, NULL, "neighbours considered per point"),
+    R("radius", distance, FLOAT, 0, 0, UNB, EXCL, 3, " x median spacing", "neighbour distance"),
+    R("point-distance", point_distance, FLOAT, 25, 0, UNB, EXCL, 0, NULL,
+      "a neighbour joins when its RGB colour differs by less (0..255 units)"),
+    R("region-distance", region_distance, FLOAT, 10, 0, UNB, EXCL | NEG_OFF, 0, NULL,
+      "adjacent regions closer in mean colour (CIE76 delta E) merge"),
+    R("min-size", min_size, UINT, 10, 1, UNB, 0, 0, NULL, "smaller segments merge into a neighbour"),
+};
+
+#define C(...) OPT("components", pnpr_components_options, __VA_ARGS__)
+static const pnpr_option_desc components_table[] = {
+    C("radius", distance, FLOAT, 0, 0, UNB, EXCL, 3, " x median spacing", "neighbour distance"),
+    C("min-size", min_size, UINT, 1, 1, UNB, 0, 0, NULL, "smaller components join the nearest kept one"),
+};
+
+#define H(...) OPT("hierarchy", pnpr_hierarchy_options, __VA_ARGS__)
+static const pnpr_option_desc hierarchy_table[] = {
+    H("alpha", alpha, FLOAT, 0.3, 0, UNB, EXCL, 0, NULL, "size rule: small = size < alpha x mean initial size"),
+    H("epsilon", epsilon, FLOAT, 0.05, 0, UNB, EXCL, 0, NULL, "merge cost factor of pairs not both small"),
+};
+
+#define O(...) OPT("outliers", pnpr_outlier_options, __VA_ARGS__)
+static const pnpr_option_desc outlier_table[] = {
+    O("outlier-factor", factor, DOUBLE, PNPR_OUTLIER_FACTOR, PNPR_OUTLIER_FACTOR_MIN, PNPR_OUTLIER_FACTOR_MAX, 0, 0,
+      NULL, "far outliers: farther than this many robust extents"),
+};
+
+#define TABLE_FUNCTIONS(X, table)                                                                                     \
+    const pnpr_option_desc *pnpr_##X##_option_table(size_t *r_count)                                                 \
+    {                                                                                                                  \
+        if (r_count) *r_count = COUNT(table);                                                                          \
+        return table;                                                                                                  \
+    }
+
+TABLE_FUNCTIONS(features, features_table)
+TABLE_FUNCTIONS(lines, lines_table)
+TABLE_FUNCTIONS(jseg, jseg_table)
+TABLE_FUNCTIONS(rgbgrow, rgbgrow_table)
+TABLE_FUNCTIONS(components, components_table)
+TABLE_FUNCTIONS(hierarchy, hierarchy_table)
+TABLE_FUNCTIONS(outlier, outlier_table)
+
+#define DEFAULTS_FUNCTION(X, S, table)                                                                                \
+    S pnpr_##X##_defaults(void)                                                                                        \
+    {                                                                                                                  \
+        S o = {0};                                                                                                     \
+        pnpr_option_set_defaults(table, COUNT(table), &o);                                                             \
+        return o;                                                                                                      \
+    }
+
+DEFAULTS_FUNCTION(features, pnpr_features_options, features_table)
+DEFAULTS_FUNCTION(lines, pnpr_lines_options, lines_table)
+DEFAULTS_FUNCTION(jseg, pnpr_jseg_options, jseg_table)
+DEFAULTS_FUNCTION(rgbgrow, pnpr_rgbgrow_options, rgbgrow_table)
+DEFAULTS_FUNCTION(components, pnpr_components_options, components_table)
+DEFAULTS_FUNCTION(hierarchy, pnpr_hierarchy_options, hierarchy_table)
+DEFAULTS_FUNCTION(outlier, pnpr_outlier_options, outlier_table)
