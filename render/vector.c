@@ -8,8 +8,11 @@
  *   GL's depth test (LEQUAL against the mask, at the point's depth): a stroke is sampled every
  *   pixel along its axis and split into its visible runs, a dot is kept when half the pixels
  *   under it pass; hidden marks are absent from the file;
- * - a stroke's inked length and width are those of its texture where the alpha is at least a
- *   quarter of its peak (measured on the generated textures: pnpr_stroke_textures);
+ * - a stroke's vector shape is where its raster stroke is at least INK_ALPHA opaque (ink alpha x
+ *   the tone hatches' lighter pencil x the queue's fade-in x the texture, whose extent at each
+ *   opacity is measured on the generated textures, pnpr_stroke_textures): 0.4 is the opacity at
+ *   which the default ink on white turns darker than grey 160, the tests' ink threshold; the
+ *   shape is drawn in the ink's own opacity;
  * - profile lines (the `lines` style) follow line.vert (pulled towards the eye, the near plane,
  *   the minimum on-screen length), sampled and split the same way, joined across segments;
  * - outlines: the frame is drawn with only the outlines' ink in its colour attachment; that ink
@@ -25,7 +28,8 @@
 #include <string.h>
 
 enum { READ_CHUNK = 65536 }; /* vertices read back at a time */
-#define INK_LEVEL 0.25   /* a stroke's inked extent: where its texture reaches this fraction of its peak */
+#define INK_ALPHA 0.4    /* a stroke's vector shape: where its raster stroke is at least this opaque */
+enum { LEVELS = 64 };    /* opacity levels of the texture extents */
 #define DOT_VISIBLE 0.5  /* a dot is kept when this fraction of its pixels passes the depth test */
 
 typedef struct vec_ctx {
@@ -33,7 +37,7 @@ typedef struct vec_ctx {
     const pnpr_frame_record *rec;
     const float *depth;          /* w x h window depths, GL rows bottom-up */
     int w, h;
-    float ink_frac_len[STROKE_LAYERS], ink_frac_wid[STROKE_LAYERS];
+    float frac_len[STROKE_LAYERS][LEVELS], frac_wid[STROKE_LAYERS][LEVELS]; /* texture_extents */
     pnpr_drawing *out;
     uint8_t ink[4];
     float queue_end, queue_fade; /* the group being read: its prefix and fade-in (as the shaders) */
@@ -49,30 +53,33 @@ static double queue_alpha(const vec_ctx *c, size_t k)
 
 static uint8_t unit_byte(float v) { return (uint8_t)(v <= 0 ? 0 : v >= 1 ? 255 : (int)(v * 255.0f + 0.5f)); }
 
-/* Inked fraction of each texture's length (summed rows) and width (summed middle columns): where
- * the alpha reaches INK_LEVEL of the peak (a quarter: what reads as a mark at the stroke widths
- * of 1 to 3 px; measured against the PNG by test_render_vector). */
+/* The inked fraction of each texture's length and width at opacity level q / (LEVELS - 1): the
+ * columns whose mean alpha (over its rows, where the stroke is whole) and the rows whose mean
+ * alpha over the middle quarter of the columns reach it. */
 static void texture_extents(vec_ctx *c)
 {
     uint8_t *tex = malloc((size_t)STROKE_LAYERS * STROKE_TEX_W * STROKE_TEX_H);
-    for (int L = 0; L < STROKE_LAYERS; L++) { c->ink_frac_len[L] = 0.9f; c->ink_frac_wid[L] = 0.5f; }
+    for (int L = 0; L < STROKE_LAYERS; L++)
+        for (int q = 0; q < LEVELS; q++) { c->frac_len[L][q] = 0.9f; c->frac_wid[L][q] = 0.5f; }
     if (!tex) return;
     pnpr_stroke_textures(tex);
     for (int L = 0; L < STROKE_LAYERS; L++) {
         const uint8_t *t = tex + (size_t)L * STROKE_TEX_W * STROKE_TEX_H;
-        double col[STROKE_TEX_H] = {0}, row[STROKE_TEX_W] = {0}, cmax = 0, rmax = 0;
+        double col[STROKE_TEX_H] = {0}, row[STROKE_TEX_W] = {0};
         for (int y = 0; y < STROKE_TEX_H; y++)
             for (int x = 0; x < STROKE_TEX_W; x++) {
-                row[x] += t[y * STROKE_TEX_W + x];
-                if (x >= STROKE_TEX_W * 3 / 8 && x < STROKE_TEX_W * 5 / 8) col[y] += t[y * STROKE_TEX_W + x];
+                double a = t[y * STROKE_TEX_W + x] / 255.0;
+                if (y >= STROKE_TEX_H * 3 / 8 && y < STROKE_TEX_H * 5 / 8) row[x] += a / (STROKE_TEX_H / 4);
+                if (x >= STROKE_TEX_W * 3 / 8 && x < STROKE_TEX_W * 5 / 8) col[y] += a / (STROKE_TEX_W / 4);
             }
-        for (int x = 0; x < STROKE_TEX_W; x++) rmax = fmax(rmax, row[x]);
-        for (int y = 0; y < STROKE_TEX_H; y++) cmax = fmax(cmax, col[y]);
-        int nl = 0, nw = 0;
-        for (int x = 0; x < STROKE_TEX_W; x++) nl += row[x] >= INK_LEVEL * rmax;
-        for (int y = 0; y < STROKE_TEX_H; y++) nw += col[y] >= INK_LEVEL * cmax;
-        if (rmax > 0) c->ink_frac_len[L] = (float)nl / STROKE_TEX_W;
-        if (cmax > 0) c->ink_frac_wid[L] = (float)nw / STROKE_TEX_H;
+        for (int q = 0; q < LEVELS; q++) {
+            double level = (double)q / (LEVELS - 1);
+            int nl = 0, nw = 0;
+            for (int x = 0; x < STROKE_TEX_W; x++) nl += row[x] >= level && row[x] > 0;
+            for (int y = 0; y < STROKE_TEX_H; y++) nw += col[y] >= level && col[y] > 0;
+            c->frac_len[L][q] = (float)nl / STROKE_TEX_W;
+            c->frac_wid[L][q] = (float)nw / STROKE_TEX_H;
+        }
     }
     free(tex);
 }
@@ -190,14 +197,19 @@ static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instan
     }
     double centre[2], z;
     to_window(c, clip, w, centre, &z);
-    double hl = half_len * c->ink_frac_len[tex_layer];
-    double a[2] = {centre[0] - axis[0] * hl, centre[1] - axis[1] * hl}, b[2] = {centre[0] + axis[0] * hl, centre[1] + axis[1] * hl};
     uint8_t rgba[4];
     memcpy(rgba, c->ink, 4);
     if (rec->o.ink_from_points) memcpy(rgba, v->rgba, 3);
-    rgba[3] = (uint8_t)(rgba[3] * queue_alpha(c, instance) * (thin ? SKETCH_TONE_INK : 1) + 0.5);
-    if (!rgba[3]) return PNPR_OK;
-    return add_visible(c, a, b, z, z, (float)(2 * half_wid * c->ink_frac_wid[tex_layer]), rgba, layer);
+    /* the shape: where the raster stroke (ink alpha x tone x fade x texture) is INK_ALPHA opaque,
+     * drawn in the ink's own opacity */
+    double alpha = rgba[3] / 255.0 * queue_alpha(c, instance) * (thin ? SKETCH_TONE_INK : 1);
+    if (!(alpha >= INK_ALPHA)) return PNPR_OK;
+    int q = (int)ceil(INK_ALPHA / alpha * (LEVELS - 1));
+    q = q > LEVELS - 1 ? LEVELS - 1 : q;
+    double hl = half_len * c->frac_len[tex_layer][q];
+    if (!(hl > 0) || !(c->frac_wid[tex_layer][q] > 0)) return PNPR_OK;
+    double a[2] = {centre[0] - axis[0] * hl, centre[1] - axis[1] * hl}, b[2] = {centre[0] + axis[0] * hl, centre[1] + axis[1] * hl};
+    return add_visible(c, a, b, z, z, (float)(2 * half_wid * c->frac_wid[tex_layer][q]), rgba, layer);
 }
 
 /* One stipple dot of splat.vert (fixed size; thin: tone), kept when DOT_VISIBLE of it passes. */
