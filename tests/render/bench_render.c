@@ -1,7 +1,9 @@
 /* Renderer benchmark: ms/frame of each style against `points` on the same cloud and camera, in
  * one run, headless (EGL surfaceless). Never run by ctest (timings are reported, not asserted).
- *   bench_render [IN.ply] [--size WxH] [--frames N]
- * Without IN: a generated 1M-point noisy cube with computed features. */
+ *   bench_render [IN.ply] [--size WxH] [--frames N] [--out DIR]
+ * Without IN: a generated 1M-point noisy cube with computed features.
+ * --out DIR: also each frame as `animate` makes it (snapshot, read back, PNG written to DIR), and
+ * for the styles with strokes the vector export (drawing, SVG, PDF to DIR): times and sizes. */
 #include "testutil.h"
 
 #include <pointnpr/features.h>
@@ -13,6 +15,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 static double now(void)
@@ -20,6 +23,46 @@ static double now(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static double file_mb(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0 ? (double)sb.st_size / 1e6 : -1;
+}
+
+/* One frame as `animate` makes it: snapshot, read back, PNG. Returns ms, or -1. */
+static double animate_frame(pnpr_renderer *r, const pnpr_camera *cam, const pnpr_draw_options *o, int w, int h,
+                            uint8_t *px, const char *dir, const char *name)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s.png", dir, name);
+    pnpr_error err = {0};
+    double s = now();
+    if (pnpr_renderer_snapshot(r, cam, o, w, h, NULL, px, NULL, &err) != PNPR_OK ||
+        pnpr_write_png(path, px, w, h, 0, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return -1; }
+    return (now() - s) * 1e3;
+}
+
+/* The vector export of one frame: drawing, SVG, PDF; prints times and sizes. */
+static void vector_export(pnpr_renderer *r, const pnpr_camera *cam, const pnpr_draw_options *o, int w, int h,
+                          const char *dir, const char *name)
+{
+    char svg[1024], pdf[1024];
+    snprintf(svg, sizeof svg, "%s/%s.svg", dir, name);
+    snprintf(pdf, sizeof pdf, "%s/%s.pdf", dir, name);
+    pnpr_error err = {0};
+    pnpr_drawing d = {0};
+    double t0 = now();
+    if (pnpr_renderer_drawing(r, cam, o, w, h, &d, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return; }
+    double t1 = now();
+    pnpr_status a = pnpr_drawing_write_svg(&d, svg, &err);
+    double t2 = now();
+    pnpr_status b = pnpr_drawing_write_pdf(&d, pdf, &err);
+    double t3 = now();
+    if (a == PNPR_OK && b == PNPR_OK)
+        printf("| %s | %zu | %.2f | %.2f | %.1f | %.2f | %.1f |\n", name, d.count, t1 - t0, t2 - t1, file_mb(svg), t3 - t2, file_mb(pdf));
+    pnpr_drawing_free(&d);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -30,10 +73,11 @@ static int cmp_double(const void *a, const void *b)
 
 int main(int argc, char **argv)
 {
-    const char *in = NULL;
+    const char *in = NULL, *out = NULL;
     int w = 1024, h = 768, frames = 7;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--size") && i + 1 < argc) { if (sscanf(argv[++i], "%dx%d", &w, &h) != 2) return 2; }
+        else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
         else if (!strcmp(argv[i], "--frames") && i + 1 < argc) frames = atoi(argv[++i]);
         else in = argv[i];
     }
@@ -80,7 +124,10 @@ int main(int argc, char **argv)
            in ? in : "generated noisy cube", cloud.count, w, h, renderer_name ? renderer_name : "?", frames);
     printf("read %.2f s, features %.2f s, upload (kNN spacing + queue) %.2f s, profile lines + upload %.2f s\n",
            t_read, t_feat, t_upload, t_lines);
-    printf("| style | points drawn | strokes | ms/frame | x points |\n|---|---:|---:|---:|---:|\n");
+    printf("| style | points drawn | strokes | ms/frame | x points |%s\n|---|---:|---:|---:|---:|%s\n",
+           out ? " animate frame: + read back + PNG, ms |" : "", out ? "---:|" : "");
+    uint8_t *px = out ? malloc((size_t)w * h * 4) : NULL;
+    if (out && !px) return 1;
     /* outline: 0 = the style's default, -1 = off, 1 = on (the cost of the outline passes) */
     struct { const char *name; pnpr_style style; pnpr_sketch_variant v; float faint; int outline; } runs[] = {
         {"points", PNPR_STYLE_POINTS, PNPR_SKETCH_ALL, 0, 0},
@@ -118,9 +165,27 @@ int main(int argc, char **argv)
         qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
         double med = ms[frames / 2];
         if (k == 0) base = med;
-        printf("| %s | %zu | %zu | %.1f | %.2f |\n", runs[k].name, st.points_drawn, st.strokes_drawn, med, med / base);
+        printf("| %s | %zu | %zu | %.1f | %.2f |", runs[k].name, st.points_drawn, st.strokes_drawn, med, med / base);
+        if (out) {
+            char name[64];
+            snprintf(name, sizeof name, "frame-%zu", k);
+            printf(" %.1f |", animate_frame(r, &cam, &o, w, h, px, out, name));
+        }
+        printf("\n");
     }
     free(ms);
+    if (out) {
+        printf("\nvector export, %dx%d:\n| style | paths | drawing s | SVG s | SVG MB | PDF s | PDF MB |\n|---|---:|---:|---:|---:|---:|---:|\n", w, h);
+        const pnpr_style vs[4] = {PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE, PNPR_STYLE_LINES, PNPR_STYLE_CARTOON};
+        for (int k = 0; k < 4; k++) {
+            pnpr_draw_options o;
+            memset(&o, 0, sizeof o);
+            o.style = vs[k];
+            o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+            vector_export(r, &cam, &o, w, h, out, pnpr_style_name(vs[k]));
+        }
+    }
+    free(px);
     pnpr_renderer_destroy(r);
     pnpr_gl_context_destroy(ctx);
     pnpr_cloud_free(&cloud);
