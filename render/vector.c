@@ -18,7 +18,11 @@
  *   the minimum on-screen length), sampled and split the same way, joined across segments;
  * - outlines: the frame is drawn with only the outlines' ink in its colour attachment; that ink
  *   is read back and traced into centre lines (pnpr_drawing_trace_ink), so they are the
- *   outlines of the PNG, hidden parts already gone. */
+ *   outlines of the PNG, hidden parts already gone;
+ * - marks repeated by duplicate points (ends within a quarter pixel) are drawn once
+ *   (pnpr_drawing_dedupe);
+ * - cartoon's colour areas: a frame drawn without outlines, its colours read back and traced
+ *   along the pixel borders into filled areas (pnpr_drawing_trace_regions). */
 #include "renderer_internal.h"
 #include "gl_state.h"
 
@@ -416,6 +420,47 @@ static pnpr_status outline_marks(vec_ctx *c, pnpr_error *err)
     return st;
 }
 
+/* Cartoon: its flat colour areas, from the frame drawn with an all but transparent outline ink
+ * (the outline pass still paints the mask disks' overhang beyond the silhouettes in the
+ * background, as in the PNG, but adds no ink), its colour attachment read back and traced into
+ * filled areas (pnpr_drawing_trace_regions). */
+static pnpr_status fill_marks(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts, int w, int h,
+                              pnpr_drawing *out, pnpr_error *err)
+{
+    pnpr_draw_options o = *opts;
+    o.ink[3] = 1e-6f; /* zero would mean the default ink */
+    pnpr_frame_record rec;
+    memset(&rec, 0, sizeof rec);
+    pnpr_status st = pnpr_renderer_draw_recorded(r, camera, &o, w, h, &rec, err);
+    if (st != PNPR_OK) return st;
+    uint8_t *rgba = malloc((size_t)w * (size_t)h * 4);
+    if (!rgba) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: colour areas of a %dx%d frame: out of memory", w, h);
+    pnpr_gl_state saved;
+    pnpr_gl_state_save(&saved);
+    pnpr_gl_state_neutral();
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    pnpr_gl_state_restore(&saved);
+    /* the frame is premultiplied; the background as the clear colour wrote it */
+    uint8_t bg[4];
+    float a = rec.o.background[3];
+    for (int k = 0; k < 3; k++) bg[k] = unit_byte(rec.o.background[k] * a);
+    bg[3] = unit_byte(a);
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+        uint8_t *p = rgba + 4 * i;
+        if (p[3] && p[3] < 255 && !(p[0] == bg[0] && p[1] == bg[1] && p[2] == bg[2] && p[3] == bg[3]))
+            for (int k = 0; k < 3; k++) p[k] = (uint8_t)(p[k] * 255 / p[3] < 255 ? p[k] * 255 / p[3] : 255);
+    }
+    st = pnpr_drawing_trace_regions(out, rgba, w, h, 1, bg, PNPR_LAYER_FILLS);
+    free(rgba);
+    if (st != PNPR_OK)
+        pnpr_error_set(err, st, st == PNPR_ERR_UNSUPPORTED ? "vector: the cartoon frame has more than 65536 colours"
+                                                          : "vector: colour areas of a %dx%d frame: out of memory", w, h);
+    return st;
+}
+
 pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *err)
 {
     pnpr_style s = opts ? opts->style : PNPR_STYLE_POINTS;
@@ -460,11 +505,15 @@ pnpr_status pnpr_renderer_drawing(pnpr_renderer *r, const pnpr_camera *camera, c
     if (width <= 0 || height <= 0 || width > r->max_size || height > r->max_size)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "vector: drawing size %dx%d is not within 1..%d (this GL's frame limit)",
                               width, height, (int)r->max_size);
+    if (opts->style == PNPR_STYLE_CARTOON) {
+        st = fill_marks(r, camera, opts, width, height, r_drawing, err);
+        if (st != PNPR_OK) { pnpr_drawing_free(r_drawing); return st; }
+    }
     pnpr_frame_record rec;
     memset(&rec, 0, sizeof rec);
     rec.outline_ink_only = 1;
     st = pnpr_renderer_draw_recorded(r, camera, opts, width, height, &rec, err);
-    if (st != PNPR_OK) return st;
+    if (st != PNPR_OK) { pnpr_drawing_free(r_drawing); return st; }
     r_drawing->width = width;
     r_drawing->height = height;
     for (int k = 0; k < 4; k++) r_drawing->background[k] = unit_byte(rec.o.background[k]);
@@ -481,6 +530,9 @@ pnpr_status pnpr_renderer_drawing(pnpr_renderer *r, const pnpr_camera *camera, c
     pnpr_gl_state_neutral();
     st = drawing_from_frame(&c, err);
     pnpr_gl_state_restore(&saved);
+    /* duplicate points of a scan make the same mark twice: drawn once */
+    if (st == PNPR_OK && pnpr_drawing_dedupe(r_drawing, 0.25f, NULL) != PNPR_OK)
+        st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: %dx%d drawing: out of memory", width, height);
     if (st != PNPR_OK) pnpr_drawing_free(r_drawing);
     return st;
 }

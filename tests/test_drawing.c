@@ -116,6 +116,73 @@ static void check_order(void)
     pnpr_drawing_free(&d);
 }
 
+/* Colour areas: a red square 20 x 20 at (10,10) with a blue 6 x 6 square in its middle, and two
+ * green pixels touching at a corner, on white: the red path has two loops (its outline and the
+ * hole, the second a subpath), each the 4 corners of its square exactly; blue one loop; green two
+ * separate loops (pixels that touch at a corner stay apart); white left out. An image of 90000
+ * colours is refused. */
+static void check_regions(void)
+{
+    enum { R = 48 };
+    static uint8_t img[R * R * 4];
+    memset(img, 255, sizeof img);
+    for (int y = 10; y < 30; y++)
+        for (int x = 10; x < 30; x++) {
+            uint8_t *p = img + 4 * (y * R + x);
+            int hole = x >= 17 && x < 23 && y >= 17 && y < 23;
+            p[0] = hole ? 0 : 255; p[1] = 0; p[2] = hole ? 255 : 0;
+        }
+    const int gx[2] = {40, 41}, gy[2] = {40, 41};
+    for (int k = 0; k < 2; k++) { uint8_t *p = img + 4 * (gy[k] * R + gx[k]); p[0] = 0; p[1] = 200; p[2] = 0; }
+    const uint8_t white[4] = {255, 255, 255, 255};
+    pnpr_drawing d = {0};
+    CHECK_STATUS(pnpr_drawing_trace_regions(&d, img, R, R, 0, white, PNPR_LAYER_FILLS), PNPR_OK);
+    printf("regions: %zu loops\n", d.count);
+    CHECK(d.count == 5);
+    size_t red = 0, blue = 0, green = 0;
+    for (size_t i = 0; i < d.count; i++) {
+        CHECK(d.flags[i] & PNPR_PATH_FILL);
+        CHECK(d.offset[i + 1] - d.offset[i] == 4);
+        red += d.rgba[4 * i] == 255;
+        blue += d.rgba[4 * i + 2] == 255;
+        green += d.rgba[4 * i + 1] == 200;
+    }
+    CHECK(red == 2 && blue == 1 && green == 2);
+    /* the red outline's corners are the square's, exactly; the hole follows as a subpath */
+    CHECK(d.count >= 2 && d.rgba[0] == 255 && !(d.flags[0] & PNPR_PATH_SUBPATH) && (d.flags[1] & PNPR_PATH_SUBPATH));
+    float lo = 1e9f, hi = -1e9f;
+    for (size_t v = d.offset[0]; d.count && v < d.offset[1]; v++) { lo = fminf(lo, d.xy[2 * v]); hi = fmaxf(hi, d.xy[2 * v]); }
+    CHECK(lo == 10 && hi == 30);
+    pnpr_drawing_free(&d);
+    static uint8_t many[300 * 300 * 4];
+    for (int i = 0; i < 300 * 300; i++) { many[4 * i] = (uint8_t)i; many[4 * i + 1] = (uint8_t)(i >> 8); many[4 * i + 2] = (uint8_t)(i >> 16); many[4 * i + 3] = 255; }
+    CHECK_STATUS(pnpr_drawing_trace_regions(&d, many, 300, 300, 0, white, PNPR_LAYER_FILLS), PNPR_ERR_UNSUPPORTED);
+    CHECK_STATUS(pnpr_drawing_trace_regions(&d, img, 0, R, 0, white, PNPR_LAYER_FILLS), PNPR_ERR_INVALID_ARGUMENT);
+    pnpr_drawing_free(&d);
+}
+
+/* Repeated marks: the same stroke twice (once reversed, once a tenth of a pixel off) and a dot
+ * twice leave one of each; another colour or layer stays. */
+static void check_dedupe(void)
+{
+    pnpr_drawing d = {0};
+    const float a[4] = {1, 1, 9, 5}, rev[4] = {9, 5, 1, 1}, off[4] = {1.02f, 1.05f, 9.04f, 4.98f}, dot[2] = {3, 3};
+    const uint8_t red[4] = {255, 0, 0, 255};
+    CHECK_STATUS(pnpr_drawing_add(&d, a, 2, 1, INK, PNPR_LAYER_STROKES, 0), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, rev, 2, 1, INK, PNPR_LAYER_STROKES, 0), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, off, 2, 1, INK, PNPR_LAYER_STROKES, 0), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, a, 2, 1, red, PNPR_LAYER_STROKES, 0), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, a, 2, 1, INK, PNPR_LAYER_HATCHES, 0), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, dot, 1, 2, INK, PNPR_LAYER_DOTS, PNPR_PATH_DOT), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, dot, 1, 2, INK, PNPR_LAYER_DOTS, PNPR_PATH_DOT), PNPR_OK);
+    size_t removed = 0;
+    CHECK_STATUS(pnpr_drawing_dedupe(&d, 0.25f, &removed), PNPR_OK);
+    printf("dedupe: %zu removed, %zu left\n", removed, d.count);
+    CHECK(removed == 3 && d.count == 4 && d.xy[0] == 1 && d.xy[2] == 9);
+    CHECK_STATUS(pnpr_drawing_dedupe(&d, 0, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    pnpr_drawing_free(&d);
+}
+
 /* The SVG: one Inkscape layer per non-empty class, dots as circles; bad paths refused. */
 static void check_svg(void)
 {
@@ -151,6 +218,8 @@ int main(void)
     check_bar_cross_speck();
     check_merge();
     check_order();
+    check_regions();
+    check_dedupe();
     check_svg();
     return pnpr_test_finish("test_drawing");
 }

@@ -7,7 +7,7 @@
 
 const char *pnpr_drawing_layer_name(pnpr_drawing_layer layer)
 {
-    static const char *const names[PNPR_LAYER_COUNT_] = {"tone", "hatches", "strokes", "dots", "lines", "outlines"};
+    static const char *const names[PNPR_LAYER_COUNT_] = {"fills", "tone", "hatches", "strokes", "dots", "lines", "outlines"};
     return (unsigned)layer < PNPR_LAYER_COUNT_ ? names[layer] : "?";
 }
 

@@ -20,21 +20,38 @@ static void set_colour(cairo_t *cr, const uint8_t *c)
     cairo_set_source_rgba(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, c[3] / 255.0);
 }
 
-static void draw_path(cairo_t *cr, const pnpr_drawing *d, size_t i)
+static void add_subpath(cairo_t *cr, const pnpr_drawing *d, size_t i)
 {
     size_t a = d->offset[i], b = d->offset[i + 1];
+    cairo_move_to(cr, d->xy[2 * a], d->xy[2 * a + 1]);
+    for (size_t v = a + 1; v < b; v++) cairo_line_to(cr, d->xy[2 * v], d->xy[2 * v + 1]);
+    if (d->flags[i] & PNPR_PATH_CLOSED) cairo_close_path(cr);
+}
+
+/* Draws path i (a filled area with the subpaths after it); returns the index after it. */
+static size_t draw_path(cairo_t *cr, const pnpr_drawing *d, size_t i)
+{
+    size_t a = d->offset[i];
     set_colour(cr, d->rgba + 4 * i);
+    if (d->flags[i] & PNPR_PATH_FILL) {
+        cairo_new_path(cr);
+        size_t j = i;
+        do add_subpath(cr, d, j++); while (j < d->count && (d->flags[j] & PNPR_PATH_SUBPATH));
+        cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+        cairo_fill(cr);
+        return j;
+    }
     if (d->flags[i] & PNPR_PATH_DOT) {
         cairo_new_path(cr);
         cairo_arc(cr, d->xy[2 * a], d->xy[2 * a + 1], 0.5 * d->stroke_width[i], 0, 6.283185307179586);
         cairo_fill(cr);
-        return;
+        return i + 1;
     }
     cairo_set_line_width(cr, d->stroke_width[i]);
-    cairo_move_to(cr, d->xy[2 * a], d->xy[2 * a + 1]);
-    for (size_t v = a + 1; v < b; v++) cairo_line_to(cr, d->xy[2 * v], d->xy[2 * v + 1]);
-    if (d->flags[i] & PNPR_PATH_CLOSED) cairo_close_path(cr);
+    cairo_new_path(cr);
+    add_subpath(cr, d, i);
     cairo_stroke(cr);
+    return i + 1;
 }
 
 static pnpr_status draw_pdf(const pnpr_drawing *d, pnpr_output *out)
@@ -49,8 +66,8 @@ static pnpr_status draw_pdf(const pnpr_drawing *d, pnpr_output *out)
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     for (int L = 0; L < PNPR_LAYER_COUNT_; L++)
-        for (size_t i = 0; i < d->count; i++)
-            if (d->layer[i] == L) draw_path(cr, d, i);
+        for (size_t i = 0; i < d->count;)
+            i = d->layer[i] == L && !(d->flags[i] & PNPR_PATH_SUBPATH) ? draw_path(cr, d, i) : i + 1;
     cairo_status_t cs = cairo_status(cr);
     cairo_destroy(cr);
     cairo_surface_finish(s);

@@ -160,6 +160,69 @@ pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_drawing_layer lay
     return PNPR_OK;
 }
 
+/* ---- duplicates ---------------------------------------------------------------------------- */
+
+typedef struct dup_key {
+    size_t idx;
+    int64_t q[4];      /* the ends on a grid of `tol`, in a canonical order */
+    uint64_t style;    /* width, colour */
+    uint8_t layer, flags, n;
+} dup_key;
+
+static int cmp_dup(const void *a, const void *b)
+{
+    const dup_key *x = a, *y = b;
+    if (x->layer != y->layer) return x->layer < y->layer ? -1 : 1;
+    if (x->flags != y->flags) return x->flags < y->flags ? -1 : 1;
+    if (x->n != y->n) return x->n < y->n ? -1 : 1;
+    if (x->style != y->style) return x->style < y->style ? -1 : 1;
+    for (int k = 0; k < 4; k++)
+        if (x->q[k] != y->q[k]) return x->q[k] < y->q[k] ? -1 : 1;
+    return (x->idx > y->idx) - (x->idx < y->idx);
+}
+
+static int dedupable(const pnpr_drawing *d, size_t i)
+{
+    return d->offset[i + 1] - d->offset[i] <= 2 && !(d->flags[i] & (PNPR_PATH_FILL | PNPR_PATH_SUBPATH | PNPR_PATH_CLOSED));
+}
+
+pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed)
+{
+    if (r_removed) *r_removed = 0;
+    if (!d || !(tol > 0) || !isfinite(tol)) return PNPR_ERR_INVALID_ARGUMENT;
+    size_t n = 0;
+    for (size_t i = 0; i < d->count; i++) n += dedupable(d, i);
+    if (n < 2) return PNPR_OK;
+    dup_key *k = malloc(n * sizeof *k);
+    uint8_t *gone = calloc(d->count, 1);
+    if (!k || !gone) { free(k); free(gone); return PNPR_ERR_OUT_OF_MEMORY; }
+    n = 0;
+    for (size_t i = 0; i < d->count; i++) {
+        if (!dedupable(d, i)) continue;
+        const float *p = d->xy + 2 * d->offset[i];
+        size_t nv = d->offset[i + 1] - d->offset[i];
+        int64_t q[4];
+        for (size_t v = 0; v < 2; v++)
+            for (int c = 0; c < 2; c++) q[2 * v + c] = (int64_t)llround(p[2 * (v < nv ? v : 0) + c] / tol);
+        int swap = q[2] < q[0] || (q[2] == q[0] && q[3] < q[1]); /* a stroke drawn either way */
+        dup_key key = {i, {swap ? q[2] : q[0], swap ? q[3] : q[1], swap ? q[0] : q[2], swap ? q[1] : q[3]},
+                       seg_key(d, i), d->layer[i], d->flags[i], (uint8_t)nv};
+        k[n++] = key;
+    }
+    qsort(k, n, sizeof *k, cmp_dup);
+    for (size_t j = 1; j < n; j++) {
+        dup_key a = k[j - 1], b = k[j];
+        a.idx = b.idx = 0;
+        if (!cmp_dup(&a, &b)) gone[k[j].idx] = 1; /* the sort puts the first of equals first */
+    }
+    size_t before = d->count;
+    compact(d, gone);
+    if (r_removed) *r_removed = before - d->count;
+    free(k);
+    free(gone);
+    return PNPR_OK;
+}
+
 /* ---- ordering for plotters -------------------------------------------------------------------- */
 
 /* The ends of the paths of one layer in a uniform grid (cells of about two ends). */
@@ -340,7 +403,9 @@ pnpr_status pnpr_drawing_order_for_plotter(pnpr_drawing *d)
         size_t n = 0;
         for (size_t i = 0; i < d->count; i++)
             if (d->layer[i] == L) path[n++] = i;
-        if (n) ok = order_layer(&out, d, path, n, &x, &y);
+        if (n && L == PNPR_LAYER_FILLS) /* areas (and their holes) keep their order: no pen */
+            for (size_t k = 0; k < n; k++) copy_path(&out, d, path[k], 0);
+        else if (n) ok = order_layer(&out, d, path, n, &x, &y);
     }
     free(path);
     if (!ok) {

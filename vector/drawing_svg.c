@@ -35,6 +35,29 @@ static int same_run(const pnpr_drawing *d, size_t a, size_t b)
            ((d->flags[a] ^ d->flags[b]) & PNPR_PATH_DOT) == 0;
 }
 
+/* The vertices of path i as "M x yL x y..." (+ "Z" when closed). */
+static void write_d(FILE *f, const pnpr_drawing *d, size_t i)
+{
+    size_t a = d->offset[i], b = d->offset[i + 1];
+    fprintf(f, "M%.2f %.2f", d->xy[2 * a], d->xy[2 * a + 1]);
+    for (size_t v = a + 1; v < b; v++) fprintf(f, "L%.2f %.2f", d->xy[2 * v], d->xy[2 * v + 1]);
+    if (d->flags[i] & PNPR_PATH_CLOSED) fputc('Z', f);
+}
+
+/* A filled area: one <path> with its subpaths (the paths after it flagged PNPR_PATH_SUBPATH),
+ * even-odd rule. Returns the index after its last subpath. */
+static size_t write_fill(FILE *f, const pnpr_drawing *d, size_t i)
+{
+    fputs("<path", f);
+    colour_attr(f, "fill", d->rgba + 4 * i);
+    fputs(" fill-rule=\"evenodd\" d=\"", f);
+    write_d(f, d, i);
+    size_t j = i + 1;
+    for (; j < d->count && (d->flags[j] & PNPR_PATH_SUBPATH); j++) write_d(f, d, j);
+    fputs("\"/>\n", f);
+    return j;
+}
+
 static void write_path(FILE *f, const pnpr_drawing *d, size_t i)
 {
     size_t a = d->offset[i], b = d->offset[i + 1];
@@ -42,9 +65,10 @@ static void write_path(FILE *f, const pnpr_drawing *d, size_t i)
         fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", d->xy[2 * a], d->xy[2 * a + 1], 0.5 * d->stroke_width[i]);
         return;
     }
-    fprintf(f, "<path d=\"M%.2f %.2f", d->xy[2 * a], d->xy[2 * a + 1]);
-    for (size_t v = a + 1; v < b; v++) fprintf(f, "L%.2f %.2f", d->xy[2 * v], d->xy[2 * v + 1]);
-    fputs((d->flags[i] & PNPR_PATH_CLOSED) ? "Z\"/>\n" : "\"/>\n", f);
+    (void)b;
+    fputs("<path d=\"", f);
+    write_d(f, d, i);
+    fputs("\"/>\n", f);
 }
 
 static int print_svg(FILE *f, const void *ctx)
@@ -63,19 +87,25 @@ static int print_svg(FILE *f, const void *ctx)
     for (int L = 0; L < PNPR_LAYER_COUNT_; L++) {
         size_t prev = SIZE_MAX;
         for (size_t i = 0; i < d->count; i++) {
-            if (d->layer[i] != L) continue;
+            if (d->layer[i] != L || (d->flags[i] & PNPR_PATH_SUBPATH)) continue;
             if (prev == SIZE_MAX)
                 fprintf(f, "<g id=\"%s\" inkscape:groupmode=\"layer\" inkscape:label=\"%s\" stroke-linecap=\"butt\" "
                            "stroke-linejoin=\"round\">\n",
                         pnpr_drawing_layer_name((pnpr_drawing_layer)L), pnpr_drawing_layer_name((pnpr_drawing_layer)L));
-            if (prev == SIZE_MAX || !same_run(d, prev, i)) {
-                if (prev != SIZE_MAX) fputs("</g>\n", f);
+            if (d->flags[i] & PNPR_PATH_FILL) { /* filled areas carry their own colour */
+                if (prev != SIZE_MAX && !(d->flags[prev] & PNPR_PATH_FILL)) fputs("</g>\n", f);
+                write_fill(f, d, i);
+                prev = i;
+                continue;
+            }
+            if (prev == SIZE_MAX || (d->flags[prev] & PNPR_PATH_FILL) || !same_run(d, prev, i)) {
+                if (prev != SIZE_MAX && !(d->flags[prev] & PNPR_PATH_FILL)) fputs("</g>\n", f);
                 open_run(f, d, i);
             }
             write_path(f, d, i);
             prev = i;
         }
-        if (prev != SIZE_MAX) fputs("</g>\n</g>\n", f);
+        if (prev != SIZE_MAX) fputs((d->flags[prev] & PNPR_PATH_FILL) ? "</g>\n" : "</g>\n</g>\n", f);
     }
     fputs("</svg>\n", f);
     return ferror(f) != 0;

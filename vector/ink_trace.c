@@ -13,6 +13,7 @@
  *    ink (a band of 2k - 1 pixels has d = k at its centre), at least the given width: where
  *    outlines run together into a wider band, the path is as wide. */
 #include <pointnpr/drawing.h>
+#include "vector_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -142,44 +143,11 @@ static void smooth(chain *c, int closed)
     free(t);
 }
 
-static double seg_dist(const float *p, const float *a, const float *b)
-{
-    double dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy;
-    double t = l2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2 : 0;
-    t = t < 0 ? 0 : t > 1 ? 1 : t;
-    return hypot(p[0] - (a[0] + t * dx), p[1] - (a[1] + t * dy));
-}
-
-/* Douglas-Peucker with an explicit stack; keeps the first and last vertex. */
+/* Douglas-Peucker to SIMPLIFY_PX (vector/simplify.c); out of memory keeps the chain as it is. */
 static void simplify(chain *c)
 {
-    size_t n = c->n;
-    if (n < 3) return;
-    uint8_t *keep = calloc(n, 1);
-    size_t *stack = malloc(2 * n * sizeof *stack);
-    if (!keep || !stack) { free(keep); free(stack); return; }
-    size_t top = 0;
-    keep[0] = keep[n - 1] = 1;
-    stack[top++] = 0;
-    stack[top++] = n - 1;
-    while (top) {
-        size_t b = stack[--top], a = stack[--top], best = 0;
-        double dmax = SIMPLIFY_PX;
-        for (size_t i = a + 1; i < b; i++) {
-            double d = seg_dist(c->xy + 2 * i, c->xy + 2 * a, c->xy + 2 * b);
-            if (d > dmax) { dmax = d; best = i; }
-        }
-        if (!best) continue;
-        keep[best] = 1;
-        stack[top++] = a; stack[top++] = best;
-        stack[top++] = best; stack[top++] = b;
-    }
-    size_t m = 0;
-    for (size_t i = 0; i < n; i++)
-        if (keep[i]) { c->xy[2 * m] = c->xy[2 * i]; c->xy[2 * m + 1] = c->xy[2 * i + 1]; m++; }
-    c->n = m;
-    free(keep);
-    free(stack);
+    size_t m = pnpr_simplify_polyline(c->xy, c->n, SIMPLIFY_PX);
+    if (m) c->n = m;
 }
 
 typedef struct trace_out {

@@ -16,7 +16,8 @@ extern "C" {
 
 /* The layers of a drawing, bottom to top (the order the renderer draws them in). */
 typedef enum pnpr_drawing_layer {
-    PNPR_LAYER_TONE = 0,   /* sketchy: hatches of the dithering points (tone) */
+    PNPR_LAYER_FILLS = 0,  /* cartoon: the flat colour areas */
+    PNPR_LAYER_TONE,       /* sketchy: hatches of the dithering points (tone) */
     PNPR_LAYER_HATCHES,    /* sketchy: hatches of the non-directional feature points */
     PNPR_LAYER_STROKES,    /* sketchy: strokes along the directional feature points */
     PNPR_LAYER_DOTS,       /* stipple: feature and tone dots */
@@ -29,8 +30,11 @@ typedef enum pnpr_drawing_layer {
 const char *pnpr_drawing_layer_name(pnpr_drawing_layer layer);
 
 enum {
-    PNPR_PATH_CLOSED = 1, /* the last vertex joins the first */
-    PNPR_PATH_DOT = 2     /* one vertex: a filled disk of diameter `width` */
+    PNPR_PATH_CLOSED = 1,  /* the last vertex joins the first */
+    PNPR_PATH_DOT = 2,     /* one vertex: a filled disk of diameter `width` */
+    PNPR_PATH_FILL = 4,    /* filled (even-odd rule) in its colour, not stroked */
+    PNPR_PATH_SUBPATH = 8  /* another subpath of the path before it (the same colour and kind):
+                            * holes of a filled area */
 };
 
 /* Path i has vertices offset[i] .. offset[i+1]-1 (xy: 2 floats each, pixels, x right, y down,
@@ -68,6 +72,14 @@ pnpr_status pnpr_drawing_extend(pnpr_drawing *d, float x, float y);
 pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w, int h, int bottom_up, uint8_t threshold,
                                    float width, const uint8_t rgba[4], pnpr_drawing_layer layer);
 
+/* Appends the flat colour areas of a w x h RGBA image (rows top first, or bottom first when
+ * bottom_up) as filled paths on `layer`: one path per colour (its first loop, then the others as
+ * PNPR_PATH_SUBPATH), traced along the pixel borders and simplified to 0.7 px; pixels of the
+ * `background` colour or with alpha 0 are left out (vector/region_trace.c). PNPR_ERR_UNSUPPORTED
+ * for an image of more than 65536 colours (not flat areas). */
+pnpr_status pnpr_drawing_trace_regions(pnpr_drawing *d, const uint8_t *rgba, int w, int h, int bottom_up,
+                                       const uint8_t background[4], pnpr_drawing_layer layer);
+
 /* Total length of the paths of `layer` (PNPR_LAYER_COUNT_: all), px. */
 double pnpr_drawing_ink_length(const pnpr_drawing *d, pnpr_drawing_layer layer);
 
@@ -82,6 +94,12 @@ double pnpr_drawing_travel(const pnpr_drawing *d);
  * part) or PNPR_ERR_OUT_OF_MEMORY (the drawing unchanged). r_merged (may be NULL): paths removed. */
 pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_drawing_layer layer, float angle_deg, float offset_px,
                                          float gap_px, size_t *r_merged);
+
+/* Removes repeated marks: paths of at most two vertices (strokes, hatches, dots) of the same
+ * layer, kind, width and colour whose ends (in either order) round to the same points of a grid
+ * of `tol` px; the first of them stays. Duplicate points in a scan draw the same stroke twice,
+ * which a pen plotter would draw twice. r_removed (may be NULL): paths removed. */
+pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed);
 
 /* Orders the paths of each layer for a pen plotter: greedy nearest neighbour from the previous
  * pen position over the ends of the remaining paths (an open path may be drawn backwards),
