@@ -337,6 +337,199 @@ static pnpr_status components(const uint8_t *mask, size_t count, const uint32_t 
     return PNPR_OK;
 }
 
+/* One run's state, shared by the stages below. */
+typedef struct jseg_ctx {
+    const float *xyz;
+    const uint8_t *rgb;
+    size_t count, nvalid;
+    const pnpr_jseg_options *o;
+    size_t k, ka;        /* the neighbourhood size; the adjacency graph's (the first ka of each list) */
+    uint8_t *valid;      /* finite points */
+    uint32_t *knn;       /* count x k neighbour lists (PNPR_INDEX_NONE beyond the radius) */
+    float *lab;          /* the peer-group filtered L*a*b* colours */
+    uint8_t *cls;        /* the class map */
+    float *jv;           /* J of each point */
+    uint32_t *labels;    /* the result */
+} jseg_ctx;
+
+/* The neighbourhoods: the k nearest of every point (itself included), cut at the radius. */
+static pnpr_status jseg_neighbours(jseg_ctx *c)
+{
+    const pnpr_jseg_options *o = c->o;
+    pnpr_kdtree *tree = NULL;
+    pnpr_status st = pnpr_kdtree_build_threads(c->xyz, c->count, 0, o->threads, &tree);
+    if (st != PNPR_OK) return st;
+    float *d2 = o->radius > 0 ? malloc(c->count * c->k * sizeof *d2) : NULL;
+    c->knn = malloc(c->count * c->k * sizeof *c->knn);
+    c->lab = malloc(3 * c->count * sizeof *c->lab);
+    c->cls = malloc(c->count);
+    c->jv = malloc(c->count * sizeof *c->jv);
+    if (!c->knn || (o->radius > 0 && !d2) || !c->lab || !c->cls || !c->jv) st = PNPR_ERR_OUT_OF_MEMORY;
+    pnpr_knn_options ko = {o->threads, o->progress, 0};
+    if (st == PNPR_OK) st = pnpr_knn_self(tree, c->count, c->k, &ko, c->knn, d2);
+    pnpr_kdtree_free(tree);
+    if (st == PNPR_OK && d2) {
+        float r2 = o->radius * o->radius;
+        for (size_t i = 0; i < c->count * c->k; i++) if (!(d2[i] <= r2)) c->knn[i] = PNPR_INDEX_NONE;
+    }
+    free(d2);
+    return st;
+}
+
+/* 1. Quantisation: L*a*b*, the peer group filter, k-means on a stride sample (kc centres at
+ * most, merged closer than qdist), the class map. *r_classes = the classes left. */
+static pnpr_status jseg_quantise(jseg_ctx *c, uint32_t kc, double qdist, uint32_t *r_classes)
+{
+    const pnpr_jseg_options *o = c->o;
+    size_t count = c->count;
+    float *lab_raw = malloc(3 * count * sizeof *lab_raw);
+    if (!lab_raw) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; i < count; i++) {
+        if (c->valid[i]) pnpr_rgb_to_lab(c->rgb + 3 * i, lab_raw + 3 * i);
+        else lab_raw[3 * i] = lab_raw[3 * i + 1] = lab_raw[3 * i + 2] = 0;
+    }
+    jseg_job pj = {c->xyz, NULL, lab_raw, c->lab, NULL, 0, c->knn, c->k, NULL, NULL, c->valid};
+    pnpr_status st = pnpr_parallel_for(count, 2048, o->threads, peer_range, &pj, &o->progress, "quantise");
+    free(lab_raw);
+    if (st != PNPR_OK) return st;
+    size_t step = (c->nvalid + SAMPLE_MAX - 1) / SAMPLE_MAX, ns = 0;
+    uint32_t *sample = malloc((c->nvalid / step + 1) * sizeof *sample);
+    if (!sample) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0, v = 0; i < count; i++)
+        if (c->valid[i]) { if (v % step == 0) sample[ns++] = (uint32_t)i; v++; }
+    double centre[3 * 256], weight[256];
+    uint32_t classes = kmeans(c->lab, sample, ns, kc, o->seed, centre, weight);
+    free(sample);
+    if (!classes) return PNPR_ERR_OUT_OF_MEMORY;
+    if (qdist > 0) classes = merge_centres(centre, weight, classes, qdist);
+    *r_classes = classes;
+    jseg_job jb = {c->xyz, c->lab, NULL, NULL, centre, classes, c->knn, c->k, c->cls, c->jv, c->valid};
+    return pnpr_parallel_for(count, 4096, o->threads, classify_range, &jb, &o->progress, "quantise");
+}
+
+/* Queues the unlabelled adjacency neighbours of point i (region `region`) below the bound. */
+static int jseg_queue_neighbours(const jseg_ctx *c, size_t i, uint32_t region, double bound, uint8_t *queued,
+                                 qitem **heap, size_t *hn, size_t *hcap)
+{
+    const uint32_t *row = c->knn + i * c->k;
+    for (size_t r = 0; r < c->ka; r++) {
+        uint32_t x = row[r];
+        if (x == PNPR_INDEX_NONE || queued[x] || c->labels[x] != PNPR_LABEL_NONE || !(c->jv[x] < bound)) continue;
+        queued[x] = 1;
+        if (!q_push(heap, hn, hcap, (qitem){c->jv[x], x, region})) return 0;
+    }
+    return 1;
+}
+
+/* Of the regions of x's labelled adjacency neighbours (and `best`, the one that queued it), the
+ * one whose running mean colour (rsum: L*a*b* sums and count) is closest to x's. */
+static uint32_t jseg_closest_region(const jseg_ctx *c, uint32_t x, uint32_t best, const double *rsum)
+{
+    const uint32_t *row = c->knn + (size_t)x * c->k;
+    const float *col = c->lab + 3 * (size_t)x;
+    const double *bs = rsum + 4 * (size_t)best;
+    double bd = d2lab(col, (double[3]){bs[0] / bs[3], bs[1] / bs[3], bs[2] / bs[3]});
+    for (size_t r = 0; r < c->ka; r++) {
+        uint32_t y = row[r];
+        if (y == PNPR_INDEX_NONE) continue;
+        uint32_t l = c->labels[y];
+        if (l == PNPR_LABEL_NONE || l == best) continue;
+        const double *s = rsum + 4 * (size_t)l;
+        double d = d2lab(col, (double[3]){s[0] / s[3], s[1] / s[3], s[2] / s[3]});
+        if (d < bd || (d == bd && l < best)) { bd = d; best = l; }
+    }
+    return best;
+}
+
+/* 4. Growing: the unlabelled points join the nreg seed regions in increasing J order (below
+ * grow_bound x mean J when bounded), each the closest region in colour among its labelled
+ * neighbours'. */
+static pnpr_status jseg_grow(jseg_ctx *c, uint32_t nreg, double mean_j)
+{
+    const pnpr_jseg_options *o = c->o;
+    size_t count = c->count;
+    uint8_t *queued = calloc(count, 1);
+    double *rsum = calloc((size_t)(nreg ? nreg : 1) * 4, sizeof *rsum);
+    qitem *heap = NULL;
+    size_t hn = 0, hcap = 0, grown = 0;
+    pnpr_status st = queued && rsum ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; st == PNPR_OK && i < count; i++) {
+        uint32_t l = c->labels[i];
+        if (l == PNPR_LABEL_NONE) continue;
+        for (int a = 0; a < 3; a++) rsum[4 * l + a] += c->lab[3 * i + a];
+        rsum[4 * l + 3] += 1;
+    }
+    double bound = o->grow_bound > 0 ? o->grow_bound * mean_j : INFINITY;
+    for (size_t i = 0; st == PNPR_OK && i < count; i++)
+        if (c->labels[i] != PNPR_LABEL_NONE && !jseg_queue_neighbours(c, i, c->labels[i], bound, queued, &heap, &hn, &hcap))
+            st = PNPR_ERR_OUT_OF_MEMORY;
+    while (st == PNPR_OK && hn) {
+        qitem it = q_pop(heap, &hn);
+        uint32_t x = it.point;
+        uint32_t best = jseg_closest_region(c, x, it.region, rsum);
+        c->labels[x] = best;
+        for (int a = 0; a < 3; a++) rsum[4 * (size_t)best + a] += c->lab[3 * (size_t)x + a];
+        rsum[4 * (size_t)best + 3] += 1;
+        if (!jseg_queue_neighbours(c, x, best, bound, queued, &heap, &hn, &hcap)) st = PNPR_ERR_OUT_OF_MEMORY;
+        else if ((++grown & 0xFFFF) == 0 && pnpr_progress_report(&o->progress, "grow", (double)grown / (double)c->nvalid))
+            st = PNPR_ERR_CANCELLED;
+    }
+    free(queued); free(rsum); free(heap);
+    return st;
+}
+
+/* 2. J of every point, and its mean over the valid points. */
+static pnpr_status jseg_j(jseg_ctx *c, double *r_mean_j)
+{
+    jseg_job jb = {c->xyz, c->lab, NULL, NULL, NULL, 0, c->knn, c->k, c->cls, c->jv, c->valid};
+    pnpr_status st = pnpr_parallel_for(c->count, 2048, c->o->threads, j_range, &jb, &c->o->progress, "J");
+    if (st != PNPR_OK) return st;
+    double jsum = 0;
+    for (size_t i = 0; i < c->count; i++) if (c->valid[i]) jsum += c->jv[i];
+    *r_mean_j = jsum / (double)c->nvalid;
+    return PNPR_OK;
+}
+
+/* 3. to 5.: the seed regions, growing, the points never reached as regions of their own, merging. */
+static pnpr_status jseg_regions(jseg_ctx *c, double seed_factor, double mean_j, double merge_distance,
+                                pnpr_segment_info *r_info)
+{
+    const pnpr_jseg_options *o = c->o;
+    size_t count = c->count;
+    uint32_t seed_min = o->seed_min_size ? o->seed_min_size : (uint32_t)c->k;
+    uint32_t min_size = o->min_size ? o->min_size : (uint32_t)(c->k > c->nvalid / 1000 ? c->k : c->nvalid / 1000);
+    uint8_t *mask = malloc(count);
+    if (!mask) return PNPR_ERR_OUT_OF_MEMORY;
+    double seed_thr = seed_factor * mean_j;
+    for (size_t i = 0; i < count; i++) mask[i] = (uint8_t)(c->valid[i] && c->jv[i] <= seed_thr);
+    uint32_t nreg = 0, seeds = 0, grown_regions = 0;
+    pnpr_status st = components(mask, count, c->knn, c->k, c->ka, seed_min, c->labels, &nreg);
+    seeds = nreg;
+    if (st == PNPR_OK && pnpr_progress_report(&o->progress, "grow", 0.0)) st = PNPR_ERR_CANCELLED;
+    if (st == PNPR_OK) st = jseg_grow(c, nreg, mean_j);
+    if (st == PNPR_OK) { /* points never reached: regions of their own */
+        for (size_t i = 0; i < count; i++) mask[i] = (uint8_t)(c->valid[i] && c->labels[i] == PNPR_LABEL_NONE);
+        st = components(mask, count, c->knn, c->k, c->ka, 1, c->labels, &nreg);
+        grown_regions = nreg;
+    }
+    free(mask);
+    if (st == PNPR_OK && pnpr_progress_report(&o->progress, "grow", 1.0)) st = PNPR_ERR_CANCELLED;
+    if (st != PNPR_OK) return st;
+    /* 5. merging of similar and small regions; invalid points sit above every region */
+    for (size_t i = 0; i < count; i++) if (!c->valid[i]) c->labels[i] = nreg;
+    pnpr_region_graph graph = {c->knn, c->k, c->ka};
+    if (pnpr_progress_report(&o->progress, "merge", 0.0)) return PNPR_ERR_CANCELLED;
+    st = pnpr_segment_merge_regions(c->rgb, count, &graph, (float)merge_distance, min_size, c->labels, &nreg);
+    if (st == PNPR_OK) st = pnpr_segment_finish(c->xyz, count, c->labels, r_info);
+    if (st != PNPR_OK) return st;
+    pnpr_progress_report(&o->progress, "merge", 1.0);
+    if (r_info) {
+        r_info->seed_regions = seeds;
+        r_info->grown_regions = grown_regions;
+    }
+    return PNPR_OK;
+}
+
 pnpr_status pnpr_segment_jseg(const float *xyz, const uint8_t *rgb, size_t count,
                               const pnpr_jseg_options *opts, uint32_t *r_labels,
                               pnpr_segment_info *r_info)
@@ -352,167 +545,46 @@ pnpr_status pnpr_segment_jseg(const float *xyz, const uint8_t *rgb, size_t count
     uint32_t kc = o.classes > PNPR_JSEG_CLASSES_MAX ? PNPR_JSEG_CLASSES_MAX : o.classes;
     const pnpr_jseg_options def = pnpr_jseg_defaults();
     double qdist = o.quant_distance > 0 ? o.quant_distance : (o.quant_distance < 0 ? 0 : def.quant_distance); /* NaN */
-    size_t k = o.k > PNPR_SEGMENT_K_MAX ? PNPR_SEGMENT_K_MAX : o.k;
     double seed_factor = o.seed_factor > 0 ? o.seed_factor : def.seed_factor; /* < 0: default */
     double merge_distance = o.merge_distance > 0 ? o.merge_distance : (o.merge_distance < 0 ? 0 : def.merge_distance);
 
+    jseg_ctx c;
+    memset(&c, 0, sizeof c);
+    c.xyz = xyz;
+    c.rgb = rgb;
+    c.count = count;
+    c.o = &o;
+    c.labels = r_labels;
+    c.k = o.k > PNPR_SEGMENT_K_MAX ? PNPR_SEGMENT_K_MAX : o.k;
+    c.valid = malloc(count);
+    if (!c.valid) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; i < count; i++) {
+        c.valid[i] = (uint8_t)pnpr_finite3f(xyz + 3 * i);
+        c.nvalid += c.valid[i];
+        r_labels[i] = PNPR_LABEL_NONE;
+    }
     pnpr_status st = PNPR_OK;
-    uint8_t *valid = malloc(count), *mask = NULL, *cls = NULL, *queued = NULL;
-    float *lab = NULL, *lab_raw = NULL, *jv = NULL;
-    uint32_t *knn = NULL, *sample = NULL;
-    float *d2 = NULL;
-    double *rsum = NULL;
-    qitem *heap = NULL;
-    pnpr_kdtree *tree = NULL;
-    size_t nvalid = 0;
-    if (!valid) return PNPR_ERR_OUT_OF_MEMORY;
-    for (size_t i = 0; i < count; i++) { valid[i] = (uint8_t)pnpr_finite3f(xyz + 3 * i); nvalid += valid[i]; r_labels[i] = PNPR_LABEL_NONE; }
-    if (!nvalid) { free(valid); st = pnpr_segment_finish(xyz, count, r_labels, r_info); goto out_info; }
-    if (k > nvalid) k = nvalid;
-    uint32_t seed_min = o.seed_min_size ? o.seed_min_size : (uint32_t)k;
-    uint32_t min_size = o.min_size ? o.min_size : (uint32_t)(k > nvalid / 1000 ? k : nvalid / 1000);
-    size_t ka = k < ADJ_K ? k : ADJ_K;
-
-    /* neighbourhoods */
-    st = pnpr_kdtree_build_threads(xyz, count, 0, o.threads, &tree);
-    if (st != PNPR_OK) goto done;
-    knn = malloc(count * k * sizeof *knn);
-    d2 = o.radius > 0 ? malloc(count * k * sizeof *d2) : NULL;
-    lab = malloc(3 * count * sizeof *lab);
-    lab_raw = malloc(3 * count * sizeof *lab_raw);
-    cls = malloc(count);
-    jv = malloc(count * sizeof *jv);
-    if (!knn || (o.radius > 0 && !d2) || !lab || !lab_raw || !cls || !jv) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    pnpr_knn_options ko = {o.threads, o.progress, 0};
-    if ((st = pnpr_knn_self(tree, count, k, &ko, knn, d2)) != PNPR_OK) goto done;
-    pnpr_kdtree_free(tree);
-    tree = NULL;
-    if (d2) {
-        float r2 = o.radius * o.radius;
-        for (size_t i = 0; i < count * k; i++) if (!(d2[i] <= r2)) knn[i] = PNPR_INDEX_NONE;
-        free(d2);
-        d2 = NULL;
-    }
-
-    /* 1. quantisation */
-    for (size_t i = 0; i < count; i++) {
-        if (valid[i]) pnpr_rgb_to_lab(rgb + 3 * i, lab_raw + 3 * i);
-        else lab_raw[3 * i] = lab_raw[3 * i + 1] = lab_raw[3 * i + 2] = 0;
-    }
-    {
-        jseg_job pj = {xyz, NULL, lab_raw, lab, NULL, 0, knn, k, NULL, NULL, valid};
-        if ((st = pnpr_parallel_for(count, 2048, o.threads, peer_range, &pj, &o.progress, "quantise")) != PNPR_OK) goto done;
-    }
-    size_t step = (nvalid + SAMPLE_MAX - 1) / SAMPLE_MAX, ns = 0;
-    sample = malloc((nvalid / step + 1) * sizeof *sample);
-    if (!sample) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    for (size_t i = 0, v = 0; i < count; i++)
-        if (valid[i]) { if (v % step == 0) sample[ns++] = (uint32_t)i; v++; }
-    double centre[3 * 256], weight[256];
-    uint32_t classes = kmeans(lab, sample, ns, kc, o.seed, centre, weight);
-    if (!classes) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    if (qdist > 0) classes = merge_centres(centre, weight, classes, qdist);
-    jseg_job jb = {xyz, lab, NULL, NULL, centre, classes, knn, k, cls, jv, valid};
-    if ((st = pnpr_parallel_for(count, 4096, o.threads, classify_range, &jb, &o.progress, "quantise")) != PNPR_OK) goto done;
-
-    /* 2. J */
-    if ((st = pnpr_parallel_for(count, 2048, o.threads, j_range, &jb, &o.progress, "J")) != PNPR_OK) goto done;
-    double jsum = 0;
-    for (size_t i = 0; i < count; i++) if (valid[i]) jsum += jv[i];
-    double mean_j = jsum / (double)nvalid;
-
-    /* 3. seeds */
-    mask = malloc(count);
-    queued = calloc(count, 1);
-    if (!mask || !queued) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    double seed_thr = seed_factor * mean_j;
-    for (size_t i = 0; i < count; i++) mask[i] = (uint8_t)(valid[i] && jv[i] <= seed_thr);
-    uint32_t nreg = 0;
-    if ((st = components(mask, count, knn, k, ka, seed_min, r_labels, &nreg)) != PNPR_OK) goto done;
-    uint32_t seeds = nreg;
-
-    /* 4. growing in J order */
-    if (pnpr_progress_report(&o.progress, "grow", 0.0)) { st = PNPR_ERR_CANCELLED; goto done; }
-    size_t cap_regions = nreg ? nreg : 1;
-    rsum = calloc(cap_regions * 4, sizeof *rsum);
-    if (!rsum) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    for (size_t i = 0; i < count; i++) {
-        uint32_t l = r_labels[i];
-        if (l == PNPR_LABEL_NONE) continue;
-        for (int a = 0; a < 3; a++) rsum[4 * l + a] += lab[3 * i + a];
-        rsum[4 * l + 3] += 1;
-    }
-    double bound = o.grow_bound > 0 ? o.grow_bound * mean_j : INFINITY;
-    size_t hn = 0, hcap = 0;
-    for (size_t i = 0; i < count; i++) {
-        if (r_labels[i] == PNPR_LABEL_NONE) continue;
-        const uint32_t *row = knn + i * k;
-        for (size_t r = 0; r < ka; r++) {
-            uint32_t x = row[r];
-            if (x == PNPR_INDEX_NONE || queued[x] || r_labels[x] != PNPR_LABEL_NONE || !(jv[x] < bound)) continue;
-            queued[x] = 1;
-            if (!q_push(&heap, &hn, &hcap, (qitem){jv[x], x, r_labels[i]})) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    uint32_t classes = 0;
+    double mean_j = 0;
+    if (!c.nvalid) {
+        st = pnpr_segment_finish(xyz, count, r_labels, r_info);
+    } else {
+        if (c.k > c.nvalid) c.k = c.nvalid;
+        c.ka = c.k < ADJ_K ? c.k : ADJ_K;
+        st = jseg_neighbours(&c);
+        if (st == PNPR_OK) st = jseg_quantise(&c, kc, qdist, &classes);
+        if (st == PNPR_OK) st = jseg_j(&c, &mean_j);
+        if (st == PNPR_OK) st = jseg_regions(&c, seed_factor, mean_j, merge_distance, r_info);
+        if (st == PNPR_OK) {
+            if (o.r_j) memcpy(o.r_j, c.jv, count * sizeof *c.jv);
+            if (o.r_class) memcpy(o.r_class, c.cls, count);
+            if (r_info) {
+                r_info->classes = classes;
+                r_info->mean_j = (float)mean_j;
+            }
         }
     }
-    size_t grown = 0;
-    while (hn) {
-        qitem it = q_pop(heap, &hn);
-        uint32_t x = it.point;
-        const uint32_t *row = knn + (size_t)x * k;
-        const float *c = lab + 3 * (size_t)x;
-        uint32_t best = it.region;
-        const double *bs = rsum + 4 * (size_t)best;
-        double bd = d2lab(c, (double[3]){bs[0] / bs[3], bs[1] / bs[3], bs[2] / bs[3]});
-        for (size_t r = 0; r < ka; r++) {
-            uint32_t y = row[r];
-            if (y == PNPR_INDEX_NONE) continue;
-            uint32_t l = r_labels[y];
-            if (l == PNPR_LABEL_NONE || l == best) continue;
-            const double *s = rsum + 4 * (size_t)l;
-            double d = d2lab(c, (double[3]){s[0] / s[3], s[1] / s[3], s[2] / s[3]});
-            if (d < bd || (d == bd && l < best)) { bd = d; best = l; }
-        }
-        r_labels[x] = best;
-        for (int a = 0; a < 3; a++) rsum[4 * (size_t)best + a] += c[a];
-        rsum[4 * (size_t)best + 3] += 1;
-        for (size_t r = 0; r < ka; r++) {
-            uint32_t y = row[r];
-            if (y == PNPR_INDEX_NONE || queued[y] || r_labels[y] != PNPR_LABEL_NONE || !(jv[y] < bound)) continue;
-            queued[y] = 1;
-            if (!q_push(&heap, &hn, &hcap, (qitem){jv[y], y, best})) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-        }
-        if ((++grown & 0xFFFF) == 0 && pnpr_progress_report(&o.progress, "grow", (double)grown / (double)nvalid)) {
-            st = PNPR_ERR_CANCELLED;
-            goto done;
-        }
-    }
-    /* points never reached: regions of their own */
-    for (size_t i = 0; i < count; i++) mask[i] = (uint8_t)(valid[i] && r_labels[i] == PNPR_LABEL_NONE);
-    if ((st = components(mask, count, knn, k, ka, 1, r_labels, &nreg)) != PNPR_OK) goto done;
-    uint32_t grown_regions = nreg;
-    if (pnpr_progress_report(&o.progress, "grow", 1.0)) { st = PNPR_ERR_CANCELLED; goto done; }
-
-    /* 5. merging of similar and small regions; invalid points sit above every region */
-    for (size_t i = 0; i < count; i++) if (!valid[i]) r_labels[i] = nreg;
-    pnpr_region_graph graph = {knn, k, ka};
-    if (pnpr_progress_report(&o.progress, "merge", 0.0)) { st = PNPR_ERR_CANCELLED; goto done; }
-    if ((st = pnpr_segment_merge_regions(rgb, count, &graph, (float)merge_distance, min_size, r_labels, &nreg)) != PNPR_OK)
-        goto done;
-    if ((st = pnpr_segment_finish(xyz, count, r_labels, r_info)) != PNPR_OK) goto done;
-    pnpr_progress_report(&o.progress, "merge", 1.0);
-    if (o.r_j) memcpy(o.r_j, jv, count * sizeof *jv);
-    if (o.r_class) memcpy(o.r_class, cls, count);
-    if (r_info) {
-        r_info->classes = classes;
-        r_info->mean_j = (float)mean_j;
-        r_info->seed_regions = seeds;
-        r_info->grown_regions = grown_regions;
-    }
-done:
-    pnpr_kdtree_free(tree);
-    free(valid); free(mask); free(cls); free(queued); free(lab); free(lab_raw); free(jv); free(knn); free(sample);
-    free(d2); free(rsum); free(heap);
-out_info:
+    free(c.valid); free(c.knn); free(c.lab); free(c.cls); free(c.jv);
     if (r_info) r_info->seconds = pnpr_now() - t0;
     return st;
 }

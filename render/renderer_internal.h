@@ -1,5 +1,13 @@
-/* The renderer's state, shared by its sources (renderer.c draws, vector.c reads a drawn frame
- * back as paths). Not installed. */
+/* The renderer's state and the declarations its sources share. Not installed. The sources:
+ *   renderer.c           create / destroy, the draw options check, the frame plan, the draw entry
+ *                        (one frame or one tile: clear, style passes, outlines, composite)
+ *   renderer_upload.c    pnpr_renderer_set_cloud (spacing radii, queue order, vertices, painterly
+ *                        data), pnpr_renderer_set_lines, the style-map bytes
+ *   renderer_passes.c    the visibility mask pass and the style passes (points, cartoon, sketchy,
+ *                        stipple, lines, painterly, style maps)
+ *   renderer_snapshot.c  read back, snapshots in tiles
+ *   renderer_textures.c  the stroke and brush textures
+ *   vector.c             reads a drawn frame back as paths (pnpr_renderer_drawing) */
 #ifndef PNPR_RENDERER_INTERNAL_H
 #define PNPR_RENDERER_INTERNAL_H
 
@@ -120,5 +128,76 @@ typedef struct pnpr_frame_record {
  * fills *rec. */
 pnpr_status pnpr_renderer_draw_recorded(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
                                         int width, int height, pnpr_frame_record *rec, pnpr_error *err);
+
+/* ---- shared by renderer*.c ------------------------------------------------------------------ */
+
+/* Points `vao` at the vertices of `vbo` from vertex `first` on (attributes 0 position, 1 radius,
+ * 2 colour (the flat colour with `flat`), 5 normal; 3 the feature direction and per-instance
+ * attributes with `instanced`) and attribute 4 at the style bytes of `sbo` (renderer.c). */
+void pnpr_renderer_vertex_attribs(GLuint vao, GLuint vbo, GLuint sbo, size_t first, int instanced, int flat);
+
+/* Generates and uploads the stroke texture array and the painterly brush (renderer_textures.c). */
+pnpr_status pnpr_renderer_make_textures(pnpr_renderer *r);
+
+/* Brush size of painterly pass `pass` of `bins`, in disk radii: PNPR_PAINT_MAX_BRUSH for the
+ * first (all bins), 1 for the last (the highest-degree bin), geometric in between
+ * (renderer_upload.c). */
+float pnpr_paint_brush(size_t pass, size_t bins);
+
+/* Style maps (renderer_upload.c): the style of every vertex (main order) under o's map, a label's
+ * last entry, o->style for labels not in the map; r_used[s] = how many vertices got style s (the
+ * cloud has labels). Then the upload of those bytes (main and painterly order) when they changed. */
+pnpr_status pnpr_renderer_resolve_styles(const pnpr_renderer *r, const pnpr_draw_options *o, uint8_t *r_style,
+                                         size_t *r_used);
+pnpr_status pnpr_renderer_upload_styles(pnpr_renderer *r, const uint8_t *vstyle);
+
+/* A tile of a larger image: the frame is the rectangle (x, y, w, h) (GL pixel convention, y up
+ * from the bottom row) of a full_w x full_h image; point sizes, queue counts and the camera are
+ * those of the full image (pnpr_renderer_snapshot). */
+typedef struct tile_rect { int full_w, full_h, x, y, w, h; } tile_rect;
+
+/* The camera, the queue count and the disk growth of a full image (shared by every tile). */
+typedef struct frame_plan {
+    pnpr_frame_camera fc;
+    size_t n_draw;
+    double coverage;
+    float lod;
+} frame_plan;
+
+/* The draw (renderer.c): *o = the checked options (zeros where opts is NULL); the plan of a
+ * w x h image; one frame or one tile of it into the renderer's framebuffer (composited into the
+ * target unless it is offscreen or a tile), *rec filled when given. */
+pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_options *opts, pnpr_draw_options *o,
+                                        pnpr_error *err);
+pnpr_status pnpr_renderer_plan_frame(const pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *o,
+                                     int w, int h, frame_plan *p, pnpr_error *err);
+pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
+                                     const pnpr_target *target, const tile_rect *tile, pnpr_render_stats *r_stats,
+                                     pnpr_frame_record *rec, pnpr_error *err);
+
+/* One frame's resolved values, read by the passes. */
+typedef struct pnpr_frame_ctx {
+    pnpr_draw_options o;             /* checked; o.style: the style (the only one a map left) */
+    pnpr_frame_camera fc;            /* with the tile's projection when tiled */
+    int fw, fh;                      /* the frame (framebuffer) */
+    size_t n_draw;                   /* the queue prefix, all groups together */
+    size_t ng;                       /* the groups drawn (group_count + "other", empty) */
+    size_t gdraw[GROUP_MAX + 1];     /* the prefix of each group */
+    size_t pdraw[PAINT_MAX_BINS];    /* painterly: the prefix of each bin (the mask's) */
+    double coverage;
+    float lod, point_scale, mask_scale, ink[4];
+    int outline;                     /* outlines after the passes (from the mask's surface info) */
+    float outline_width;
+    int mapped;                      /* several styles (a style map): pnpr_renderer_draw_mapped */
+    size_t used[PNPR_STYLE_COUNT_];  /* style map: the vertices of each style */
+} pnpr_frame_ctx;
+
+/* The passes (renderer_passes.c). Which of the frame's attachments the fragment outputs reach:
+ * colour (0) and the mask's surface info (1); draw-buffer state belongs to the bound framebuffer
+ * object (ours), not to the host. The passes of one style, or of a style map; each returns the
+ * primitives drawn other than plain splats (strokes, dots, dabs, line segments). */
+void pnpr_renderer_draw_buffers(int info, int color);
+size_t pnpr_renderer_draw_single(pnpr_renderer *r, const pnpr_frame_ctx *f);
+size_t pnpr_renderer_draw_mapped(pnpr_renderer *r, const pnpr_frame_ctx *f);
 
 #endif

@@ -1,0 +1,585 @@
+/* The renderer's uploads: a cloud (pnpr_renderer_set_cloud: the finite points' disk radii from
+ * their spacing, the continuous resolution queue order, the vertices, the painterly data of
+ * section 5.3), profile lines (pnpr_renderer_set_lines) and the style bytes of a style map. */
+#include "renderer_internal.h"
+#include "gl_state.h"
+#include "../core/vec3.h"
+
+#include <pointnpr/features.h>
+#include <pointnpr/knn.h>
+#include <pointnpr/outliers.h>
+
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- the cloud's per-point data ------------------------------------------------------------- */
+
+/* What pnpr_renderer_set_cloud builds, stage by stage (upload_* below), before it goes to GL. */
+typedef struct upload_ctx {
+    const pnpr_cloud *cloud;
+    pnpr_upload_options o;
+    const pnpr_property *pc, *pd[3], *pdeg; /* feature class, direction, degree (painterly) */
+    int features;
+    uint32_t k;           /* the spacing neighbour */
+    size_t nbins;         /* painterly bins */
+    size_t n;             /* the finite points; j below indexes them */
+    uint32_t *src;        /* cloud index of point j */
+    float *xyz, *radius;  /* point j's position and disk radius */
+    uint8_t *group;       /* point j's queue group */
+    uint32_t *order;      /* the queue order: order[q] = j */
+    size_t ngroups, starts[GROUP_MAX + 2];
+    pnpr_vertex *verts;   /* the vertices in queue order */
+    uint8_t *flat;        /* labels: each point's segment mean colour */
+    float *shade;         /* colourless: the key light's darkness ... */
+    uint8_t *grey;        /* ... and the grey of each point */
+    uint32_t *nidx;       /* painterly: the nkk nearest of each point (itself included) */
+    float *nd2;
+    size_t nkk;
+    uint32_t *porder, *inv;  /* painterly order (porder[q] = j); inv[j] = queue position */
+    uint8_t *pbin, *pcol;    /* each point's bin; the blended colours (level-major RGBA8) */
+    pnpr_vertex *pverts;     /* the vertices in painterly order */
+    size_t pstarts[PAINT_MAX_BINS + 2];
+    int paint;               /* painterly data built */
+    uint32_t *vlabel, *paint_src; /* style maps: labels in queue order; painterly -> queue index */
+    uint8_t *zeros;               /* the initial style bytes */
+} upload_ctx;
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* radius[i] = distance from point i to its k-th nearest other point, capped at 4x the median
+ * (isolated points), floored at 1/8 of the median (duplicates). */
+/* want_kk > 0: the neighbour lists (want_kk per point, the point itself included, nearest first)
+ * are handed over in *r_idx / *r_d2 (kk of them each, *r_kk), for the painterly colours. */
+static pnpr_status spacing_radii(const float *xyz, size_t n, uint32_t k, int threads, float *radius,
+                                 size_t want_kk, uint32_t **r_idx, float **r_d2, size_t *r_kk)
+{
+    if (r_idx) { *r_idx = NULL; *r_d2 = NULL; *r_kk = 0; }
+    if (n == 1) { radius[0] = 1; return PNPR_OK; }
+    size_t kr = (size_t)k + 1 < n ? (size_t)k + 1 : n; /* + the point itself */
+    size_t kk = kr > want_kk ? kr : want_kk < n ? want_kk : n;
+    pnpr_kdtree *tree = NULL;
+    pnpr_status st = pnpr_kdtree_build_threads(xyz, n, 0, threads, &tree);
+    if (st != PNPR_OK) return st;
+    uint32_t *idx = malloc(n * kk * sizeof *idx);
+    float *d2 = malloc(n * kk * sizeof *d2);
+    if (!idx || !d2) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    pnpr_knn_options ko;
+    memset(&ko, 0, sizeof ko);
+    ko.threads = threads;
+    st = pnpr_knn_self(tree, n, kk, &ko, idx, d2);
+    if (st != PNPR_OK) goto done;
+    for (size_t i = 0; i < n; i++) {
+        float r = 0;
+        for (size_t j = kr; j-- > 0;)
+            if (idx[i * kk + j] != PNPR_INDEX_NONE && isfinite(d2[i * kk + j])) { r = sqrtf(d2[i * kk + j]); break; }
+        radius[i] = r;
+    }
+    if (r_idx && want_kk > 0) { /* hand the lists over */
+        *r_idx = idx; *r_d2 = d2; *r_kk = kk;
+        idx = NULL;
+        d2 = NULL;
+    }
+    /* median of the radii */
+    float *sorted = malloc(n * sizeof *sorted);
+    if (!sorted) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
+    memcpy(sorted, radius, n * sizeof *sorted);
+    qsort(sorted, n, sizeof *sorted, cmp_float);
+    float med = sorted[n / 2];
+    if (!(med > 0)) { /* mostly duplicates: the largest distance found, else 1 */
+        med = sorted[n - 1] > 0 ? sorted[n - 1] : 1;
+    }
+    free(sorted);
+    for (size_t i = 0; i < n; i++) {
+        if (radius[i] > 4 * med) radius[i] = 4 * med;
+        if (!(radius[i] >= 0.125f * med)) radius[i] = 0.125f * med;
+    }
+done:
+    free(idx);
+    free(d2);
+    pnpr_kdtree_free(tree);
+    return st;
+}
+
+typedef struct label_index { uint32_t label, j; } label_index;
+
+static int cmp_label(const void *a, const void *b)
+{
+    const label_index *x = a, *y = b;
+    if (x->label != y->label) return x->label < y->label ? -1 : 1;
+    return x->j < y->j ? -1 : x->j > y->j;
+}
+
+/* Mean colour (rounded) of each segment over its finite points: r_flat[3 j] for finite point j
+ * (cloud index src[j]). Sorting (label, j) pairs handles any label values, PNPR_LABEL_NONE
+ * included (one more segment). Without colours the points' shaded greys grey[j] are averaged
+ * (each segment a flat grey by its mean lighting: faceted planes). */
+static pnpr_status segment_means(const pnpr_cloud *cloud, const uint32_t *src, const uint8_t *grey, size_t n,
+                                 uint8_t *r_flat)
+{
+    label_index *li = malloc(n * sizeof *li);
+    if (!li) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t j = 0; j < n; j++) { li[j].label = cloud->label[src[j]]; li[j].j = (uint32_t)j; }
+    qsort(li, n, sizeof *li, cmp_label);
+    for (size_t a = 0; a < n;) {
+        size_t b = a;
+        double sum[3] = {0, 0, 0};
+        while (b < n && li[b].label == li[a].label) {
+            for (int c = 0; c < 3; c++) sum[c] += cloud->rgb ? cloud->rgb[3 * (size_t)src[li[b].j] + c] : grey[li[b].j];
+            b++;
+        }
+        uint8_t mean[3];
+        for (int c = 0; c < 3; c++) mean[c] = (uint8_t)(sum[c] / (double)(b - a) + 0.5);
+        for (size_t k = a; k < b; k++) memcpy(r_flat + 3 * (size_t)li[k].j, mean, 3);
+        a = b;
+    }
+    free(li);
+    return PNPR_OK;
+}
+
+float pnpr_paint_brush(size_t pass, size_t bins)
+{
+    if (bins <= 1) return 1.0f;
+    return (float)pow((double)PNPR_PAINT_MAX_BRUSH, (double)(bins - 1 - pass) / (double)(bins - 1));
+}
+
+typedef struct degree_index { float d; uint32_t j; } degree_index;
+static int cmp_degree(const void *a, const void *b)
+{
+    const degree_index *x = a, *y = b;
+    if (x->d != y->d) return x->d < y->d ? -1 : 1;
+    return x->j < y->j ? -1 : x->j > y->j;
+}
+
+/* The painterly data (section 5.3): finite points sorted by feature_degree (non-finite = lowest)
+ * and divided evenly into `bins` bins, each shuffled into a queue (pnpr_crq_order); the vertices
+ * in that order (u->pverts, copies of the class-ordered u->verts) and, per pass L and point, the
+ * blended colour: the mean colour of the point's neighbours (among its nkk nearest, itself
+ * included) within the pass's brush radius pnpr_paint_brush(L) * radius (u->pcol, level-major
+ * RGBA8). */
+static pnpr_status paint_data(upload_ctx *u)
+{
+    size_t n = u->n, bins = u->nbins, kk = u->nkk;
+    degree_index *di = malloc(n * sizeof *di);
+    uint8_t *bin = u->pbin = malloc(n);
+    uint32_t *porder = u->porder = malloc(n * sizeof *porder);
+    uint32_t *inv = u->inv = malloc(n * sizeof *inv);
+    uint8_t *col = u->pcol = malloc(bins * n * 4);
+    pnpr_vertex *pv = u->pverts = malloc(n * sizeof *pv);
+    if (!di || !bin || !porder || !inv || !col || !pv) { free(di); return PNPR_ERR_OUT_OF_MEMORY; }
+    for (size_t j = 0; j < n; j++) {
+        double d = pnpr_type_get(u->pdeg->type, u->pdeg->data, u->src[j]);
+        di[j].d = isfinite(d) ? (float)d : -FLT_MAX;
+        di[j].j = (uint32_t)j;
+    }
+    qsort(di, n, sizeof *di, cmp_degree);
+    for (size_t rank = 0; rank < n; rank++) bin[di[rank].j] = (uint8_t)(rank * bins / n);
+    free(di);
+    /* a seed of its own, so that the bins' order is not the class queues' */
+    pnpr_status st = pnpr_crq_order(n, bin, (uint32_t)bins, u->o.seed ^ 0x9E3779B97F4A7C15ull, porder, u->pstarts);
+    if (st != PNPR_OK) return st;
+    const pnpr_vertex *verts = u->verts;
+    const uint32_t *nidx = u->nidx;
+    for (size_t q = 0; q < n; q++) inv[u->order[q]] = (uint32_t)q;
+    for (size_t q = 0; q < n; q++) {
+        uint32_t j = porder[q];
+        pv[q] = verts[inv[j]];
+        for (size_t L = 0; L < bins; L++) {
+            double lim = (double)pnpr_paint_brush(L, bins) * u->radius[j];
+            double sum[3] = {0, 0, 0};
+            size_t cnt = 0;
+            for (size_t t = 0; t < kk && nidx; t++) {
+                uint32_t m = nidx[j * kk + t];
+                if (m == PNPR_INDEX_NONE || !((double)u->nd2[j * kk + t] <= lim * lim)) continue;
+                for (int c = 0; c < 3; c++) sum[c] += verts[inv[m]].rgba[c]; /* colours, or the shaded greys */
+                cnt++;
+            }
+            uint8_t *o = col + 4 * (L * n + q);
+            for (int c = 0; c < 3; c++) o[c] = cnt ? (uint8_t)(sum[c] / (double)cnt + 0.5) : pv[q].rgba[c];
+            o[3] = 255;
+        }
+    }
+    return PNPR_OK;
+}
+
+/* Colourless clouds: the key light's darkness of every finite point j (cloud index src[j]) from
+ * its normal (tone.h, light source, no curve; unknown normals give 0.5) and its grey,
+ * 240 - 170 x darkness. */
+static pnpr_status shade_greys(const pnpr_cloud *cloud, const uint32_t *src, size_t n, const pnpr_tone_options *tone,
+                               float **r_shade, uint8_t **r_grey)
+{
+    *r_grey = NULL;
+    float *nrm = cloud->normal ? malloc(3 * n * sizeof *nrm) : NULL;
+    float *shade = malloc(n * sizeof *shade);
+    pnpr_status st = !shade || (cloud->normal && !nrm) ? PNPR_ERR_OUT_OF_MEMORY : PNPR_OK;
+    if (st == PNPR_OK && nrm)
+        for (size_t j = 0; j < n; j++) memcpy(nrm + 3 * j, cloud->normal + 3 * (size_t)src[j], 3 * sizeof *nrm);
+    pnpr_tone_options o = *tone;
+    o.source = PNPR_TONE_LIGHT;
+    o.contrast = 1;
+    o.gamma = 1;
+    if (st == PNPR_OK) st = pnpr_tone(NULL, nrm, n, &o, shade);
+    free(nrm);
+    uint8_t *grey = st == PNPR_OK ? malloc(n) : NULL;
+    if (st == PNPR_OK && !grey) st = PNPR_ERR_OUT_OF_MEMORY;
+    if (st != PNPR_OK) { free(shade); shade = NULL; }
+    else for (size_t j = 0; j < n; j++) grey[j] = (uint8_t)lrintf(240.0f - 170.0f * shade[j]);
+    *r_shade = shade;
+    *r_grey = grey;
+    return st;
+}
+
+/* The cartoon's cel bands of a colourless cloud: three greys by the key light's darkness (lit,
+ * half-lit, in shadow), all darker than white paper so that no band vanishes into it. */
+static uint8_t shade_band(float darkness)
+{
+    return darkness < 0.3f ? 226 : darkness < 0.55f ? 178 : 128;
+}
+
+/* A unit normal as 4 signed bytes (x, y, z * 127, 0); unknown, zero or non-finite: all 0. */
+static void pack_normal(const float *n, int8_t r[4])
+{
+    memset(r, 0, 4);
+    if (!n) return;
+    double l = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+    if (!(l > 1e-12) || !isfinite(l)) return;
+    for (int a = 0; a < 3; a++) r[a] = (int8_t)lrint(127.0 * n[a] / l);
+}
+
+static int group_of_class(double c)
+{
+    switch ((int)c) {
+    case PNPR_CLASS_DIRECTIONAL: return GROUP_DIRECTIONAL;
+    case PNPR_CLASS_NONDIRECTIONAL: return GROUP_NONDIRECTIONAL;
+    case PNPR_CLASS_DITHER: return GROUP_DITHER;
+    default: return GROUP_NONE;
+    }
+}
+
+/* ---- pnpr_renderer_set_cloud, stage by stage ------------------------------------------------ */
+
+/* The arguments, the options (zeros: defaults) and the feature properties. */
+static pnpr_status upload_check(const pnpr_cloud *cloud, const pnpr_upload_options *opts, upload_ctx *u,
+                                pnpr_error *err)
+{
+    if (cloud->count > 0 && !cloud->xyz)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: cloud has points but no coordinates");
+    if (cloud->count >= 0xFFFFFFFFu)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: too many points (%zu)", cloud->count);
+    u->cloud = cloud;
+    if (opts) u->o = *opts;
+    if (u->o.spacing_k > PNPR_SPACING_K_MAX)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: spacing_k %u is more than %d",
+                              (unsigned)u->o.spacing_k, PNPR_SPACING_K_MAX);
+    u->k = u->o.spacing_k ? u->o.spacing_k : 4;
+    u->pc = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_CLASS);
+    u->pd[0] = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_X);
+    u->pd[1] = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_Y);
+    u->pd[2] = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_Z);
+    u->features = !u->o.ignore_features && u->pc && u->pd[0] && u->pd[1] && u->pd[2];
+    u->pdeg = u->features ? pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DEGREE) : NULL;
+    if (u->o.painterly_bins > PAINT_MAX_BINS)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: painterly_bins %u is more than %d",
+                              (unsigned)u->o.painterly_bins, PAINT_MAX_BINS);
+    u->nbins = u->o.painterly_bins ? u->o.painterly_bins : 4;
+    return PNPR_OK;
+}
+
+/* The finite points: their cloud indices, positions and queue groups; the per-point arrays. */
+static pnpr_status upload_finite(upload_ctx *u)
+{
+    const pnpr_cloud *cloud = u->cloud;
+    size_t n = 0;
+    for (size_t i = 0; i < cloud->count; i++) n += pnpr_finite3f(cloud->xyz + 3 * i);
+    size_t m = n ? n : 1;
+    u->src = malloc(m * sizeof *u->src);
+    u->xyz = malloc(m * 3 * sizeof *u->xyz);
+    u->radius = malloc(m * sizeof *u->radius);
+    u->group = malloc(m);
+    u->order = malloc(m * sizeof *u->order);
+    u->verts = malloc(m * sizeof *u->verts);
+    u->flat = cloud->label ? malloc(m * 3) : NULL;
+    if (!u->src || !u->xyz || !u->radius || !u->group || !u->order || !u->verts || (cloud->label && !u->flat))
+        return PNPR_ERR_OUT_OF_MEMORY;
+    n = 0;
+    for (size_t i = 0; i < cloud->count; i++) {
+        const float *p = cloud->xyz + 3 * i;
+        if (!pnpr_finite3f(p)) continue;
+        u->src[n] = (uint32_t)i;
+        memcpy(u->xyz + 3 * n, p, 3 * sizeof *p);
+        u->group[n] = u->features ? (uint8_t)group_of_class(pnpr_type_get(u->pc->type, u->pc->data, i)) : 0;
+        n++;
+    }
+    u->n = n;
+    return PNPR_OK;
+}
+
+/* The disk radii (and painterly's neighbour lists), the queue order, the greys of a colourless
+ * cloud and the segments' mean colours. */
+static pnpr_status upload_order(upload_ctx *u)
+{
+    size_t n = u->n;
+    pnpr_status st = PNPR_OK;
+    if (n > 0) {
+        int paint = u->pdeg != NULL;
+        st = spacing_radii(u->xyz, n, u->k, u->o.threads, u->radius, paint ? PAINT_K : 0, paint ? &u->nidx : NULL,
+                           paint ? &u->nd2 : NULL, paint ? &u->nkk : NULL);
+        if (st != PNPR_OK) return st;
+    }
+    u->ngroups = u->features ? GROUP_MAX : 1;
+    st = pnpr_crq_order(n, u->group, (uint32_t)u->ngroups, u->o.seed, u->order, u->starts);
+    if (st != PNPR_OK) return st;
+    if (!u->cloud->rgb && n > 0 && (st = shade_greys(u->cloud, u->src, n, &u->o.tone, &u->shade, &u->grey)) != PNPR_OK)
+        return st;
+    if (u->cloud->label && n > 0) st = segment_means(u->cloud, u->src, u->grey, n, u->flat);
+    return st;
+}
+
+/* Vertex q of the queue order (point j = order[q], cloud index i). */
+static void fill_vertex(const upload_ctx *u, size_t q, pnpr_vertex *v)
+{
+    const pnpr_cloud *cloud = u->cloud;
+    uint32_t j = u->order[q];
+    size_t i = u->src[j];
+    memcpy(v->pos, u->xyz + 3 * (size_t)j, sizeof v->pos);
+    v->radius = u->radius[j];
+    if (cloud->rgb) memcpy(v->rgba, cloud->rgb + 3 * i, 3);
+    else v->rgba[0] = v->rgba[1] = v->rgba[2] = u->grey[j];
+    v->rgba[3] = 255;
+    if (cloud->label) memcpy(v->flat, u->flat + 3 * (size_t)j, 3);
+    else if (!cloud->rgb) v->flat[0] = v->flat[1] = v->flat[2] = shade_band(u->shade[j]);
+    else memcpy(v->flat, v->rgba, 3);
+    v->flat[3] = 255;
+    pack_normal(cloud->normal ? cloud->normal + 3 * i : NULL, v->normal);
+    v->dir[0] = v->dir[1] = v->dir[2] = 0;
+    if (u->features) {
+        float d[3];
+        double l2 = 0;
+        for (int a = 0; a < 3; a++) {
+            d[a] = (float)pnpr_type_get(u->pd[a]->type, u->pd[a]->data, i);
+            if (!isfinite(d[a])) d[a] = 0;
+            l2 += (double)d[a] * d[a];
+        }
+        if (l2 > 0) for (int a = 0; a < 3; a++) v->dir[a] = (float)(d[a] / sqrt(l2));
+    }
+}
+
+/* The vertices, the painterly data, and for style maps the labels in queue order, the
+ * painterly order's main indices and zero style bytes. */
+static pnpr_status upload_vertices(upload_ctx *u)
+{
+    size_t n = u->n;
+    for (size_t q = 0; q < n; q++) fill_vertex(u, q, u->verts + q);
+    u->paint = u->pdeg && n > 0;
+    if (u->paint) {
+        pnpr_status st = paint_data(u);
+        if (st != PNPR_OK) return st;
+    }
+    if (u->cloud->label) {
+        u->vlabel = malloc((n ? n : 1) * sizeof *u->vlabel);
+        if (!u->vlabel) return PNPR_ERR_OUT_OF_MEMORY;
+        for (size_t q = 0; q < n; q++) u->vlabel[q] = u->cloud->label[u->src[u->order[q]]];
+    }
+    if (u->paint) {
+        u->paint_src = malloc(n * sizeof *u->paint_src);
+        if (!u->paint_src) return PNPR_ERR_OUT_OF_MEMORY;
+        for (size_t q = 0; q < n; q++) u->paint_src[q] = u->inv[u->porder[q]];
+    }
+    u->zeros = calloc(n ? n : 1, 1);
+    return u->zeros ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+}
+
+/* The GL buffers: style bytes (zero), vertices, painterly vertices and colours. */
+static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
+{
+    size_t n = u->n;
+    int paint = u->paint;
+    pnpr_gl_state saved;
+    pnpr_gl_state_save(&saved);
+    glBindBuffer(GL_ARRAY_BUFFER, r->style_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n ? n : 1), u->zeros, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, r->paint_style_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(paint ? n : 1), u->zeros, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof *u->verts), n ? u->verts : NULL, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, r->paint_vbo);
+    glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(n * sizeof *u->pverts) : 0, paint ? u->pverts : NULL, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
+    glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(u->nbins * n * 4) : 0, paint ? u->pcol : NULL, GL_STATIC_DRAW);
+    pnpr_gl_state_restore(&saved);
+}
+
+/* The renderer's description of the uploaded cloud; takes over the style-map arrays. */
+static void upload_commit(pnpr_renderer *r, upload_ctx *u)
+{
+    const pnpr_cloud *cloud = u->cloud;
+    size_t n = u->n;
+    r->paint_bins = u->paint ? u->nbins : 0;
+    if (u->paint) for (size_t b = 0; b <= u->nbins + 1; b++) r->paint_start[b] = u->pstarts[b];
+    free(r->vlabel); free(r->paint_src); free(r->vstyle);
+    r->vlabel = u->vlabel; r->paint_src = u->paint_src; r->vstyle = u->zeros;
+    u->vlabel = NULL; u->paint_src = NULL; u->zeros = NULL;
+    r->count = n;
+    r->group_count = u->ngroups;
+    for (size_t g = 0; g <= u->ngroups + 1; g++) r->group_start[g] = u->starts[g];
+    r->has_features = u->features;
+    r->has_labels = cloud->label != NULL;
+    r->has_rgb = cloud->rgb != NULL;
+    r->max_radius = 0;
+    double rsum = 0;
+    for (size_t j = 0; j < n; j++) {
+        if (u->radius[j] > r->max_radius) r->max_radius = u->radius[j];
+        rsum += u->radius[j];
+    }
+    r->mean_radius = n ? (float)(rsum / (double)n) : 0;
+    memcpy(r->origin, cloud->origin, sizeof r->origin);
+    if (pnpr_cloud_inlier_bounds(cloud, r->bmin, r->bmax) == 0) { /* far outliers do not stretch it */
+        memset(r->bmin, 0, sizeof r->bmin);
+        memset(r->bmax, 0, sizeof r->bmax);
+    }
+}
+
+static void upload_free(upload_ctx *u)
+{
+    free(u->src); free(u->xyz); free(u->radius); free(u->group); free(u->order); free(u->verts); free(u->flat);
+    free(u->nidx); free(u->nd2); free(u->porder); free(u->inv); free(u->pbin); free(u->pcol); free(u->pverts);
+    free(u->vlabel); free(u->paint_src); free(u->zeros); free(u->shade); free(u->grey);
+}
+
+pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,
+                                    const pnpr_upload_options *opts, pnpr_error *err)
+{
+    if (!r || !cloud) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: NULL renderer or cloud");
+    upload_ctx u;
+    memset(&u, 0, sizeof u);
+    pnpr_status st = upload_check(cloud, opts, &u, err);
+    if (st != PNPR_OK) return st;
+    st = upload_finite(&u);
+    if (st == PNPR_OK) st = upload_order(&u);
+    if (st == PNPR_OK) st = upload_vertices(&u);
+    if (st == PNPR_OK) {
+        upload_buffers(r, &u);
+        upload_commit(r, &u);
+    }
+    upload_free(&u);
+    return st;
+}
+
+int pnpr_renderer_has_features(const pnpr_renderer *r) { return r && r->has_features; }
+int pnpr_renderer_has_labels(const pnpr_renderer *r) { return r && r->has_labels; }
+
+pnpr_status pnpr_renderer_set_lines(pnpr_renderer *r, const pnpr_polylines *lines, pnpr_error *err)
+{
+    if (!r) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: NULL renderer");
+    size_t segs = 0;
+    if (lines && lines->count > 0) {
+        if (!lines->offset)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines without offsets");
+        if (lines->offset[0] != 0)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines: offset[0] is %zu, not 0", lines->offset[0]);
+        for (size_t i = 0; i < lines->count; i++) {
+            size_t a = lines->offset[i], b = lines->offset[i + 1];
+            if (b < a)
+                return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines: offsets decrease at polyline %zu", i);
+            if (b - a >= 2) segs += (b - a - 1) + (lines->closed && lines->closed[i] && b - a >= 3);
+        }
+        if (!isfinite(lines->origin[0]) || !isfinite(lines->origin[1]) || !isfinite(lines->origin[2]))
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines: non-finite origin");
+        if (lines->offset[lines->count] > 0 && !lines->xyz)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: lines have vertices but no coordinates");
+        if (segs > (size_t)0x7FFFFFFF / LINE_FLOATS)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: too many line segments (%zu)", segs);
+    }
+    float *buf = malloc((segs ? segs : 1) * LINE_FLOATS * sizeof *buf);
+    if (!buf) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "renderer: lines: out of memory");
+    size_t m = 0;
+    for (size_t i = 0; segs && i < lines->count; i++) {
+        size_t a = lines->offset[i], b = lines->offset[i + 1];
+        if (b - a < 2) continue;
+        size_t n = b - a, nseg = (n - 1) + (lines->closed && lines->closed[i] && n >= 3), first = m;
+        double length = 0;
+        for (size_t k = 0; k < nseg; k++) {
+            const float *p = lines->xyz + 3 * (a + k), *q = lines->xyz + 3 * (a + (k + 1) % n);
+            if (!pnpr_finite3f(p) || !pnpr_finite3f(q)) continue;
+            memcpy(buf + LINE_FLOATS * m, p, 3 * sizeof *p);
+            memcpy(buf + LINE_FLOATS * m + 3, q, 3 * sizeof *q);
+            length += sqrt(((double)q[0] - p[0]) * (q[0] - p[0]) + ((double)q[1] - p[1]) * (q[1] - p[1]) +
+                           ((double)q[2] - p[2]) * (q[2] - p[2]));
+            m++;
+        }
+        for (size_t k = first; k < m; k++) buf[LINE_FLOATS * k + 6] = (float)length; /* the polyline's */
+    }
+    pnpr_gl_state saved;
+    pnpr_gl_state_save(&saved);
+    glBindBuffer(GL_ARRAY_BUFFER, r->line_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m * LINE_FLOATS * sizeof *buf), m ? buf : NULL, GL_STATIC_DRAW);
+    pnpr_gl_state_restore(&saved);
+    free(buf);
+    r->line_segments = m;
+    if (m) memcpy(r->line_origin, lines->origin, sizeof r->line_origin);
+    return PNPR_OK;
+}
+
+/* ---- style maps (intermingled styles): the style bytes ---------------------------------------- */
+
+typedef struct map_key { uint32_t label, index; pnpr_style style; } map_key;
+static int cmp_map_key(const void *a, const void *b)
+{
+    const map_key *x = a, *y = b;
+    if (x->label != y->label) return x->label < y->label ? -1 : 1;
+    return x->index < y->index ? -1 : x->index > y->index;
+}
+
+pnpr_status pnpr_renderer_resolve_styles(const pnpr_renderer *r, const pnpr_draw_options *o, uint8_t *r_style,
+                                         size_t *r_used)
+{
+    size_t m = o->style_map_count;
+    map_key *keys = malloc(m * sizeof *keys);
+    if (!keys) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; i < m; i++) {
+        keys[i].label = o->style_map[i].label;
+        keys[i].index = (uint32_t)i;
+        keys[i].style = o->style_map[i].style;
+    }
+    qsort(keys, m, sizeof *keys, cmp_map_key);
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++) r_used[s] = 0;
+    for (size_t q = 0; q < r->count; q++) {
+        uint32_t label = r->vlabel[q];
+        size_t lo = 0, hi = m; /* first key with a larger label */
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo) / 2;
+            if (keys[mid].label <= label) lo = mid + 1;
+            else hi = mid;
+        }
+        pnpr_style s = lo > 0 && keys[lo - 1].label == label ? keys[lo - 1].style : o->style;
+        r_style[q] = (uint8_t)s;
+        r_used[s]++;
+    }
+    free(keys);
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_renderer_upload_styles(pnpr_renderer *r, const uint8_t *vstyle)
+{
+    if (!memcmp(vstyle, r->vstyle, r->count)) return PNPR_OK;
+    glBindBuffer(GL_ARRAY_BUFFER, r->style_vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)r->count, vstyle);
+    if (r->paint_bins && r->paint_src) {
+        uint8_t *ps = malloc(r->count);
+        if (!ps) return PNPR_ERR_OUT_OF_MEMORY;
+        for (size_t q = 0; q < r->count; q++) ps[q] = vstyle[r->paint_src[q]];
+        glBindBuffer(GL_ARRAY_BUFFER, r->paint_style_vbo);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)r->count, ps);
+        free(ps);
+    }
+    memcpy(r->vstyle, vstyle, r->count);
+    return PNPR_OK;
+}
+
