@@ -8,7 +8,7 @@ rm -rf "$dir"; mkdir -p "$dir"
 . "$(dirname "$0")/lib_cli.sh"
 cube_ply "$dir/cube.ply"
 has_render=1
-"$bin" render --help 2>&1 | grep -q "no renderer" && has_render=0
+built_with_render "$bin" || has_render=0
 
 # camera: the same point, an up along the view; no "non-finite" for finite input
 for cmd in render lines; do

@@ -1,4 +1,4 @@
-/* libFuzzer target for the camera file and camera path parsers (render/camera_path_io.c:
+/* libFuzzer target for the camera file and camera path parsers (view/camera_path_io.c:
  * `--camera FILE`, `--camera-path FILE`). Every input is parsed both ways. Each parse must finish
  * without crash, leak or undefined behaviour; a failure leaves a zeroed result and a message that
  * names the text ("NAME:LINE: ..." or "NAME: ..."); a camera file that parses has finite eye,

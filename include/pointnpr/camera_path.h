@@ -1,6 +1,7 @@
-/* pointnpr — camera_path.h: camera paths for animations (pure CPU, no GL; in pointnpr_render next
- * to the camera). A path is a list of keyframes, each a look-at camera (render.h's pnpr_camera)
- * at a time in seconds; pnpr_camera_path_eval gives the camera at any time:
+/* pointnpr — camera_path.h: camera paths for animations (pure CPU, no GL; in the core library
+ * `pointnpr` next to the camera, view/). A path is a list of keyframes, each a look-at camera
+ * (camera.h's pnpr_camera) at a time in seconds; pnpr_camera_path_eval gives the camera at any
+ * time:
  *   - eye and target each follow a cubic Hermite spline through the keys with Catmull-Rom
  *     tangents in time, m_i = (p_{i+1} - p_{i-1}) / (t_{i+1} - t_{i-1}) (one-sided at the ends
  *     of an open path, wrapped around on a loop): C1, and exactly the key at each key time;
@@ -14,7 +15,7 @@
 #ifndef POINTNPR_CAMERA_PATH_H
 #define POINTNPR_CAMERA_PATH_H
 
-#include "render.h"
+#include "camera.h"
 
 #ifdef __cplusplus
 extern "C" {

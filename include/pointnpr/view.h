@@ -4,7 +4,7 @@
  * is (robust bounds that ignore far outliers), which way is up (the user's choice, the format's
  * hint, else the dominant ground plane, else +z) and from where to look at it (from above the
  * ground, from the scanner's side when known, the wide side of the scene across the screen).
- * The camera built on it is pnpr_camera_default (render.h). docs/view.md documents every
+ * The camera built on it is pnpr_camera_default (camera.h). docs/view.md documents every
  * threshold and why.
  *
  * All positions are the cloud's float offsets (world = cloud->origin + offset); directions are

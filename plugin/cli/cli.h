@@ -3,6 +3,7 @@
 #ifndef PNPR_CLI_H
 #define PNPR_CLI_H
 
+#include <pointnpr/camera.h>
 #include <pointnpr/io.h>
 #include <pointnpr/outliers.h>
 #include <pointnpr/view.h>
@@ -68,17 +69,15 @@ int cli_view_option(cli_view *v, const char *cmd, int argc, char **argv, int *i)
 /* --eye and --target given together; prints why and returns 0 if not. */
 int cli_view_check(const cli_view *v, const char *cmd);
 int cli_write_camera_file(const char *path, const double eye[3], const double target[3], const double up[3], double fov);
-#ifdef PNPR_HAVE_RENDER
 /* The look-at camera of the options (its up from --up: the vector, the axis, or the detected one
  * for auto; +z without --up), else the default camera of the cloud (pnpr_camera_default with the
- * --up choice); NULL when neither can be made. */
-#include <pointnpr/render.h>
+ * --up choice); NULL when neither can be made. Cameras are the core library's (camera.h), with or
+ * without the renderer. */
 const pnpr_camera *cli_view_camera(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam);
 /* The start camera of an animation preset (camera_path.h) and the axis it turns about: the look-at
  * camera of the options and its up when given, else pnpr_camera_preset_start of the cloud with
  * the --up choice. Returns 0 when neither can be made. */
 int cli_view_preset_start(const cli_view *v, const pnpr_cloud *cloud, pnpr_camera *r_cam, double r_up[3]);
-#endif
 
 /* Checks, before any work, that OUT can be written and is none of the inputs
  * (pnpr_output_check); binary: refuses "-" when standard output is a terminal. Prints why and

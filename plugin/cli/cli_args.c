@@ -1,10 +1,8 @@
 /* Argument helpers shared by the subcommands: numbers, comma lists, the view options. */
 #include "cli.h"
 
-#ifdef PNPR_HAVE_RENDER
+#include <pointnpr/camera.h>
 #include <pointnpr/camera_path.h>
-#include <pointnpr/render.h>
-#endif
 
 #include <pointnpr/output.h>
 
@@ -134,10 +132,9 @@ void cli_view_init(cli_view *v, int width, int height)
 }
 
 /* A camera file (pnpr_camera_file_parse, camera_path.h). Returns 1, or 0 after printing
- * FILE:LINE: what is wrong. Without the renderer there is no camera to set. */
+ * FILE:LINE: what is wrong. */
 static int read_camera_file(cli_view *v, const char *cmd, const char *path)
 {
-#ifdef PNPR_HAVE_RENDER
     char *text = NULL;
     size_t size = 0;
     pnpr_error err = {0};
@@ -153,11 +150,6 @@ static int read_camera_file(cli_view *v, const char *cmd, const char *path)
     if (given & PNPR_CAMERA_GIVEN_FOV) v->fov = k.fov_y_deg;
     v->have_eye = v->have_target = 1;
     return 1;
-#else
-    (void)v;
-    fprintf(stderr, "pointnpr %s: --camera %s: cameras need the renderer, which this build does not have\n", cmd, path);
-    return 0;
-#endif
 }
 
 typedef struct camera_text {
@@ -266,7 +258,6 @@ int cli_view_check(const cli_view *v, const char *cmd)
     return 1;
 }
 
-#ifdef PNPR_HAVE_RENDER
 static pnpr_view_options view_up_options(const cli_view *v)
 {
     pnpr_view_options o = {0};
@@ -314,7 +305,6 @@ int cli_view_preset_start(const cli_view *v, const pnpr_cloud *cloud, pnpr_camer
     pnpr_view_options o = view_up_options(v);
     return cloud && pnpr_camera_preset_start(cloud, &o, (float)v->fov, (float)v->width / (float)v->height, r_cam, r_up) == PNPR_OK;
 }
-#endif
 
 int cli_columns_option(const char **columns, const char *cmd, int argc, char **argv, int *i)
 {

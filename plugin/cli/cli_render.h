@@ -1,5 +1,6 @@
-/* The render options and steps shared by `render` and `animate` (cli_render_opts.c). Only with
- * the renderer (PNPR_HAVE_RENDER). */
+/* The render options and steps shared by `render` and `animate` (cli_render_opts.c). The options,
+ * cli_render_load and cli_render_end are there in every build; cli_render_start and
+ * cli_render_frame only with the renderer (PNPR_HAVE_RENDER). */
 #ifndef PNPR_CLI_RENDER_H
 #define PNPR_CLI_RENDER_H
 

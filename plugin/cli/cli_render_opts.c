@@ -1,8 +1,9 @@
-#ifdef PNPR_HAVE_RENDER
 /* The options of a stylised frame shared by `render` and `animate` (style, draw, tone, outline,
  * background, view, outliers), their usage lines, and the steps from a file to pixels: read, the
  * stage plan, the GL context and renderer, one snapshot. One place, so the two commands draw
- * the same frame from the same options. */
+ * the same frame from the same options. The options and the reading are built without the
+ * renderer too (`animate --save-path` without -o needs only them); the steps that draw need it
+ * (PNPR_HAVE_RENDER). */
 #include "cli_render.h"
 
 #include <pointnpr/features.h>
@@ -104,6 +105,7 @@ static int read_style_map(const char *cmd, const char *path, pnpr_style_map *r_m
     return st == PNPR_OK;
 }
 
+#ifdef PNPR_HAVE_RENDER
 /* Progress of a tiled snapshot: one line per tile (single-frame images print nothing). */
 static int tile_progress(void *user, const char *stage, double fraction)
 {
@@ -164,6 +166,7 @@ static int set_profile_lines(const char *cmd, const char *in, const pnpr_cloud *
     if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
     return 1;
 }
+#endif
 
 
 #define BAD(...) do { fprintf(stderr, "pointnpr %s: ", cmd); fprintf(stderr, __VA_ARGS__); return -1; } while (0)
@@ -344,6 +347,7 @@ int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char 
     return cli_outliers_apply(&o->outliers, cmd, in, &s->cloud, o->quiet, NULL) == 0;
 }
 
+#ifdef PNPR_HAVE_RENDER
 int cli_render_start(cli_render_session *s, cli_render_opts *o, const char *cmd, const char *in, const double tone_up[3])
 {
     if (tone_up) memcpy(o->tone.up, tone_up, sizeof o->tone.up);
@@ -379,13 +383,15 @@ int cli_render_frame(cli_render_session *s, const cli_render_opts *o, const char
     if (st != PNPR_OK) cli_report_error_in(cmd, in, st, &err);
     return st == PNPR_OK;
 }
+#endif
 
 void cli_render_end(cli_render_session *s)
 {
     free(s->pixels);
+#ifdef PNPR_HAVE_RENDER
     pnpr_renderer_destroy(s->ren);
     pnpr_gl_context_destroy(s->ctx);
+#endif
     pnpr_cloud_free(&s->cloud);
     memset(s, 0, sizeof *s);
 }
-#endif

@@ -1,20 +1,12 @@
 /* pointnpr animate IN -o OUT.mp4|DIR/: frames of a camera path (a path file, --orbit, --flyover;
  * include/pointnpr/camera_path.h) rendered as `render` would render each of them, written as
- * DIR/frame-%05d.png (resumable: complete frames are kept), then a video through ffmpeg. */
+ * DIR/frame-%05d.png (resumable: complete frames are kept), then a video through ffmpeg.
+ * pointnpr animate IN --save-path FILE without -o writes the camera path only: camera paths are
+ * the core library's, so that works in a build without the renderer too (PNPR_HAVE_RENDER). */
 #include "cli.h"
+#include "cli_render.h"
 
 #include <stdio.h>
-
-#ifndef PNPR_HAVE_RENDER
-int cli_animate(int argc, char **argv)
-{
-    (void)argc; (void)argv;
-    fprintf(stderr, "pointnpr animate: this build has no renderer (libepoxy and libpng were not found)\n");
-    return 1;
-}
-#else
-
-#include "cli_render.h"
 
 #include <pointnpr/camera_path.h>
 #include <pointnpr/output.h>
@@ -40,9 +32,11 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: pointnpr animate IN -o OUT.mp4|DIR/ (--camera-path FILE | --orbit | --flyover) [options]\n"
+            "       pointnpr animate IN --save-path FILE (--camera-path FILE | --orbit | --flyover) [options]\n"
             "  Renders the frames of a camera path as `pointnpr render` renders one picture, into\n"
             "  DIR/frame-00000.png ... (for OUT.mp4: OUT.frames/), then OUT.mp4 with ffmpeg. Frames that\n"
-            "  are already complete are kept, so an interrupted run resumes (docs/export.md).\n"
+            "  are already complete are kept, so an interrupted run resumes (docs/export.md). Without\n"
+            "  -o, only the camera path is written (--save-path; also in a build without the renderer).\n"
             "options:\n"
             "  --camera-path FILE   keyframes: 'time T' lines, each followed by a camera file's lines\n"
             "                       (eye, target, up, fov); 'loop' closes the path (docs/export.md)\n"
@@ -124,7 +118,7 @@ static int parse_args(int argc, char **argv, anim_args *r, cli_render_opts *o)
         if (r->in) { fprintf(stderr, "pointnpr animate: more than one input given ('%s')\n", a); return 2; }
         r->in = a;
     }
-    if (!r->in || !r->out) { usage(stderr); return 2; }
+    if (!r->in || (!r->out && !r->save_path)) { usage(stderr); return 2; }
     return -1;
 }
 
@@ -151,6 +145,8 @@ static int check_args(anim_args *r, cli_render_opts *o)
     pnpr_error err = {0};
     pnpr_status st = r->path_file ? pnpr_camera_path_read(r->path_file, &r->path, &err) : PNPR_OK;
     if (st != PNPR_OK) { cli_report_error("animate", st, &err); return 2; }
+    if (r->save_path && !cli_check_output("animate", r->save_path, &r->in, 1, 0)) return 1; /* e.g. the input */
+    if (!r->out) return -1; /* the camera path only */
     size_t n = strlen(r->out);
     r->video = cli_has_ext(r->out, ".mp4");
     if (!r->video && !(n > 0 && r->out[n - 1] == '/') && !is_dir(r->out)) {
@@ -186,6 +182,7 @@ static int make_path(anim_args *r, const cli_render_opts *o, const pnpr_cloud *c
     return st == PNPR_OK;
 }
 
+#ifdef PNPR_HAVE_RENDER
 /* Frames of the path: an open path ends with its last key, a loop one frame before it. */
 static long frame_count(const pnpr_camera_path *path, double fps)
 {
@@ -428,6 +425,19 @@ static int make_video(const anim_args *r, long n, int quiet)
     if (!r->keep_frames) remove_frames(r->dir, n);
     return 1;
 }
+#endif
+
+/* Without -o: the cloud (for a preset's start camera) and the path, written to --save-path.
+ * Returns the exit code. */
+static int save_path_only(cli_render_opts *o, anim_args *r)
+{
+    cli_render_session s;
+    memset(&s, 0, sizeof s);
+    int ok = (r->path_file || cli_render_load(&s, o, "animate", r->in)) && make_path(r, o, &s.cloud);
+    cli_render_end(&s);
+    if (ok && !o->quiet) fprintf(stderr, "wrote %s\n", r->save_path);
+    return ok ? 0 : 1;
+}
 
 int cli_animate(int argc, char **argv)
 {
@@ -439,6 +449,17 @@ int cli_animate(int argc, char **argv)
     cli_render_opts_init(&o, 1280, 720);
     int rc = parse_args(argc, argv, &r, &o);
     if (rc < 0) rc = check_args(&r, &o);
+    if (rc < 0 && !r.out) rc = save_path_only(&o, &r);
+#ifndef PNPR_HAVE_RENDER
+    if (rc < 0) {
+        fprintf(stderr, "pointnpr animate: this build has no renderer (libepoxy and libpng were not found): "
+                        "it can write the camera path only (--save-path FILE without -o)\n");
+        rc = 1;
+    }
+    pnpr_camera_path_free(&r.path);
+    cli_render_opts_free(&o);
+    return rc;
+#else
     if (rc >= 0) { pnpr_camera_path_free(&r.path); cli_render_opts_free(&o); return rc; }
     char ffmpeg[PNPR_OUTPUT_PATH_MAX];
     if (r.video && !find_ffmpeg(ffmpeg, sizeof ffmpeg))
@@ -452,5 +473,5 @@ int cli_animate(int argc, char **argv)
     pnpr_camera_path_free(&r.path);
     cli_render_opts_free(&o);
     return rc;
-}
 #endif
+}

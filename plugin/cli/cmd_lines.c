@@ -1,12 +1,10 @@
 /* pointnpr lines IN -o OUT.obj|OUT.ply: profile lines from the directional feature points. */
 #include "cli.h"
 
+#include <pointnpr/camera.h>
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
 #include <pointnpr/plan.h>
-#ifdef PNPR_HAVE_RENDER
-#include <pointnpr/render.h>
-#endif
 
 #include <errno.h>
 #include <math.h>
@@ -114,7 +112,6 @@ static int run_plan(const char *in, pnpr_cloud *cloud, pnpr_features_options *fo
 static int write_svg(const svg_args *sa, const cli_view *view, const pnpr_polylines *lines, const pnpr_cloud *cloud,
                      int quiet)
 {
-#ifdef PNPR_HAVE_RENDER
     pnpr_svg_options so = {0};
     so.width = view->width;
     so.height = view->height;
@@ -134,10 +131,6 @@ static int write_svg(const svg_args *sa, const cli_view *view, const pnpr_polyli
     }
     if (!quiet) fprintf(stderr, "wrote %s\n", sa->path);
     return 1;
-#else
-    (void)sa; (void)view; (void)lines; (void)cloud; (void)quiet;
-    return 0;
-#endif
 }
 
 /* The output names: kinds from the extensions (or "-" / a special file), not the same file twice,
@@ -207,9 +200,6 @@ int cli_lines(int argc, char **argv)
     if (!cli_need_in_out("lines", in, out ? out : sa.path, "OUT.obj (or --svg OUT.svg)")) return 2;
     if (!cli_view_check(&view, "lines")) return 2;
     sa.in = in;
-#ifndef PNPR_HAVE_RENDER
-    if (sa.path) { fprintf(stderr, "pointnpr lines: --svg needs the renderer, which this build does not have\n"); return 2; }
-#endif
     int rc = check_outputs(in, out, &sa);
     if (rc) return rc;
     const int as_ply = out && cli_has_ext(out, ".ply");

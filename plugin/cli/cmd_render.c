@@ -6,39 +6,6 @@
 #include <stdio.h>
 
 #ifndef PNPR_HAVE_RENDER
-/* The frame as a vector drawing: merged and ordered when asked, written as SVG or PDF. */
-static int write_vector(cli_render_session *s, const cli_render_opts *o, const render_args *r, const pnpr_camera *camera)
-{
-    pnpr_error err = {0};
-    pnpr_drawing d;
-    pnpr_status st = pnpr_renderer_drawing(s->ren, camera, &o->dopt, o->view.width, o->view.height, &d, &err);
-    if (st != PNPR_OK) { cli_report_error_in("render", r->in, st, &err); return 0; }
-    size_t merged = 0, m = 0;
-    if (r->merge_hatches && st == PNPR_OK) st = pnpr_drawing_merge_collinear(&d, PNPR_LAYER_HATCHES, 1, 0.5f, 1, &merged);
-    if (r->merge_hatches && st == PNPR_OK) st = pnpr_drawing_merge_collinear(&d, PNPR_LAYER_TONE, 1, 0.5f, 1, &m);
-    double travel = pnpr_drawing_travel(&d);
-    if (r->plot_order && st == PNPR_OK) st = pnpr_drawing_order_for_plotter(&d);
-    if (st == PNPR_OK)
-        st = r->kind == OUT_SVG ? pnpr_drawing_write_svg(&d, r->out, &err) : pnpr_drawing_write_pdf(&d, r->out, &err);
-    else pnpr_error_set(&err, st, "render: %s: out of memory", r->out);
-    if (st != PNPR_OK) cli_report_error("render", st, &err);
-    else if (!o->quiet) {
-        fprintf(stderr, "%s: %zu paths (", r->in, d.count);
-        for (int L = 0; L < PNPR_LAYER_COUNT_; L++) {
-            size_t n = 0;
-            for (size_t i = 0; i < d.count; i++) n += d.layer[i] == L;
-            if (n) fprintf(stderr, "%s %zu, ", pnpr_drawing_layer_name((pnpr_drawing_layer)L), n);
-        }
-        fprintf(stderr, "%.0f px of ink), style %s, %dx%d", pnpr_drawing_ink_length(&d, PNPR_LAYER_COUNT_),
-                pnpr_style_name(o->dopt.style), o->view.width, o->view.height);
-        if (r->merge_hatches) fprintf(stderr, ", %zu hatches merged", merged + m);
-        if (r->plot_order) fprintf(stderr, ", pen-up travel %.0f -> %.0f px", travel, pnpr_drawing_travel(&d));
-        fprintf(stderr, " -> %s\n", r->out);
-    }
-    pnpr_drawing_free(&d);
-    return st == PNPR_OK;
-}
-
 int cli_render(int argc, char **argv)
 {
     (void)argc; (void)argv;

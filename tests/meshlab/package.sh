@@ -51,11 +51,13 @@ installed=$(dpkg-query -W -f='${Version}' meshlab 2> /dev/null)
   fail "the installed meshlab is '$installed' but the build was configured against '$MLVER' (reconfigure)"
 # the libraries the binaries link (dpkg-shlibdeps) and the ones the renderer loads at run time
 dep() { awk -v p="$1" '$1 == p { ok = 1 } END { exit !ok }' "$W/depends.txt"; }
-for p in libc6 libstdc++6 libopenmesh1 libpng16-16 libqt5core5a; do
+for p in libc6 libstdc++6 libopenmesh1 libqt5core5a; do
   dep "$p" || fail "Depends lacks $p: $depends"
 done
+# libpng comes with the renderer (PNG output), which the decorator needs: a build without libepoxy
+# or libpng has neither
 if [[ -n "$DECORATE" ]]; then
-  for p in libepoxy0 libegl1 libgl1 libgl1-mesa-dri; do
+  for p in libpng16-16 libepoxy0 libegl1 libgl1 libgl1-mesa-dri; do
     dep "$p" || fail "Depends lacks $p: $depends"
   done
 fi

@@ -47,6 +47,9 @@ fi
 check '[ $rc -eq 0 ] && [ "$(count "$dir/orbit")" -eq 8 ]' "orbit: 8 frames (rc $rc: $(tail -2 "$dir/log.txt"))"
 check 'grep -q "animate: frame 1/8 (12%), .* s/frame, ETA 0m0[0-9]s" "$dir/log.txt"' "progress with ETA on stderr"
 check 'grep -q "^loop$" "$dir/orbit.campath" && [ "$(grep -c "^time " "$dir/orbit.campath")" -eq 181 ]' "--save-path: a loop of 181 keys"
+# without -o: the path only (also without the renderer: tests/cli_animate_path.sh), the same bytes
+"$bin" animate "$dir/box.ply" --orbit --duration 2 --fps 4 --style sketchy --outline on --save-path "$dir/only.campath" $A
+check '[ $? -eq 0 ] && cmp -s "$dir/only.campath" "$dir/orbit.campath" && [ "$(count "$dir")" -eq 0 ]' "--save-path without -o: the same path, no frames"
 # frame k equals render --camera-at k/fps (same pixels), sketchy and points
 for k in 0 3 5; do
   t=$(awk -v k=$k 'BEGIN { printf "%.17g", k / 4 }')

@@ -15,6 +15,7 @@
 #include <pointnpr/features.h>
 #include <pointnpr/io.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/render.h>
 
 #include <math.h>
 #include <stdlib.h>

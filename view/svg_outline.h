@@ -5,7 +5,7 @@
 #ifndef PNPR_SVG_OUTLINE_H
 #define PNPR_SVG_OUTLINE_H
 
-#include "render_internal.h"
+#include "view_internal.h"
 
 /* Polylines in pixel coordinates of the drawing (x right, y down, pixel (i, j) covers
  * [i, i+1) x [j, j+1)). Polyline k has vertices offset[k] .. offset[k+1]-1. */

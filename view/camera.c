@@ -1,6 +1,6 @@
 /* Camera: auto-fit and the look-at / perspective matrices (in double, relative to the cloud's
  * origin, then converted to float). */
-#include "render_internal.h"
+#include "view_internal.h"
 #include <pointnpr/outliers.h>
 #include "../core/vec3.h"
 

@@ -3,7 +3,7 @@
  * of a frame's budget is exact. */
 #include "testutil.h"
 
-#include <pointnpr/render.h>
+#include <pointnpr/crq.h>
 
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +26,7 @@ int main(void)
     uint32_t *a = malloc(N * sizeof *a), *b = malloc(N * sizeof *b), *c = malloc(N * sizeof *c);
     uint8_t *group = malloc(N);
     CHECK(a && b && c && group);
-    if (!a || !b || !c || !group) return pnpr_test_finish("test_render_crq");
+    if (!a || !b || !c || !group) return pnpr_test_finish("test_crq");
 
     /* one group: a permutation, deterministic, seed-dependent, not the identity */
     size_t starts[8];
@@ -90,5 +90,5 @@ int main(void)
     CHECK(a[0] == 0);
 
     free(a); free(b); free(c); free(group);
-    return pnpr_test_finish("test_render_crq");
+    return pnpr_test_finish("test_crq");
 }

@@ -1,15 +1,18 @@
 /* SVG line drawings: a cube's profile lines seen from a corner, rendered by rsvg-convert; the
  * three edges hidden behind the cube must be absent, the front edges present; with hidden parts
- * kept, the back edges appear. Bad arguments get exact error codes. */
+ * kept, the back edges appear. Bad arguments get exact error codes. The rendered drawings are
+ * read back with libpng: without it (PNPR_TEST_HAVE_PNG unset) the test is skipped (77). */
 #include "testutil.h"
-#include "../../render/render_internal.h"
+#include "../view/view_internal.h"
 
+#include <pointnpr/camera.h>
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
-#include <pointnpr/render.h>
 
 #include <math.h>
+#ifdef PNPR_TEST_HAVE_PNG
 #include <png.h>
+#endif
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +22,7 @@
 /* Reads an 8-bit RGB(A) PNG into grey values; 0 on failure. */
 static int read_grey(const char *path, unsigned char *grey)
 {
+#ifdef PNPR_TEST_HAVE_PNG
     png_image img;
     memset(&img, 0, sizeof img);
     img.version = PNG_IMAGE_VERSION;
@@ -27,6 +31,10 @@ static int read_grey(const char *path, unsigned char *grey)
     if (img.width != W || img.height != H) { png_image_free(&img); return 0; }
     int ok = png_image_finish_read(&img, NULL, grey, 0, NULL);
     return ok;
+#else
+    (void)path; (void)grey;
+    return 0;
+#endif
 }
 
 /* Darkest pixel within r px of (x, y). */
@@ -54,6 +62,10 @@ static void project(const pnpr_frame_camera *fc, const double p[3], double *x, d
 
 int main(void)
 {
+#ifndef PNPR_TEST_HAVE_PNG
+    fprintf(stderr, "test_svg_lines: skipped: built without libpng, which reads the rendered drawings back\n");
+    return 77;
+#endif
     if (system("rsvg-convert --version > /dev/null 2>&1") != 0) {
         fprintf(stderr, "test_svg_lines: rsvg-convert is missing (packaging/deps/lines.txt installs it)\n");
         return 1;

@@ -14,8 +14,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
 
+#include <pointnpr/camera.h>
 #include <pointnpr/lines.h>
-#include <pointnpr/render.h>
 
 #include <math.h>
 #include <stdlib.h>

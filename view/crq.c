@@ -1,6 +1,6 @@
 /* Continuous resolution queue (PointWorks section 4.4): the points of each group in a random
  * order fixed once; a frame draws a prefix of each group's queue. */
-#include <pointnpr/render.h>
+#include <pointnpr/crq.h>
 
 #include <stdlib.h>
 #include <string.h>

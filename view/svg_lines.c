@@ -1,5 +1,5 @@
 /* Profile lines as an SVG drawing, through the renderer's camera, with hidden parts removed by a
- * CPU depth test against the occluder cloud (see pnpr_write_lines_svg in render.h).
+ * CPU depth test against the occluder cloud (see pnpr_write_lines_svg in camera.h).
  *
  * - Projection: pnpr_frame_camera_make (the renderer's own view and projection), frame origin =
  *   the lines' origin; occluder points are re-expressed in it in double.
@@ -13,7 +13,7 @@
  *   shrinks likewise at its end. Coordinates in px with 2 decimals.
  * - Outlines (svg_outline.c): the occluders' silhouettes and contours as <path>s in
  *   <g id="outlines">, written before the lines' group <g id="lines">. */
-#include "render_internal.h"
+#include "view_internal.h"
 #include "svg_outline.h"
 #include "../core/internal.h"
 #include <pointnpr/output.h>

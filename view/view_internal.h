@@ -1,0 +1,34 @@
+/* Internal helpers of the cameras (view/camera.c), shared by the SVG line drawings
+ * (view/svg_lines.c, view/svg_outline.c) and the renderer (render/render_internal.h includes
+ * this header). Pure CPU; not installed. */
+#ifndef PNPR_VIEW_INTERNAL_H
+#define PNPR_VIEW_INTERNAL_H
+
+#include <pointnpr/camera.h>
+
+/* Column-major 4x4 matrices (OpenGL layout): m[col * 4 + row]. */
+typedef struct pnpr_frame_camera {
+    float view[16], proj[16];
+    float pixels_per_unit; /* proj[1][1] * height / 2 (times the view's uniform scale) */
+    double near_plane, far_plane; /* eye-space distances (orthographic: may be <= 0) */
+    int ortho;             /* orthographic projection: clip w = 1 everywhere */
+} pnpr_frame_camera;
+
+/* View and projection for `cam` relative to `origin` (eye - origin computed in double), with
+ * automatic near/far from the box [bmin, bmax] (offset coordinates) when the camera leaves
+ * them at 0. PNPR_ERR_NUMERIC for non-finite or degenerate cameras. */
+pnpr_status pnpr_frame_camera_make(const pnpr_camera *cam, const double origin[3],
+                                   const float bmin[3], const float bmax[3], int have_box,
+                                   int width, int height, pnpr_frame_camera *r, pnpr_error *err);
+
+/* View and projection from explicit world matrices (pnpr_camera_matrices), the view rebased on
+ * `origin` in double. PNPR_ERR_NUMERIC for matrices the renderer cannot use. */
+pnpr_status pnpr_frame_camera_from_matrices(const pnpr_camera_matrices *m, const double origin[3],
+                                            int width, int height, pnpr_frame_camera *r, pnpr_error *err);
+
+/* Screen pixels covered by the projected box (clipped to the viewport); the whole viewport
+ * when a corner is behind the eye. */
+double pnpr_box_coverage(const pnpr_frame_camera *fc, const float bmin[3], const float bmax[3],
+                         int width, int height);
+
+#endif
