@@ -469,7 +469,7 @@ pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *er
     if (s != PNPR_STYLE_SKETCHY && s != PNPR_STYLE_STIPPLE && s != PNPR_STYLE_LINES && s != PNPR_STYLE_CARTOON)
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
                               "vector: style '%s' fills areas; vector drawings are made of the strokes of sketchy, "
-                              "stipple, lines and the outlines of cartoon",
+                              "stipple, lines and the colour areas and outlines of cartoon",
                               pnpr_style_name(s));
     return PNPR_OK;
 }
