@@ -91,22 +91,12 @@ static void distances(ink_img *g)
 }
 
 /* A chain being walked: pixel centres; the sum of the ink's distances along it. */
-typedef struct chain { float *xy; size_t n, cap; double dsum; } chain;
+typedef struct chain { pnpr_polybuf p; double dsum; } chain;
 
 static int chain_push(chain *c, const ink_img *g, int x, int y)
 {
     c->dsum += g->dist[(size_t)y * (size_t)g->w + (size_t)x];
-    if (c->n == c->cap) {
-        size_t cap = c->cap ? 2 * c->cap : 64;
-        float *q = realloc(c->xy, 2 * cap * sizeof *q);
-        if (!q) return 0;
-        c->xy = q;
-        c->cap = cap;
-    }
-    c->xy[2 * c->n] = (float)x + 0.5f;
-    c->xy[2 * c->n + 1] = (float)y + 0.5f;
-    c->n++;
-    return 1;
+    return pnpr_polybuf_push(&c->p, (float)x + 0.5f, (float)y + 0.5f);
 }
 
 /* The next pixel from (x, y): an unvisited neighbour (4-neighbours first), else a junction that is
@@ -128,16 +118,16 @@ static int next_pixel(const ink_img *g, const uint8_t *junction, int x, int y, i
 /* Smooths the interior vertices (closed: all) and simplifies (Douglas-Peucker) in place. */
 static void smooth(chain *c, int closed)
 {
-    size_t n = c->n;
+    size_t n = c->p.n;
     if (n < 3) return;
     float *t = malloc(2 * n * sizeof *t);
     if (!t) return;
     for (int pass = 0; pass < SMOOTH_PASSES; pass++) {
-        memcpy(t, c->xy, 2 * n * sizeof *t);
+        memcpy(t, c->p.xy, 2 * n * sizeof *t);
         for (size_t i = 0; i < n; i++) {
             if (!closed && (i == 0 || i == n - 1)) continue;
             size_t a = i ? i - 1 : n - 1, b = i + 1 < n ? i + 1 : 0;
-            for (int k = 0; k < 2; k++) c->xy[2 * i + k] = 0.25f * t[2 * a + k] + 0.5f * t[2 * i + k] + 0.25f * t[2 * b + k];
+            for (int k = 0; k < 2; k++) c->p.xy[2 * i + k] = 0.25f * t[2 * a + k] + 0.5f * t[2 * i + k] + 0.25f * t[2 * b + k];
         }
     }
     free(t);
@@ -146,8 +136,8 @@ static void smooth(chain *c, int closed)
 /* Douglas-Peucker to SIMPLIFY_PX (vector/simplify.c); out of memory keeps the chain as it is. */
 static void simplify(chain *c)
 {
-    size_t m = pnpr_simplify_polyline(c->xy, c->n, SIMPLIFY_PX);
-    if (m) c->n = m;
+    size_t m = pnpr_simplify_polyline(c->p.xy, c->p.n, SIMPLIFY_PX);
+    if (m) c->p.n = m;
 }
 
 typedef struct trace_out {
@@ -162,17 +152,17 @@ typedef struct trace_out {
 static pnpr_status emit(const trace_out *o, chain *c, int closed, size_t pixels)
 {
     if (pixels < MIN_PIXELS) return PNPR_OK;
-    double band = 2.0 * c->dsum / (double)c->n - 1.0;
+    double band = 2.0 * c->dsum / (double)c->p.n - 1.0;
     float width = band > o->width ? (float)band : o->width;
     smooth(c, closed);
     simplify(c);
-    return pnpr_drawing_add(o->d, c->xy, c->n, width, o->rgba, o->layer, closed ? PNPR_PATH_CLOSED : 0);
+    return pnpr_drawing_add(o->d, c->p.xy, c->p.n, width, o->rgba, o->layer, closed ? PNPR_PATH_CLOSED : 0);
 }
 
 /* Walks from (x, y) through (nx, ny) until an end or a junction; pixels passed become visited. */
 static pnpr_status walk(ink_img *g, const uint8_t *junction, const trace_out *o, chain *c, int x, int y, int nx, int ny)
 {
-    c->n = 0;
+    c->p.n = 0;
     c->dsum = 0;
     if (!chain_push(c, g, x, y)) return PNPR_ERR_OUT_OF_MEMORY;
     int px = x, py = y;
@@ -213,7 +203,7 @@ static pnpr_status trace_chains(ink_img *g, const uint8_t *junction, const trace
             size_t i = (size_t)y * (size_t)g->w + (size_t)x;
             if (g->m[i] != 1) continue;
             g->m[i] = 2;
-            c.n = 0;
+            c.p.n = 0;
             c.dsum = 0;
             size_t pixels = 1;
             int px = -1, py = -1, cx = x, cy = y, nx, ny;
@@ -228,7 +218,7 @@ static pnpr_status trace_chains(ink_img *g, const uint8_t *junction, const trace
             int dx = abs(cx - x), dy = abs(cy - y); /* closed when the walk came back beside its start */
             if (st == PNPR_OK) st = emit(o, &c, pixels > 3 && dx <= 1 && dy <= 1, pixels);
         }
-    free(c.xy);
+    free(c.p.xy);
     return st;
 }
 

@@ -82,22 +82,9 @@ static void mark_edges(region_ctx *c)
         }
 }
 
-typedef struct loop { float *xy; size_t n, cap; } loop;
+typedef pnpr_polybuf loop;
 
-static int loop_push(loop *l, int x, int y)
-{
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? 2 * l->cap : 64;
-        float *q = realloc(l->xy, 2 * cap * sizeof *q);
-        if (!q) return 0;
-        l->xy = q;
-        l->cap = cap;
-    }
-    l->xy[2 * l->n] = (float)x;
-    l->xy[2 * l->n + 1] = (float)y;
-    l->n++;
-    return 1;
-}
+static int loop_push(loop *l, int x, int y) { return pnpr_polybuf_push(l, (float)x, (float)y); }
 
 /* Step 3: the loop through edge (x, y, d) of colour `owner`, its corners where it turns. */
 static int walk_loop(region_ctx *c, int x, int y, int d, uint32_t owner, loop *l)

@@ -1,11 +1,27 @@
-/* Douglas-Peucker simplification of polylines and polygons (vector_internal.h), with an explicit
- * stack: no recursion however long the line. */
+/* Polylines of the tracers (vector_internal.h): the growing buffer, and Douglas-Peucker
+ * simplification of polylines and polygons with an explicit stack (no recursion however long the
+ * line). */
 #include "vector_internal.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+int pnpr_polybuf_push(pnpr_polybuf *b, float x, float y)
+{
+    if (b->n == b->cap) {
+        size_t cap = b->cap ? 2 * b->cap : 64;
+        float *q = cap > SIZE_MAX / (2 * sizeof *q) ? NULL : realloc(b->xy, 2 * cap * sizeof *q);
+        if (!q) return 0;
+        b->xy = q;
+        b->cap = cap;
+    }
+    b->xy[2 * b->n] = x;
+    b->xy[2 * b->n + 1] = y;
+    b->n++;
+    return 1;
+}
 
 static double seg_dist(const float *p, const float *a, const float *b)
 {

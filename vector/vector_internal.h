@@ -4,6 +4,15 @@
 
 #include <stddef.h>
 
+/* A growing polyline of float vertices (2 a vertex); zero-initialised = empty; free(xy). */
+typedef struct pnpr_polybuf {
+    float *xy;
+    size_t n, cap;
+} pnpr_polybuf;
+
+/* Appends (x, y); 0 when out of memory (the buffer unchanged). */
+int pnpr_polybuf_push(pnpr_polybuf *b, float x, float y);
+
 /* Douglas-Peucker: simplifies the open polyline xy[0 .. n-1] (2 floats a vertex) in place to
  * within `tol`, keeping its first and last vertex; returns the vertices kept, or 0 when out of
  * memory (xy unchanged). */
