@@ -210,8 +210,8 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *renderer, const pnpr_camera *c
 /* ---- vector drawings ---- */
 
 /* The frame of `opts` at width x height (within the GL limit) as a vector drawing (drawing.h):
- * the strokes and hatches of `sketchy`, the dots of `stipple`, the profile lines of `lines` and
- * the outlines of `lines`, `sketchy`, `stipple` and `cartoon` (its colour areas are not drawn),
+ * the strokes and hatches of `sketchy`, the dots of `stipple`, the profile lines of `lines`, the
+ * flat colour areas of `cartoon` (filled paths) and the outlines of every one of them,
  * each placed as the shaders place it, the hidden ones removed with the frame's own visibility
  * mask (docs/export.md, "Vector drawings"). The renderer's frame afterwards holds this frame.
  * *r_drawing is replaced (release it with pnpr_drawing_free). PNPR_ERR_UNSUPPORTED for the
