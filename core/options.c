@@ -1,5 +1,5 @@
 /* Working with the options tables of options.h: find, get/set, defaults, range checks, text.
- * The tables themselves are in filters/options_table.c. */
+ * The tables themselves are in filters/options_table.c and core/options_render.c. */
 #include <pointnpr/options.h>
 
 #include <math.h>
@@ -38,13 +38,15 @@ void pnpr_option_set(const pnpr_option_desc *d, void *opts, double value)
 
 void pnpr_option_set_defaults(const pnpr_option_desc *table, size_t count, void *opts)
 {
-    for (size_t i = 0; i < count; i++) pnpr_option_set(&table[i], opts, table[i].def);
+    for (size_t i = 0; i < count; i++)
+        pnpr_option_set(&table[i], opts, (table[i].flags & PNPR_OPTION_STYLE_DEFAULT) ? 0 : table[i].def);
 }
 
 void pnpr_option_fill_defaults(const pnpr_option_desc *table, size_t count, void *opts)
 {
     for (size_t i = 0; i < count; i++)
-        if (!(table[i].flags & PNPR_OPTION_ZERO_IS_VALUE) && pnpr_option_get(&table[i], opts) == 0)
+        if (!(table[i].flags & (PNPR_OPTION_ZERO_IS_VALUE | PNPR_OPTION_STYLE_DEFAULT)) &&
+            pnpr_option_get(&table[i], opts) == 0)
             pnpr_option_set(&table[i], opts, table[i].def);
 }
 

@@ -1,6 +1,6 @@
 /* Writers for profile lines: OBJ polylines (`l` statements) and PLY with an `edge` element.
  * World coordinates = origin + offset in double, printed with %.17g (exact round trip). */
-#include <pointnpr/lines.h>
+#include <pointnpr/polylines.h>
 
 #include "../core/internal.h"
 #include <pointnpr/output.h>

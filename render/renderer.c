@@ -314,6 +314,11 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
                                   "renderer: style map: label %u is '%s', which needs the feature properties feature_class and feature_dir_x/y/z (pnpr_compute_features)",
                                   (unsigned)o->style_map[i].label, pnpr_style_name(s));
     }
+    /* the zeros that mean "the default" become the table's defaults (options.h); those of the
+     * style (mask scale, ink, outlines) stay 0 and are resolved where the style is known */
+    size_t n = 0;
+    const pnpr_option_desc *table = pnpr_draw_option_table(&n);
+    pnpr_option_fill_defaults(table, n, o);
     return PNPR_OK;
 }
 
@@ -439,11 +444,9 @@ static pnpr_status prepare_frame(const pnpr_renderer *r, const pnpr_camera *came
     if (st == PNPR_OK) st = resolve_map(r, f, r_vstyle, err);
     if (st != PNPR_OK) return st;
     const pnpr_draw_options *o = &f->o;
-    f->point_scale = o->point_scale > 0 ? o->point_scale : 1;
-    f->mask_scale = o->mask_scale > 0 ? o->mask_scale : o->style == PNPR_STYLE_CARTOON ? 2.0f : 1.5f;
-    float ink[4] = {0.08f, 0.08f, 0.1f, 1};
-    if (o->ink[0] != 0 || o->ink[1] != 0 || o->ink[2] != 0 || o->ink[3] != 0) memcpy(ink, o->ink, sizeof ink);
-    memcpy(f->ink, ink, sizeof ink);
+    f->point_scale = o->point_scale;
+    f->mask_scale = pnpr_draw_mask_scale(o, o->style);
+    pnpr_draw_ink(o, f->ink);
 
     frame_plan plan;
     st = pnpr_renderer_plan_frame(r, camera, o, w, h, &plan, err);
@@ -508,7 +511,7 @@ static void record_frame(pnpr_frame_record *rec, const pnpr_frame_ctx *f)
     rec->lod = f->lod;
     memcpy(rec->ink, f->ink, sizeof f->ink);
     rec->outline = f->outline;
-    rec->outline_width = f->outline_width > 0 ? f->outline_width : 2;
+    rec->outline_width = f->outline_width;
     rec->mapped = f->mapped;
 }
 
@@ -522,8 +525,7 @@ static pnpr_status draw_outlines(pnpr_renderer *r, const pnpr_frame_ctx *f, int 
      * mean mask radii beyond them (measured on random samplings, docs/rendering.md); the
      * silhouette is drawn that far inside it */
     float inset = 1.1f;
-    pnpr_edge_params ep = {f->outline_width > 0 ? f->outline_width : 2, o->outline_jump > 0 ? o->outline_jump : PNPR_OUTLINE_JUMP,
-                           o->outline_hole > 0 ? o->outline_hole : PNPR_OUTLINE_HOLE, PNPR_EDGE_MAX_REACH, f->fc.pixels_per_unit,
+    pnpr_edge_params ep = {f->outline_width, o->outline_jump, o->outline_hole, PNPR_EDGE_MAX_REACH, f->fc.pixels_per_unit,
                            f->fc.ortho, {f->ink[0], f->ink[1], f->ink[2], f->ink[3]}, inset,
                            {o->background[0] * a, o->background[1] * a, o->background[2] * a, a}};
     if (ink_only) {

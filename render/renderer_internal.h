@@ -14,6 +14,8 @@
 #include "render_internal.h"
 #include "edges.h"
 
+#include <pointnpr/options.h>
+
 #include <epoxy/gl.h>
 
 #include <stddef.h>
@@ -52,7 +54,7 @@ typedef struct stroke_uniforms {
 
 typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
 
-enum { PAINT_MAX_BINS = 16, PAINT_K = 12, BRUSH_TEX = 64 };
+enum { PAINT_MAX_BINS = PNPR_PAINTERLY_BINS_MAX, PAINT_K = 12, BRUSH_TEX = 64 };
 
 struct pnpr_renderer {
     GLuint prog_splat, prog_stroke, prog_composite, prog_line, prog_paint;
@@ -164,7 +166,9 @@ typedef struct frame_plan {
     float lod;
 } frame_plan;
 
-/* The draw (renderer.c): *o = the checked options (zeros where opts is NULL); the plan of a
+/* The draw (renderer.c): *o = the checked options (zeros where opts is NULL), their zeros
+ * replaced by the defaults of pnpr_draw_option_table (options.h) except those of the style
+ * (pnpr_draw_mask_scale, pnpr_draw_ink, pnpr_style_outline_default); the plan of a
  * w x h image; one frame or one tile of it into the renderer's framebuffer (composited into the
  * target unless it is offscreen or a tile), *rec filled when given. */
 pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_options *opts, pnpr_draw_options *o,

@@ -19,7 +19,7 @@ void pnpr_renderer_draw_buffers(int info, int color)
 float pnpr_queue_fade_length(size_t drawn, size_t size, float fraction)
 {
     if (fraction < 0 || drawn == 0 || drawn >= size) return 0;
-    double f = (fraction > 0 ? fraction : PNPR_QUEUE_FADE) * (double)drawn, left = (double)(size - drawn) + 1;
+    double f = (fraction > 0 ? fraction : pnpr_draw_defaults().queue_fade) * (double)drawn, left = (double)(size - drawn) + 1;
     if (f > left) f = left;
     return f >= 1 ? (float)f : 1.0f;
 }
@@ -147,10 +147,10 @@ static size_t draw_sketchy(pnpr_renderer *r, const pnpr_frame_ctx *f)
     const pnpr_draw_options *o = &f->o;
     const float *ink = f->ink;
     size_t strokes = 0;
-    float stroke_length = o->stroke_length > 0 ? o->stroke_length : 6;
+    float stroke_length = o->stroke_length;
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     blend_marks();
-    stroke_program(r, f, o->stroke_width > 0 ? o->stroke_width : 2, ink, o->ink_from_points);
+    stroke_program(r, f, o->stroke_width, ink, o->ink_from_points);
     int draw_group[3] = {1, o->sketch_variant != PNPR_SKETCH_DIRECTIONAL, o->sketch_variant == PNPR_SKETCH_ALL};
     /* the dithering hatches (tone) in a lighter pencil than the strokes and hatches of features */
     float tone_ink[4] = {ink[0], ink[1], ink[2], ink[3] * SKETCH_TONE_INK};
@@ -186,7 +186,7 @@ static size_t draw_stipple(pnpr_renderer *r, const pnpr_frame_ctx *f)
     glUniform1f(r->us.depth_push, 0.0f);
     glUniform1f(r->us.fade, 1.0f);
     glUniform4fv(r->us.fade_color, 1, f->ink);
-    glUniform1f(r->us.fixed_size, o->dot_size > 0 ? o->dot_size : 2.5f);
+    glUniform1f(r->us.fixed_size, o->dot_size);
     glBindVertexArray(r->vao_points);
     for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
         if (!f->gdraw[g]) continue;
@@ -223,7 +223,7 @@ static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_ctx *f)
     glUniformMatrix4fv(r->ul.view, 1, GL_FALSE, lview);
     glUniformMatrix4fv(r->ul.proj, 1, GL_FALSE, fc->proj);
     glUniform2f(r->ul.viewport, (float)f->fw, (float)f->fh);
-    glUniform1f(r->ul.width, o->line_width > 0 ? o->line_width : 2);
+    glUniform1f(r->ul.width, o->line_width);
     /* orthographic: w = 1 everywhere, nothing to move onto the near plane (GL clips) */
     glUniform1f(r->ul.near_plane, fc->ortho ? -1e30f : (float)fc->near_plane);
     glUniform4fv(r->ul.ink, 1, f->ink);
@@ -232,7 +232,7 @@ static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_ctx *f)
     glUniform1f(r->ul.pull, 2.0f * r->mean_radius * f->point_scale * f->lod);
     glUniform1i(r->ul.ortho, fc->ortho);
     glUniform1f(r->ul.ppu, fc->pixels_per_unit);
-    glUniform1f(r->ul.min_px, o->line_min_px > 0 ? o->line_min_px : PNPR_LINE_MIN_PX);
+    glUniform1f(r->ul.min_px, o->line_min_px);
     glBindVertexArray(r->vao_lines);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)r->line_segments);
     return r->line_segments;
@@ -299,14 +299,13 @@ static size_t draw_paint_strokes(pnpr_renderer *r, const pnpr_frame_ctx *f, int 
     if (o->paint_no_strokes || n == 0) return 0;
     if (!o->paint_no_sky_mask) glEnable(GL_STENCIL_TEST);
     else glDisable(GL_STENCIL_TEST);
-    float ink[4] = {0.08f, 0.08f, 0.1f, 1};
-    int ink_given = o->ink[0] != 0 || o->ink[1] != 0 || o->ink[2] != 0 || o->ink[3] != 0;
-    if (ink_given) memcpy(ink, o->ink, sizeof ink);
-    stroke_program(r, f, o->stroke_width > 0 ? o->stroke_width : 2, ink, o->ink_from_points || !ink_given);
+    float ink[4];
+    int ink_given = pnpr_draw_ink(o, ink);
+    stroke_program(r, f, o->stroke_width, ink, o->ink_from_points || !ink_given);
     glUniform1i(r->ut_filter, filter);
     glUniform1i(r->ut.mode, 0);
     glUniform1f(r->ut.layer, (float)o->stroke_texture);
-    glUniform1f(r->ut.length, o->stroke_length > 0 ? o->stroke_length : 6);
+    glUniform1f(r->ut.length, o->stroke_length);
     pnpr_renderer_vertex_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->group_start[GROUP_DIRECTIONAL], 1, 0);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)n);
     return n;
@@ -320,7 +319,7 @@ static size_t draw_paint_strokes(pnpr_renderer *r, const pnpr_frame_ctx *f, int 
  * filter + 1 under the points of this style) is already drawn. Returns the dabs and strokes. */
 static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter)
 {
-    float mask_scale = f->o.mask_scale > 0 ? f->o.mask_scale : 1.5f;
+    float mask_scale = pnpr_draw_mask_scale(&f->o, PNPR_STYLE_PAINTERLY);
     if (filter < 0) {
         splat_program(r, f);
         mask_spec m = {mask_scale, -1, 1, 1, 0, 0, 1};
@@ -350,7 +349,7 @@ size_t pnpr_renderer_draw_single(pnpr_renderer *r, const pnpr_frame_ctx *f)
             draw_faint(r, f);
             glClear(GL_DEPTH_BUFFER_BIT);
         }
-        float levels = r->has_labels || !r->has_rgb ? 0.0f : (float)(o->levels ? o->levels : 4);
+        float levels = r->has_labels || !r->has_rgb ? 0.0f : (float)o->levels;
         if (s == PNPR_STYLE_POINTS) {
             draw_splats(r, f, r->vao_points); /* the only pass */
         } else {
@@ -385,8 +384,8 @@ size_t pnpr_renderer_draw_single(pnpr_renderer *r, const pnpr_frame_ctx *f)
 static void draw_mapped_mask(pnpr_renderer *r, const pnpr_frame_ctx *f)
 {
     const pnpr_draw_options *o = &f->o;
-    float mask_scale = o->mask_scale > 0 ? o->mask_scale : 1.5f;
-    float outline_scale = o->mask_scale > 0 ? o->mask_scale : 2.0f;
+    float mask_scale = pnpr_draw_mask_scale(o, PNPR_STYLE_POINTS); /* every style's but cartoon's */
+    float outline_scale = pnpr_draw_mask_scale(o, PNPR_STYLE_CARTOON);
     splat_program(r, f);
     for (int s = 0; s < PNPR_STYLE_COUNT_; s++) {
         if (!f->used[s] || s == PNPR_STYLE_CARTOON) continue;

@@ -77,11 +77,12 @@ static int tile_margin(const pnpr_renderer *r, const pnpr_draw_options *o, const
     }
     if (!(dmin > plan->fc.near_plane)) dmin = plan->fc.near_plane;
     if (plan->fc.ortho) dmin = 1; /* orthographic: clip w = 1, sprite sizes do not depend on depth */
-    float ps = o->point_scale > 0 ? o->point_scale : 1, ms = o->mask_scale > 0 ? o->mask_scale : 2.0f;
+    /* o: checked and filled (pnpr_renderer_check_options); the mask scale: cartoon's default, the larger */
+    float ps = o->point_scale, ms = pnpr_draw_mask_scale(o, PNPR_STYLE_CARTOON);
     double grow = ps * plan->lod * (ms > PNPR_PAINT_MAX_BRUSH ? ms : PNPR_PAINT_MAX_BRUSH);
     double sprite = r->count ? 2.0 * r->max_radius * grow * plan->fc.pixels_per_unit / dmin : 0;
     if (!(sprite <= r->max_point_size)) sprite = r->max_point_size;
-    double extra = (o->dot_size > 0 ? o->dot_size : 2.5) + (o->line_width > 0 ? o->line_width : 2) +
+    double extra = (double)o->dot_size + (double)o->line_width +
                    PNPR_EDGE_MAX_REACH + PNPR_EDGE_MAX_INSET + 3 + (o->outline_width > 0 ? o->outline_width : 4);
     int margin = (int)ceil(0.5 * sprite + extra) + 1;
     if (margin > tmax / 4) margin = tmax / 4;

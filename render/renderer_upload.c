@@ -278,7 +278,10 @@ static pnpr_status upload_check(const pnpr_cloud *cloud, const pnpr_upload_optio
     if (u->o.spacing_k > PNPR_SPACING_K_MAX)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: spacing_k %u is more than %d",
                               (unsigned)u->o.spacing_k, PNPR_SPACING_K_MAX);
-    u->k = u->o.spacing_k ? u->o.spacing_k : 4;
+    size_t nt = 0;
+    const pnpr_option_desc *table = pnpr_upload_option_table(&nt);
+    pnpr_option_fill_defaults(table, nt, &u->o); /* the zeros: the table's defaults (options.h) */
+    u->k = u->o.spacing_k;
     u->pc = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_CLASS);
     u->pd[0] = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_X);
     u->pd[1] = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_Y);
@@ -288,7 +291,7 @@ static pnpr_status upload_check(const pnpr_cloud *cloud, const pnpr_upload_optio
     if (u->o.painterly_bins > PAINT_MAX_BINS)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: painterly_bins %u is more than %d",
                               (unsigned)u->o.painterly_bins, PAINT_MAX_BINS);
-    u->nbins = u->o.painterly_bins ? u->o.painterly_bins : 4;
+    u->nbins = u->o.painterly_bins;
     return PNPR_OK;
 }
 

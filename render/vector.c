@@ -193,7 +193,7 @@ static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instan
     }
     double rr = (double)v->radius * rec->point_scale;
     double half_len = fmax(0.5 * length * rr * fc->pixels_per_unit / w, 1.5);
-    double half_wid = 0.5 * (rec->o.stroke_width > 0 ? rec->o.stroke_width : 2);
+    double half_wid = 0.5 * rec->o.stroke_width;
     if (thin) {
         double r_px = rr * fc->pixels_per_unit / w;
         if (id_hash(instance) >= r_px * r_px / (2.0 * half_len * half_wid)) return PNPR_OK;
@@ -221,7 +221,7 @@ static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id
     to_clip(fc->view, fc->proj, p, clip);
     if (!(clip[3] > 1e-6) || fabs(clip[2]) > clip[3] || fabs(clip[0]) > clip[3] || fabs(clip[1]) > clip[3])
         return PNPR_OK; /* GL drops a point whose centre is clipped */
-    double size = rec->o.dot_size > 0 ? rec->o.dot_size : 2.5;
+    double size = rec->o.dot_size;
     if (thin) {
         double r_px = (double)v->radius * fc->pixels_per_unit / fmax(clip[3], 1e-6);
         if (id_hash(vertex_id) >= r_px * r_px / (0.785 * size * size)) return PNPR_OK;
@@ -251,7 +251,7 @@ static pnpr_status group_marks(vec_ctx *c, int g, int kind, pnpr_vertex *buf)
 {
     const pnpr_frame_record *rec = c->rec;
     size_t first = c->r->group_start[g], n = rec->gdraw[g];
-    float length = rec->o.stroke_length > 0 ? rec->o.stroke_length : 6;
+    float length = rec->o.stroke_length;
     c->queue_end = (float)n;
     c->queue_fade = pnpr_queue_fade_length(n, c->r->group_start[g + 1] - first, rec->o.queue_fade);
     pnpr_status st = PNPR_OK;
@@ -315,7 +315,7 @@ static pnpr_status segment_marks(vec_ctx *c, const float *seg, const float lview
         const float *p = seg + 3 * s;
         for (int k = 0; k < 4; k++) e[s][k] = lview[k] * p[0] + lview[4 + k] * p[1] + lview[8 + k] * p[2] + lview[12 + k];
     }
-    double ps = rec->o.point_scale > 0 ? rec->o.point_scale : 1, pull = 2.0 * c->r->mean_radius * ps * rec->lod;
+    double ps = rec->o.point_scale, pull = 2.0 * c->r->mean_radius * ps * rec->lod;
     for (int s = 0; s < 2; s++) {
         if (fc->ortho) { e[s][2] += pull; continue; }
         double len = sqrt(e[s][0] * e[s][0] + e[s][1] * e[s][1] + e[s][2] * e[s][2]);
@@ -323,7 +323,7 @@ static pnpr_status segment_marks(vec_ctx *c, const float *seg, const float lview
         for (int k = 0; k < 3; k++) e[s][k] *= f;
     }
     double depth = fc->ortho ? 1 : fmax(-0.5 * (e[0][2] + e[1][2]), 1e-6);
-    double min_px = rec->o.line_min_px > 0 ? rec->o.line_min_px : PNPR_LINE_MIN_PX;
+    double min_px = rec->o.line_min_px;
     if (seg[6] * fc->pixels_per_unit / depth < min_px) return PNPR_OK;
     if (!fc->ortho) {
         double lim = -fc->near_plane * 1.001;
@@ -347,7 +347,7 @@ static pnpr_status segment_marks(vec_ctx *c, const float *seg, const float lview
     c->out = tmp; /* the runs of this segment, then joined to the polylines */
     tmp->count = 0;
     if (tmp->offset) tmp->offset[0] = 0;
-    float width = rec->o.line_width > 0 ? rec->o.line_width : 2;
+    float width = rec->o.line_width;
     pnpr_status st = add_visible(c, win[0], win[1], z[0], z[1], width, c->ink, PNPR_LAYER_LINES);
     c->out = keep;
     for (size_t i = 0; i < tmp->count && st == PNPR_OK; i++) st = line_run(c->out, tmp->xy + 2 * tmp->offset[i], width, c->ink);

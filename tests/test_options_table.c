@@ -5,7 +5,9 @@
  *    (features, lines, jseg, rgbgrow, components, hierarchy, outliers: outputs compared bytewise);
  *  - pnpr_option_check refuses values out of range with a message naming the option and its range;
  *  - the CLI's usage text shows each option's default and range from the table, and its parser
- *    accepts exactly the table's range (runs the built `pointnpr`). */
+ *    accepts exactly the table's range (runs the built `pointnpr`), render and animate included
+ *    (pnpr_draw_option_table, pnpr_upload_option_table; tests/render/test_render_defaults.c draws
+ *    zeroed and pnpr_draw_defaults() options and compares the bytes). */
 #include "testutil.h"
 
 #include <pointnpr/options.h>
@@ -49,8 +51,10 @@ static void check_table(const table_case *tc)
         else
             CHECK_MSG(d->auto_text != NULL, "%s.%s: default 0 without saying what it means", tc->name, d->field);
         double got = pnpr_option_get(d, tc->defaults);
-        CHECK_MSG(got == as_stored(d, d->def), "%s.%s: pnpr_%s_defaults() has %g, the table %g", tc->name, d->field,
-                  tc->name, got, d->def);
+        /* a default of some styles only: pnpr_X_defaults() leaves 0 (the style's default) */
+        double want = (d->flags & PNPR_OPTION_STYLE_DEFAULT) ? 0 : as_stored(d, d->def);
+        CHECK_MSG(got == want, "%s.%s: pnpr_%s_defaults() has %g, the table %g", tc->name, d->field,
+                  tc->name, got, want);
         pnpr_option_set(d, rest, 0);
     }
     CHECK_MSG(memcmp(rest, zero, tc->size) == 0, "%s: pnpr_%s_defaults() sets members the table lacks", tc->name,
@@ -87,6 +91,25 @@ static void check_refusals(const table_case *tc)
         }
     }
     free(o);
+}
+
+/* The renderer's defaults of the style: the mask scale and the ink come from the table. */
+static void renderer_defaults(void)
+{
+    size_t n;
+    const pnpr_option_desc *t = pnpr_draw_option_table(&n);
+    pnpr_draw_options z = {0};
+    CHECK_MSG(pnpr_draw_mask_scale(&z, PNPR_STYLE_POINTS) == (float)pnpr_option_find(t, n, "mask-scale")->def,
+              "mask scale default");
+    CHECK_MSG(pnpr_draw_mask_scale(NULL, PNPR_STYLE_CARTOON) == (float)pnpr_option_find(t, n, "outline-scale")->def,
+              "cartoon mask scale default");
+    float ink[4];
+    CHECK_MSG(pnpr_draw_ink(&z, ink) == 0 && ink[2] == (float)pnpr_option_find(t, n, "ink-b")->def &&
+              ink[3] == (float)pnpr_option_find(t, n, "ink-a")->def, "ink default");
+    z.ink[0] = 1;
+    CHECK_MSG(pnpr_draw_ink(&z, ink) == 1 && ink[0] == 1 && ink[3] == 0, "given ink");
+    pnpr_draw_options d = pnpr_draw_defaults();
+    CHECK_MSG(d.style == PNPR_STYLE_POINTS && d.mask_scale == 0 && d.ink[3] == 0 && d.outline == 0, "style defaults left 0");
 }
 
 /* A noisy coloured cube: feature lines along the edges, colours per face. */
@@ -335,6 +358,15 @@ static void check_cli(void)
     check_cli_options("segment", pnpr_outlier_option_table, outliers);
     check_cli_options("info", pnpr_outlier_option_table, outliers);
     check_segment_usage();
+    /* render and animate: the draw and upload options of the renderer's tables */
+    static const char *const draw[] = {"stroke-texture", "density", "point-scale", "line-width", "line-min",
+                                       "dot-size", "queue-fade", "levels", "outline-scale", "outline-width",
+                                       "outline-jump", "outline-hole", "faint", NULL};
+    static const char *const upload[] = {"paint-bins", NULL};
+    check_cli_options("render", pnpr_draw_option_table, draw);
+    check_cli_options("render", pnpr_upload_option_table, upload);
+    check_cli_options("animate", pnpr_draw_option_table, draw);
+    check_cli_options("animate", pnpr_upload_option_table, upload);
     /* --weights G,C: both defaults of the table */
     size_t n;
     const pnpr_option_desc *t = pnpr_features_option_table(&n);
@@ -355,6 +387,8 @@ int main(void)
     pnpr_components_options c = pnpr_components_defaults();
     pnpr_hierarchy_options h = pnpr_hierarchy_defaults();
     pnpr_outlier_options o = pnpr_outlier_defaults();
+    pnpr_draw_options dr = pnpr_draw_defaults();
+    pnpr_upload_options up = pnpr_upload_defaults();
     const table_case cases[] = {
         {"features", pnpr_features_option_table, sizeof f, &f},
         {"lines", pnpr_lines_option_table, sizeof l, &l},
@@ -363,11 +397,14 @@ int main(void)
         {"components", pnpr_components_option_table, sizeof c, &c},
         {"hierarchy", pnpr_hierarchy_option_table, sizeof h, &h},
         {"outlier", pnpr_outlier_option_table, sizeof o, &o},
+        {"draw", pnpr_draw_option_table, sizeof dr, &dr},
+        {"upload", pnpr_upload_option_table, sizeof up, &up},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         check_table(&cases[i]);
         check_refusals(&cases[i]);
     }
+    renderer_defaults();
     features_and_lines_zero_equals_defaults();
     segment_zero_equals_defaults();
     check_cli();

@@ -8,7 +8,7 @@
 #define POINTNPR_CAMERA_H
 
 #include "cloud.h"
-#include "lines.h"
+#include "polylines.h"
 #include "style.h"
 #include "view.h"
 

@@ -12,6 +12,7 @@
 #define POINTNPR_LINES_H
 
 #include "cloud.h"
+#include "polylines.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -40,18 +41,7 @@ typedef struct pnpr_lines_options {
     pnpr_progress progress;
 } pnpr_lines_options;
 
-/* Polylines as float offsets from a double origin (like pnpr_cloud). Polyline i has vertices
- * offset[i] .. offset[i+1]-1; closed[i] != 0 when its last vertex connects back to its first
- * (the first vertex is not repeated). Allocated by the library: release with pnpr_lines_free. */
-typedef struct pnpr_polylines {
-    size_t count;
-    size_t *offset;   /* count + 1 */
-    float *xyz;       /* 3 * offset[count] */
-    uint8_t *closed;  /* count */
-    double origin[3];
-} pnpr_polylines;
-
-void pnpr_lines_free(pnpr_polylines *lines); /* leaves it zeroed; NULL ok */
+/* The result, pnpr_polylines (with pnpr_lines_free and the OBJ/PLY writers): polylines.h. */
 
 typedef struct pnpr_lines_stats {
     size_t directional_points, merged_nodes, graph_edges, forest_edges, chains, corners;
@@ -77,12 +67,6 @@ pnpr_status pnpr_profile_lines(const pnpr_cloud *cloud, const pnpr_lines_options
 pnpr_status pnpr_profile_lines_points(const float *xyz, const float *dir, size_t m,
                                       const double origin[3], const pnpr_lines_options *opts,
                                       pnpr_polylines *r_lines, pnpr_lines_stats *r_stats);
-
-/* Writers (world coordinates, %.17g-exact): OBJ with one `l` statement per polyline (closed
- * ones repeat their first vertex index), PLY with a vertex and an `edge` element. Written to
- * path + ".tmp" and renamed. */
-pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *lines, pnpr_error *err);
-pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *lines, pnpr_error *err);
 
 #ifdef __cplusplus
 }

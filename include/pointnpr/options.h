@@ -1,7 +1,8 @@
 /* pointnpr — options.h: the defaults and ranges of the options structs, one table per struct.
  *
- * Every numeric option of pnpr_features_options, pnpr_lines_options, the segmentation options and
- * pnpr_outlier_options is described once, here (filters/options_table.c): its name, where it lies
+ * Every numeric option of pnpr_features_options, pnpr_lines_options, the segmentation options,
+ * pnpr_outlier_options and the renderer's pnpr_draw_options / pnpr_upload_options is described
+ * once, here (filters/options_table.c, core/options_render.c): its name, where it lies
  * in the struct, its default, its accepted range and a line of help. The library fills zeros with
  * these defaults and checks ranges with pnpr_option_check; the CLI prints its usage text and parses
  * its options from the same entries, and the MeshLab dialogs take their defaults and ranges from
@@ -19,6 +20,7 @@
 #include "features.h"
 #include "lines.h"
 #include "outliers.h"
+#include "render.h"
 #include "segment.h"
 
 #include <stddef.h>
@@ -37,7 +39,10 @@ typedef enum pnpr_option_type {
 enum {
     PNPR_OPTION_MIN_EXCLUSIVE = 1, /* the range is (min, max]: min itself is refused */
     PNPR_OPTION_ZERO_IS_VALUE = 2, /* 0 is an ordinary value (checked against the range), not the default */
-    PNPR_OPTION_NEGATIVE_OFF = 4   /* any negative value turns the step off */
+    PNPR_OPTION_NEGATIVE_OFF = 4,  /* any negative value turns the step off */
+    PNPR_OPTION_STYLE_DEFAULT = 8  /* the default of some styles only (the help says which; another
+                                    * entry may describe the same member for other styles): 0 stays
+                                    * in pnpr_X_defaults() and pnpr_option_fill_defaults */
 };
 
 /* A max of PNPR_OPTION_UNBOUNDED means "any finite value" (uint: any uint32 value). */
@@ -74,6 +79,21 @@ pnpr_components_options pnpr_components_defaults(void);
 pnpr_hierarchy_options pnpr_hierarchy_defaults(void);
 pnpr_outlier_options pnpr_outlier_defaults(void);
 
+/* The renderer's options (render.h; the table is in the core library, core/options_render.c):
+ * per-frame pnpr_draw_options and pnpr_upload_options. pnpr_draw_defaults() leaves the members
+ * whose default depends on the style at 0: mask_scale (entries "mask-scale" and, for cartoon,
+ * "outline-scale"), outline and outline_width (pnpr_style_outline_default, style.h) and ink (all
+ * four 0: the "ink-*" entries; painterly's strokes then take the point colours). The enums,
+ * budget, seed, threads and the colours of the background are not in the tables. */
+const pnpr_option_desc *pnpr_draw_option_table(size_t *r_count);
+const pnpr_option_desc *pnpr_upload_option_table(size_t *r_count);
+pnpr_draw_options pnpr_draw_defaults(void);
+pnpr_upload_options pnpr_upload_defaults(void);
+/* mask_scale of o (NULL ok) for `style`, its default when 0 (cartoon: "outline-scale"). */
+float pnpr_draw_mask_scale(const pnpr_draw_options *o, pnpr_style style);
+/* The ink of o (NULL ok) into r_ink, the default when all four are 0; returns whether o gives one. */
+int pnpr_draw_ink(const pnpr_draw_options *o, float r_ink[4]);
+
 /* ---- working with a table (core/options.c) ------------------------------------------------- */
 
 /* The entry called `name` (CLI name), or NULL. */
@@ -81,10 +101,10 @@ const pnpr_option_desc *pnpr_option_find(const pnpr_option_desc *table, size_t c
 /* The entry's member of the struct at opts, as a double / set from a double (converted). */
 double pnpr_option_get(const pnpr_option_desc *d, const void *opts);
 void pnpr_option_set(const pnpr_option_desc *d, void *opts, double value);
-/* Writes every entry's default into the struct (data-dependent ones: 0). */
+/* Writes every entry's default into the struct (data-dependent ones and STYLE_DEFAULT ones: 0). */
 void pnpr_option_set_defaults(const pnpr_option_desc *table, size_t count, void *opts);
-/* Replaces the zeros that mean "the default" by the default (leaves ZERO_IS_VALUE members,
- * negative "off" values and data-dependent defaults alone). */
+/* Replaces the zeros that mean "the default" by the default (leaves ZERO_IS_VALUE and
+ * STYLE_DEFAULT members, negative "off" values and data-dependent defaults alone). */
 void pnpr_option_fill_defaults(const pnpr_option_desc *table, size_t count, void *opts);
 /* Whether `value` lies in the entry's range (finite; an integer for int types). Zero and
  * negative "off" values are NOT special here: this is the range an explicit setting must meet. */

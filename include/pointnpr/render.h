@@ -23,7 +23,7 @@
 #include "cloud.h"
 #include "crq.h"
 #include "drawing.h"
-#include "lines.h"
+#include "polylines.h"
 #include "style.h"
 #include "tone.h"
 #include "view.h"
@@ -50,14 +50,21 @@ typedef struct pnpr_renderer_options {
  * a larger value is refused rather than slow). */
 #define PNPR_SPACING_K_MAX 64
 
+/* Largest pnpr_upload_options.painterly_bins. */
+#define PNPR_PAINTERLY_BINS_MAX 16
+
+/* The defaults and ranges of pnpr_upload_options and pnpr_draw_options: the tables of options.h
+ * (pnpr_upload_defaults, pnpr_draw_defaults; core/options_render.c). */
+
 typedef struct pnpr_upload_options {
     uint32_t spacing_k; /* disk radius of point i = distance to its spacing_k-th nearest other
-                         * point (0 = 4, at most PNPR_SPACING_K_MAX), capped at 4x the median;
+                         * point (0 = the default, at most PNPR_SPACING_K_MAX), capped at 4x the median;
                          * see docs/rendering.md */
     uint64_t seed;      /* continuous resolution queue seed (0 is a valid seed) */
     int ignore_features; /* treat the cloud as if it had no feature properties */
     int threads;        /* kNN threads; 0 = all cores */
-    uint32_t painterly_bins; /* painterly: feature-degree bins = passes (0 = 4, at most 16); the
+    uint32_t painterly_bins; /* painterly: feature-degree bins = passes (0 = the default, at most
+                              * PNPR_PAINTERLY_BINS_MAX); the
                               * painterly data are built when the cloud has feature_degree */
     pnpr_tone_options tone;  /* clouds without colours are drawn in greys shaded by this tone's
                               * key light on their normals (tone.h; the source is always the
@@ -72,7 +79,8 @@ typedef struct pnpr_upload_options {
 /* Default of pnpr_draw_options.line_min_px. */
 #define PNPR_LINE_MIN_PX 8.0f
 
-/* Per-frame options; zero = documented default. Colours are linear 0..1 RGBA. */
+/* Per-frame options; zero = the default (the defaults and ranges: pnpr_draw_option_table,
+ * options.h). Colours are linear 0..1 RGBA. */
 typedef struct pnpr_draw_options {
     pnpr_style style;      /* the style; with a style map, the default style of labels not in it */
     /* Intermingled styles (paper figure 12): style_map_count > 0 entries (caller-owned, read
@@ -87,24 +95,24 @@ typedef struct pnpr_draw_options {
     size_t budget;         /* at most this many points per frame (0 = no limit) */
     float density;         /* at most density * (screen pixels covered by the cloud's projected
                             * bounding box) points per frame (0 = no limit) */
-    float point_scale;     /* multiplies the disk radii (0 = 1) */
-    float mask_scale;      /* visibility-mask disks = point_scale * mask_scale * radius (0 = 1.5;
-                            * cartoon: the enlarged outline disks, 0 = 2) */
-    float stroke_length;   /* directional stroke length in disk radii (0 = 6); hatches are half */
-    float stroke_width;    /* stroke width in pixels (0 = 2) */
+    float point_scale;     /* multiplies the disk radii */
+    float mask_scale;      /* visibility-mask disks = point_scale * mask_scale * radius (cartoon:
+                            * the enlarged outline disks, with its own default) */
+    float stroke_length;   /* directional stroke length in disk radii; hatches are half */
+    float stroke_width;    /* stroke width in pixels */
     int stroke_texture;    /* 0, 1, 2: the three directional stroke textures (paper fig. 5 a-c) */
-    float ink[4];          /* stroke, line, dot and cartoon outline colour (zero = opaque
-                            * near-black 0.08,0.08,0.1,1) */
+    float ink[4];          /* stroke, line, dot and cartoon outline colour (all zero = the
+                            * default, an opaque near-black; painterly strokes: the point colours) */
     int ink_from_points;   /* strokes take the point colour instead of `ink` */
     pnpr_composite composite;
-    float line_width;      /* lines: stroke width in pixels (0 = 2) */
+    float line_width;      /* lines: stroke width in pixels */
     float line_min_px;     /* lines: profile lines (whole polylines) shorter than this many pixels
                             * on screen are not drawn: scan noise makes such scribbles
-                            * (0 = PNPR_LINE_MIN_PX) */
+                            * (default PNPR_LINE_MIN_PX) */
     float faint;           /* lines: 0..1, the cloud drawn faintly under the lines (its colours
                             * mixed with the background, this much of the point colour); 0 = none */
-    float dot_size;        /* stipple: dot diameter in pixels (0 = 2.5) */
-    int levels;            /* cartoon without segment labels: colour levels per channel (0 = 4, >= 2) */
+    float dot_size;        /* stipple: dot diameter in pixels */
+    int levels;            /* cartoon without segment labels: colour levels per channel (>= 2) */
     /* Outlines (silhouettes and occluding contours) found in image space on the visibility mask,
      * sampling holes closed first (docs/rendering.md, "Silhouettes and contours"); drawn in `ink`
      * over the style. Defaults per style: pnpr_style_outline_default. */

@@ -16,12 +16,28 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The options read from the library's tables (options.h, pnpr_draw_option_table and
+ * pnpr_upload_option_table), and their metavars: usage lines, defaults, ranges and parsing. */
+static const char *const draw_names[] = {"stroke-texture", "density", "point-scale", "line-width", "line-min",
+                                         "dot-size", "queue-fade", "levels", "outline-scale", "outline-width",
+                                         "outline-jump", "outline-hole", "faint", NULL};
+static const char *const upload_names[] = {"paint-bins", NULL};
+
+static void draw_usage(FILE *f, const char *name, const char *metavar)
+{
+    size_t n;
+    const pnpr_option_desc *t = pnpr_draw_option_table(&n);
+    cli_table_usage(f, t, n, name, metavar);
+}
+
 void cli_render_usage(FILE *f, int width, int height)
 {
     float w_lines = 0, w_cartoon = 0, w_sketchy = 0; /* the outline widths, as the library says */
     pnpr_style_outline_default(PNPR_STYLE_LINES, &w_lines);
     pnpr_style_outline_default(PNPR_STYLE_CARTOON, &w_cartoon);
     pnpr_style_outline_default(PNPR_STYLE_SKETCHY, &w_sketchy);
+    size_t un;
+    const pnpr_option_desc *ut = pnpr_upload_option_table(&un);
     fprintf(f,
             "  --style S            points | sketchy | lines | stipple | cartoon | painterly\n"
             "                       (default points)\n"
@@ -29,8 +45,9 @@ void cli_render_usage(FILE *f, int width, int height)
             "                       IN, PLY property segment or label) and '* STYLE' (the default, else\n"
             "                       --style); '#' starts a comment\n"
             "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
-            "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n"
-            "  --stroke-texture T   directional stroke texture 0, 1 or 2 (default 0)\n"
+            "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n");
+    draw_usage(f, "stroke-texture", "T");
+    fprintf(f,
             "  --size WxH           image size in pixels (default %dx%d)\n"
             "  --eye X,Y,Z --target X,Y,Z\n"
             "                       look-at camera in world coordinates (default: the default view,\n"
@@ -40,21 +57,19 @@ void cli_render_usage(FILE *f, int width, int height)
             "                       plane, else z; with --eye/--target a vector, default 0,0,1)\n"
             "  --fov DEG            vertical field of view (default 45)\n"
             "  --camera FILE        the camera from a file (eye/target/up/fov lines, world coordinates)\n"
-            "  --budget N           at most N points per frame (default: all)\n"
-            "  --density D          at most D points per covered screen pixel (default: no limit)\n"
-            "  --seed S             continuous resolution queue seed (default 0)\n"
-            "  --point-scale F      disk radius multiplier (default 1)\n"
-            "  --line-width PX      lines: stroke width in pixels (default 2)\n"
-            "  --line-min PX        lines: profile lines shorter than PX on screen are left out (scan\n"
-            "                       noise scribbles; default %g)\n"
-            "  --dot-size PX        stipple: dot diameter in pixels (default 2.5)\n"
-            "  --queue-fade F       sketchy, stipple: under a budget, the last fraction F of the points\n"
-            "                       drawn fade in, so marks appear gradually as the budget moves\n"
-            "                       (default %g; 0 = none)\n"
-            "  --levels N           cartoon: colour levels per channel when IN has no segment labels\n"
-            "                       (PLY property segment or label, pointnpr segment; default 4)\n"
-            "  --outline-scale F    cartoon: the gap-closing disks under the splats are F times their size\n"
-            "                       (default 2; the outline itself: --outline-width)\n"
+            "  --budget N           at most N points per frame (default: all)\n",
+            width, height);
+    draw_usage(f, "density", "D");
+    fprintf(f, "  --seed S             continuous resolution queue seed (default 0)\n");
+    draw_usage(f, "point-scale", "F");
+    draw_usage(f, "line-width", "PX");
+    draw_usage(f, "line-min", "PX");
+    draw_usage(f, "dot-size", "PX");
+    draw_usage(f, "queue-fade", "F");
+    fprintf(f, "                       (0 = none: under a budget, marks pop in and out)\n");
+    draw_usage(f, "levels", "N");
+    draw_usage(f, "outline-scale", "F");
+    fprintf(f,
             "  --tone S             what sets how dark a point is drawn (hatch and stipple density,\n"
             "                       the shading of colourless clouds): auto | color | light (a key light\n"
             "                       on the normals) | both (default auto: both when IN has colours)\n"
@@ -62,14 +77,15 @@ void cli_render_usage(FILE *f, int width, int height)
             "  --tone-contrast C    tone curve: contrast around mid grey (default 1)\n"
             "  --light X,Y,Z        direction towards the key light (default: from above, front left)\n"
             "  --outline on|off     silhouettes and occluding contours (default: on for lines and cartoon,\n"
-            "                       off for the others; sketchy reads well with them on)\n"
-            "  --outline-width PX   their width in pixels (default: lines %g, cartoon %g, sketchy %g)\n"
-            "  --outline-jump F     a contour is a depth jump of more than F disk depth extents (default %g)\n"
-            "  --outline-hole F     gaps enclosed within F projected disk extents are sampling holes,\n"
-            "                       not outlines (default %g)\n"
-            "  --paint-bins N       painterly: feature-degree bins = passes, 1..16 (default 4)\n"
-            "  --faint F            lines: draw the cloud faintly under the lines, F in (0,1]\n"
-            "                       of the point colour (default: lines only)\n"
+            "                       off for the others; sketchy reads well with them on)\n");
+    draw_usage(f, "outline-width", "PX");
+    fprintf(f, "                       (the style's: lines %g, cartoon %g, sketchy %g)\n", (double)w_lines,
+            (double)w_cartoon, (double)w_sketchy);
+    draw_usage(f, "outline-jump", "F");
+    draw_usage(f, "outline-hole", "F");
+    cli_table_usage(f, ut, un, "paint-bins", "N");
+    draw_usage(f, "faint", "F");
+    fprintf(f,
             "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
             "  --alpha              transparent background, PNG with alpha\n"
             "  --max-tile PX        render in tiles of at most PX pixels (default: the GL limit;\n"
@@ -77,9 +93,7 @@ void cli_render_usage(FILE *f, int width, int height)
             "  --quiet              no progress on stderr\n"
             "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
             "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
-            "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n",
-            width, height, (double)PNPR_LINE_MIN_PX, (double)PNPR_QUEUE_FADE, (double)w_lines, (double)w_cartoon, (double)w_sketchy,
-            (double)PNPR_OUTLINE_JUMP, (double)PNPR_OUTLINE_HOLE);
+            "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n");
     cli_outlier_usage(f);
     cli_columns_usage(f);
 }
@@ -191,42 +205,15 @@ static int style_option(cli_render_opts *o, const char *cmd, const char *a, cons
             else if (!strcmp(v, "c")) o->dopt.sketch_variant = PNPR_SKETCH_ALL;
             else { BAD("--sketch wants a, b or c, got '%s'\n", v); }
             i++;
-        } else if (v && !strcmp(a, "--stroke-texture")) {
-            if (!cli_parse_number(v, 0, 2, &x) || x != floor(x)) { BAD("--stroke-texture wants 0, 1 or 2, got '%s'\n", v); }
-            o->dopt.stroke_texture = (int)x; i++;
         } else if (v && !strcmp(a, "--budget")) {
             if (!cli_parse_number(v, 1, 4e9, &x) || x != floor(x)) { BAD("--budget wants a positive integer, got '%s'\n", v); }
             o->dopt.budget = (size_t)x; i++;
-        } else if (v && !strcmp(a, "--density")) {
-            if (!cli_parse_number(v, 1e-9, 1e9, &x)) { BAD("--density wants a positive number, got '%s'\n", v); }
-            o->dopt.density = (float)x; i++;
         } else if (v && !strcmp(a, "--seed")) {
             char *end;
             errno = 0;
             unsigned long long s = strtoull(v, &end, 10);
             if (errno || end == v || *end || v[0] == '-') { BAD("--seed wants a non-negative integer, got '%s'\n", v); }
             o->uopt.seed = s; i++;
-        } else if (v && !strcmp(a, "--point-scale")) {
-            if (!cli_parse_number(v, 1e-3, 1e3, &x)) { BAD("--point-scale wants a positive number, got '%s'\n", v); }
-            o->dopt.point_scale = (float)x; i++;
-        } else if (v && !strcmp(a, "--line-width")) {
-            if (!cli_parse_number(v, 1e-2, 1e3, &x)) { BAD("--line-width wants a positive number of pixels, got '%s'\n", v); }
-            o->dopt.line_width = (float)x; i++;
-        } else if (v && !strcmp(a, "--line-min")) {
-            if (!cli_parse_number(v, 0.01, 1e4, &x)) { BAD("--line-min wants a positive number of pixels, got '%s'\n", v); }
-            o->dopt.line_min_px = (float)x; i++;
-        } else if (v && !strcmp(a, "--queue-fade")) {
-            if (!cli_parse_number(v, 0, 1, &x)) { BAD("--queue-fade wants a fraction in 0..1, got '%s'\n", v); }
-            o->dopt.queue_fade = x > 0 ? (float)x : -1.0f; i++;
-        } else if (v && !strcmp(a, "--dot-size")) {
-            if (!cli_parse_number(v, 1e-2, 1e3, &x)) { BAD("--dot-size wants a positive number of pixels, got '%s'\n", v); }
-            o->dopt.dot_size = (float)x; i++;
-        } else if (v && !strcmp(a, "--levels")) {
-            if (!cli_parse_number(v, 2, 256, &x) || x != floor(x)) { BAD("--levels wants an integer in 2..256, got '%s'\n", v); }
-            o->dopt.levels = (int)x; i++;
-        } else if (v && !strcmp(a, "--outline-scale")) {
-            if (!cli_parse_number(v, 1, 100, &x)) { BAD("--outline-scale wants a number >= 1, got '%s'\n", v); }
-            o->dopt.mask_scale = (float)x; i++;
         } else return 0;
     *ip = i;
     return 1;
@@ -261,21 +248,6 @@ static int look_option(cli_render_opts *o, const char *cmd, const char *a, const
         } else if (v && !strcmp(a, "--outline")) {
             if (strcmp(v, "on") && strcmp(v, "off")) { BAD("--outline wants on or off, got '%s'\n", v); }
             o->dopt.outline = !strcmp(v, "on") ? 1 : -1; i++;
-        } else if (v && !strcmp(a, "--outline-width")) {
-            if (!cli_parse_number(v, 0.1, 64, &x)) { BAD("--outline-width wants pixels in [0.1, 64], got '%s'\n", v); }
-            o->dopt.outline_width = (float)x; i++;
-        } else if (v && !strcmp(a, "--outline-jump")) {
-            if (!cli_parse_number(v, 0.01, 1e3, &x)) { BAD("--outline-jump wants a positive number, got '%s'\n", v); }
-            o->dopt.outline_jump = (float)x; i++;
-        } else if (v && !strcmp(a, "--outline-hole")) {
-            if (!cli_parse_number(v, 0.01, 1e3, &x)) { BAD("--outline-hole wants a positive number, got '%s'\n", v); }
-            o->dopt.outline_hole = (float)x; i++;
-        } else if (v && !strcmp(a, "--paint-bins")) {
-            if (!cli_parse_number(v, 1, 16, &x) || x != floor(x)) { BAD("--paint-bins wants an integer in 1..16, got '%s'\n", v); }
-            o->uopt.painterly_bins = (uint32_t)x; i++;
-        } else if (v && !strcmp(a, "--faint")) {
-            if (!cli_parse_number(v, 1e-6, 1, &x)) { BAD("--faint wants a number in (0,1], got '%s'\n", v); }
-            o->dopt.faint = (float)x; i++;
         } else if (v && !strcmp(a, "--background")) {
             if (!cli_parse_list(v, 3, o->bg) || o->bg[0] < 0 || o->bg[0] > 255 || o->bg[1] < 0 || o->bg[1] > 255 || o->bg[2] < 0 || o->bg[2] > 255) {
                 BAD("--background wants R,G,B in 0..255, got '%s'\n", v);
@@ -286,6 +258,18 @@ static int look_option(cli_render_opts *o, const char *cmd, const char *a, const
     return 1;
 }
 
+/* The options of the tables (draw_names, upload_names): values in the table's range. --queue-fade 0
+ * means none (a negative queue_fade). As cli_table_option. */
+static int table_option(cli_render_opts *o, const char *cmd, int argc, char **argv, int *ip)
+{
+    size_t dn, un;
+    const pnpr_option_desc *dt = pnpr_draw_option_table(&dn), *ut = pnpr_upload_option_table(&un);
+    int r = cli_table_option(dt, dn, draw_names, &o->dopt, cmd, argc, argv, ip);
+    if (r == 0) r = cli_table_option(ut, un, upload_names, &o->uopt, cmd, argc, argv, ip);
+    if (r > 0 && !strcmp(argv[*ip - 1], "--queue-fade") && o->dopt.queue_fade == 0) o->dopt.queue_fade = -1.0f;
+    return r;
+}
+
 int cli_render_option(cli_render_opts *o, const char *cmd, int argc, char **argv, int *ip)
 {
     const char *a = argv[*ip], *v = *ip + 1 < argc ? argv[*ip + 1] : NULL;
@@ -293,6 +277,7 @@ int cli_render_option(cli_render_opts *o, const char *cmd, int argc, char **argv
     int r = cli_view_option(&o->view, cmd, argc, argv, ip);
     if (r == 0) r = cli_outlier_option(&o->outliers, cmd, argc, argv, ip);
     if (r == 0) r = cli_columns_option(&o->columns, cmd, argc, argv, ip);
+    if (r == 0) r = table_option(o, cmd, argc, argv, ip);
     if (r == 0) r = style_option(o, cmd, a, v, ip);
     if (r == 0) r = look_option(o, cmd, a, v, ip);
     if (r != 0) return r;

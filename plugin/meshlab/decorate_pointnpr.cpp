@@ -24,6 +24,7 @@
 
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/options.h>
 #include <pointnpr/plan.h>
 #include <pointnpr/render.h>
 #include <pointnpr/segment.h>
@@ -276,6 +277,24 @@ QString outlineDefaults()
 
 } // namespace
 
+namespace {
+/* The draw options' entry `name` of the library's table (options.h): the dialog's defaults and
+ * ranges, no numeric default of these options is written in this file. */
+const pnpr_option_desc *drawOption(const char *name)
+{
+    size_t n = 0;
+    const pnpr_option_desc *t = pnpr_draw_option_table(&n);
+    return pnpr_option_find(t, n, name);
+}
+
+QString drawRange(const char *name)
+{
+    char buf[64];
+    pnpr_option_range_text(drawOption(name), buf, sizeof buf);
+    return QString::fromUtf8(buf);
+}
+} // namespace
+
 void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList &par)
 {
     try {
@@ -299,7 +318,9 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                                       .arg(outlineDefaults())));
         if (!par.hasParameter(kOutlineWidth))
             par.addParam(RichFloat(kOutlineWidth, 0.0f, "Outline width (px)",
-                                   QString("outline width in pixels; 0 = the style's default (%1)").arg(outlineDefaults())));
+                                   QString("outline width in pixels, %1; 0 = the style's default (%2)")
+                                       .arg(drawRange("outline-width"))
+                                       .arg(outlineDefaults())));
         if (!par.hasParameter(kToneSource))
             par.addParam(RichEnum(kToneSource, 0, QStringList() << "auto" << "colour" << "light" << "both", "Tone source",
                                   "what makes a point dark (density of the dithering points: sketchy hatches, stipple "
@@ -319,7 +340,8 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
         if (!par.hasParameter(kPaper))
             par.addParam(RichColor(kPaper, QColor(255, 255, 255), "Paper colour", "background of the drawing"));
         if (!par.hasParameter(kLineWidth))
-            par.addParam(RichFloat(kLineWidth, 2.0f, "Line width", "profile lines and sketch strokes, pixels"));
+            par.addParam(RichFloat(kLineWidth, static_cast<float>(drawOption("line-width")->def), "Line width",
+                                   QString("profile lines and sketch strokes, pixels, %1").arg(drawRange("line-width"))));
     } catch (...) {
     }
 }
@@ -369,7 +391,7 @@ struct Params {
     pnpr_sketch_variant variant = PNPR_SKETCH_ALL;
     int budget = 0, motionBudget = 200000;
     QColor paper = QColor(255, 255, 255);
-    float lineWidth = 2;
+    float lineWidth = 0;      /* 0 = the library's default (pnpr_draw_option_table) */
     int outline = 0;          /* pnpr_draw_options.outline */
     float outlineWidth = 0;   /* 0 = the style's default */
     pnpr_tone_source toneSource = PNPR_TONE_AUTO;
@@ -404,7 +426,7 @@ Params readParams(const RichParameterList *par)
         }
         if (par->hasParameter(kToneGamma)) p.toneGamma = par->getFloat(kToneGamma);
     }
-    if (!(p.lineWidth > 0 && p.lineWidth < 100)) p.lineWidth = 2;
+    if (!pnpr_option_in_range(drawOption("line-width"), p.lineWidth)) p.lineWidth = 0; /* the default */
     /* test-only override (tests/meshlab/run.sh): the style by name */
     if (const char *s = std::getenv("PNPR_MESHLAB_TEST_STYLE")) {
         pnpr_style st;

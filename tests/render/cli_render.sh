@@ -134,7 +134,7 @@ printf 'eye 1 2 3\ntarget 0 0\n' > "$dir/badcam.txt"
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --camera "$dir/badcam.txt" 2> "$dir/badcam.log"
 check '[ $? -eq 2 ] && grep -q "badcam.txt:2" "$dir/badcam.log"' "bad camera file: exit 2 with FILE:LINE"
 "$bin" render --help > "$dir/help.txt"   # (a file: grep -q closing a pipe early would SIGPIPE it)
-check '[ $? -eq 0 ] && grep -q "usage: pointnpr render" "$dir/help.txt" && grep -q -- "--outline-jump F .*(default 3)" "$dir/help.txt"' "--help (defaults read from the library)"
+check '[ $? -eq 0 ] && grep -q "usage: pointnpr render" "$dir/help.txt" && grep -q -- "--outline-jump F .*(default 3, " "$dir/help.txt"' "--help (defaults read from the library)"
 # the plan: cartoon on a coloured cloud without labels segments it (JSEG), as explain says
 "$bin" explain "$dir/cube.ply" --style cartoon > "$dir/explain-cartoon.txt"
 check 'grep -Eq "^  segments +run .*method jseg" "$dir/explain-cartoon.txt"' "explain: cartoon runs JSEG on a coloured cloud"

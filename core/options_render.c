@@ -1,0 +1,107 @@
+/* The defaults and ranges of the renderer's options structs, pnpr_draw_options and
+ * pnpr_upload_options (render.h; options.h): the one place they are written. The structs are
+ * plain data, so the table lives in the core library (no GL): the renderer fills the zeros of
+ * the options it is given from here (pnpr_renderer_check_options, the upload), the CLI's
+ * render/animate usage text and parser and the MeshLab decorator's dialog read these entries;
+ * tests/test_options_table.c holds them to it. */
+#include <pointnpr/options.h>
+
+#include <stddef.h>
+
+#define UNB PNPR_OPTION_UNBOUNDED
+#define EXCL PNPR_OPTION_MIN_EXCLUSIVE
+#define NEG_OFF PNPR_OPTION_NEGATIVE_OFF
+#define ZERO_VALUE PNPR_OPTION_ZERO_IS_VALUE
+#define PER_STYLE PNPR_OPTION_STYLE_DEFAULT
+/* name, member, type, default, min, max, flags, auto scale, auto text, help */
+#define OPT(group, S, name, m, type, def, lo, hi, flags, scale, atext, help)                                          \
+    { name, #m, group, PNPR_OPTION_##type, offsetof(S, m), def, lo, hi, flags, scale, atext, help }
+#define COUNT(t) (sizeof(t) / sizeof((t)[0]))
+
+#define D(...) OPT("draw", pnpr_draw_options, __VA_ARGS__)
+static const pnpr_option_desc draw_table[] = {
+    D("stroke-texture", stroke_texture, INT, 0, 0, 2, ZERO_VALUE, 0, NULL,
+      "directional stroke texture (paper fig. 5 a-c)"),
+    D("density", density, FLOAT, 0, 1e-9, UNB, 0, 0, "no limit", "at most this many points per covered pixel"),
+    D("point-scale", point_scale, FLOAT, 1, 1e-3, 1e3, 0, 0, NULL, "disk radius multiplier"),
+    D("mask-scale", mask_scale, FLOAT, 1.5, 0, UNB, EXCL | PER_STYLE, 0, NULL,
+      "visibility-mask disks in disk radii x point scale (all styles but cartoon)"),
+    D("outline-scale", mask_scale, FLOAT, 2, 1, 100, PER_STYLE, 0, NULL,
+      "cartoon: gap-closing disks, times the splat size"),
+    D("stroke-length", stroke_length, FLOAT, 6, 0, UNB, EXCL, 0, NULL,
+      "directional stroke length in disk radii (hatches: half)"),
+    D("stroke-width", stroke_width, FLOAT, 2, 0, UNB, EXCL, 0, NULL, "stroke width in pixels"),
+    /* ink: all four 0 = this colour; painterly's strokes then take the point colours */
+    D("ink-r", ink[0], FLOAT, 0.08, 0, 1, ZERO_VALUE | PER_STYLE, 0, NULL, "ink colour, red (linear)"),
+    D("ink-g", ink[1], FLOAT, 0.08, 0, 1, ZERO_VALUE | PER_STYLE, 0, NULL, "ink colour, green (linear)"),
+    D("ink-b", ink[2], FLOAT, 0.1, 0, 1, ZERO_VALUE | PER_STYLE, 0, NULL, "ink colour, blue (linear)"),
+    D("ink-a", ink[3], FLOAT, 1, 0, 1, ZERO_VALUE | PER_STYLE, 0, NULL, "ink opacity"),
+    D("line-width", line_width, FLOAT, 2, 1e-2, 1e3, 0, 0, NULL, "lines: stroke width in pixels"),
+    D("line-min", line_min_px, FLOAT, PNPR_LINE_MIN_PX, 0.01, 1e4, 0, 0, NULL,
+      "lines: profile lines shorter on screen are left out"),
+    D("faint", faint, FLOAT, 0, 0, 1, EXCL, 0, "none",
+      "lines: the cloud faintly under them, this much"),
+    D("dot-size", dot_size, FLOAT, 2.5, 1e-2, 1e3, 0, 0, NULL, "stipple: dot diameter in pixels"),
+    D("levels", levels, INT, 4, 2, 256, 0, 0, NULL, "cartoon: colour levels per channel (no labels)"),
+    D("outline", outline, INT, 0, -1, 1, 0, 0, "the style's", "outlines: 1 on, -1 off"),
+    D("outline-width", outline_width, FLOAT, 0, 0.1, 64, 0, 0, "the style's", "outline width in pixels"),
+    D("outline-jump", outline_jump, FLOAT, PNPR_OUTLINE_JUMP, 0.01, 1e3, 0, 0, NULL,
+      "a contour is a depth jump over this many extents"),
+    D("outline-hole", outline_hole, FLOAT, PNPR_OUTLINE_HOLE, 0.01, 1e3, 0, 0, NULL,
+      "holes closed within this many disk extents"),
+    D("queue-fade", queue_fade, FLOAT, PNPR_QUEUE_FADE, 0, 1, NEG_OFF, 0, NULL,
+      "sketchy, stipple: the fraction of a budget that fades in"),
+};
+
+#define U(...) OPT("upload", pnpr_upload_options, __VA_ARGS__)
+static const pnpr_option_desc upload_table[] = {
+    U("spacing-k", spacing_k, UINT, 4, 1, PNPR_SPACING_K_MAX, 0, 0, NULL,
+      "disk radius = distance to this nearest other point"),
+    U("paint-bins", painterly_bins, UINT, 4, 1, PNPR_PAINTERLY_BINS_MAX, 0, 0, NULL,
+      "painterly: feature-degree bins = passes"),
+};
+
+const pnpr_option_desc *pnpr_draw_option_table(size_t *r_count)
+{
+    if (r_count) *r_count = COUNT(draw_table);
+    return draw_table;
+}
+
+const pnpr_option_desc *pnpr_upload_option_table(size_t *r_count)
+{
+    if (r_count) *r_count = COUNT(upload_table);
+    return upload_table;
+}
+
+pnpr_draw_options pnpr_draw_defaults(void)
+{
+    pnpr_draw_options o = {0};
+    pnpr_option_set_defaults(draw_table, COUNT(draw_table), &o);
+    return o;
+}
+
+pnpr_upload_options pnpr_upload_defaults(void)
+{
+    pnpr_upload_options o = {0};
+    pnpr_option_set_defaults(upload_table, COUNT(upload_table), &o);
+    return o;
+}
+
+static double draw_default(const char *name)
+{
+    return pnpr_option_find(draw_table, COUNT(draw_table), name)->def;
+}
+
+float pnpr_draw_mask_scale(const pnpr_draw_options *o, pnpr_style style)
+{
+    if (o && o->mask_scale > 0) return o->mask_scale;
+    return (float)draw_default(style == PNPR_STYLE_CARTOON ? "outline-scale" : "mask-scale");
+}
+
+int pnpr_draw_ink(const pnpr_draw_options *o, float r_ink[4])
+{
+    static const char *const names[4] = {"ink-r", "ink-g", "ink-b", "ink-a"};
+    int given = o && (o->ink[0] != 0 || o->ink[1] != 0 || o->ink[2] != 0 || o->ink[3] != 0);
+    for (int c = 0; c < 4; c++) r_ink[c] = given ? o->ink[c] : (float)draw_default(names[c]);
+    return given;
+}
