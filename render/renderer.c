@@ -120,6 +120,7 @@ static void find_stroke_uniforms(pnpr_renderer *r)
     r->ut.thin = glGetUniformLocation(p, "u_thin");
     r->ut.queue_end = glGetUniformLocation(p, "u_queue_end");
     r->ut.queue_fade = glGetUniformLocation(p, "u_queue_fade");
+    r->ut.tone_radius = glGetUniformLocation(p, "u_tone_radius");
     r->ut_filter = glGetUniformLocation(p, "u_style_filter");
 }
 

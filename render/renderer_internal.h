@@ -49,7 +49,8 @@ typedef struct pnpr_vertex {
 typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin, queue_end, queue_fade; } splat_uniforms;
 typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho, ppu, min_px; } line_uniforms;
 typedef struct stroke_uniforms {
-    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin, queue_end, queue_fade;
+    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin, queue_end, queue_fade,
+        tone_radius;
 } stroke_uniforms;
 
 typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;

@@ -24,6 +24,8 @@ uniform float u_width;            // stroke width in pixels
 uniform float u_radius_scale;
 uniform int u_mode;
 uniform int u_thin;               // 1: tone hatches, thinned so that ink coverage follows the tone
+uniform float u_tone_radius;      // > 0: tone hatches are this radius (the cloud's mean) long, not
+                                  // their point's: as long everywhere, denser samples keep fewer
 uniform float u_queue_end;        // the queue prefix drawn (instances 0 .. u_queue_end - 1)
 uniform float u_queue_fade;       // > 0: its last u_queue_fade instances fade in (pnpr_queue_fade_length)
 
@@ -68,7 +70,8 @@ void main()
         }
     }
     float r = a_radius * u_radius_scale;
-    float half_len = max(0.5 * u_length * r * u_pixels_per_unit / w, 1.5);
+    float r_len = u_thin != 0 && u_tone_radius > 0.0 ? u_tone_radius * u_radius_scale : r;
+    float half_len = max(0.5 * u_length * r_len * u_pixels_per_unit / w, 1.5);
     float half_wid = 0.5 * u_width;
     if (u_thin != 0) {
         // a dithering point stands for the area of one sample (about r^2, r the distance to the
