@@ -183,6 +183,22 @@ static void check_dedupe(void)
     pnpr_drawing_free(&d);
 }
 
+/* Short marks: open paths under the length go; dots, areas and loops stay. */
+static void check_drop_short(void)
+{
+    pnpr_drawing d = {0};
+    const float s3[4] = {0, 0, 3, 0}, s5[4] = {0, 0, 3, 4}, dot[2] = {1, 1}, sq[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    CHECK_STATUS(pnpr_drawing_add(&d, s3, 2, 1, INK, PNPR_LAYER_HATCHES, 0), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, s5, 2, 1, INK, PNPR_LAYER_HATCHES, 0), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, dot, 1, 2, INK, PNPR_LAYER_DOTS, PNPR_PATH_DOT), PNPR_OK);
+    CHECK_STATUS(pnpr_drawing_add(&d, sq, 4, 1, INK, PNPR_LAYER_OUTLINES, PNPR_PATH_CLOSED), PNPR_OK);
+    size_t removed = 9;
+    CHECK_STATUS(pnpr_drawing_drop_short(&d, 4.5f, &removed), PNPR_OK);
+    CHECK(removed == 1 && d.count == 3 && d.xy[2] == 3 && d.xy[3] == 4);
+    CHECK_STATUS(pnpr_drawing_drop_short(&d, NAN, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    pnpr_drawing_free(&d);
+}
+
 /* The SVG: one Inkscape layer per non-empty class, dots as circles; bad paths refused. */
 static void check_svg(void)
 {
@@ -220,6 +236,7 @@ int main(void)
     check_order();
     check_regions();
     check_dedupe();
+    check_drop_short();
     check_svg();
     return pnpr_test_finish("test_drawing");
 }

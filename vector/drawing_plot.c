@@ -223,6 +223,32 @@ pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed)
     return PNPR_OK;
 }
 
+/* ---- short marks ------------------------------------------------------------------------------ */
+
+static double path_length(const pnpr_drawing *d, size_t i)
+{
+    double len = 0;
+    for (size_t v = d->offset[i] + 1; v < d->offset[i + 1]; v++)
+        len += hypot((double)d->xy[2 * v] - d->xy[2 * v - 2], (double)d->xy[2 * v + 1] - d->xy[2 * v - 1]);
+    return len;
+}
+
+pnpr_status pnpr_drawing_drop_short(pnpr_drawing *d, float min_px, size_t *r_removed)
+{
+    if (r_removed) *r_removed = 0;
+    if (!d || !(min_px >= 0) || !isfinite(min_px)) return PNPR_ERR_INVALID_ARGUMENT;
+    uint8_t *gone = calloc(d->count ? d->count : 1, 1);
+    if (!gone) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; i < d->count; i++)
+        gone[i] = !(d->flags[i] & (PNPR_PATH_DOT | PNPR_PATH_FILL | PNPR_PATH_SUBPATH | PNPR_PATH_CLOSED)) &&
+                  path_length(d, i) < min_px;
+    size_t before = d->count;
+    compact(d, gone);
+    if (r_removed) *r_removed = before - d->count;
+    free(gone);
+    return PNPR_OK;
+}
+
 /* ---- ordering for plotters -------------------------------------------------------------------- */
 
 /* The ends of the paths of one layer in a uniform grid (cells of about two ends). */

@@ -101,6 +101,10 @@ pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_drawing_layer lay
  * which a pen plotter would draw twice. r_removed (may be NULL): paths removed. */
 pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed);
 
+/* Removes the open paths shorter than min_px (a pen plotter draws a mark of a pen's width as a
+ * dot); dots, filled areas and closed paths stay. r_removed (may be NULL): paths removed. */
+pnpr_status pnpr_drawing_drop_short(pnpr_drawing *d, float min_px, size_t *r_removed);
+
 /* Orders the paths of each layer for a pen plotter: greedy nearest neighbour from the previous
  * pen position over the ends of the remaining paths (an open path may be drawn backwards),
  * layers kept in order. PNPR_ERR_OUT_OF_MEMORY leaves the drawing unchanged. */

@@ -33,6 +33,8 @@ static void usage(FILE *f)
             "  --plot-order         vector: order the paths of each layer for a pen plotter (shorter\n"
             "                       pen-up travel)\n"
             "  --merge-hatches      vector: hatches on one line become one path\n"
+            "  --min-mark PX        vector: leave out strokes and lines shorter than PX (a pen plotter\n"
+            "                       draws them as dots; default 0: every mark)\n"
             "  --save-camera FILE   write the camera used (e.g. the automatic one) to FILE, to edit\n"
             "  --camera-path FILE --camera-at T\n"
             "                       the camera of a camera path (pointnpr animate, docs/export.md) at\n"
@@ -47,6 +49,7 @@ typedef struct render_args {
     double camera_at;
     int have_camera_at;
     int plot_order, merge_hatches;
+    double min_mark;
     out_kind kind;
     pnpr_camera_path path; /* the --camera-path file, read before any work */
 } render_args;
@@ -58,7 +61,12 @@ static int render_option(render_args *r, int argc, char **argv, int *i)
     if (!strcmp(a, "--plot-order")) { r->plot_order = 1; return 1; }
     if (!strcmp(a, "--merge-hatches")) { r->merge_hatches = 1; return 1; }
     if (!v) return 0;
-    if (!strcmp(a, "-o") || !strcmp(a, "--output")) r->out = v;
+    if (!strcmp(a, "--min-mark")) {
+        if (!cli_parse_number(v, 0, 1e4, &r->min_mark)) {
+            fprintf(stderr, "pointnpr render: --min-mark wants a length in pixels (0 to 10000), got '%s'\n", v);
+            return -1;
+        }
+    } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) r->out = v;
     else if (!strcmp(a, "--save-camera")) r->save_camera = v;
     else if (!strcmp(a, "--camera-path")) r->camera_path = v;
     else if (!strcmp(a, "--camera-at")) {
@@ -111,8 +119,8 @@ static int check_args(render_args *r, cli_render_opts *o)
         fprintf(stderr, "pointnpr render: the output's name must end in .png, .svg or .pdf (or be - or a device/FIFO: PNG), got '%s'\n", r->out);
         return 2;
     }
-    if ((r->plot_order || r->merge_hatches) && r->kind == OUT_PNG) {
-        fprintf(stderr, "pointnpr render: --plot-order and --merge-hatches are for vector output (.svg, .pdf)\n");
+    if ((r->plot_order || r->merge_hatches || r->min_mark > 0) && r->kind == OUT_PNG) {
+        fprintf(stderr, "pointnpr render: --plot-order, --merge-hatches and --min-mark are for vector output (.svg, .pdf)\n");
         return 2;
     }
     if (r->kind != OUT_PNG) {
@@ -135,9 +143,10 @@ static int write_vector(cli_render_session *s, const cli_render_opts *o, const r
     pnpr_drawing d;
     pnpr_status st = pnpr_renderer_drawing(s->ren, camera, &o->dopt, o->view.width, o->view.height, &d, &err);
     if (st != PNPR_OK) { cli_report_error_in("render", r->in, st, &err); return 0; }
-    size_t merged = 0, m = 0;
+    size_t merged = 0, m = 0, dropped = 0;
     if (r->merge_hatches && st == PNPR_OK) st = pnpr_drawing_merge_collinear(&d, PNPR_LAYER_HATCHES, 1, 0.5f, 1, &merged);
     if (r->merge_hatches && st == PNPR_OK) st = pnpr_drawing_merge_collinear(&d, PNPR_LAYER_TONE, 1, 0.5f, 1, &m);
+    if (r->min_mark > 0 && st == PNPR_OK) st = pnpr_drawing_drop_short(&d, (float)r->min_mark, &dropped);
     double travel = pnpr_drawing_travel(&d);
     if (r->plot_order && st == PNPR_OK) st = pnpr_drawing_order_for_plotter(&d);
     if (st == PNPR_OK)
@@ -154,6 +163,7 @@ static int write_vector(cli_render_session *s, const cli_render_opts *o, const r
         fprintf(stderr, "%.0f px of ink), style %s, %dx%d", pnpr_drawing_ink_length(&d, PNPR_LAYER_COUNT_),
                 pnpr_style_name(o->dopt.style), o->view.width, o->view.height);
         if (r->merge_hatches) fprintf(stderr, ", %zu hatches merged", merged + m);
+        if (r->min_mark > 0) fprintf(stderr, ", %zu marks under %g px left out", dropped, r->min_mark);
         if (r->plot_order) fprintf(stderr, ", pen-up travel %.0f -> %.0f px", travel, pnpr_drawing_travel(&d));
         fprintf(stderr, " -> %s\n", r->out);
     }

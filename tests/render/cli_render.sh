@@ -157,6 +157,8 @@ check '[ $? -eq 0 ] && [ "$(png_w "$dir/light.png")" -eq 120 ]' "tone and outlin
 "$bin" render "$dir/cube.ply" -o "$dir/sketch.svg" --style sketchy --size 200x150 --plot-order --merge-hatches 2> "$dir/svg.log"
 check '[ $? -eq 0 ] && grep -q "<svg" "$dir/sketch.svg" && grep -q "inkscape:label=\"strokes\"" "$dir/sketch.svg"' "sketchy SVG with a strokes layer ($(cat "$dir/svg.log"))"
 check 'grep -q "pen-up travel" "$dir/svg.log" && grep -q "hatches merged" "$dir/svg.log"' "plotter order and merging reported"
+"$bin" render "$dir/cube.ply" -o "$dir/plot.svg" --style sketchy --size 200x150 --min-mark 1000 2> "$dir/mm.log"
+check '[ $? -eq 0 ] && grep -q "under 1000 px left out" "$dir/mm.log" && ! grep -q "<path d=" "$dir/plot.svg"' "--min-mark 1000 leaves no stroke"
 check 'grep -q "width=\"200px\" height=\"150px\"" "$dir/sketch.svg"' "SVG is 200x150 px"
 "$bin" render "$dir/cube.ply" -o "$dir/dots.pdf" --style stipple --size 200x150 --quiet
 check '[ $? -eq 0 ] && [ "$(head -c 5 "$dir/dots.pdf")" = "%PDF-" ]' "stipple PDF written"
