@@ -4,19 +4,9 @@
  * the options it is given from here (pnpr_renderer_check_options, the upload), the CLI's
  * render/animate usage text and parser and the MeshLab decorator's dialog read these entries;
  * tests/test_options_table.c holds them to it. */
-#include <pointnpr/options.h>
+#include "options_internal.h"
 
-#include <stddef.h>
-
-#define UNB PNPR_OPTION_UNBOUNDED
-#define EXCL PNPR_OPTION_MIN_EXCLUSIVE
-#define NEG_OFF PNPR_OPTION_NEGATIVE_OFF
-#define ZERO_VALUE PNPR_OPTION_ZERO_IS_VALUE
 #define PER_STYLE PNPR_OPTION_STYLE_DEFAULT
-/* name, member, type, default, min, max, flags, auto scale, auto text, help */
-#define OPT(group, S, name, m, type, def, lo, hi, flags, scale, atext, help)                                          \
-    { name, #m, group, PNPR_OPTION_##type, offsetof(S, m), def, lo, hi, flags, scale, atext, help }
-#define COUNT(t) (sizeof(t) / sizeof((t)[0]))
 
 #define D(...) OPT("draw", pnpr_draw_options, __VA_ARGS__)
 static const pnpr_option_desc draw_table[] = {

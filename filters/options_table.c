@@ -1,18 +1,8 @@
 /* The defaults and ranges of the filters' options structs (options.h): the one place they are
  * written. The library fills zeros from here, the CLI's usage text and parser and the MeshLab
  * dialogs read these entries; tests/test_options_table.c and tests/cli_options.sh hold them to it. */
-#include <pointnpr/options.h>
+#include "../core/options_internal.h"
 
-#include <stddef.h>
-
-#define UNB PNPR_OPTION_UNBOUNDED
-#define EXCL PNPR_OPTION_MIN_EXCLUSIVE
-#define NEG_OFF PNPR_OPTION_NEGATIVE_OFF
-#define ZERO_VALUE PNPR_OPTION_ZERO_IS_VALUE
-/* name, struct, member, type, default, min, max, flags, auto scale, auto text, help */
-#define OPT(group, S, name, m, type, def, lo, hi, flags, scale, atext, help)                                          \
-    { name, #m, group, PNPR_OPTION_##type, offsetof(S, m), def, lo, hi, flags, scale, atext, help }
-#define COUNT(t) (sizeof(t) / sizeof((t)[0]))
 
 #define F(...) OPT("features", pnpr_features_options, __VA_ARGS__)
 static const pnpr_option_desc features_table[] = {
