@@ -3,7 +3,6 @@
  * dialogs read these entries; tests/test_options_table.c and tests/cli_options.sh hold them to it. */
 #include "../core/options_internal.h"
 
-
 #define F(...) OPT("features", pnpr_features_options, __VA_ARGS__)
 static const pnpr_option_desc features_table[] = {
     F("k", k, UINT, 16, 1, PNPR_FEATURES_K_MAX, 0, 0, NULL, "neighbourhood size"),
