@@ -35,11 +35,14 @@ static void planes(pnpr_cloud *c, int occluder)
 {
     size_t nb = GRID * GRID, nf = occluder ? (GRID / 2 + 6) * GRID : 0;
     CHECK_STATUS(pnpr_cloud_alloc(c, nb + nf), PNPR_OK);
-    pnpr_property *cls = NULL, *dx = NULL, *dy = NULL, *dz = NULL;
-    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_CLASS, PNPR_TYPE_UINT8, &cls), PNPR_OK);
-    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_X, PNPR_TYPE_FLOAT32, &dx), PNPR_OK);
-    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_Y, PNPR_TYPE_FLOAT32, &dy), PNPR_OK);
-    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_Z, PNPR_TYPE_FLOAT32, &dz), PNPR_OK);
+    /* adding a property may move the others: look them up once all are added */
+    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_CLASS, PNPR_TYPE_UINT8, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_X, PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_Y, PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_Z, PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
+    pnpr_property *cls = pnpr_cloud_find_property(c, PNPR_PROP_FEATURE_CLASS);
+    pnpr_property *dx = pnpr_cloud_find_property(c, PNPR_PROP_FEATURE_DIR_X);
+    if (!cls || !dx) return;
     size_t k = 0;
     for (int j = 0; j < GRID; j++)
         for (int i = 0; i < GRID; i++, k++) {
