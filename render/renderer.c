@@ -342,7 +342,8 @@ pnpr_status pnpr_renderer_plan_frame(const pnpr_renderer *r, const pnpr_camera *
         box.count = 2;
         box.xyz = corners;
         memcpy(box.origin, r->origin, sizeof box.origin);
-        pnpr_camera_fit(&box, NULL, 45, (float)w / (float)h, &cam);
+        if (pnpr_camera_fit(&box, NULL, 45, (float)w / (float)h, &cam) != PNPR_OK)
+            memset(&cam, 0, sizeof cam); /* nothing to fit: the zero camera (pnpr_frame_camera_make decides) */
     }
     if (!o->matrices) {
         st = pnpr_frame_camera_make(&cam, r->origin, r->bmin, r->bmax, r->count > 0, w, h, &p->fc, err);

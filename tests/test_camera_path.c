@@ -61,13 +61,13 @@ static void test_through_keys(void)
     /* between the keys: continuous (no jump over a small step) and held outside */
     pnpr_camera a, b;
     for (double t = 0; t < 3.25; t += 1e-3) {
-        pnpr_camera_path_eval(&p, t, &a);
-        pnpr_camera_path_eval(&p, t + 1e-6, &b);
+        CHECK_STATUS(pnpr_camera_path_eval(&p, t, &a), PNPR_OK);
+        CHECK_STATUS(pnpr_camera_path_eval(&p, t + 1e-6, &b), PNPR_OK);
         CHECK_MSG(dist(a.eye, b.eye) < 1e-3 && dist(a.target, b.target) < 1e-3 && dot(a.up, b.up) > 0.999999, "jump at t %g", t);
     }
-    pnpr_camera_path_eval(&p, -5, &a);
+    CHECK_STATUS(pnpr_camera_path_eval(&p, -5, &a), PNPR_OK);
     CHECK(!memcmp(a.eye, p.keys[0].eye, sizeof a.eye));
-    pnpr_camera_path_eval(&p, 99, &a);
+    CHECK_STATUS(pnpr_camera_path_eval(&p, 99, &a), PNPR_OK);
     CHECK(!memcmp(a.eye, p.keys[4].eye, sizeof a.eye));
     CHECK_NEAR(pnpr_camera_path_duration(&p), 3.25, 0);
     pnpr_camera_path_free(&p);
@@ -108,10 +108,10 @@ static void check_orbit(double elev, double degrees, int expect_loop)
     CHECK_MSG(worst_r < 1e-4, "the orbit leaves its circle by %g of the radius", worst_r);
     if (expect_loop) { /* C1 at the seam: the velocity just before the end equals the one just after the start */
         pnpr_camera a, b, c0, c1;
-        pnpr_camera_path_eval(&p, 8 - 2e-4, &a);
-        pnpr_camera_path_eval(&p, 8 - 1e-4, &b);
-        pnpr_camera_path_eval(&p, 0, &c0);
-        pnpr_camera_path_eval(&p, 1e-4, &c1);
+        CHECK_STATUS(pnpr_camera_path_eval(&p, 8 - 2e-4, &a), PNPR_OK);
+        CHECK_STATUS(pnpr_camera_path_eval(&p, 8 - 1e-4, &b), PNPR_OK);
+        CHECK_STATUS(pnpr_camera_path_eval(&p, 0, &c0), PNPR_OK);
+        CHECK_STATUS(pnpr_camera_path_eval(&p, 1e-4, &c1), PNPR_OK);
         for (int k = 0; k < 3; k++) CHECK_NEAR((b.eye[k] - a.eye[k]) / 1e-4, (c1.eye[k] - c0.eye[k]) / 1e-4, 1e-3);
     }
     pnpr_camera_path_free(&p);
@@ -252,7 +252,7 @@ static void test_preset_start(void)
     double ty = tan(22.5 * 3.14159265358979323846 / 180), tx = ty * aspect, worst = 0;
     for (int k = 0; k < 72; k++) {
         pnpr_camera cam;
-        pnpr_camera_path_eval(&p, k, &cam);
+        CHECK_STATUS(pnpr_camera_path_eval(&p, k, &cam), PNPR_OK);
         double f[3], s[3], u[3];
         view_dir(&cam, f);
         s[0] = f[1] * cam.up[2] - f[2] * cam.up[1]; s[1] = f[2] * cam.up[0] - f[0] * cam.up[2]; s[2] = f[0] * cam.up[1] - f[1] * cam.up[0];

@@ -498,12 +498,12 @@ static void test_writer_round_trip(void)
         CHECK_STATUS(pnpr_write_pcd_stream(sink, &b, &c, NULL, &e), PNPR_ERR_INVALID_ARGUMENT);
         CHECK(contains(e.message, "colours"));
         buf_free(&b);
-        pnpr_cloud_remove_property(&c, "rgba");
+        CHECK_STATUS(pnpr_cloud_remove_property(&c, "rgba"), PNPR_OK);
         CHECK_STATUS(pnpr_cloud_add_property(&c, "normal_x", PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
         CHECK_STATUS(pnpr_write_pcd_stream(sink, &b, &c, NULL, &e), PNPR_ERR_INVALID_ARGUMENT);
         CHECK(contains(e.message, "'normal_x' clashes"));
         buf_free(&b);
-        pnpr_cloud_remove_property(&c, "normal_x");
+        CHECK_STATUS(pnpr_cloud_remove_property(&c, "normal_x"), PNPR_OK);
     }
     /* a failing sink */
     {

@@ -49,7 +49,7 @@ typedef struct pnpr_camera_matrices {
  * `cloud` (automatic near/far from its bounds when the camera leaves them at 0): drawing with
  * them through pnpr_draw_options.matrices gives the same frame as drawing with `camera`.
  * cloud may be NULL (then near/far must be set, or a default range is used). */
-pnpr_status pnpr_camera_matrices_from_camera(const pnpr_camera *camera, const pnpr_cloud *cloud,
+PNPR_NODISCARD pnpr_status pnpr_camera_matrices_from_camera(const pnpr_camera *camera, const pnpr_cloud *cloud,
                                              int width, int height, pnpr_camera_matrices *r_m,
                                              pnpr_error *err);
 
@@ -58,7 +58,7 @@ pnpr_status pnpr_camera_matrices_from_camera(const pnpr_camera *camera, const pn
  * target towards the eye; NULL = the default view (0, -1, 0.5), i.e. from the front, slightly
  * above, z up), with the vertical fov (0 = 45) and the image aspect width/height (0 = 1).
  * PNPR_ERR_EMPTY when the cloud has no finite point. */
-pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float fov_y_deg,
+PNPR_NODISCARD pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float fov_y_deg,
                             float aspect, pnpr_camera *r_camera);
 
 /* The default camera (docs/view.md): looks along pnpr_scene_frame's suggested direction (from
@@ -68,7 +68,7 @@ pnpr_status pnpr_camera_fit(const pnpr_cloud *cloud, const double dir[3], float 
  * the cloud has far outliers, near/far are set from the robust bounds so that the automatic
  * depth range does not stretch to them. fov_y_deg 0 = 45, aspect 0 = 1; opts may be NULL;
  * r_info (may be NULL) receives the analysis. PNPR_ERR_EMPTY without a finite point. */
-pnpr_status pnpr_camera_default(const pnpr_cloud *cloud, const pnpr_view_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_camera_default(const pnpr_cloud *cloud, const pnpr_view_options *opts,
                                 float fov_y_deg, float aspect, pnpr_camera *r_camera,
                                 pnpr_view_info *r_info);
 
@@ -105,7 +105,7 @@ typedef struct pnpr_svg_options {
 /* camera NULL = pnpr_camera_fit of the occluders (or of the lines when there are none).
  * Written to path + ".tmp" and renamed. PNPR_ERR_INVALID_ARGUMENT for a size outside 1..32768
  * or a negative / non-finite width, taper, radius, tolerance, outline width or jump. */
-pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
+PNPR_NODISCARD pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
                                  const pnpr_camera *camera, const pnpr_svg_options *opts,
                                  pnpr_error *err);
 

@@ -42,11 +42,11 @@ void pnpr_camera_path_free(pnpr_camera_path *path);
 /* Checks a path: 1..PNPR_CAMERA_PATH_KEYS_MAX keys, finite values, strictly increasing times,
  * eye != target, an up not parallel to the view, fov in (0, 179), a loop's ends equal.
  * PNPR_ERR_INVALID_ARGUMENT (or PNPR_ERR_NUMERIC for non-finite values) naming the key. */
-pnpr_status pnpr_camera_path_check(const pnpr_camera_path *path, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_camera_path_check(const pnpr_camera_path *path, pnpr_error *err);
 
 /* The camera at time t (clamped to the first and last key times). fov_y_deg and up as described
  * above; near/far 0 (automatic). The path must pass pnpr_camera_path_check. */
-pnpr_status pnpr_camera_path_eval(const pnpr_camera_path *path, double t, pnpr_camera *r_camera);
+PNPR_NODISCARD pnpr_status pnpr_camera_path_eval(const pnpr_camera_path *path, double t, pnpr_camera *r_camera);
 
 /* Time of the last key minus time of the first (0 for a single key). */
 double pnpr_camera_path_duration(const pnpr_camera_path *path);
@@ -56,11 +56,11 @@ double pnpr_camera_path_duration(const pnpr_camera_path *path);
  * the path; '#' comments, blank lines. A key without up or fov takes the previous key's (the
  * first key: 0 0 1 and 45). A file without any "time" line is one camera at time 0 (so a camera
  * file is a path). Errors name FILE:LINE (err->line) and what was expected. */
-pnpr_status pnpr_camera_path_read(const char *filename, pnpr_camera_path *r_path, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_camera_path_read(const char *filename, pnpr_camera_path *r_path, pnpr_error *err);
 
 /* The same from memory: `size` bytes (a NUL byte ends a line's content; a line holds at most 1022
  * characters), `name` naming the text in messages. r_path is zeroed on failure. */
-pnpr_status pnpr_camera_path_parse(const char *text, size_t size, const char *name, pnpr_camera_path *r_path,
+PNPR_NODISCARD pnpr_status pnpr_camera_path_parse(const char *text, size_t size, const char *name, pnpr_camera_path *r_path,
                                    pnpr_error *err);
 
 /* Largest camera or camera path file read (pnpr_text_file_load). */
@@ -75,12 +75,12 @@ pnpr_status pnpr_camera_path_parse(const char *text, size_t size, const char *na
  * PNPR_ERR_FORMAT "NAME:LINE: expected 'eye|target|up X Y Z' or 'fov DEG' (0 < DEG < 179)"
  * (err->line set), or "NAME: a camera file needs both 'eye' and 'target'". */
 enum { PNPR_CAMERA_GIVEN_UP = 1, PNPR_CAMERA_GIVEN_FOV = 2 };
-pnpr_status pnpr_camera_file_parse(const char *text, size_t size, const char *name, pnpr_camera_key *r_camera,
+PNPR_NODISCARD pnpr_status pnpr_camera_file_parse(const char *text, size_t size, const char *name, pnpr_camera_key *r_camera,
                                    unsigned *r_given, pnpr_error *err);
 
 /* Writes the path in that format (through pnpr_output_*, output.h); reading it back gives the
  * same keys bit for bit (%.17g). */
-pnpr_status pnpr_camera_path_write(const char *filename, const pnpr_camera_path *path, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_camera_path_write(const char *filename, const pnpr_camera_path *path, pnpr_error *err);
 
 /* Presets around a start camera (usually pnpr_camera_default's, which frames the content). */
 typedef enum pnpr_camera_preset {
@@ -102,7 +102,7 @@ typedef struct pnpr_camera_preset_options {
 /* The preset's path starting at `start` (its eye, target and fov) around the unit axis `up`
  * (NULL = start->up). PNPR_ERR_INVALID_ARGUMENT for an unknown preset, non-finite or negative
  * options, a start whose view runs along `up` (no horizontal direction). opts may be NULL. */
-pnpr_status pnpr_camera_path_preset(pnpr_camera_preset preset, const pnpr_camera *start, const double up[3],
+PNPR_NODISCARD pnpr_status pnpr_camera_path_preset(pnpr_camera_preset preset, const pnpr_camera *start, const double up[3],
                                     const pnpr_camera_preset_options *opts, pnpr_camera_path *r_path,
                                     pnpr_error *err);
 
@@ -111,7 +111,7 @@ pnpr_status pnpr_camera_path_preset(pnpr_camera_preset preset, const pnpr_camera
  * inside the robust bounds, up to 20000 of them evenly strided) fits the frame with the default
  * camera's 5% margin from each of 36 azimuths about the scene's up through the target, so that
  * an orbit keeps it in frame from every side. r_up receives the scene's up. */
-pnpr_status pnpr_camera_preset_start(const pnpr_cloud *cloud, const pnpr_view_options *view_opts,
+PNPR_NODISCARD pnpr_status pnpr_camera_preset_start(const pnpr_cloud *cloud, const pnpr_view_options *view_opts,
                                      float fov_y_deg, float aspect, pnpr_camera *r_start, double r_up[3]);
 
 #ifdef __cplusplus

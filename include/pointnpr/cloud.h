@@ -79,19 +79,19 @@ typedef struct pnpr_cloud {
 void pnpr_cloud_free(pnpr_cloud *cloud); /* frees everything, leaves a zeroed cloud; NULL ok */
 
 /* Allocates xyz for `count` points (contents zero), freeing what the cloud held. */
-pnpr_status pnpr_cloud_alloc(pnpr_cloud *cloud, size_t count);
+PNPR_NODISCARD pnpr_status pnpr_cloud_alloc(pnpr_cloud *cloud, size_t count);
 /* Allocate the optional arrays (zero-filled) if absent; no-op when present. */
-pnpr_status pnpr_cloud_alloc_rgb(pnpr_cloud *cloud);
-pnpr_status pnpr_cloud_alloc_normals(pnpr_cloud *cloud);
-pnpr_status pnpr_cloud_alloc_labels(pnpr_cloud *cloud);
-pnpr_status pnpr_cloud_alloc_src_xyz(pnpr_cloud *cloud);
+PNPR_NODISCARD pnpr_status pnpr_cloud_alloc_rgb(pnpr_cloud *cloud);
+PNPR_NODISCARD pnpr_status pnpr_cloud_alloc_normals(pnpr_cloud *cloud);
+PNPR_NODISCARD pnpr_status pnpr_cloud_alloc_labels(pnpr_cloud *cloud);
+PNPR_NODISCARD pnpr_status pnpr_cloud_alloc_src_xyz(pnpr_cloud *cloud);
 
 /* Finds an extra property by name; NULL if absent. */
 pnpr_property *pnpr_cloud_find_property(const pnpr_cloud *cloud, const char *name);
 /* Adds (or replaces, if the name exists) a zero-filled extra property; r_prop may be NULL. */
-pnpr_status pnpr_cloud_add_property(pnpr_cloud *cloud, const char *name, pnpr_type type,
+PNPR_NODISCARD pnpr_status pnpr_cloud_add_property(pnpr_cloud *cloud, const char *name, pnpr_type type,
                                     pnpr_property **r_prop);
-pnpr_status pnpr_cloud_remove_property(pnpr_cloud *cloud, const char *name);
+PNPR_NODISCARD pnpr_status pnpr_cloud_remove_property(pnpr_cloud *cloud, const char *name);
 
 /* World coordinate of point i (uses src_xyz when present, else origin + xyz). */
 void pnpr_cloud_world(const pnpr_cloud *cloud, size_t i, double r_world[3]);
@@ -102,18 +102,18 @@ void pnpr_cloud_world(const pnpr_cloud *cloud, size_t i, double r_world[3]);
  * take the content's float precision. Non-finite coordinates stay non-finite in xyz, and so do
  * offsets that overflow float (a coordinate of 1e308): stages treat such points as invalid.
  * Does not touch src_xyz. */
-pnpr_status pnpr_cloud_set_world(pnpr_cloud *cloud, const double *world);
+PNPR_NODISCARD pnpr_status pnpr_cloud_set_world(pnpr_cloud *cloud, const double *world);
 
 /* Appends all points of `src` to `dst` (re-expressing offsets in dst's origin, which is
  * chosen from the union's bounding box when dst is empty). Optional arrays and extra
  * properties present in either cloud are kept (missing values are zero); faces are
  * re-indexed. */
-pnpr_status pnpr_cloud_append(pnpr_cloud *dst, const pnpr_cloud *src);
+PNPR_NODISCARD pnpr_status pnpr_cloud_append(pnpr_cloud *dst, const pnpr_cloud *src);
 
 /* Removes the points with keep[i] == 0 (count entries) from every per-point array and extra
  * property, keeping the order of the others; faces with a removed corner are dropped, the others
  * re-indexed. r_removed (may be NULL) receives how many points went. */
-pnpr_status pnpr_cloud_keep(pnpr_cloud *cloud, const uint8_t *keep, size_t *r_removed);
+PNPR_NODISCARD pnpr_status pnpr_cloud_keep(pnpr_cloud *cloud, const uint8_t *keep, size_t *r_removed);
 
 /* Bounding box of the finite offsets; returns the number of finite points. */
 size_t pnpr_cloud_bounds(const pnpr_cloud *cloud, float r_min[3], float r_max[3]);

@@ -20,6 +20,14 @@ extern "C" {
 #define PNPR_VERSION_PATCH 0
 #define PNPR_VERSION_STRING "0.1.0"
 
+/* Functions that return a pnpr_status are marked so that a caller who drops the status gets a
+ * warning (an error under -Werror): every status is either handled or explicitly discarded. */
+#if defined(__GNUC__) || defined(__clang__)
+#define PNPR_NODISCARD __attribute__((warn_unused_result))
+#else
+#define PNPR_NODISCARD
+#endif
+
 typedef enum pnpr_status {
     PNPR_OK = 0,
     PNPR_ERR_INVALID_ARGUMENT, /* NULL pointer, negative/zero size where not allowed, bad option */
@@ -58,7 +66,7 @@ pnpr_status pnpr_error_set(pnpr_error *err, pnpr_status status, const char *fmt,
 /* Loads a whole text file (for the memory parsers, e.g. pnpr_style_map_parse): *r_text holds
  * *r_size bytes and a terminating NUL, owned by the caller (free). A file larger than max_size
  * bytes is refused (PNPR_ERR_UNSUPPORTED); PNPR_ERR_IO "PATH: reason" when it cannot be read. */
-pnpr_status pnpr_text_file_load(const char *path, size_t max_size, char **r_text, size_t *r_size, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_text_file_load(const char *path, size_t max_size, char **r_text, size_t *r_size, pnpr_error *err);
 
 /* Progress/cancel callback. `fraction` in [0,1] for the named stage. Return non-zero to cancel:
  * the running call then stops as soon as it can and returns PNPR_ERR_CANCELLED.

@@ -20,7 +20,7 @@ extern "C" {
  * (same inputs, same order, on every machine). group may be NULL (one group).
  * r_group_start (optional, group_count + 2 entries) receives where each group starts, the
  * "other" group last, then count. */
-pnpr_status pnpr_crq_order(size_t count, const uint8_t *group, uint32_t group_count,
+PNPR_NODISCARD pnpr_status pnpr_crq_order(size_t count, const uint8_t *group, uint32_t group_count,
                            uint64_t seed, uint32_t *r_order, size_t *r_group_start);
 
 /* How many points of each group a frame draws: `total` points shared among the groups in

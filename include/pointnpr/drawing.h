@@ -58,18 +58,18 @@ void pnpr_drawing_free(pnpr_drawing *d);
 
 /* Appends a path of n >= 1 vertices. PNPR_ERR_OUT_OF_MEMORY (the drawing unchanged) or
  * PNPR_ERR_INVALID_ARGUMENT (n == 0, a non-finite coordinate or width, an unknown layer). */
-pnpr_status pnpr_drawing_add(pnpr_drawing *d, const float *xy, size_t n, float width, const uint8_t rgba[4],
+PNPR_NODISCARD pnpr_status pnpr_drawing_add(pnpr_drawing *d, const float *xy, size_t n, float width, const uint8_t rgba[4],
                              pnpr_drawing_layer layer, uint8_t flags);
 
 /* Appends the vertex (x, y) to the last path. PNPR_ERR_INVALID_ARGUMENT without paths or for a
  * non-finite vertex; PNPR_ERR_OUT_OF_MEMORY (the drawing unchanged). */
-pnpr_status pnpr_drawing_extend(pnpr_drawing *d, float x, float y);
+PNPR_NODISCARD pnpr_status pnpr_drawing_extend(pnpr_drawing *d, float x, float y);
 
 /* Appends the centre lines of the ink in a w x h alpha mask (alpha >= threshold; rows top first,
  * or bottom first when bottom_up) as paths of `width` px in `rgba` on `layer`: the mask thinned to
  * one-pixel curves (Zhang-Suen), traced between ends and junctions (loops closed), smoothed and
  * simplified to 0.5 px; specks of fewer than 3 pixels are dropped (vector/ink_trace.c). */
-pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w, int h, int bottom_up, uint8_t threshold,
+PNPR_NODISCARD pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w, int h, int bottom_up, uint8_t threshold,
                                    float width, const uint8_t rgba[4], pnpr_drawing_layer layer);
 
 /* Appends the flat colour areas of a w x h RGBA image (rows top first, or bottom first when
@@ -77,7 +77,7 @@ pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w,
  * PNPR_PATH_SUBPATH), traced along the pixel borders and simplified to 0.7 px; pixels of the
  * `background` colour or with alpha 0 are left out (vector/region_trace.c). PNPR_ERR_UNSUPPORTED
  * for an image of more than 65536 colours (not flat areas). */
-pnpr_status pnpr_drawing_trace_regions(pnpr_drawing *d, const uint8_t *rgba, int w, int h, int bottom_up,
+PNPR_NODISCARD pnpr_status pnpr_drawing_trace_regions(pnpr_drawing *d, const uint8_t *rgba, int w, int h, int bottom_up,
                                        const uint8_t background[4], pnpr_drawing_layer layer);
 
 /* Total length of the paths of `layer` (PNPR_LAYER_COUNT_: all), px. */
@@ -92,34 +92,34 @@ double pnpr_drawing_travel(const pnpr_drawing *d);
  * colour, and overlapping or separated by at most `gap_px` along it, become one path spanning
  * them. Returns PNPR_OK (the drawing keeps its order: a merged path takes the place of its first
  * part) or PNPR_ERR_OUT_OF_MEMORY (the drawing unchanged). r_merged (may be NULL): paths removed. */
-pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_drawing_layer layer, float angle_deg, float offset_px,
+PNPR_NODISCARD pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_drawing_layer layer, float angle_deg, float offset_px,
                                          float gap_px, size_t *r_merged);
 
 /* Removes repeated marks: paths of at most two vertices (strokes, hatches, dots) of the same
  * layer, kind, width and colour whose ends (in either order) round to the same points of a grid
  * of `tol` px; the first of them stays. Duplicate points in a scan draw the same stroke twice,
  * which a pen plotter would draw twice. r_removed (may be NULL): paths removed. */
-pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed);
+PNPR_NODISCARD pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed);
 
 /* Removes the open paths shorter than min_px (a pen plotter draws a mark of a pen's width as a
  * dot); dots, filled areas and closed paths stay. r_removed (may be NULL): paths removed. */
-pnpr_status pnpr_drawing_drop_short(pnpr_drawing *d, float min_px, size_t *r_removed);
+PNPR_NODISCARD pnpr_status pnpr_drawing_drop_short(pnpr_drawing *d, float min_px, size_t *r_removed);
 
 /* Orders the paths of each layer for a pen plotter: greedy nearest neighbour from the previous
  * pen position over the ends of the remaining paths (an open path may be drawn backwards),
  * layers kept in order. PNPR_ERR_OUT_OF_MEMORY leaves the drawing unchanged. */
-pnpr_status pnpr_drawing_order_for_plotter(pnpr_drawing *d);
+PNPR_NODISCARD pnpr_status pnpr_drawing_order_for_plotter(pnpr_drawing *d);
 
 /* SVG 1.1: one <g> per non-empty layer, in layer order, marked as an Inkscape layer with its name;
  * paths with their widths and colours; coordinates with 2 decimals; width and height in px.
  * Written through pnpr_output (output.h): a temporary beside `path` renamed over it, "-" =
  * standard output. */
-pnpr_status pnpr_drawing_write_svg(const pnpr_drawing *d, const char *path, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_drawing_write_svg(const pnpr_drawing *d, const char *path, pnpr_error *err);
 
 /* PDF 1.5 through cairo, one page of width x height px at 0.75 pt a px, the same paths (PDF has no
  * named layers in cairo 1.16: the layers are drawn in order). PNPR_ERR_UNSUPPORTED when the
  * library was built without cairo. */
-pnpr_status pnpr_drawing_write_pdf(const pnpr_drawing *d, const char *path, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_drawing_write_pdf(const pnpr_drawing *d, const char *path, pnpr_error *err);
 
 #ifdef __cplusplus
 }

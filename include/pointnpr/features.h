@@ -102,7 +102,7 @@ typedef struct pnpr_features_stats {
  * naming the option and its range in err (may be NULL), for unknown want bits, a non-finite
  * viewpoint, or a numeric member outside its range in the options table (options.h:
  * pnpr_option_check; e.g. k above PNPR_FEATURES_K_MAX). opts NULL = all defaults (valid). */
-pnpr_status pnpr_features_check_options(const pnpr_features_options *opts, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_features_check_options(const pnpr_features_options *opts, pnpr_error *err);
 
 /* ---- the whole pipeline on a cloud ---------------------------------------------------------
  * Computes normals (kept from the input unless opts->recompute_normals or unless more than half
@@ -111,7 +111,7 @@ pnpr_status pnpr_features_check_options(const pnpr_features_options *opts, pnpr_
  * (float), replacing existing ones of that name — those of opts->want (default: all).
  * Points with NaN/Inf coordinates get normal (0,0,0), degree 0, class 0, confidence 0.
  * stats may be NULL. */
-pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options *opts,
                                   pnpr_features_stats *r_stats);
 
 /* ---- the stages, for hosts that keep their own arrays -------------------------------------- */
@@ -126,13 +126,13 @@ void pnpr_eigen_sym3(const double a[3][3], double r_values[3], double r_vectors[
  * lambda_min / (lambda_0 + lambda_1 + lambda_2) in [0, 1/3] (scale-invariant "surface
  * variation"). Fewer than 3 distinct neighbours: normal (0,0,0), error 0 (see docs).
  * Either output may be NULL (not both). */
-pnpr_status pnpr_estimate_normals(const float *xyz, size_t count, const uint32_t *knn, size_t k,
+PNPR_NODISCARD pnpr_status pnpr_estimate_normals(const float *xyz, size_t count, const uint32_t *knn, size_t k,
                                   int threads, float *r_normals, float *r_fit_error);
 
 /* Orients normals consistently: towards `viewpoint` (offset coordinates, i.e. world minus the
  * cloud origin) when not NULL; else by propagation over the kNN graph from the highest point of
  * each connected component (that seed pointing +z), visiting the most parallel neighbours first. */
-pnpr_status pnpr_orient_normals(const float *xyz, size_t count, const uint32_t *knn, size_t k,
+PNPR_NODISCARD pnpr_status pnpr_orient_normals(const float *xyz, size_t count, const uint32_t *knn, size_t k,
                                 const double *viewpoint, float *normals);
 
 /* Feature degree in [0,1] = w_g * G + w_c * C (weights normalised), see docs/features.md:
@@ -143,7 +143,7 @@ pnpr_status pnpr_orient_normals(const float *xyz, size_t count, const uint32_t *
  *   C = min(1, |grad c| * r_i / 0.5): least-squares gradient of the RGB colour (0..1 per
  *       channel) in the tangent plane, times the RMS neighbour distance r_i = colour change across
  *       the neighbourhood. rgb may be NULL (then C = 0 and w_g = 1). */
-pnpr_status pnpr_feature_degree(const float *xyz, const uint8_t *rgb, const float *normals,
+PNPR_NODISCARD pnpr_status pnpr_feature_degree(const float *xyz, const uint8_t *rgb, const float *normals,
                                 const float *fit_error, size_t count, const uint32_t *knn,
                                 size_t k, float weight_geometry, float weight_color, int threads,
                                 float *r_degree);
@@ -156,7 +156,7 @@ float pnpr_auto_threshold(const float *degree, size_t count);
  * 1 - 1.5 * (mu_0 + mu_1) / (mu_0 + mu_1 + mu_2) in [0,1] (mu = covariance eigenvalues);
  * direction = principal eigenvector (components in r_dir_x/y/z, each may be NULL).
  * Non-feature points get class NONE, confidence 0, direction 0. */
-pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t count, size_t k,
+PNPR_NODISCARD pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t count, size_t k,
                                    float threshold, float min_confidence, int threads,
                                    uint8_t *r_class, float *r_confidence, float *r_dir_x,
                                    float *r_dir_y, float *r_dir_z);
@@ -166,7 +166,7 @@ pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t
  * coherent order (kd-tree order, as pnpr_compute_features does, or a Morton order). tone: per point darkness in
  * [0,1] (NULL = derived from rgb, else from normals lit from +z). Sets class DITHER on the
  * chosen points; returns their number in r_chosen (may be NULL). */
-pnpr_status pnpr_dither(const float *xyz, const uint8_t *rgb, const float *normals,
+PNPR_NODISCARD pnpr_status pnpr_dither(const float *xyz, const uint8_t *rgb, const float *normals,
                         const float *tone, size_t count, const uint32_t *knn, size_t k,
                         float tone_scale, uint8_t *io_class, size_t *r_chosen);
 

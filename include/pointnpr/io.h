@@ -73,36 +73,36 @@ typedef struct pnpr_write_options {
 } pnpr_write_options;
 
 /* Reads any supported file into `cloud` (which must be empty or zeroed; it is freed first). */
-pnpr_status pnpr_read_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
+PNPR_NODISCARD pnpr_status pnpr_read_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud,
                            pnpr_error *err);
 
-pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_options *opts,
                                  pnpr_cloud *cloud, pnpr_error *err);
-pnpr_status pnpr_read_las_memory(const void *data, size_t size, const pnpr_read_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_read_las_memory(const void *data, size_t size, const pnpr_read_options *opts,
                                  pnpr_cloud *cloud, pnpr_error *err);
-pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_options *opts,
                                  pnpr_cloud *cloud, pnpr_error *err);
 /* Text point clouds from memory (format: PNPR_FORMAT_XYZ, _PTS, _PWN or _CSV in opts->format;
  * AUTO reads as CSV: a header row or the column defaults). */
-pnpr_status pnpr_read_text_memory(const void *data, size_t size, const pnpr_read_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_read_text_memory(const void *data, size_t size, const pnpr_read_options *opts,
                                   pnpr_cloud *cloud, pnpr_error *err);
 /* OBJ/OFF through OpenMesh (vertices, vertex colours and normals when present, faces).
  * pnpr_read_file reads ascii OFF with io/off.c instead. */
-pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_options *opts,
                                 pnpr_cloud *cloud, pnpr_error *err);
 
 /* Writes PLY or PCD (format, else the extension; "-" is PLY on standard output) the way every
  * output is written (pointnpr/output.h): never half a file, never a special file replaced. */
-pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud,
+PNPR_NODISCARD pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud,
                             const pnpr_write_options *opts, pnpr_error *err);
 
 /* Writes PLY to a caller-provided sink (fn returns 0 on success). */
 typedef int (*pnpr_write_fn)(void *user, const void *data, size_t size);
-pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
+PNPR_NODISCARD pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
                                   const pnpr_write_options *opts, pnpr_error *err);
 
 /* Writes binary PCD to a caller-provided sink (x y z, normals, rgb, label, extra properties). */
-pnpr_status pnpr_write_pcd_stream(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
+PNPR_NODISCARD pnpr_status pnpr_write_pcd_stream(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
                                   const pnpr_write_options *opts, pnpr_error *err);
 
 pnpr_file_format pnpr_format_from_path(const char *path);

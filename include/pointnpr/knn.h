@@ -19,18 +19,18 @@ typedef struct pnpr_kdtree pnpr_kdtree;
 
 /* xyz: point i at (const char *)xyz + i*stride_bytes (stride 0 = 3 floats, tightly packed).
  * count must be < 2^32 - 1. An empty or all-invalid input gives a valid empty tree. */
-pnpr_status pnpr_kdtree_build(const float *xyz, size_t count, size_t stride_bytes,
+PNPR_NODISCARD pnpr_status pnpr_kdtree_build(const float *xyz, size_t count, size_t stride_bytes,
                               pnpr_kdtree **r_tree);
 /* Same, with the number of build threads (0 = all cores; the top levels are split sequentially,
  * then up to 16 subtrees are built in parallel). The tree does not depend on `threads`. */
-pnpr_status pnpr_kdtree_build_threads(const float *xyz, size_t count, size_t stride_bytes,
+PNPR_NODISCARD pnpr_status pnpr_kdtree_build_threads(const float *xyz, size_t count, size_t stride_bytes,
                                       int threads, pnpr_kdtree **r_tree);
 void pnpr_kdtree_free(pnpr_kdtree *tree);
 
 /* Frees the tree but hands over its arrays, for pipelines that work in tree order (spatially
  * coherent, so neighbour gathers hit the cache): r_points = the valid points in tree order
  * (3 * size floats), r_indices = the original index of each. Release both with pnpr_free. */
-pnpr_status pnpr_kdtree_detach(pnpr_kdtree *tree, float **r_points, uint32_t **r_indices);
+PNPR_NODISCARD pnpr_status pnpr_kdtree_detach(pnpr_kdtree *tree, float **r_points, uint32_t **r_indices);
 size_t pnpr_kdtree_size(const pnpr_kdtree *tree); /* number of (valid) points in the tree */
 
 /* Median distance from a point to its nearest distinct point (the sample spacing), over a
@@ -60,14 +60,14 @@ typedef struct pnpr_knn_options {
 /* kNN of many query points in parallel: row i of r_idx (k entries, and of r_dist2 when not
  * NULL) holds the neighbours of query point i as pnpr_kdtree_knn returns them. When the
  * queries are the tree's own points, each point is its own first neighbour. */
-pnpr_status pnpr_knn_all(const pnpr_kdtree *tree, const float *query_xyz, size_t query_count,
+PNPR_NODISCARD pnpr_status pnpr_knn_all(const pnpr_kdtree *tree, const float *query_xyz, size_t query_count,
                          size_t query_stride_bytes, size_t k, const pnpr_knn_options *opts,
                          uint32_t *r_idx, float *r_dist2);
 
 /* kNN of the tree's own points (the xyz array it was built from, `count` points including the
  * ones left out): row i belongs to point i. Faster than pnpr_knn_all on the same points because
  * queries run in tree order (memory locality). Rows of left-out points are all "none". */
-pnpr_status pnpr_knn_self(const pnpr_kdtree *tree, size_t count, size_t k,
+PNPR_NODISCARD pnpr_status pnpr_knn_self(const pnpr_kdtree *tree, size_t count, size_t k,
                           const pnpr_knn_options *opts, uint32_t *r_idx, float *r_dist2);
 
 #ifdef __cplusplus

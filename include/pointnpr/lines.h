@@ -54,17 +54,17 @@ typedef struct pnpr_lines_stats {
  * options.h): PNPR_ERR_INVALID_ARGUMENT, with a message naming the option and its range in err (may
  * be NULL), for a negative or non-finite length or weight, or shift_iterations above
  * PNPR_LINES_SHIFT_MAX. opts NULL = all defaults (valid). */
-pnpr_status pnpr_lines_check_options(const pnpr_lines_options *opts, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_lines_check_options(const pnpr_lines_options *opts, pnpr_error *err);
 
 /* Profile lines of a cloud that carries the feature properties of pnpr_compute_features
  * (feature_class, feature_dir_x/y/z); PNPR_ERR_NOT_FOUND when they are missing. No directional
  * points: PNPR_OK with zero lines. stats may be NULL. */
-pnpr_status pnpr_profile_lines(const pnpr_cloud *cloud, const pnpr_lines_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_profile_lines(const pnpr_cloud *cloud, const pnpr_lines_options *opts,
                                pnpr_polylines *r_lines, pnpr_lines_stats *r_stats);
 
 /* The same from m directional points given directly: positions (offsets from `origin`) and unit
  * directions, 3 floats each. */
-pnpr_status pnpr_profile_lines_points(const float *xyz, const float *dir, size_t m,
+PNPR_NODISCARD pnpr_status pnpr_profile_lines_points(const float *xyz, const float *dir, size_t m,
                                       const double origin[3], const pnpr_lines_options *opts,
                                       pnpr_polylines *r_lines, pnpr_lines_stats *r_stats);
 

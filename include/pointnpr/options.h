@@ -112,7 +112,7 @@ int pnpr_option_in_range(const pnpr_option_desc *d, double value);
 /* Checks every entry of the struct: 0 (the default, unless ZERO_IS_VALUE), a negative value of a
  * NEGATIVE_OFF entry, or a value in range. Else PNPR_ERR_INVALID_ARGUMENT with a message naming the
  * option and its range in err (may be NULL): "features: k 1025 is not in 1..1024 (0 = 16)". */
-pnpr_status pnpr_option_check(const pnpr_option_desc *table, size_t count, const void *opts, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_option_check(const pnpr_option_desc *table, size_t count, const void *opts, pnpr_error *err);
 /* Text for usage lines and messages (NUL-terminated, truncated to cap):
  *   range:   "in 1..1024", "in (0, 1]", "in [0, 1e+06]", "> 0", ">= 1"
  *   default: "16", "0.6", "automatic", "3h", "h" */

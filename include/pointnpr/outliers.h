@@ -49,17 +49,17 @@ typedef struct pnpr_outlier_info {
 /* Far outliers of `count` world points (3 doubles each; NaN/Inf ones are not finite and never
  * far). r_far (optional, count bytes) receives 1 for a far outlier, else 0; r_info may be NULL.
  * PNPR_ERR_INVALID_ARGUMENT for a NULL world with count > 0 or a factor out of range. */
-pnpr_status pnpr_world_outliers(const double *world, size_t count, const pnpr_outlier_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_world_outliers(const double *world, size_t count, const pnpr_outlier_options *opts,
                                 uint8_t *r_far, pnpr_outlier_info *r_info);
 
 /* The same on a cloud's world coordinates (pnpr_cloud_world: src_xyz when present, else origin +
  * offset); also counts the points beyond float range (always far). */
-pnpr_status pnpr_cloud_outliers(const pnpr_cloud *cloud, const pnpr_outlier_options *opts, uint8_t *r_far,
+PNPR_NODISCARD pnpr_status pnpr_cloud_outliers(const pnpr_cloud *cloud, const pnpr_outlier_options *opts, uint8_t *r_far,
                                 pnpr_outlier_info *r_info);
 
 /* Removes the far outliers of pnpr_cloud_outliers from the cloud (pnpr_cloud_keep; points with
  * NaN/Inf coordinates stay). r_info (may be NULL) describes the cloud before the removal. */
-pnpr_status pnpr_cloud_drop_outliers(pnpr_cloud *cloud, const pnpr_outlier_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_cloud_drop_outliers(pnpr_cloud *cloud, const pnpr_outlier_options *opts,
                                      pnpr_outlier_info *r_info);
 
 /* Bounding box of the finite offsets of the points that are not far outliers (default factor;

@@ -48,7 +48,7 @@ typedef struct pnpr_output {
 
 /* Opens `path` for writing as described above. On failure o->f is NULL, nothing was created
  * and err names the path and the reason. */
-pnpr_status pnpr_output_open(pnpr_output *o, const char *path, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_output_open(pnpr_output *o, const char *path, pnpr_error *err);
 
 /* A sink for the library's stream writers (pnpr_write_ply_stream ...): user = the pnpr_output.
  * Returns 0 when all bytes were written, else 1 (and remembers errno). */
@@ -58,19 +58,19 @@ int pnpr_output_sink(void *user, const void *data, size_t size);
  * flush for THROUGH/STDOUT); anything else discards the temporary and returns it unchanged, except
  * that a failed write (PNPR_ERR_IO, or an error on o->f) gets a message with the system's reason.
  * Never leaves a temporary behind. */
-pnpr_status pnpr_output_close(pnpr_output *o, pnpr_status writer_status, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_output_close(pnpr_output *o, pnpr_status writer_status, pnpr_error *err);
 
 /* The whole cycle for a writer that prints to a FILE: open, fn(f, ctx) (returns 0 when every
  * write succeeded), close. Errors name the path and the system's reason. */
 typedef int (*pnpr_output_fn)(FILE *f, const void *ctx);
-pnpr_status pnpr_output_write(const char *path, pnpr_output_fn fn, const void *ctx, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_output_write(const char *path, pnpr_output_fn fn, const void *ctx, pnpr_error *err);
 
 /* Checks before any work that `path` can be written and is none of the `input_count` inputs
  * (the same file, also through links or other names): an existing directory, a dangling link,
  * a special file that cannot be opened for writing, a folder that does not exist or cannot be
  * written into (for a temporary), and an input are refused with a message naming the path.
  * "-" is accepted. inputs may hold folder names (never equal to a file). */
-pnpr_status pnpr_output_check(const char *path, const char *const *inputs, size_t input_count, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_output_check(const char *path, const char *const *inputs, size_t input_count, pnpr_error *err);
 
 /* Deletes every temporary currently open (async-signal-safe: only unlink()). */
 void pnpr_output_remove_temporaries(void);

@@ -42,7 +42,7 @@ typedef struct pnpr_plan {
 
 /* The plan for `req` on `cloud` (NULL: a cloud of unknown content, planned as if it had colours
  * and nothing else). PNPR_ERR_INVALID_ARGUMENT for an unknown style bit or variant. */
-pnpr_status pnpr_plan_make(const pnpr_plan_request *req, const pnpr_cloud *cloud, pnpr_plan *r_plan);
+PNPR_NODISCARD pnpr_status pnpr_plan_make(const pnpr_plan_request *req, const pnpr_cloud *cloud, pnpr_plan *r_plan);
 
 /* Whether the cloud carries the outputs of the PNPR_WANT_* bits (normals of either kind, feature_degree,
  * feature_class + feature_dir_x/y/z; dithering points cannot be told apart from classes: a

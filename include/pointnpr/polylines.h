@@ -29,8 +29,8 @@ void pnpr_lines_free(pnpr_polylines *lines); /* leaves it zeroed; NULL ok */
 /* Writers (world coordinates, %.17g-exact): OBJ with one `l` statement per polyline (closed
  * ones repeat their first vertex index), PLY with a vertex and an `edge` element. Written to
  * path + ".tmp" and renamed. */
-pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *lines, pnpr_error *err);
-pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *lines, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_write_lines_obj(const char *path, const pnpr_polylines *lines, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_write_lines_ply(const char *path, const pnpr_polylines *lines, pnpr_error *err);
 
 #ifdef __cplusplus
 }

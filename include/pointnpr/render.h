@@ -152,7 +152,7 @@ typedef struct pnpr_render_stats {
 
 /* Needs a current GL 3.3+ core context (else PNPR_ERR_UNSUPPORTED with the reason in err).
  * opts may be NULL. */
-pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_renderer **r_renderer,
+PNPR_NODISCARD pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_renderer **r_renderer,
                                  pnpr_error *err);
 /* Deletes the GL objects (its context must be current) and frees the renderer. NULL ok. */
 void pnpr_renderer_destroy(pnpr_renderer *renderer);
@@ -160,7 +160,7 @@ void pnpr_renderer_destroy(pnpr_renderer *renderer);
 /* Uploads a cloud (replacing the previous one). Points with NaN/Inf coordinates are dropped.
  * An empty (or all-NaN) cloud is valid: frames then show only the background.
  * Features are taken from feature_class (+ feature_dir_x/y/z) when present. */
-pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *renderer, const pnpr_cloud *cloud,
+PNPR_NODISCARD pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *renderer, const pnpr_cloud *cloud,
                                     const pnpr_upload_options *opts, pnpr_error *err);
 
 /* Profile lines for the `lines` style (include/pointnpr/lines.h), replacing earlier ones; the data
@@ -168,14 +168,14 @@ pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *renderer, const pnpr_cloud *c
  * the background, and the faint points when asked). Line vertices are world positions
  * (origin + offset) like the cloud's, so lines and cloud may have different origins. Segments
  * with a non-finite end are dropped. PNPR_ERR_INVALID_ARGUMENT for inconsistent offsets. */
-pnpr_status pnpr_renderer_set_lines(pnpr_renderer *renderer, const pnpr_polylines *lines,
+PNPR_NODISCARD pnpr_status pnpr_renderer_set_lines(pnpr_renderer *renderer, const pnpr_polylines *lines,
                                     pnpr_error *err);
 
 /* Renders one frame. camera NULL = pnpr_camera_fit of the uploaded cloud for the target's
  * aspect. PNPR_ERR_NOT_FOUND when the style needs features the cloud does not carry;
  * PNPR_ERR_INVALID_ARGUMENT for a zero/negative size or bad option; PNPR_ERR_NUMERIC for a
  * non-finite or degenerate camera. stats may be NULL. */
-pnpr_status pnpr_renderer_draw(pnpr_renderer *renderer, const pnpr_camera *camera,
+PNPR_NODISCARD pnpr_status pnpr_renderer_draw(pnpr_renderer *renderer, const pnpr_camera *camera,
                                const pnpr_draw_options *opts, const pnpr_target *target,
                                pnpr_render_stats *r_stats, pnpr_error *err);
 
@@ -187,7 +187,7 @@ pnpr_status pnpr_renderer_draw(pnpr_renderer *renderer, const pnpr_camera *camer
 /* The bytes of a width x height RGBA8 image, checked before allocating: PNPR_ERR_OUT_OF_MEMORY
  * with a message when it overflows size_t or exceeds `limit` (0 = PNPR_IMAGE_BYTES_DEFAULT_LIMIT);
  * PNPR_ERR_INVALID_ARGUMENT for a zero or negative size. */
-pnpr_status pnpr_image_bytes(int width, int height, size_t limit, size_t *r_bytes, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_image_bytes(int width, int height, size_t limit, size_t *r_bytes, pnpr_error *err);
 
 /* The largest frame edge this GL allows: min(GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE,
  * GL_MAX_VIEWPORT_DIMS), queried at creation. */
@@ -210,7 +210,7 @@ typedef struct pnpr_snapshot_options {
  * sub-frusta of the same camera, each with a guard band, with the point sizes, stroke sizes and
  * queue counts of the full image, and stitched (docs/rendering.md). The renderer's frame afterwards
  * holds the last tile. r_stats: those of the first tile (points drawn are the same for all). */
-pnpr_status pnpr_renderer_snapshot(pnpr_renderer *renderer, const pnpr_camera *camera,
+PNPR_NODISCARD pnpr_status pnpr_renderer_snapshot(pnpr_renderer *renderer, const pnpr_camera *camera,
                                    const pnpr_draw_options *opts, int width, int height,
                                    const pnpr_snapshot_options *sopts, uint8_t *r_rgba,
                                    pnpr_render_stats *r_stats, pnpr_error *err);
@@ -226,13 +226,13 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *renderer, const pnpr_camera *c
  * other styles and for style maps, with a message. */
 /* Whether pnpr_renderer_drawing draws `opts` (a check before any work): PNPR_OK or
  * PNPR_ERR_UNSUPPORTED with the reason. */
-pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *err);
-pnpr_status pnpr_renderer_drawing(pnpr_renderer *renderer, const pnpr_camera *camera, const pnpr_draw_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_renderer_drawing(pnpr_renderer *renderer, const pnpr_camera *camera, const pnpr_draw_options *opts,
                                   int width, int height, pnpr_drawing *r_drawing, pnpr_error *err);
 
 /* Copies the last frame (width*height*4 bytes, RGBA8, top row first). unpremultiply: colours of
  * partly transparent pixels divided by alpha (for PNGs with alpha). */
-pnpr_status pnpr_renderer_read_frame(pnpr_renderer *renderer, uint8_t *r_rgba, int unpremultiply);
+PNPR_NODISCARD pnpr_status pnpr_renderer_read_frame(pnpr_renderer *renderer, uint8_t *r_rgba, int unpremultiply);
 /* Size of the last frame (0 x 0 before the first draw). */
 void pnpr_renderer_frame_size(const pnpr_renderer *renderer, int *r_width, int *r_height);
 
@@ -253,12 +253,12 @@ typedef struct pnpr_gl_context pnpr_gl_context;
  * current on the calling thread. It has no default framebuffer: render into a pnpr_renderer (whose
  * frame is read back) or an FBO. PNPR_ERR_UNSUPPORTED with the reason when libEGL, the platform
  * or GL 3.3 is not available. */
-pnpr_status pnpr_gl_context_create(pnpr_gl_context **r_context, pnpr_error *err);
-pnpr_status pnpr_gl_context_make_current(pnpr_gl_context *context);
+PNPR_NODISCARD pnpr_status pnpr_gl_context_create(pnpr_gl_context **r_context, pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_gl_context_make_current(pnpr_gl_context *context);
 void pnpr_gl_context_destroy(pnpr_gl_context *context); /* releases it if current; NULL ok */
 
 /* Writes RGBA8 pixels (top row first) as an 8-bit PNG, RGB or RGBA (alpha != 0). */
-pnpr_status pnpr_write_png(const char *path, const uint8_t *rgba, int width, int height,
+PNPR_NODISCARD pnpr_status pnpr_write_png(const char *path, const uint8_t *rgba, int width, int height,
                            int alpha, pnpr_error *err);
 
 #ifdef __cplusplus

@@ -85,7 +85,7 @@ typedef struct pnpr_jseg_options {
 
 /* rgb is required: a cloud without colours gives PNPR_ERR_INVALID_ARGUMENT (use components).
  * count == 0 gives PNPR_OK with S = 0. */
-pnpr_status pnpr_segment_jseg(const float *xyz, const uint8_t *rgb, size_t count,
+PNPR_NODISCARD pnpr_status pnpr_segment_jseg(const float *xyz, const uint8_t *rgb, size_t count,
                               const pnpr_jseg_options *opts, uint32_t *r_labels,
                               pnpr_segment_info *r_info);
 
@@ -105,7 +105,7 @@ typedef struct pnpr_region_graph {
  * merge; min_size <= 1: no size merge. Regions without neighbours stay as they are. Labels are
  * renumbered (first appearance); io_labels >= *io_segment_count (e.g. the invalid segment) are
  * left alone and keep their relative order after the others. */
-pnpr_status pnpr_segment_merge_regions(const uint8_t *rgb, size_t count, const pnpr_region_graph *graph,
+PNPR_NODISCARD pnpr_status pnpr_segment_merge_regions(const uint8_t *rgb, size_t count, const pnpr_region_graph *graph,
                                        float max_distance, uint32_t min_size, uint32_t *io_labels,
                                        uint32_t *io_segment_count);
 
@@ -132,7 +132,7 @@ typedef struct pnpr_hierarchy_options {
  * epsilon * d_HSI. r_merges must hold segment_count - 1 entries (may be NULL when S <= 1);
  * *r_merge_count receives how many merges were made (S - 1 when everything joined).
  * Labels >= segment_count are ignored. rgb required. */
-pnpr_status pnpr_segment_hierarchy(const uint8_t *rgb, size_t count, const pnpr_region_graph *graph,
+PNPR_NODISCARD pnpr_status pnpr_segment_hierarchy(const uint8_t *rgb, size_t count, const pnpr_region_graph *graph,
                                    const uint32_t *labels, uint32_t segment_count,
                                    const pnpr_hierarchy_options *opts, pnpr_segment_merge *r_merges,
                                    uint32_t *r_merge_count);
@@ -141,7 +141,7 @@ pnpr_status pnpr_segment_hierarchy(const uint8_t *rgb, size_t count, const pnpr_
  * (target_segments > 0) at least target_segments segments remain, and (threshold > 0) every
  * applied merge has level <= threshold. Labels >= segment_count pass through as one extra
  * segment (the last). r_labels may equal labels. */
-pnpr_status pnpr_segment_hierarchy_cut(const uint32_t *labels, size_t count, uint32_t segment_count,
+PNPR_NODISCARD pnpr_status pnpr_segment_hierarchy_cut(const uint32_t *labels, size_t count, uint32_t segment_count,
                                        const pnpr_segment_merge *merges, uint32_t merge_count,
                                        uint32_t target_segments, float threshold,
                                        uint32_t *r_labels, uint32_t *r_segment_count);
@@ -153,7 +153,7 @@ pnpr_status pnpr_segment_hierarchy_cut(const uint32_t *labels, size_t count, uin
  * deep (the cost is at most that many passes over the points). Output: sub-region labels in
  * r_labels (may equal labels), numbered by first appearance; points with label >= segment_count
  * or non-finite coordinates share one extra label, the last. (segment_split.c) */
-pnpr_status pnpr_segment_covariance_split(const float *xyz, size_t count, const uint32_t *labels,
+PNPR_NODISCARD pnpr_status pnpr_segment_covariance_split(const float *xyz, size_t count, const uint32_t *labels,
                                           uint32_t segment_count, float max_variation,
                                           uint32_t min_size, uint32_t *r_labels,
                                           uint32_t *r_segment_count);
@@ -170,7 +170,7 @@ typedef struct pnpr_components_options {
 } pnpr_components_options;
 
 /* rgb not needed. */
-pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_components_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_components_options *opts,
                                     uint32_t *r_labels, pnpr_segment_info *r_info);
 
 /* Median distance from a point to its nearest distinct neighbour, over a stride sample of at most
@@ -194,7 +194,7 @@ typedef struct pnpr_rgbgrow_options {
 } pnpr_rgbgrow_options;
 
 /* rgb required (PNPR_ERR_INVALID_ARGUMENT without). */
-pnpr_status pnpr_segment_rgbgrow(const float *xyz, const uint8_t *rgb, size_t count,
+PNPR_NODISCARD pnpr_status pnpr_segment_rgbgrow(const float *xyz, const uint8_t *rgb, size_t count,
                                  const pnpr_rgbgrow_options *opts, uint32_t *r_labels,
                                  pnpr_segment_info *r_info);
 
@@ -202,7 +202,7 @@ pnpr_status pnpr_segment_rgbgrow(const float *xyz, const uint8_t *rgb, size_t co
 
 /* Segments from per-point values (any pnpr_type): each distinct value is a segment, numbered in
  * ascending value order; NaN values form one segment after all others. */
-pnpr_status pnpr_segment_from_values(pnpr_type type, const void *values, size_t count,
+PNPR_NODISCARD pnpr_status pnpr_segment_from_values(pnpr_type type, const void *values, size_t count,
                                      uint32_t *r_labels, uint32_t *r_segment_count);
 
 /* Normalises a labelling the way every source here returns it: labels of the points with finite
@@ -210,16 +210,16 @@ pnpr_status pnpr_segment_from_values(pnpr_type type, const void *values, size_t 
  * all points with a non-finite coordinate get the one last label S'. Fills r_info's
  * segment_count, invalid_segment and valid_points (r_info may be NULL). xyz may be NULL (all
  * points valid). */
-pnpr_status pnpr_segment_finish(const float *xyz, size_t count, uint32_t *io_labels,
+PNPR_NODISCARD pnpr_status pnpr_segment_finish(const float *xyz, size_t count, uint32_t *io_labels,
                                 pnpr_segment_info *r_info);
 
 /* Renumbers labels to 0 .. S-1 in order of first appearance (in place). */
-pnpr_status pnpr_segment_compact(uint32_t *io_labels, size_t count, uint32_t *r_segment_count);
+PNPR_NODISCARD pnpr_status pnpr_segment_compact(uint32_t *io_labels, size_t count, uint32_t *r_segment_count);
 
 /* Mean colour (0..255, 3 floats per segment) and size of each segment. Labels >= segment_count
  * are ignored; empty segments get colour 0 and size 0. rgb NULL: colours 0. Either output may be
  * NULL. */
-pnpr_status pnpr_segment_mean_colors(const uint8_t *rgb, const uint32_t *labels, size_t count,
+PNPR_NODISCARD pnpr_status pnpr_segment_mean_colors(const uint8_t *rgb, const uint32_t *labels, size_t count,
                                      uint32_t segment_count, float *r_rgb, uint32_t *r_sizes);
 
 /* sRGB (8 bit, D65) to CIE L*a*b*. */
@@ -234,7 +234,7 @@ typedef struct pnpr_segment_score {
     uint32_t under_segmented;  /* result segments holding >= 10% of each of >= 2 true segments */
 } pnpr_segment_score;
 
-pnpr_status pnpr_segment_score_labels(const uint32_t *truth, const uint32_t *result, size_t count,
+PNPR_NODISCARD pnpr_status pnpr_segment_score_labels(const uint32_t *truth, const uint32_t *result, size_t count,
                                       pnpr_segment_score *r_score);
 
 #ifdef __cplusplus

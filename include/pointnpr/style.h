@@ -32,7 +32,7 @@ typedef enum pnpr_sketch_variant {
 
 const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly"; "" if invalid */
 /* The style of a name, ignoring case ("Sketchy" is sketchy); PNPR_ERR_NOT_FOUND for others. */
-pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
+PNPR_NODISCARD pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 /* Styles drawn from the feature classes (sketchy, stipple, painterly). */
 int pnpr_style_needs_features(pnpr_style style);
 /* Outline defaults shared by the renderer and the SVG export (docs/rendering.md, "Silhouettes and
@@ -73,7 +73,7 @@ void pnpr_style_map_free(pnpr_style_map *map); /* frees the entries, leaves a ze
  * (the default), '#' comments, blank lines; a line holds at most 1023 characters. `name` names
  * the text in messages (a file name). PNPR_ERR_FORMAT with "NAME:LINE: what is wrong" (err->line
  * set) on a bad line; r_map is zeroed on failure. */
-pnpr_status pnpr_style_map_parse(const char *text, size_t size, const char *name, pnpr_style_map *r_map,
+PNPR_NODISCARD pnpr_status pnpr_style_map_parse(const char *text, size_t size, const char *name, pnpr_style_map *r_map,
                                  pnpr_error *err);
 
 #ifdef __cplusplus

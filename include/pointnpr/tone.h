@@ -53,7 +53,7 @@ void pnpr_tone_light(const pnpr_tone_options *opts, double r_light[3]);
  * (colour without rgb, light without normals) falls back to the other, else to 0.5.
  * PNPR_ERR_INVALID_ARGUMENT for bad options (unknown source, negative or non-finite values,
  * ambient or colour_weight above 1, a zero light vector only when explicitly non-finite). */
-pnpr_status pnpr_tone(const uint8_t *rgb, const float *normals, size_t count,
+PNPR_NODISCARD pnpr_status pnpr_tone(const uint8_t *rgb, const float *normals, size_t count,
                       const pnpr_tone_options *opts, float *r_tone);
 
 #ifdef __cplusplus

@@ -77,7 +77,7 @@ typedef struct pnpr_view_info {
 /* Analyses the cloud. PNPR_ERR_EMPTY when it has no finite point; PNPR_ERR_INVALID_ARGUMENT
  * for NULL cloud/r_info, an unknown up_mode or a zero/non-finite up vector; PNPR_ERR_OUT_OF_MEMORY.
  * opts may be NULL (all defaults). */
-pnpr_status pnpr_scene_frame(const pnpr_cloud *cloud, const pnpr_view_options *opts,
+PNPR_NODISCARD pnpr_status pnpr_scene_frame(const pnpr_cloud *cloud, const pnpr_view_options *opts,
                              pnpr_view_info *r_info);
 
 /* Parses "auto", "x", "+x", "-x", ... "-z" (the CLI's --up) into r_mode; 0 if not one of them. */

@@ -745,8 +745,10 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         (!s->ownDither || s->ditherToneSource != (int)tone.source || s->ditherToneGamma != tone.gamma)) {
         static const char *const props[] = {PNPR_PROP_FEATURE_DEGREE, PNPR_PROP_FEATURE_CLASS, PNPR_PROP_FEATURE_CONFIDENCE,
                                             PNPR_PROP_FEATURE_DIR_X, PNPR_PROP_FEATURE_DIR_Y, PNPR_PROP_FEATURE_DIR_Z};
-        for (const char *name : props)
-            if (pnpr_cloud_find_property(&s->cloud, name)) pnpr_cloud_remove_property(&s->cloud, name);
+        for (const char *name : props) {
+            pnpr_status rs = pnpr_cloud_remove_property(&s->cloud, name); /* NOT_FOUND: nothing to drop */
+            (void)rs;
+        }
         s->ownFeatures = s->ownDither = false;
         s->failedWant = 0;
         pst = pnpr_plan_make(&req, &s->cloud, &plan);

@@ -91,7 +91,7 @@ int main(int argc, char **argv)
         /* 6 faces of (1/h)^2 points: h = 1/408 gives 1,000,000 points (+ shared edges) */
         static const double off[3] = {0, 0, 0};
         if (pnpr_test_cube(&cloud, 1.0, 1.0 / 408, 0.0004, off, 11) != PNPR_OK) return 1;
-        pnpr_cloud_alloc_rgb(&cloud);
+        if (pnpr_cloud_alloc_rgb(&cloud) != PNPR_OK) return 1;
         memset(cloud.rgb, 170, cloud.count * 3);
     }
     double t_read = now() - t0;
@@ -117,7 +117,7 @@ int main(int argc, char **argv)
     pnpr_lines_free(&lines);
     static const double dir[3] = {1, -1.6, 1.1};
     pnpr_camera cam;
-    pnpr_camera_fit(&cloud, dir, 45, (float)w / h, &cam);
+    if (pnpr_camera_fit(&cloud, dir, 45, (float)w / h, &cam) != PNPR_OK) return 1;
 
     const char *renderer_name = (const char *)glGetString(GL_RENDERER);
     printf("cloud: %s, %zu points; %dx%d; %s; median of %d frames (after 1 warm-up)\n",

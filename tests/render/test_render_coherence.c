@@ -81,7 +81,7 @@ static size_t pops(const uint8_t *a, const uint8_t *b, int n)
 static void check_fade(pnpr_renderer *r, const pnpr_camera_path *path, uint8_t *px[2])
 {
     pnpr_camera start;
-    pnpr_camera_path_eval(path, 0, &start);
+    CHECK_STATUS(pnpr_camera_path_eval(path, 0, &start), PNPR_OK);
     const pnpr_style styles[2] = {PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE};
     for (int s = 0; s < 2; s++) {
         size_t popped[2] = {0, 0};
@@ -135,11 +135,11 @@ static void check_still(pnpr_renderer *r, const pnpr_camera_path *path, uint8_t 
     memset(&o, 0, sizeof o);
     o.style = PNPR_STYLE_SKETCHY;
     pnpr_camera cam;
-    pnpr_camera_path_eval(path, 0, &cam);
+    CHECK_STATUS(pnpr_camera_path_eval(path, 0, &cam), PNPR_OK);
     CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px[0], NULL, NULL), PNPR_OK);
-    pnpr_camera_path_eval(path, 3, &cam);
+    CHECK_STATUS(pnpr_camera_path_eval(path, 3, &cam), PNPR_OK);
     CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px[1], NULL, NULL), PNPR_OK);
-    pnpr_camera_path_eval(path, 0, &cam);
+    CHECK_STATUS(pnpr_camera_path_eval(path, 0, &cam), PNPR_OK);
     CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px[1], NULL, NULL), PNPR_OK);
     CHECK_MSG(!memcmp(px[0], px[1], (size_t)W * H * 4), "the same view drawn again differs");
 }

@@ -35,10 +35,10 @@ static void add_grid(pnpr_cloud *cl, int nx, int ny, double h, double z, const u
     CHECK_STATUS(pnpr_cloud_alloc_rgb(&g), PNPR_OK);
     pnpr_property *pc = NULL, *px = NULL, *py = NULL, *pz = NULL;
     if (feature_class >= 0) {
-        pnpr_cloud_add_property(&g, "feature_class", PNPR_TYPE_UINT8, &pc);
-        pnpr_cloud_add_property(&g, "feature_dir_x", PNPR_TYPE_FLOAT32, &px);
-        pnpr_cloud_add_property(&g, "feature_dir_y", PNPR_TYPE_FLOAT32, &py);
-        pnpr_cloud_add_property(&g, "feature_dir_z", PNPR_TYPE_FLOAT32, &pz);
+        CHECK_STATUS(pnpr_cloud_add_property(&g, "feature_class", PNPR_TYPE_UINT8, &pc), PNPR_OK);
+        CHECK_STATUS(pnpr_cloud_add_property(&g, "feature_dir_x", PNPR_TYPE_FLOAT32, &px), PNPR_OK);
+        CHECK_STATUS(pnpr_cloud_add_property(&g, "feature_dir_y", PNPR_TYPE_FLOAT32, &py), PNPR_OK);
+        CHECK_STATUS(pnpr_cloud_add_property(&g, "feature_dir_z", PNPR_TYPE_FLOAT32, &pz), PNPR_OK);
         pz = pnpr_cloud_find_property(&g, "feature_dir_z");
         pc = pnpr_cloud_find_property(&g, "feature_class");
         px = pnpr_cloud_find_property(&g, "feature_dir_x");
@@ -580,7 +580,7 @@ static void test_two_contexts(pnpr_gl_context *ctx_a, pnpr_cloud *cube)
     for (size_t i = 0; i < (size_t)W * H; i++) green_px += b1[4 * i + 1] == 200 && b1[4 * i] == 0;
     CHECK_MSG(green_px > 1000, "context B draws its own cloud (%zu green pixels)", green_px);
     pnpr_renderer_destroy(rb);
-    pnpr_gl_context_make_current(ctx_a);
+    CHECK_STATUS(pnpr_gl_context_make_current(ctx_a), PNPR_OK);
     pnpr_renderer_destroy(ra);
     pnpr_gl_context_destroy(ctx_b);
     CHECK_STATUS(pnpr_gl_context_make_current(ctx_a), PNPR_OK);

@@ -148,7 +148,7 @@ static void test_sphere_silhouette(pnpr_renderer *r, uint8_t *px)
         CHECK_MSG(s.outer_non_bg == 0, "%s: %zu pixels outside the silhouette", cases[t].what, s.outer_non_bg);
         char path[600];
         snprintf(path, sizeof path, "%s/outline_sphere_%zu.png", PNPR_TEST_SCRATCH, t);
-        pnpr_write_png(path, px, W, H, 0, NULL);
+        CHECK_STATUS(pnpr_write_png(path, px, W, H, 0, NULL), PNPR_OK);
         pnpr_cloud_free(&c);
     }
 }
@@ -200,7 +200,7 @@ static void test_contour_on_wall(pnpr_renderer *r, uint8_t *px)
     CHECK_MSG(st.inner_ink * 200 <= st.inner, "sphere before a wall: %zu ink pixels inside", st.inner_ink);
     char path[600];
     snprintf(path, sizeof path, "%s/outline_wall.png", PNPR_TEST_SCRATCH);
-    pnpr_write_png(path, px, W, H, 0, NULL);
+    CHECK_STATUS(pnpr_write_png(path, px, W, H, 0, NULL), PNPR_OK);
     pnpr_cloud_free(&s);
     pnpr_cloud_free(&wall);
     pnpr_cloud_free(&c);

@@ -439,7 +439,7 @@ static void test_cartoon_sphere(pnpr_renderer *r)
         {
             char path[600];
             snprintf(path, sizeof path, "%s/cartoon_sphere_%d.png", PNPR_TEST_SCRATCH, labelled);
-            pnpr_write_png(path, px, W, H, 0, NULL);
+            CHECK_STATUS(pnpr_write_png(path, px, W, H, 0, NULL), PNPR_OK);
         }
         fprintf(stderr, "cartoon labels %d: silhouette r = %.1f px, %d/90 rays dark, inner %zu px\n", labelled, rs, rays_dark, inner);
     }

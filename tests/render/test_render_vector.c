@@ -268,7 +268,7 @@ int main(void)
         CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, &err), PNPR_OK);
         CHECK_STATUS(pnpr_renderer_set_lines(r, &lines, &err), PNPR_OK);
         pnpr_camera cam;
-        pnpr_camera_fit(&c, NULL, 45, (float)W / H, &cam);
+        CHECK_STATUS(pnpr_camera_fit(&c, NULL, 45, (float)W / H, &cam), PNPR_OK);
         /* every style at most 2% (the bound), as drawn by default and with outlines */
         check_style(r, &cam, PNPR_STYLE_SKETCHY, 0, 0.02);
         check_style(r, &cam, PNPR_STYLE_SKETCHY, 1, 0.02);
