@@ -498,9 +498,9 @@ static void clear_frame(pnpr_renderer *r, const pnpr_frame_ctx *f)
 
 static void record_frame(pnpr_frame_record *rec, const pnpr_frame_ctx *f)
 {
-    int ink_only = rec->outline_ink_only;
+    int pass = rec->outline_pass;
     memset(rec, 0, sizeof *rec);
-    rec->outline_ink_only = ink_only;
+    rec->outline_pass = pass;
     rec->o = f->o;
     rec->o.style_map = NULL;
     rec->o.style_map_count = 0;
@@ -517,9 +517,9 @@ static void record_frame(pnpr_frame_record *rec, const pnpr_frame_ctx *f)
     rec->mapped = f->mapped;
 }
 
-/* The outlines from the mask's surface info (edges.c); `ink_only`: the colour attachment cleared
- * to transparent first, so that it holds the outlines' ink alone (vector drawings, vector.c). */
-static pnpr_status draw_outlines(pnpr_renderer *r, const pnpr_frame_ctx *f, int ink_only, pnpr_error *err)
+/* The outlines from the mask's surface info (edges.c); `pass` (PNPR_OUTLINES_*): as drawn, their
+ * ink alone in the colour attachment, or no ink (vector drawings, vector.c). */
+static pnpr_status draw_outlines(pnpr_renderer *r, const pnpr_frame_ctx *f, int pass, pnpr_error *err)
 {
     const pnpr_draw_options *o = &f->o;
     float a = o->background[3];
@@ -530,11 +530,12 @@ static pnpr_status draw_outlines(pnpr_renderer *r, const pnpr_frame_ctx *f, int 
     pnpr_edge_params ep = {f->outline_width, o->outline_jump, o->outline_hole, PNPR_EDGE_MAX_REACH, f->fc.pixels_per_unit,
                            f->fc.ortho, {f->ink[0], f->ink[1], f->ink[2], f->ink[3]}, inset,
                            {o->background[0] * a, o->background[1] * a, o->background[2] * a, a}};
-    if (ink_only) {
+    if (pass == PNPR_OUTLINES_INK_ONLY) {
         const float clear[4] = {0, 0, 0, 0};
         glClearBufferfv(GL_COLOR, 0, clear);
         memset(ep.background, 0, sizeof ep.background);
     }
+    if (pass == PNPR_OUTLINES_NO_INK) ep.ink[3] = 0; /* edge_ink discards pixels of no ink */
     return pnpr_edges_draw(&r->edges, r->info_tex, r->fbo, f->fw, f->fh, &ep, err);
 }
 
@@ -596,7 +597,7 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
     size_t strokes = 0;
     if (!f.mapped) strokes = pnpr_renderer_draw_single(r, &f);
     else if (f.n_draw > 0) strokes = pnpr_renderer_draw_mapped(r, &f);
-    if (f.outline) st = draw_outlines(r, &f, rec && rec->outline_ink_only, err);
+    if (f.outline) st = draw_outlines(r, &f, rec ? rec->outline_pass : PNPR_OUTLINES_DRAWN, err);
     if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     if (!target->offscreen && !tile) composite(r, &f, target);
     pnpr_gl_state_restore(&saved);

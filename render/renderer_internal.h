@@ -111,11 +111,18 @@ float pnpr_queue_fade_length(size_t drawn, size_t size, float fraction);
  * the stroke), generated once (paper figure 5 a-c, plus the hatch). */
 void pnpr_stroke_textures(uint8_t *out);
 
+/* What the outline pass of a recorded frame puts in the colour attachment (vector.c). */
+enum {
+    PNPR_OUTLINES_DRAWN = 0, /* as in any frame */
+    PNPR_OUTLINES_INK_ONLY,  /* only the outlines' ink: the attachment is cleared to transparent first */
+    PNPR_OUTLINES_NO_INK     /* no ink: the pass still paints the mask disks' overhang beyond the
+                              * silhouettes in the background, as any frame does */
+};
+
 /* What a drawn frame was made of: the resolved options, the camera and the queue prefixes, so that
  * its strokes, dots and lines can be computed again on the CPU (vector.c). */
 typedef struct pnpr_frame_record {
-    int outline_ink_only;       /* in: the colour attachment holds only the outlines' ink (cleared
-                                 * to transparent before the outline pass) */
+    int outline_pass;           /* in: PNPR_OUTLINES_* (zero: as drawn) */
     pnpr_draw_options o;        /* options with the style map resolved (o.style_map stays NULL) */
     pnpr_frame_camera fc;
     int width, height;

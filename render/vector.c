@@ -401,7 +401,7 @@ static pnpr_status line_marks(vec_ctx *c)
 }
 
 /* The outlines of the frame: the ink the outline shaders drew (alone in the colour attachment:
- * pnpr_frame_record.outline_ink_only), traced into centre lines where its coverage is at least
+ * PNPR_OUTLINES_INK_ONLY), traced into centre lines where its coverage is at least
  * half. */
 static pnpr_status outline_marks(vec_ctx *c, pnpr_error *err)
 {
@@ -421,18 +421,16 @@ static pnpr_status outline_marks(vec_ctx *c, pnpr_error *err)
     return st;
 }
 
-/* Cartoon: its flat colour areas, from the frame drawn with an all but transparent outline ink
- * (the outline pass still paints the mask disks' overhang beyond the silhouettes in the
- * background, as in the PNG, but adds no ink), its colour attachment read back and traced into
- * filled areas (pnpr_drawing_trace_regions). */
+/* Cartoon: its flat colour areas, from the frame drawn with an outline pass of no ink (it still
+ * paints the mask disks' overhang beyond the silhouettes in the background, as in the PNG), its
+ * colour attachment read back and traced into filled areas (pnpr_drawing_trace_regions). */
 static pnpr_status fill_marks(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts, int w, int h,
                               pnpr_drawing *out, pnpr_error *err)
 {
-    pnpr_draw_options o = *opts;
-    o.ink[3] = 1e-6f; /* zero would mean the default ink */
     pnpr_frame_record rec;
     memset(&rec, 0, sizeof rec);
-    pnpr_status st = pnpr_renderer_draw_recorded(r, camera, &o, w, h, &rec, err);
+    rec.outline_pass = PNPR_OUTLINES_NO_INK;
+    pnpr_status st = pnpr_renderer_draw_recorded(r, camera, opts, w, h, &rec, err);
     if (st != PNPR_OK) return st;
     uint8_t *rgba = malloc((size_t)w * (size_t)h * 4);
     if (!rgba) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: colour areas of a %dx%d frame: out of memory", w, h);
@@ -512,7 +510,7 @@ pnpr_status pnpr_renderer_drawing(pnpr_renderer *r, const pnpr_camera *camera, c
     }
     pnpr_frame_record rec;
     memset(&rec, 0, sizeof rec);
-    rec.outline_ink_only = 1;
+    rec.outline_pass = PNPR_OUTLINES_INK_ONLY;
     st = pnpr_renderer_draw_recorded(r, camera, opts, width, height, &rec, err);
     if (st != PNPR_OK) { pnpr_drawing_free(r_drawing); return st; }
     r_drawing->width = width;
