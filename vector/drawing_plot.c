@@ -101,9 +101,10 @@ static void merge_group(pnpr_drawing *d, seg *s, size_t n, float offset, float g
     }
 }
 
-/* Removes the paths marked gone, keeping the order. */
-static void compact(pnpr_drawing *d, const uint8_t *gone)
+/* Removes the paths marked gone, keeping the order; returns how many went. */
+static size_t compact(pnpr_drawing *d, const uint8_t *gone)
 {
+    size_t before = d->count;
     size_t out = 0, v_out = 0;
     for (size_t i = 0; i < d->count; i++) {
         size_t a = d->offset[i], b = d->offset[i + 1];
@@ -119,6 +120,7 @@ static void compact(pnpr_drawing *d, const uint8_t *gone)
     }
     d->count = out;
     if (d->offset) d->offset[out] = v_out;
+    return before - out;
 }
 
 pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_drawing_layer layer, float angle_deg, float offset_px,
@@ -152,9 +154,8 @@ pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_drawing_layer lay
         merge_group(d, s + i, j - i, offset_px, gap_px, gone);
         i = j;
     }
-    size_t before = d->count;
-    compact(d, gone);
-    if (r_merged) *r_merged = before - d->count;
+    size_t merged = compact(d, gone);
+    if (r_merged) *r_merged = merged;
     free(s);
     free(gone);
     return PNPR_OK;
@@ -215,9 +216,8 @@ pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed)
         a.idx = b.idx = 0;
         if (!cmp_dup(&a, &b)) gone[k[j].idx] = 1; /* the sort puts the first of equals first */
     }
-    size_t before = d->count;
-    compact(d, gone);
-    if (r_removed) *r_removed = before - d->count;
+    size_t removed = compact(d, gone);
+    if (r_removed) *r_removed = removed;
     free(k);
     free(gone);
     return PNPR_OK;
@@ -242,9 +242,8 @@ pnpr_status pnpr_drawing_drop_short(pnpr_drawing *d, float min_px, size_t *r_rem
     for (size_t i = 0; i < d->count; i++)
         gone[i] = !(d->flags[i] & (PNPR_PATH_DOT | PNPR_PATH_FILL | PNPR_PATH_SUBPATH | PNPR_PATH_CLOSED)) &&
                   path_length(d, i) < min_px;
-    size_t before = d->count;
-    compact(d, gone);
-    if (r_removed) *r_removed = before - d->count;
+    size_t removed = compact(d, gone);
+    if (r_removed) *r_removed = removed;
     free(gone);
     return PNPR_OK;
 }
