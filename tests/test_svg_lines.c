@@ -11,7 +11,7 @@
 
 #include <math.h>
 #ifdef PNPR_TEST_HAVE_PNG
-#include <png.h>
+#include "png_read.h"
 #endif
 #include <stdlib.h>
 #include <string.h>
@@ -23,14 +23,7 @@
 static int read_grey(const char *path, unsigned char *grey)
 {
 #ifdef PNPR_TEST_HAVE_PNG
-    png_image img;
-    memset(&img, 0, sizeof img);
-    img.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&img, path)) return 0;
-    img.format = PNG_FORMAT_GRAY;
-    if (img.width != W || img.height != H) { png_image_free(&img); return 0; }
-    int ok = png_image_finish_read(&img, NULL, grey, 0, NULL);
-    return ok;
+    return pnpr_test_read_png(path, W, H, PNG_FORMAT_GRAY, grey);
 #else
     (void)path; (void)grey;
     return 0;

@@ -10,11 +10,14 @@
  *    areas alone and with outlines): at most 2% of the pixels differ by more than 64 in a
  *    channel; on the generated house scene of `bench quality`.
  * 3. The PDF (cairo) opens in pdfinfo with the page size of the drawing (0.75 pt a px).
- * 4. Merging collinear hatches keeps the ink length; plotter order shortens the pen-up travel and
+ * 4. Degenerate and far input: an empty cloud draws no path; the occluded planes 5e6 m from the
+ *    origin give the paths of the planes at the origin within 0.05 px.
+ * 5. Merging collinear hatches keeps the ink length; plotter order shortens the pen-up travel and
  *    keeps every path. Unsupported styles fail with a message.
  * Exits 77 (skipped) without headless GL. */
 #include "testutil.h"
 #include "quality.h"
+#include "png_read.h"
 
 #include <pointnpr/drawing.h>
 #include <pointnpr/features.h>
@@ -23,7 +26,6 @@
 #include <pointnpr/render.h>
 
 #include <math.h>
-#include <png.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -107,17 +109,47 @@ static void check_occlusion(pnpr_renderer *r)
     }
 }
 
-/* Reads a PNG of W x H as grey on white (alpha composited); 0 on failure. */
-static int read_grey(const char *path, uint8_t *grey)
+/* Degenerate and far input: an empty cloud draws nothing (and no error); the occluded planes at a
+ * georeferenced origin (5e6 m away) give the same paths as at the origin, within 0.05 px. */
+static void check_degenerate(pnpr_renderer *r)
 {
-    png_image img;
-    memset(&img, 0, sizeof img);
-    img.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&img, path)) return 0;
-    img.format = PNG_FORMAT_GRAY;
-    if (img.width != W || img.height != H) { png_image_free(&img); return 0; }
-    png_color bg = {255, 255, 255};
-    return png_image_finish_read(&img, &bg, grey, 0, NULL);
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
+    o.outline = -1;
+    pnpr_error err = {0};
+    pnpr_drawing d[2] = {{0}, {0}};
+    pnpr_cloud empty = {0};
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &empty, NULL, &err), PNPR_OK);
+    const pnpr_style styles[2] = {PNPR_STYLE_SKETCHY, PNPR_STYLE_CARTOON};
+    for (int s = 0; s < 2; s++) {
+        o.style = styles[s];
+        CHECK_STATUS(pnpr_renderer_drawing(r, NULL, &o, W, H, &d[0], &err), PNPR_OK);
+        CHECK_MSG(d[0].count == 0, "%zu paths of an empty cloud", d[0].count);
+        pnpr_drawing_free(&d[0]);
+    }
+    o.style = PNPR_STYLE_SKETCHY;
+    const double far[3] = {5123456.789, 4012345.678, 250.125};
+    for (int k = 0; k < 2; k++) {
+        pnpr_cloud c = {0};
+        planes(&c, 1);
+        pnpr_camera cam = {{0.5, 0.5, 3}, {0.5, 0.5, 0}, {0, 1, 0}, 40, 0, 0};
+        for (int a = 0; a < 3 && k; a++) {
+            c.origin[a] = far[a];
+            cam.eye[a] += far[a];
+            cam.target[a] += far[a];
+        }
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, &err), PNPR_OK);
+        CHECK_STATUS(pnpr_renderer_drawing(r, &cam, &o, W, H, &d[k], &err), PNPR_OK);
+        pnpr_cloud_free(&c);
+    }
+    double worst = 0;
+    int same = d[0].count == d[1].count && d[0].count > 0;
+    for (size_t v = 0; same && v < 2 * d[0].offset[d[0].count]; v++) worst = fmax(worst, fabs(d[0].xy[v] - d[1].xy[v]));
+    printf("georeferenced origin: %zu and %zu paths, vertices at most %.4f px apart\n", d[0].count, d[1].count, worst);
+    CHECK(same && worst <= 0.05);
+    pnpr_drawing_free(&d[0]);
+    pnpr_drawing_free(&d[1]);
 }
 
 static double luma(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
@@ -133,19 +165,6 @@ static double ink_difference(const uint8_t *rgba, const uint8_t *grey)
     }
     printf(" (ink %.2f%% of the pixels)", 100.0 * ink / ((double)W * H));
     return (double)diff / ((double)W * H);
-}
-
-/* Reads a PNG of W x H as RGB on white; 0 on failure. */
-static int read_rgb(const char *path, uint8_t *rgb)
-{
-    png_image img;
-    memset(&img, 0, sizeof img);
-    img.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&img, path)) return 0;
-    img.format = PNG_FORMAT_RGB;
-    if (img.width != W || img.height != H) { png_image_free(&img); return 0; }
-    png_color bg = {255, 255, 255};
-    return png_image_finish_read(&img, &bg, rgb, 0, NULL);
 }
 
 /* Cartoon (colour areas and outlines): the fraction of pixels whose colour differs by more than a
@@ -201,7 +220,7 @@ static void check_style(pnpr_renderer *r, const pnpr_camera *cam, pnpr_style sty
     CHECK_STATUS(pnpr_drawing_write_svg(&d, svg, &err), PNPR_OK);
     snprintf(cmd, sizeof cmd, "rsvg-convert '%s' -o '%s'", svg, png);
     CHECK(system(cmd) == 0);
-    CHECK(areas ? read_rgb(png, rgb) : read_grey(png, grey));
+    CHECK(areas ? pnpr_test_read_png(png, W, H, PNG_FORMAT_RGB, rgb) : pnpr_test_read_png(png, W, H, PNG_FORMAT_GRAY, grey));
     printf("%-8s outlines %-7s %6zu paths", pnpr_style_name(style), outline < 0 ? "off" : outline > 0 ? "on" : "default", d.count);
     double diff = areas ? colour_difference(px, rgb) : ink_difference(px, grey);
     printf(", %s differs at %.2f%% of the pixels\n", areas ? "colour" : "ink", 100 * diff);
@@ -257,6 +276,7 @@ int main(void)
     pnpr_renderer *r = NULL;
     CHECK_STATUS(pnpr_renderer_create(NULL, &r, &err), PNPR_OK);
     if (r) check_occlusion(r);
+    if (r) check_degenerate(r);
     pnpr_quality_scene scene;
     pnpr_quality_scene_init(&scene, PNPR_QUALITY_PRESET_SPARSE);
     pnpr_cloud c = {0};
