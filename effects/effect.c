@@ -28,16 +28,17 @@ static const effect_def effect_defs[PNPR_EFFECT_COUNT_] = {
         {"sharpness", 3, 0.5f, 20, "quantisation sharpness (phi_q)"},
         {"edge_sigma", 1, 0.3f, 8, "DoG edge scale in px (sigma_e)"},
         {"edge_strength", 1, 0, 1, "darkness of the DoG edges (0 = none)"}}},
-    [PNPR_EFFECT_WATERCOLOUR] = {"watercolour", pnpr_fx_watercolour, 6, {
+    [PNPR_EFFECT_WATERCOLOUR] = {"watercolour", pnpr_fx_watercolour, 7, {
         {"abstraction", 5, 1, 32, "colour abstraction radius in px"},
         {"density", 0.5f, 0, 2, "pigment density variation (paper + turbulence)"},
         {"paper_scale", 3, 1, 64, "paper grain size in px"},
         {"turbulence_scale", 40, 4, 400, "pigment turbulence size in px"},
-        {"edge_darkening", 0.6f, 0, 2, "pigment accumulated at colour edges"},
-        {"edge_width", 2, 0.5f, 16, "width of the darkened edges in px"}}},
+        {"edge_darkening", 0.8f, 0, 2, "pigment accumulated at colour edges"},
+        {"edge_width", 2, 0.5f, 16, "width of the darkened edges in px"},
+        {"fill", 2, 0, 16, "morphological smoothing radius in px: gaps between splats narrower than it are painted over"}}},
     [PNPR_EFFECT_OIL] = {"oil", pnpr_fx_oil, 5, {
         {"length", 8, 1, 32, "smoothing length along the flow in px"},
-        {"tensor_sigma", 2, 0.5f, 10, "structure tensor smoothing in px"},
+        {"tensor_sigma", 3, 0.5f, 10, "structure tensor smoothing in px"},
         {"brush_scale", 3, 1, 16, "brush bristle texture size in px"},
         {"relief", 0.5f, 0, 2, "relief lighting of the paint"},
         {"levels", 0, 0, 32, "colour levels per channel before painting (0 = none)"}}},
@@ -61,7 +62,7 @@ static const effect_def effect_defs[PNPR_EFFECT_COUNT_] = {
         {"sigma", 1, 0.3f, 8, "XDoG scale in px"},
         {"k", 1.6f, 1.1f, 5, "ratio of the two Gaussians"},
         {"tau", 0.98f, 0.5f, 1, "XDoG tau (sharpening)"},
-        {"phi", 10, 0.5f, 100, "XDoG soft threshold slope"},
+        {"phi", 40, 0.5f, 200, "XDoG soft threshold slope (on luminance 0..1)"},
         {"strength", 1, 0, 1, "darkness of the edges"}}},
 };
 

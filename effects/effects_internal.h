@@ -23,4 +23,55 @@ pnpr_status pnpr_fx_edges(const float *p, const pnpr_image *src, pnpr_image *dst
 /* Whether this build has OpenCV (0: the pnpr_cv_* functions return PNPR_ERR_UNSUPPORTED). */
 int pnpr_cv_available(void);
 
+/* ---- OpenCV building blocks (effects/cv_adapter.cpp) ----
+ * Caller-owned float buffers: w * h pixels of `ch` interleaved channels (1 or 3), top row first;
+ * borders replicate the edge pixels. Exceptions become PNPR_ERR_OUT_OF_MEMORY (allocation) or
+ * PNPR_ERR_UNSUPPORTED (other OpenCV errors) with a message; without OpenCV every one returns
+ * PNPR_ERR_UNSUPPORTED "effects: this build has no OpenCV". */
+
+/* cv::bilateralFilter, window (2 radius + 1)^2; sigma_color in the buffer's units (OpenCV measures
+ * the colour distance as the sum of the channels' absolute differences). src != dst. */
+pnpr_status pnpr_cv_bilateral(const float *src, float *dst, int w, int h, int ch, int radius, float sigma_color,
+                              float sigma_space, pnpr_error *err);
+/* cv::GaussianBlur with a +-3 sigma kernel; src == dst allowed. */
+pnpr_status pnpr_cv_gaussian(const float *src, float *dst, int w, int h, int ch, float sigma, pnpr_error *err);
+/* Morphological smoothing: cv::morphologyEx opening, then closing, with an elliptical element of
+ * the given radius (px): bright, then dark details narrower than the element go (Bousseau et al.'s
+ * abstraction). Opening first: on light paper the gaps between splats are the bright details, and
+ * they are filled before the closing could erase sparse splats. src == dst allowed. */
+pnpr_status pnpr_cv_close_open(const float *src, float *dst, int w, int h, int ch, int radius, pnpr_error *err);
+/* cv::Sobel 3x3 first derivatives in x and y of every channel (a unit step gives 4). */
+pnpr_status pnpr_cv_sobel(const float *src, float *dx, float *dy, int w, int h, int ch, pnpr_error *err);
+/* cv::cvtColor sRGB (0..1) <-> CIE Lab (L 0..100, a and b about -128..127). */
+pnpr_status pnpr_cv_rgb_to_lab(const float *rgb, float *lab, int w, int h, pnpr_error *err);
+pnpr_status pnpr_cv_lab_to_rgb(const float *lab, float *rgb, int w, int h, pnpr_error *err);
+
+/* ---- shared helpers of the effects (effects/effect_common.c) ---- */
+
+/* malloc of n floats; NULL with PNPR_ERR_OUT_OF_MEMORY in err on failure or overflow. */
+float *pnpr_fx_floats(size_t n, pnpr_error *err);
+/* RGB of src as floats 0..1 (3 per pixel). */
+void pnpr_fx_to_rgb(const pnpr_image *src, float *rgb);
+/* Writes rgb (3 floats per pixel, 0..1) to dst's RGB, rounded and clamped (NaN -> 0); alpha from src. */
+void pnpr_fx_from_rgb(const float *rgb, const pnpr_image *src, pnpr_image *dst);
+/* Byte of a 0..1 value: rounded, clamped, NaN -> 0. */
+uint8_t pnpr_fx_byte(float v);
+/* Rec. 709 luminance of linear-weighted RGB values. */
+float pnpr_fx_luma(float r, float g, float b);
+/* Luminance (0..1) of every pixel of rgb (3 floats per pixel) into lum (n floats). */
+void pnpr_fx_luma_of(const float *rgb, float *lum, size_t n);
+/* Uniform 0..1 hash of (seed, x, y): white noise on the integer lattice. */
+float pnpr_fx_hash(uint64_t seed, int64_t x, int64_t y);
+/* Value noise 0..1 at (x, y) in cells of the lattice: bilinear with a smoothstep, C1-continuous. */
+float pnpr_fx_value_noise(uint64_t seed, float x, float y);
+/* `iterations` bilateral passes over a 3-channel buffer in place (tmp: the same size);
+ * sigma_color on the scale of the mean absolute channel difference, spatial sigma radius / 2. */
+pnpr_status pnpr_fx_bilateral_passes(float *buf, float *tmp, int w, int h, int radius, float sigma_color,
+                                     int iterations, pnpr_error *err);
+/* Difference of Gaussians edges of lum (0..1; Winnemoeller et al. 2006 / 2012 XDoG):
+ * D = G_sigma - tau G_(k sigma); edge = 1 where D >= 0, else 1 + tanh(phi D) (0 = black line).
+ * r_edge: w * h values 0..1; lum is kept. */
+pnpr_status pnpr_fx_dog(const float *lum, float *r_edge, int w, int h, float sigma, float k, float tau, float phi,
+                        pnpr_error *err);
+
 #endif

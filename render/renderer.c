@@ -298,6 +298,8 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
                               "renderer: style 'painterly' needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)");
     if (o->style_map_count > 0 && !o->style_map)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style_map_count %zu without a style map", o->style_map_count);
+    if (o->layer_label_count > 0 && !o->layer_labels)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: layer_label_count %zu without labels", o->layer_label_count);
     if (o->style_map_count > 0xFFFFFFFFu)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style map too large (%zu entries)", o->style_map_count);
     for (size_t i = 0; i < o->style_map_count; i++) {
@@ -420,7 +422,14 @@ static pnpr_status ensure_framebuffer(pnpr_renderer *r, int w, int h, pnpr_error
 static pnpr_status resolve_map(const pnpr_renderer *r, pnpr_frame_ctx *f, uint8_t **r_vstyle, pnpr_error *err)
 {
     *r_vstyle = NULL;
-    if (!(f->o.style_map_count > 0 && r->count > 0 && r->vlabel)) return PNPR_OK;
+    int layer = pnpr_draw_has_layer(&f->o);
+    if (!((f->o.style_map_count > 0 && r->vlabel) || layer) || r->count == 0) {
+        if (!r->vstyle_hidden) return PNPR_OK;
+        /* the last frame was a layer's: show every vertex again */
+        if (!(*r_vstyle = calloc(r->count ? r->count : 1, 1)))
+            return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "renderer: out of memory");
+        return PNPR_OK;
+    }
     uint8_t *vstyle = malloc(r->count);
     if (!vstyle) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "renderer: style map: out of memory");
     pnpr_status st = pnpr_renderer_resolve_styles(r, &f->o, vstyle, f->used);
@@ -429,8 +438,9 @@ static pnpr_status resolve_map(const pnpr_renderer *r, pnpr_frame_ctx *f, uint8_
     pnpr_style only = f->o.style;
     for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
         if (f->used[s]) { nused++; only = (pnpr_style)s; }
-    if (nused <= 1) { f->o.style = only; free(vstyle); vstyle = NULL; }
-    f->mapped = vstyle != NULL;
+    if (nused <= 1) f->o.style = only;
+    if (nused <= 1 && !layer) { free(vstyle); vstyle = NULL; }
+    f->mapped = nused > 1;
     *r_vstyle = vstyle;
     return PNPR_OK;
 }

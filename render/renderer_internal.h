@@ -95,6 +95,7 @@ struct pnpr_renderer {
     uint32_t *vlabel;    /* label of each vertex (main order); NULL: the cloud has no labels */
     uint32_t *paint_src; /* main-order index of each painterly vertex */
     uint8_t *vstyle;     /* the style bytes in style_vbo (main order) */
+    int vstyle_hidden;   /* some of them are PNPR_VSTYLE_HIDDEN (a segment layer's frame) */
     /* the profile lines: segments as pairs of float offsets from line_origin */
     size_t line_segments;
     double line_origin[3];
@@ -159,6 +160,12 @@ float pnpr_paint_brush(size_t pass, size_t bins);
  * cloud has labels). Then the upload of those bytes (main and painterly order) when they changed. */
 pnpr_status pnpr_renderer_resolve_styles(const pnpr_renderer *r, const pnpr_draw_options *o, uint8_t *r_style,
                                          size_t *r_used);
+/* The style byte of a vertex outside the frame's segment layer (pnpr_draw_options.layer_labels):
+ * every vertex shader drops it (the literal 255u in splat/stroke/paint.vert.glsl). Style maps and
+ * layers are counted in r_used only for the vertices in the layer. */
+#define PNPR_VSTYLE_HIDDEN 255u
+/* Whether o asks for a segment layer. */
+int pnpr_draw_has_layer(const pnpr_draw_options *o);
 pnpr_status pnpr_renderer_upload_styles(pnpr_renderer *r, const uint8_t *vstyle);
 
 /* A tile of a larger image: the frame is the rectangle (x, y, w, h) (GL pixel convention, y up

@@ -46,6 +46,28 @@ pnpr_status pnpr_renderer_read_frame(pnpr_renderer *r, uint8_t *rgba, int unprem
     return PNPR_OK;
 }
 
+pnpr_status pnpr_renderer_read_depth(pnpr_renderer *r, float *r_depth)
+{
+    if (!r || !r_depth) return PNPR_ERR_INVALID_ARGUMENT;
+    if (!r->fbo || r->fb_w <= 0) return PNPR_ERR_EMPTY;
+    int w = r->fb_w, h = r->fb_h;
+    pnpr_gl_state saved;
+    pnpr_gl_state_save(&saved);
+    pnpr_gl_state_neutral();
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, r_depth);
+    pnpr_gl_state_restore(&saved);
+    for (int y = 0; y < h / 2; y++) /* bottom row first -> top row first */
+        for (int x = 0; x < w; x++) {
+            float *a = r_depth + (size_t)y * (size_t)w + (size_t)x, *b = r_depth + (size_t)(h - 1 - y) * (size_t)w + (size_t)x;
+            float t = *a;
+            *a = *b;
+            *b = t;
+        }
+    return PNPR_OK;
+}
+
 pnpr_status pnpr_image_bytes(int width, int height, size_t limit, size_t *r_bytes, pnpr_error *err)
 {
     if (r_bytes) *r_bytes = 0;

@@ -427,7 +427,7 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
     r->paint_bins = u->paint ? u->nbins : 0;
     if (u->paint) for (size_t b = 0; b <= u->nbins + 1; b++) r->paint_start[b] = u->pstarts[b];
     free(r->vlabel); free(r->paint_src); free(r->vstyle);
-    r->vlabel = u->vlabel; r->paint_src = u->paint_src; r->vstyle = u->zeros;
+    r->vlabel = u->vlabel; r->paint_src = u->paint_src; r->vstyle = u->zeros; r->vstyle_hidden = 0;
     u->vlabel = NULL; u->paint_src = NULL; u->zeros = NULL;
     r->count = n;
     r->group_count = u->ngroups;
@@ -540,11 +540,53 @@ static int cmp_map_key(const void *a, const void *b)
     return x->index < y->index ? -1 : x->index > y->index;
 }
 
+int pnpr_draw_has_layer(const pnpr_draw_options *o)
+{
+    return o->layer_label_count > 0 || o->layer_exclude;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+static int sorted_has(const uint32_t *v, size_t n, uint32_t x)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (v[mid] < x) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo < n && v[lo] == x;
+}
+
+/* Hides (PNPR_VSTYLE_HIDDEN) the vertices outside o's layer and takes them out of r_used. */
+static pnpr_status hide_outside_layer(const pnpr_renderer *r, const pnpr_draw_options *o, uint8_t *r_style,
+                                      size_t *r_used)
+{
+    size_t m = o->layer_label_count;
+    uint32_t *keys = malloc((m ? m : 1) * sizeof *keys);
+    if (!keys) return PNPR_ERR_OUT_OF_MEMORY;
+    if (m) memcpy(keys, o->layer_labels, m * sizeof *keys);
+    qsort(keys, m, sizeof *keys, cmp_u32);
+    for (size_t q = 0; q < r->count; q++) {
+        int listed = r->vlabel && sorted_has(keys, m, r->vlabel[q]);
+        if (listed != !o->layer_exclude) {
+            r_used[r_style[q]]--;
+            r_style[q] = (uint8_t)PNPR_VSTYLE_HIDDEN;
+        }
+    }
+    free(keys);
+    return PNPR_OK;
+}
+
 pnpr_status pnpr_renderer_resolve_styles(const pnpr_renderer *r, const pnpr_draw_options *o, uint8_t *r_style,
                                          size_t *r_used)
 {
-    size_t m = o->style_map_count;
-    map_key *keys = malloc(m * sizeof *keys);
+    size_t m = r->vlabel ? o->style_map_count : 0;
+    map_key *keys = malloc((m ? m : 1) * sizeof *keys);
     if (!keys) return PNPR_ERR_OUT_OF_MEMORY;
     for (size_t i = 0; i < m; i++) {
         keys[i].label = o->style_map[i].label;
@@ -554,7 +596,7 @@ pnpr_status pnpr_renderer_resolve_styles(const pnpr_renderer *r, const pnpr_draw
     qsort(keys, m, sizeof *keys, cmp_map_key);
     for (int s = 0; s < PNPR_STYLE_COUNT_; s++) r_used[s] = 0;
     for (size_t q = 0; q < r->count; q++) {
-        uint32_t label = r->vlabel[q];
+        uint32_t label = r->vlabel ? r->vlabel[q] : 0;
         size_t lo = 0, hi = m; /* first key with a larger label */
         while (lo < hi) {
             size_t mid = lo + (hi - lo) / 2;
@@ -566,7 +608,7 @@ pnpr_status pnpr_renderer_resolve_styles(const pnpr_renderer *r, const pnpr_draw
         r_used[s]++;
     }
     free(keys);
-    return PNPR_OK;
+    return pnpr_draw_has_layer(o) ? hide_outside_layer(r, o, r_style, r_used) : PNPR_OK;
 }
 
 pnpr_status pnpr_renderer_upload_styles(pnpr_renderer *r, const uint8_t *vstyle)
@@ -583,6 +625,7 @@ pnpr_status pnpr_renderer_upload_styles(pnpr_renderer *r, const uint8_t *vstyle)
         free(ps);
     }
     memcpy(r->vstyle, vstyle, r->count);
+    r->vstyle_hidden = memchr(vstyle, (int)PNPR_VSTYLE_HIDDEN, r->count) != NULL;
     return PNPR_OK;
 }
 

@@ -465,6 +465,8 @@ pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *er
     pnpr_style s = opts ? opts->style : PNPR_STYLE_POINTS;
     if (opts && opts->style_map_count > 0)
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "vector: style maps are not drawn as vectors yet (use one style)");
+    if (opts && (opts->layer_label_count > 0 || opts->layer_exclude))
+        return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "vector: segment layers (image-space effects) are pixels, not vectors");
     if (s != PNPR_STYLE_SKETCHY && s != PNPR_STYLE_STIPPLE && s != PNPR_STYLE_LINES && s != PNPR_STYLE_CARTOON)
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
                               "vector: style '%s' fills areas; vector drawings are made of the strokes of sketchy, "

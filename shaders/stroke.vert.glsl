@@ -35,7 +35,7 @@ out float v_fade;
 
 void main()
 {
-    if (u_style_filter >= 0 && int(a_style) != u_style_filter) {
+    if (a_style == 255u || (u_style_filter >= 0 && int(a_style) != u_style_filter)) { // 255u: PNPR_VSTYLE_HIDDEN
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         v_color = vec4(0.0);
         v_uv = vec2(0.0);

@@ -149,12 +149,19 @@ typedef struct pnpr_layer {
 } pnpr_layer;
 
 /* Composites `count` layers of the same size into r_out: each pixel takes the colour of the layer
- * with the nearest depth < 1 (ties: the earlier layer), or `background` (RGBA8) where no layer
- * has one; PNPR_LAYERING_NONE paints in order instead. r_depth (may be NULL): the winning depth,
- * 1 where none. */
+ * with the nearest depth < 1 (ties: the earlier layer), or `background` (RGBA8; NULL = transparent
+ * black) where no layer has one; PNPR_LAYERING_NONE paints in order instead. r_depth (may be
+ * NULL): the winning depth, 1 where none. */
 PNPR_NODISCARD pnpr_status pnpr_layers_composite(const pnpr_layer *layers, size_t count, pnpr_layering mode,
                                                  const uint8_t background[4], pnpr_image *r_out,
                                                  float *r_depth, pnpr_error *err);
+/* The same one layer at a time (so that layers need not all be kept): pnpr_layers_clear fills
+ * r_out with `background` and r_depth (width * height) with 1, then pnpr_layers_merge adds the
+ * layers in order; the result equals pnpr_layers_composite's. */
+PNPR_NODISCARD pnpr_status pnpr_layers_clear(const uint8_t background[4], pnpr_image *r_out, float *r_depth,
+                                             pnpr_error *err);
+PNPR_NODISCARD pnpr_status pnpr_layers_merge(const pnpr_layer *layer, pnpr_layering mode, pnpr_image *r_out,
+                                             float *r_depth, pnpr_error *err);
 
 /* ---- pipeline files -------------------------------------------------------------------------- */
 

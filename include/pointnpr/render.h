@@ -23,6 +23,7 @@
 #include "cloud.h"
 #include "crq.h"
 #include "drawing.h"
+#include "effects.h"
 #include "polylines.h"
 #include "style.h"
 #include "tone.h"
@@ -90,6 +91,15 @@ typedef struct pnpr_draw_options {
      * last entry. 0 / NULL = no map. */
     const pnpr_style_map_entry *style_map;
     size_t style_map_count;
+    /* A segment layer (image-space effects, effects.h): with layer_label_count > 0 or
+     * layer_exclude, only the points in the layer take part in the frame (every pass, the visibility
+     * mask included; the queue prefixes stay those of the whole cloud, so a layer shows exactly the
+     * points the whole frame would). In the layer: points whose label (cloud->label) is among the
+     * layer_label_count labels of layer_labels (caller-owned, read during the call only), or, with
+     * layer_exclude, points whose label is not among them and the points of a cloud without labels. */
+    const uint32_t *layer_labels;
+    size_t layer_label_count;
+    int layer_exclude;
     pnpr_sketch_variant sketch_variant;
     float background[4];   /* clear colour of the frame (zero = transparent black) */
     size_t budget;         /* at most this many points per frame (0 = no limit) */
@@ -233,6 +243,9 @@ PNPR_NODISCARD pnpr_status pnpr_renderer_drawing(pnpr_renderer *renderer, const 
 /* Copies the last frame (width*height*4 bytes, RGBA8, top row first). unpremultiply: colours of
  * partly transparent pixels divided by alpha (for PNGs with alpha). */
 PNPR_NODISCARD pnpr_status pnpr_renderer_read_frame(pnpr_renderer *renderer, uint8_t *r_rgba, int unpremultiply);
+/* Copies the last frame's depth (width*height floats, top row first): window depth 0..1 of the
+ * visibility mask, the nearest visible surface; 1 = far plane (no fragment). */
+PNPR_NODISCARD pnpr_status pnpr_renderer_read_depth(pnpr_renderer *renderer, float *r_depth);
 /* Size of the last frame (0 x 0 before the first draw). */
 void pnpr_renderer_frame_size(const pnpr_renderer *renderer, int *r_width, int *r_height);
 
@@ -244,6 +257,32 @@ int pnpr_renderer_has_features(const pnpr_renderer *renderer);
 int pnpr_renderer_has_labels(const pnpr_renderer *renderer);
 
 /* Styles by name, their needs and defaults: style.h. */
+
+/* ---- segment-specific image-space effects (Wegen et al.; effects.h) -------------------------- */
+
+typedef struct pnpr_effects_options {
+    uint64_t seed;          /* noise of the effects (paper, brushes): the same seed, the same image */
+    pnpr_progress progress; /* called after each layer with stage "layer i/n"; non-zero cancels */
+} pnpr_effects_options;
+
+typedef struct pnpr_effects_stats {
+    size_t layers;          /* layers rasterised, filtered and composited */
+    double raster_s, filter_s, inpaint_s, composite_s; /* seconds spent in each step, all layers */
+} pnpr_effects_stats;
+
+/* Renders a width x height image (within the GL limit) of the uploaded cloud through an effects
+ * pipeline: one layer per pipeline node that draws labels present in the cloud (one per label
+ * with per_label), each rasterised with the node's style and point scale on top of `opts` (its
+ * background made opaque: the effects see the paper colour), filtered by the node's chain, its
+ * depth inpainted (unless the node turns it off), merged in node order with the pipeline's
+ * layering; pixels no layer covers take opts->background. A cloud without labels is one layer,
+ * the root's. r_rgba: width*height*4 bytes (RGBA8, top row first). Style maps and layers in
+ * `opts` are refused (the pipeline chooses them). The renderer's frame afterwards holds the last
+ * layer. */
+PNPR_NODISCARD pnpr_status pnpr_renderer_effects(pnpr_renderer *renderer, const pnpr_camera *camera,
+                                                 const pnpr_draw_options *opts, const pnpr_effect_pipeline *pipeline,
+                                                 int width, int height, const pnpr_effects_options *eopts,
+                                                 uint8_t *r_rgba, pnpr_effects_stats *r_stats, pnpr_error *err);
 
 /* ---- headless context and PNG (CLI, tests, snapshots) --------------------------------------- */
 

@@ -19,6 +19,10 @@ typedef struct cli_render_opts {
     cli_view view;
     const char *style_map_path;
     pnpr_style_map smap;          /* read by cli_render_opts_finish */
+    const char *effects_path;     /* --effects FILE */
+    pnpr_effect_pipeline fx;      /* read by cli_render_opts_finish (count 0: none) */
+    pnpr_layering layering;       /* --layering, over the file's */
+    int have_layering;
     int uses[PNPR_STYLE_COUNT_];  /* the styles a frame may draw */
 } cli_render_opts;
 

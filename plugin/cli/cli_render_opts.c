@@ -44,6 +44,11 @@ void cli_render_usage(FILE *f, int width, int height)
             "  --style-map FILE     intermingled styles: FILE has lines 'LABEL STYLE' (a segment label of\n"
             "                       IN, PLY property segment or label) and '* STYLE' (the default, else\n"
             "                       --style); '#' starts a comment\n"
+            "  --effects FILE       segment-specific image-space effects (docs/effects.md): FILE gives\n"
+            "                       segments (labels) effect chains (toon, watercolour, oil, pencil,\n"
+            "                       posterise, grade, edges, smooth) and presets; one layer each,\n"
+            "                       depth-inpainted and composited with a depth test\n"
+            "  --layering M         effects: inpainted (default) | fragment | none (paper figure 12)\n"
             "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
             "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n");
     draw_usage(f, "stroke-texture", "T");
@@ -99,23 +104,42 @@ void cli_render_usage(FILE *f, int width, int height)
 }
 
 
+/* Loads the text file of option `opt` (at most max bytes). Returns 0 after a message. */
+static int load_text(const char *cmd, const char *opt, const char *path, size_t max, char **r_text, size_t *r_size)
+{
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_text_file_load(path, max, r_text, r_size, &err);
+    size_t n = strlen(path);
+    if (st == PNPR_OK) return 1;
+    const char *why = !strncmp(err.message, path, n) && !strncmp(err.message + n, ": ", 2) ? err.message + n + 2 : err.message;
+    fprintf(stderr, "pointnpr %s: %s: cannot open '%s': %s\n", cmd, opt, path, why);
+    return 0;
+}
+
 /* Reads a style map file (pnpr_style_map_parse, style.h). Returns 0 after a message naming the
  * line on a bad line. */
 static int read_style_map(const char *cmd, const char *path, pnpr_style_map *r_map)
 {
     char *text = NULL;
     size_t size = 0;
+    if (!load_text(cmd, "--style-map", path, PNPR_STYLE_MAP_FILE_MAX, &text, &size)) return 0;
     pnpr_error err = {0};
-    pnpr_status st = pnpr_text_file_load(path, PNPR_STYLE_MAP_FILE_MAX, &text, &size, &err);
-    size_t n = strlen(path);
-    if (st != PNPR_OK) {
-        const char *why = !strncmp(err.message, path, n) && !strncmp(err.message + n, ": ", 2) ? err.message + n + 2 : err.message;
-        fprintf(stderr, "pointnpr %s: --style-map: cannot open '%s': %s\n", cmd, path, why);
-        return 0;
-    }
-    st = pnpr_style_map_parse(text, size, path, r_map, &err);
+    pnpr_status st = pnpr_style_map_parse(text, size, path, r_map, &err);
     free(text);
     if (st != PNPR_OK) fprintf(stderr, "pointnpr %s: --style-map %s\n", cmd, err.message);
+    return st == PNPR_OK;
+}
+
+/* Reads an effects pipeline file (pnpr_effect_pipeline_parse, effects.h); the same. */
+static int read_effects(const char *cmd, const char *path, pnpr_effect_pipeline *r_pipe)
+{
+    char *text = NULL;
+    size_t size = 0;
+    if (!load_text(cmd, "--effects", path, PNPR_EFFECT_PIPELINE_FILE_MAX, &text, &size)) return 0;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_effect_pipeline_parse(text, size, path, r_pipe, &err);
+    free(text);
+    if (st != PNPR_OK) fprintf(stderr, "pointnpr %s: --effects %s\n", cmd, err.message);
     return st == PNPR_OK;
 }
 
@@ -199,6 +223,11 @@ static int style_option(cli_render_opts *o, const char *cmd, const char *a, cons
             o->dopt.style = s; i++;
         } else if (v && !strcmp(a, "--style-map")) {
             o->style_map_path = v; i++;
+        } else if (v && !strcmp(a, "--effects")) {
+            o->effects_path = v; i++;
+        } else if (v && !strcmp(a, "--layering")) {
+            if (pnpr_layering_from_name(v, &o->layering) != PNPR_OK) { BAD("--layering wants inpainted, fragment or none, got '%s'\n", v); }
+            o->have_layering = 1; i++;
         } else if (v && !strcmp(a, "--sketch")) {
             if (!strcmp(v, "a")) o->dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
             else if (!strcmp(v, "b")) o->dopt.sketch_variant = PNPR_SKETCH_NONDIRECTIONAL;
@@ -310,12 +339,26 @@ int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
     memset(o->uses, 0, sizeof o->uses); /* the default and the mapped styles */
     o->uses[o->dopt.style] = 1;
     for (size_t m = 0; m < o->smap.count; m++) o->uses[o->smap.entries[m].style] = 1;
+    if (o->have_layering && !o->effects_path) {
+        fprintf(stderr, "pointnpr %s: --layering is for --effects FILE\n", cmd);
+        return 0;
+    }
+    if (!o->effects_path) return 1;
+    if (o->style_map_path) {
+        fprintf(stderr, "pointnpr %s: --effects and --style-map both choose styles per segment; give one\n", cmd);
+        return 0;
+    }
+    if (!read_effects(cmd, o->effects_path, &o->fx)) return 0;
+    if (o->have_layering) o->fx.layering = o->layering;
+    memset(o->uses, 0, sizeof o->uses); /* the styles of the pipeline's nodes */
+    for (size_t k = 0; k < o->fx.count; k++) o->uses[o->fx.nodes[k].style] = 1;
     return 1;
 }
 
 void cli_render_opts_free(cli_render_opts *o)
 {
     pnpr_style_map_free(&o->smap);
+    pnpr_effect_pipeline_free(&o->fx);
 }
 
 int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in)
@@ -356,9 +399,43 @@ int cli_render_start(cli_render_session *s, cli_render_opts *o, const char *cmd,
     return 1;
 }
 
+/* Progress of the effects' layers: one line per layer. */
+static int layer_progress(void *user, const char *stage, double fraction)
+{
+    (void)user;
+    fprintf(stderr, "render: effects %s (%.0f %%)\n", stage, 100.0 * fraction);
+    return 0;
+}
+
+/* cli_render_frame through the effects pipeline (one frame: no tiles). */
+static int effects_frame(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in,
+                         const pnpr_camera *camera, pnpr_render_stats *r_stats)
+{
+    pnpr_effects_options eo = {0};
+    eo.seed = o->uopt.seed;
+    eo.progress.fn = o->quiet ? NULL : layer_progress;
+    pnpr_effects_stats es;
+    pnpr_error err = {0};
+    if (r_stats) memset(r_stats, 0, sizeof *r_stats);
+    int lim = pnpr_renderer_max_size(s->ren);
+    if (o->view.width > lim || o->view.height > lim) {
+        fprintf(stderr, "pointnpr %s: --effects images are one frame: at most %dx%d on this GL, asked %dx%d\n", cmd, lim,
+                lim, o->view.width, o->view.height);
+        return 0;
+    }
+    pnpr_status st = pnpr_renderer_effects(s->ren, camera, &o->dopt, &o->fx, o->view.width, o->view.height, &eo,
+                                           s->pixels, &es, &err);
+    if (st != PNPR_OK) { cli_report_error_in(cmd, in, st, &err); return 0; }
+    if (!o->quiet)
+        fprintf(stderr, "%s: effects: %zu layers (raster %.2f s, filters %.2f s, inpainting %.2f s, compositing %.2f s), layering %s\n",
+                in, es.layers, es.raster_s, es.filter_s, es.inpaint_s, es.composite_s, pnpr_layering_name(o->fx.layering));
+    return 1;
+}
+
 int cli_render_frame(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in,
                      const pnpr_camera *camera, int tiles, pnpr_render_stats *r_stats)
 {
+    if (o->fx.count) return effects_frame(s, o, cmd, in, camera, r_stats);
     pnpr_snapshot_options so = {0};
     so.max_tile_size = o->max_tile;
     so.unpremultiply = o->alpha;

@@ -28,7 +28,7 @@ static void usage(FILE *f)
             "usage: pointnpr render IN -o OUT.png|OUT.svg|OUT.pdf [options]\n"
             "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG, or draws the\n"
             "  frame's strokes, dots, lines and outlines as vector paths (SVG, PDF; styles sketchy,\n"
-            "  stipple, lines, cartoon).\n"
+            "  stipple, lines, cartoon), or filters its segments in image space (--effects FILE, PNG).\n"
             "options:\n"
             "  --plot-order         vector: order the paths of each layer for a pen plotter (shorter\n"
             "                       pen-up travel)\n"
@@ -123,6 +123,10 @@ static int check_args(render_args *r, cli_render_opts *o)
         fprintf(stderr, "pointnpr render: --plot-order, --merge-hatches and --min-mark are for vector output (.svg, .pdf)\n");
         return 2;
     }
+    if (r->kind != OUT_PNG && o->fx.count) {
+        fprintf(stderr, "pointnpr render: --effects filters pixels: the output must be a PNG, got '%s'\n", r->out);
+        return 2;
+    }
     if (r->kind != OUT_PNG) {
         st = pnpr_drawing_supported(&o->dopt, &err);
         if (st != PNPR_OK) { cli_report_error("render", st, &err); return 2; }
@@ -207,7 +211,9 @@ int cli_render(int argc, char **argv)
     pnpr_error err = {0};
     pnpr_status st = pnpr_write_png(r.out, s.pixels, o.view.width, o.view.height, o.alpha, &err);
     if (st != PNPR_OK) { cli_report_error("render", st, &err); goto done; }
-    if (!o.quiet)
+    if (!o.quiet && o.fx.count)
+        fprintf(stderr, "%s: effects of %s, %dx%d -> %s\n", r.in, o.effects_path, o.view.width, o.view.height, r.out);
+    else if (!o.quiet)
         fprintf(stderr, "%s: %zu of %zu points drawn, %zu strokes, style %s, %dx%d -> %s\n", r.in,
                 stats.points_drawn, stats.points_total, stats.strokes_drawn,
                 o.smap.count ? "map" : pnpr_style_name(o.dopt.style), o.view.width, o.view.height, r.out);
