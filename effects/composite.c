@@ -110,7 +110,8 @@ pnpr_status pnpr_layers_merge(const pnpr_layer *layer, pnpr_layering mode, pnpr_
         int has = d >= 0.0f && d < 1.0f;
         int take = mode == PNPR_LAYERING_NONE ? has || layer->changed[i] : has && d < r_depth[i];
         if (!take) continue;
-        memcpy(r_out->rgba + 4 * i, layer->color->rgba + 4 * i, 4);
+        memcpy(r_out->rgba + 4 * i, layer->color->rgba + 4 * i, 3);
+        r_out->rgba[4 * i + 3] = 255; /* the layer's alpha is its coverage: what wins is opaque */
         if (has) r_depth[i] = d;
     }
     return PNPR_OK;

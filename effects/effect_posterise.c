@@ -17,7 +17,8 @@ pnpr_status pnpr_fx_posterise(const float *p, const pnpr_image *src, pnpr_image 
     }
     size_t n = (size_t)src->width * (size_t)src->height;
     for (size_t i = 0; i < n; i++) {
-        for (int c = 0; c < 3; c++) dst->rgba[4 * i + c] = table[src->rgba[4 * i + c]];
+        int paper = src->rgba[4 * i + 3] == 0; /* no fragment: copied (effects.h) */
+        for (int c = 0; c < 3; c++) dst->rgba[4 * i + c] = paper ? src->rgba[4 * i + c] : table[src->rgba[4 * i + c]];
         dst->rgba[4 * i + 3] = src->rgba[4 * i + 3];
     }
     return PNPR_OK;

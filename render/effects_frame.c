@@ -139,6 +139,8 @@ static pnpr_status do_layer(pnpr_renderer *r, const pnpr_camera *camera, const p
     st = pnpr_renderer_read_frame(r, b->raster.rgba, 1);
     if (st == PNPR_OK) st = pnpr_renderer_read_depth(r, b->depth);
     if (st != PNPR_OK) return pnpr_error_set(err, st, "effects: reading the layer of node '%s' back", nd->name);
+    size_t npx = (size_t)b->raster.width * (size_t)b->raster.height;
+    for (size_t i = 0; i < npx; i++) b->raster.rgba[4 * i + 3] = b->depth[i] < 1.0f ? 255 : 0; /* coverage */
     double t1 = pnpr_now();
     st = pnpr_effect_chain_apply(&nd->chain, &b->raster, &b->filtered, seed ^ (uint64_t)l->node, err);
     if (st != PNPR_OK) return st;

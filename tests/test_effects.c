@@ -87,17 +87,22 @@ static void test_grade(void)
 {
     pnpr_image src = image_new(32, 32), dst = image_new(32, 32);
     noise(&src, 7);
+    /* every 17th pixel paper (alpha 0: no fragment), the others fragments */
+    for (int i = 0; i < 32 * 32; i++)
+        src.rgba[4 * i + 3] = i % 17 == 0 ? 0 : src.rgba[4 * i + 3] ? src.rgba[4 * i + 3] : 1;
     pnpr_effect e = effect(PNPR_EFFECT_GRADE);
     set(&e, "saturation", 0);
     CHECK_STATUS(pnpr_effect_apply(&e, &src, &dst, 0, NULL), PNPR_OK);
-    int grey = 1;
+    int grey = 1, paper_kept = 1;
     for (int i = 0; i < 32 * 32; i++) {
         const uint8_t *p = dst.rgba + 4 * i;
+        if (i % 17 == 0) { paper_kept &= !memcmp(p, src.rgba + 4 * i, 4); continue; }
         grey &= p[0] == p[1] && p[1] == p[2] && p[3] == src.rgba[4 * i + 3];
         if (!grey) break;
         CHECK_NEAR(p[0], luma(src.rgba + 4 * i) * 255, 0.51);
     }
     CHECK(grey);
+    CHECK_MSG(paper_kept, "grade leaves paper (alpha 0) as it is");
     /* the defaults change nothing */
     e = effect(PNPR_EFFECT_GRADE);
     CHECK_STATUS(pnpr_effect_apply(&e, &src, &dst, 0, NULL), PNPR_OK);

@@ -79,7 +79,10 @@ typedef struct pnpr_effect_chain {
     int count;
 } pnpr_effect_chain;
 
-/* Applies one effect: src -> dst (same size, distinct buffers). The alpha channel is kept.
+/* Applies one effect: src -> dst (same size, distinct buffers). The alpha channel is kept; it
+ * tells fragments (alpha > 0) from paper (alpha 0, where the layer has no point: its colour is the
+ * paper's): the per-pixel effects (posterise, grade) leave paper as it is, so that a recoloured
+ * segment gets no tinted halo; the neighbourhood effects read the paper's colour as it is.
  * Noise (paper texture, brush texture) comes from `seed` and the pixel position only: the same
  * input and seed give the same bytes. PNPR_ERR_INVALID_ARGUMENT for a bad size, kind or a set
  * parameter outside its range (message names the effect and parameter); PNPR_ERR_UNSUPPORTED when
@@ -149,8 +152,9 @@ typedef struct pnpr_layer {
 } pnpr_layer;
 
 /* Composites `count` layers of the same size into r_out: each pixel takes the colour of the layer
- * with the nearest depth < 1 (ties: the earlier layer), or `background` (RGBA8; NULL = transparent
- * black) where no layer has one; PNPR_LAYERING_NONE paints in order instead. r_depth (may be
+ * with the nearest depth < 1 (ties: the earlier layer) with alpha 255 (a layer's alpha is its
+ * coverage, not a transparency), or `background` (RGBA8; NULL = transparent black) where no layer
+ * has one; PNPR_LAYERING_NONE paints in order instead. r_depth (may be
  * NULL): the winning depth, 1 where none. */
 PNPR_NODISCARD pnpr_status pnpr_layers_composite(const pnpr_layer *layers, size_t count, pnpr_layering mode,
                                                  const uint8_t background[4], pnpr_image *r_out,
