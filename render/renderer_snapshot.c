@@ -30,34 +30,35 @@ static void finish_pixels(uint8_t *rgba, int w, int h, int unpremultiply)
     }
 }
 
-pnpr_status pnpr_renderer_read_frame(pnpr_renderer *r, uint8_t *rgba, int unpremultiply)
+/* Reads the whole frame's colour (GL_RGBA) or depth (GL_DEPTH_COMPONENT) into buf, bottom row
+ * first, host GL state kept. */
+static pnpr_status read_whole(pnpr_renderer *r, GLenum format, GLenum type, void *buf)
 {
-    if (!r || !rgba) return PNPR_ERR_INVALID_ARGUMENT;
+    if (!r || !buf) return PNPR_ERR_INVALID_ARGUMENT;
     if (!r->fbo || r->fb_w <= 0) return PNPR_ERR_EMPTY;
-    int w = r->fb_w, h = r->fb_h;
     pnpr_gl_state saved;
     pnpr_gl_state_save(&saved);
     pnpr_gl_state_neutral();
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, r->fb_w, r->fb_h, format, type, buf);
     pnpr_gl_state_restore(&saved);
-    finish_pixels(rgba, w, h, unpremultiply);
     return PNPR_OK;
+}
+
+pnpr_status pnpr_renderer_read_frame(pnpr_renderer *r, uint8_t *rgba, int unpremultiply)
+{
+    pnpr_status st = read_whole(r, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    if (st == PNPR_OK) finish_pixels(rgba, r->fb_w, r->fb_h, unpremultiply);
+    return st;
 }
 
 pnpr_status pnpr_renderer_read_depth(pnpr_renderer *r, float *r_depth)
 {
-    if (!r || !r_depth) return PNPR_ERR_INVALID_ARGUMENT;
-    if (!r->fbo || r->fb_w <= 0) return PNPR_ERR_EMPTY;
+    pnpr_status st = read_whole(r, GL_DEPTH_COMPONENT, GL_FLOAT, r_depth);
+    if (st != PNPR_OK) return st;
     int w = r->fb_w, h = r->fb_h;
-    pnpr_gl_state saved;
-    pnpr_gl_state_save(&saved);
-    pnpr_gl_state_neutral();
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, r_depth);
-    pnpr_gl_state_restore(&saved);
     for (int y = 0; y < h / 2; y++) /* bottom row first -> top row first */
         for (int x = 0; x < w; x++) {
             float *a = r_depth + (size_t)y * (size_t)w + (size_t)x, *b = r_depth + (size_t)(h - 1 - y) * (size_t)w + (size_t)x;

@@ -8,8 +8,7 @@ set -uo pipefail
 bin=$1
 dir=$2/cli_effects
 rm -rf "$dir"; mkdir -p "$dir"
-fail=0
-check() { if ! eval "$1"; then echo "FAILED: $2" >&2; fail=1; fi; }
+source "$(dirname "$0")/../lib_cli.sh" # check, fail
 png_w() { od -An -tu1 -j16 -N4 "$1" | awk '{print $1*16777216+$2*65536+$3*256+$4}'; }
 png_h() { od -An -tu1 -j20 -N4 "$1" | awk '{print $1*16777216+$2*65536+$3*256+$4}'; }
 
