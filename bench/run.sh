@@ -76,3 +76,8 @@ fi
 
 echo "== error against run time: pointnpr bench accuracy" >&2
 "$build/pointnpr" bench accuracy --out "$out/accuracy" | tee "$out/accuracy.md"
+
+echo "== segment-specific image-space effects: 1M labelled points at 1920x1080 (bench/effects.sh)" >&2
+if [ -x "$build/bench/effects_scene" ] && [ -x "$build/pointnpr" ]; then
+  bash bench/effects.sh "$build" "$out/effects" | tee "$out/effects.md"
+fi
