@@ -168,6 +168,11 @@ pnpr_status pnpr_renderer_resolve_styles(const pnpr_renderer *r, const pnpr_draw
 int pnpr_draw_has_layer(const pnpr_draw_options *o);
 pnpr_status pnpr_renderer_upload_styles(pnpr_renderer *r, const uint8_t *vstyle);
 
+/* Reads the last frame's colour (GL_RGBA, GL_UNSIGNED_BYTE: premultiplied as drawn) or depth
+ * (GL_DEPTH_COMPONENT, GL_FLOAT) whole into buf, bottom row first, host GL state kept
+ * (renderer_snapshot.c). PNPR_ERR_EMPTY before the first frame. */
+pnpr_status pnpr_renderer_read_raw(pnpr_renderer *r, unsigned format, unsigned type, void *buf);
+
 /* A tile of a larger image: the frame is the rectangle (x, y, w, h) (GL pixel convention, y up
  * from the bottom row) of a full_w x full_h image; point sizes, queue counts and the camera are
  * those of the full image (pnpr_renderer_snapshot). */

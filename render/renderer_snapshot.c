@@ -30,9 +30,7 @@ static void finish_pixels(uint8_t *rgba, int w, int h, int unpremultiply)
     }
 }
 
-/* Reads the whole frame's colour (GL_RGBA) or depth (GL_DEPTH_COMPONENT) into buf, bottom row
- * first, host GL state kept. */
-static pnpr_status read_whole(pnpr_renderer *r, GLenum format, GLenum type, void *buf)
+pnpr_status pnpr_renderer_read_raw(pnpr_renderer *r, unsigned format, unsigned type, void *buf)
 {
     if (!r || !buf) return PNPR_ERR_INVALID_ARGUMENT;
     if (!r->fbo || r->fb_w <= 0) return PNPR_ERR_EMPTY;
@@ -42,21 +40,21 @@ static pnpr_status read_whole(pnpr_renderer *r, GLenum format, GLenum type, void
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, r->fb_w, r->fb_h, format, type, buf);
+    glReadPixels(0, 0, r->fb_w, r->fb_h, (GLenum)format, (GLenum)type, buf);
     pnpr_gl_state_restore(&saved);
     return PNPR_OK;
 }
 
 pnpr_status pnpr_renderer_read_frame(pnpr_renderer *r, uint8_t *rgba, int unpremultiply)
 {
-    pnpr_status st = read_whole(r, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    pnpr_status st = pnpr_renderer_read_raw(r, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     if (st == PNPR_OK) finish_pixels(rgba, r->fb_w, r->fb_h, unpremultiply);
     return st;
 }
 
 pnpr_status pnpr_renderer_read_depth(pnpr_renderer *r, float *r_depth)
 {
-    pnpr_status st = read_whole(r, GL_DEPTH_COMPONENT, GL_FLOAT, r_depth);
+    pnpr_status st = pnpr_renderer_read_raw(r, GL_DEPTH_COMPONENT, GL_FLOAT, r_depth);
     if (st != PNPR_OK) return st;
     int w = r->fb_w, h = r->fb_h;
     for (int y = 0; y < h / 2; y++) /* bottom row first -> top row first */

@@ -410,12 +410,12 @@ static pnpr_status outline_marks(vec_ctx *c, pnpr_error *err)
     size_t n = (size_t)c->w * (size_t)c->h;
     uint8_t *rgba = malloc(4 * n);
     if (!rgba) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: outlines of a %dx%d frame: out of memory", c->w, c->h);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glReadPixels(0, 0, c->w, c->h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    pnpr_status st = pnpr_renderer_read_raw(c->r, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    if (st != PNPR_OK) { free(rgba); return pnpr_error_set(err, st, "vector: outlines: no frame to read"); }
     for (size_t i = 0; i < n; i++) rgba[i] = rgba[4 * i + 3]; /* alpha, in place */
     uint8_t threshold = (uint8_t)(c->ink[3] / 2 > 0 ? c->ink[3] / 2 : 1);
-    pnpr_status st = pnpr_drawing_trace_ink(c->out, rgba, c->w, c->h, 1, threshold, rec->outline_width, c->ink,
-                                            PNPR_LAYER_OUTLINES);
+    st = pnpr_drawing_trace_ink(c->out, rgba, c->w, c->h, 1, threshold, rec->outline_width, c->ink,
+                                PNPR_LAYER_OUTLINES);
     free(rgba);
     if (st != PNPR_OK) pnpr_error_set(err, st, "vector: outlines of a %dx%d frame: out of memory", c->w, c->h);
     return st;
@@ -434,14 +434,8 @@ static pnpr_status fill_marks(pnpr_renderer *r, const pnpr_camera *camera, const
     if (st != PNPR_OK) return st;
     uint8_t *rgba = malloc((size_t)w * (size_t)h * 4);
     if (!rgba) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: colour areas of a %dx%d frame: out of memory", w, h);
-    pnpr_gl_state saved;
-    pnpr_gl_state_save(&saved);
-    pnpr_gl_state_neutral();
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
-    pnpr_gl_state_restore(&saved);
+    st = pnpr_renderer_read_raw(r, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    if (st != PNPR_OK) { free(rgba); return pnpr_error_set(err, st, "vector: colour areas: no frame to read"); }
     /* the frame is premultiplied; the background as the clear colour wrote it */
     uint8_t bg[4];
     float a = rec.o.background[3];
@@ -481,9 +475,8 @@ static pnpr_status drawing_from_frame(vec_ctx *c, pnpr_error *err)
     c->depth = NULL;
     float *depth = malloc((size_t)c->w * (size_t)c->h * sizeof *depth);
     if (!depth) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: depth of a %dx%d frame: out of memory", c->w, c->h);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, c->r->fbo);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, c->w, c->h, GL_DEPTH_COMPONENT, GL_FLOAT, depth);
+    st = pnpr_renderer_read_raw(c->r, GL_DEPTH_COMPONENT, GL_FLOAT, depth);
+    if (st != PNPR_OK) { free(depth); return pnpr_error_set(err, st, "vector: depth: no frame to read"); }
     c->depth = depth;
     texture_extents(c);
     /* bottom to top as the frame draws them: strokes or dots, lines, outlines */
