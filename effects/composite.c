@@ -54,9 +54,9 @@ static float circle_mean(const float *depth, int w, int h, int x, int y, int rad
 pnpr_status pnpr_depth_inpaint(const pnpr_image *raster, const pnpr_image *filtered, const float *depth,
                                const pnpr_inpaint_options *opts, float *r_depth, uint8_t *r_mask, pnpr_error *err)
 {
-    if (!same_size(raster, filtered) || !depth || !r_depth || depth == r_depth)
+    if (!same_size(raster, filtered) || (!r_depth && !r_mask) || (r_depth && (!depth || depth == r_depth)))
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT,
-                              "inpaint: raster and filtered images of one positive size and distinct depth buffers needed");
+                              "inpaint: raster and filtered images of one positive size, and a mask or distinct depth buffers needed");
     float thr = opts && opts->threshold != 0 ? opts->threshold : PNPR_INPAINT_THRESHOLD;
     int rad = opts && opts->radius != 0 ? opts->radius : PNPR_INPAINT_RADIUS;
     if (!(thr > 0 && thr <= 1))
@@ -68,11 +68,12 @@ pnpr_status pnpr_depth_inpaint(const pnpr_image *raster, const pnpr_image *filte
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             size_t i = (size_t)y * (size_t)w + (size_t)x;
+            int masked = fabsf(grey(raster->rgba + 4 * i) - grey(filtered->rgba + 4 * i)) > thr;
+            if (r_mask) r_mask[i] = (uint8_t)masked;
+            if (!r_depth) continue;
             float d = depth[i];
             if (!(d >= 0.0f && d <= 1.0f)) d = 1.0f; /* NaN or out of range: no fragment */
-            int masked = fabsf(grey(raster->rgba + 4 * i) - grey(filtered->rgba + 4 * i)) > thr;
             r_depth[i] = masked ? circle_mean(depth, w, h, x, y, rad) : d;
-            if (r_mask) r_mask[i] = (uint8_t)masked;
         }
     return PNPR_OK;
 }

@@ -145,11 +145,13 @@ static pnpr_status do_layer(pnpr_renderer *r, const pnpr_camera *camera, const p
     st = pnpr_effect_chain_apply(&nd->chain, &b->raster, &b->filtered, seed ^ (uint64_t)l->node, err);
     if (st != PNPR_OK) return st;
     double t2 = pnpr_now();
+    /* the inpainted depth only where it is composited; layering none needs only the mask */
+    int use_inpainted = p->layering == PNPR_LAYERING_INPAINTED && nd->inpaint;
     pnpr_inpaint_options io = nd->inpaint_opts;
-    st = pnpr_depth_inpaint(&b->raster, &b->filtered, b->depth, &io, b->inpainted, b->mask, err);
+    if (use_inpainted || p->layering == PNPR_LAYERING_NONE)
+        st = pnpr_depth_inpaint(&b->raster, &b->filtered, b->depth, &io, use_inpainted ? b->inpainted : NULL, b->mask, err);
     if (st != PNPR_OK) return st;
     double t3 = pnpr_now();
-    int use_inpainted = p->layering == PNPR_LAYERING_INPAINTED && nd->inpaint;
     pnpr_layer layer = {&b->filtered, use_inpainted ? b->inpainted : b->depth, b->mask};
     st = pnpr_layers_merge(&layer, p->layering, &b->out, b->acc_depth, err);
     double t4 = pnpr_now();

@@ -65,6 +65,11 @@ static void test_inpaint_ring(void)
     /* every ring pixel is within 3 px of the square (corners: sqrt(2*2*2) < 3): the segment's depth only */
     CHECK_MSG(ring == 14 * 14 - 100 && ring_filled == ring, "ring %d, filled with 0.3: %d", ring, ring_filled);
     CHECK_MSG(far_kept == far, "unmasked far pixels stay far: %d of %d", far_kept, far);
+    /* the mask alone (no depth out) is the same mask */
+    uint8_t mask_only[W * H];
+    CHECK_STATUS(pnpr_depth_inpaint(&raster, &filtered, NULL, &o, NULL, mask_only, NULL), PNPR_OK);
+    CHECK(!memcmp(mask, mask_only, sizeof mask));
+    CHECK_STATUS(pnpr_depth_inpaint(&raster, &filtered, depth, &o, NULL, NULL, NULL), PNPR_ERR_INVALID_ARGUMENT);
 
     /* a radius too small to reach the segment: the masked pixel stays far (the listing divides by 0) */
     square_layer(&raster, &filtered, depth, 10, 20, 10, 20, 0.3f, 3, 128);

@@ -124,7 +124,8 @@ typedef struct pnpr_inpaint_options {
  * px around the pixel (the pixel included); elsewhere it is kept. A masked pixel without any non-far
  * neighbour stays far (1): the listing divides by zero there. depth and r_depth: width * height
  * window depths in 0..1, top row first, 1 = far plane (no fragment); they may not alias.
- * r_mask (may be NULL): 1 where the pixel was masked, else 0. */
+ * r_mask: 1 where the pixel was masked, else 0. One of r_depth and r_mask may be NULL (r_depth
+ * NULL: only the mask, the circle means are not computed; depth may then be NULL too). */
 PNPR_NODISCARD pnpr_status pnpr_depth_inpaint(const pnpr_image *raster, const pnpr_image *filtered,
                                               const float *depth, const pnpr_inpaint_options *opts,
                                               float *r_depth, uint8_t *r_mask, pnpr_error *err);
