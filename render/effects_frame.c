@@ -33,15 +33,11 @@ static int cmp_node_label(const void *a, const void *b)
     return x->label < y->label ? -1 : x->label > y->label;
 }
 
-/* The distinct labels of the uploaded cloud, grouped by their node in node order (ascending
- * within a node), in *r_labels (owned), their nodes in *r_nodes (owned, parallel). */
-static pnpr_status cloud_labels(const pnpr_renderer *r, const pnpr_effect_pipeline *p, uint32_t **r_labels,
-                                size_t **r_nodes, size_t *r_count)
+/* The distinct labels of the uploaded cloud, ascending, in r->ulabels: sorted once per upload,
+ * not per frame. */
+static pnpr_status distinct_labels(pnpr_renderer *r)
 {
-    *r_labels = NULL;
-    *r_nodes = NULL;
-    *r_count = 0;
-    if (!r->vlabel || r->count == 0) return PNPR_OK;
+    if (r->ulabels || !r->vlabel || r->count == 0) return PNPR_OK;
     uint32_t *v = malloc(r->count * sizeof *v);
     if (!v) return PNPR_ERR_OUT_OF_MEMORY;
     memcpy(v, r->vlabel, r->count * sizeof *v);
@@ -49,14 +45,30 @@ static pnpr_status cloud_labels(const pnpr_renderer *r, const pnpr_effect_pipeli
     size_t n = 0;
     for (size_t i = 0; i < r->count; i++)
         if (i == 0 || v[i] != v[n - 1]) v[n++] = v[i];
+    uint32_t *shrunk = realloc(v, n * sizeof *v);
+    r->ulabels = shrunk ? shrunk : v;
+    r->ulabel_count = n;
+    return PNPR_OK;
+}
+
+/* The distinct labels of the uploaded cloud, grouped by their node in node order (ascending
+ * within a node), in *r_labels (owned), their nodes in *r_nodes (owned, parallel). */
+static pnpr_status cloud_labels(pnpr_renderer *r, const pnpr_effect_pipeline *p, uint32_t **r_labels,
+                                size_t **r_nodes, size_t *r_count)
+{
+    *r_labels = NULL;
+    *r_nodes = NULL;
+    *r_count = 0;
+    pnpr_status st = distinct_labels(r);
+    if (st != PNPR_OK || !r->ulabels) return st;
+    size_t n = r->ulabel_count;
     node_label *nl = malloc(n * sizeof *nl);
     size_t *node = malloc(n * sizeof *node);
     uint32_t *out = malloc(n * sizeof *out);
-    if (!nl || !node || !out) { free(v); free(nl); free(node); free(out); return PNPR_ERR_OUT_OF_MEMORY; }
-    for (size_t i = 0; i < n; i++) nl[i] = (node_label){pnpr_effect_pipeline_node_of(p, v[i]), v[i]};
+    if (!nl || !node || !out) { free(nl); free(node); free(out); return PNPR_ERR_OUT_OF_MEMORY; }
+    for (size_t i = 0; i < n; i++) nl[i] = (node_label){pnpr_effect_pipeline_node_of(p, r->ulabels[i]), r->ulabels[i]};
     qsort(nl, n, sizeof *nl, cmp_node_label);
     for (size_t i = 0; i < n; i++) { out[i] = nl[i].label; node[i] = nl[i].node; }
-    free(v);
     free(nl);
     *r_labels = out;
     *r_nodes = node;

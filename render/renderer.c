@@ -254,6 +254,7 @@ void pnpr_renderer_destroy(pnpr_renderer *r)
     pnpr_gl_state_save(&saved);
     release_gl(r);
     free(r->vlabel);
+    free(r->ulabels);
     free(r->paint_src);
     free(r->vstyle);
     /* deleting a bound object unbinds it: put back what the host had (names it still owns) */

@@ -93,6 +93,9 @@ struct pnpr_renderer {
     GLuint style_vbo, paint_style_vbo;
     GLint us_filter, ut_filter;
     uint32_t *vlabel;    /* label of each vertex (main order); NULL: the cloud has no labels */
+    uint32_t *ulabels;   /* the distinct labels, ascending: computed by the first effects frame of
+                          * an upload (effects_frame.c), NULL until then and after each upload */
+    size_t ulabel_count;
     uint32_t *paint_src; /* main-order index of each painterly vertex */
     uint8_t *vstyle;     /* the style bytes in style_vbo (main order) */
     int vstyle_hidden;   /* some of them are PNPR_VSTYLE_HIDDEN (a segment layer's frame) */

@@ -426,7 +426,8 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
     size_t n = u->n;
     r->paint_bins = u->paint ? u->nbins : 0;
     if (u->paint) for (size_t b = 0; b <= u->nbins + 1; b++) r->paint_start[b] = u->pstarts[b];
-    free(r->vlabel); free(r->paint_src); free(r->vstyle);
+    free(r->vlabel); free(r->paint_src); free(r->vstyle); free(r->ulabels);
+    r->ulabels = NULL; r->ulabel_count = 0;
     r->vlabel = u->vlabel; r->paint_src = u->paint_src; r->vstyle = u->zeros; r->vstyle_hidden = 0;
     u->vlabel = NULL; u->paint_src = NULL; u->zeros = NULL;
     r->count = n;
