@@ -8,7 +8,8 @@
  *     the back plane; the per-fragment depth test and plain layering lose it (paper figure 12).
  *   - A sparse square (holes between its splats) smoothed by watercolour: no hole shows the back
  *     plane with inpainting, many do without; nothing bleeds beyond the inpainting radius.
- *   - A layer's frame draws only its points; the next plain frame draws all again.
+ *   - A layer's frame draws only its points; the next plain frame draws all again; an empty
+ *     cloud gives one layer of paper.
  * Exits 77 (skipped) when this machine has no headless EGL / GL 3.3. */
 #include "testutil.h"
 
@@ -267,6 +268,17 @@ static void test_layer_then_plain(pnpr_renderer *r)
     lo.layer_label_count = 1;
     CHECK_STATUS(pnpr_renderer_effects(r, &cam, &lo, &p, W, H, NULL, a, NULL, NULL), PNPR_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(pnpr_renderer_effects(r, &cam, &o, &p, 0, H, NULL, a, NULL, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    /* an empty cloud: one layer (the root's) of paper, the background everywhere */
+    pnpr_cloud empty = {0};
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &empty, NULL, NULL), PNPR_OK);
+    pnpr_effect_pipeline_free(&p);
+    const char *text = "toon\nnode a labels 1\nwatercolour\n";
+    CHECK_STATUS(pnpr_effect_pipeline_parse(text, strlen(text), "x", &p, NULL), PNPR_OK);
+    pnpr_effects_stats es;
+    CHECK_STATUS(pnpr_renderer_effects(r, &cam, &o, &p, W, H, NULL, a, &es, NULL), PNPR_OK);
+    size_t paper = 0;
+    for (int i = 0; i < W * H; i++) paper += a[4 * i] == 255 && a[4 * i + 1] == 255 && a[4 * i + 2] == 255 && a[4 * i + 3] == 255;
+    CHECK_MSG(es.layers == 1 && paper == (size_t)W * H, "empty cloud: %zu layers, %zu of %d px paper", es.layers, paper, W * H);
     pnpr_effect_pipeline_free(&p);
     free(a); free(b);
     pnpr_cloud_free(&c);
