@@ -129,6 +129,19 @@ extern "C" pnpr_status pnpr_cv_lab_to_rgb(const float *lab, float *rgb, int w, i
     });
 }
 
+extern "C" pnpr_status pnpr_cv_resize_rgba8(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh,
+                                            pnpr_error *err)
+{
+    if (!src || !dst || sw <= 0 || sh <= 0 || dw <= 0 || dh <= 0)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "effects: resize: bad image (%dx%d to %dx%d)", sw, sh, dw,
+                              dh);
+    return guarded("resize", err, [&] {
+        cv::Mat s(sh, sw, CV_8UC4, const_cast<uint8_t *>(src)), d(dh, dw, CV_8UC4, dst);
+        cv::resize(s, d, d.size(), 0, 0, cv::INTER_LINEAR);
+        if (d.data != dst) throw cv::Exception(cv::Error::StsInternal, "resize reallocated", "", "", 0);
+    });
+}
+
 #else // no OpenCV: every building block is unsupported
 
 #define PNPR_NO_CV return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "effects: this build has no OpenCV")
@@ -164,6 +177,11 @@ extern "C" pnpr_status pnpr_cv_rgb_to_lab(const float *, float *, int, int, pnpr
 }
 
 extern "C" pnpr_status pnpr_cv_lab_to_rgb(const float *, float *, int, int, pnpr_error *err)
+{
+    PNPR_NO_CV;
+}
+
+extern "C" pnpr_status pnpr_cv_resize_rgba8(const uint8_t *, int, int, uint8_t *, int, int, pnpr_error *err)
 {
     PNPR_NO_CV;
 }

@@ -45,6 +45,9 @@ pnpr_status pnpr_cv_sobel(const float *src, float *dx, float *dy, int w, int h, 
 /* cv::cvtColor sRGB (0..1) <-> CIE Lab (L 0..100, a and b about -128..127). */
 pnpr_status pnpr_cv_rgb_to_lab(const float *rgb, float *lab, int w, int h, pnpr_error *err);
 pnpr_status pnpr_cv_lab_to_rgb(const float *lab, float *rgb, int w, int h, pnpr_error *err);
+/* cv::resize (bilinear) of an RGBA8 image sw x sh into dst, dw x dh (the preview layers of
+ * pnpr_renderer_effects grown to the image size). src != dst. */
+pnpr_status pnpr_cv_resize_rgba8(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh, pnpr_error *err);
 
 /* ---- shared helpers of the effects (effects/effect_common.c) ---- */
 

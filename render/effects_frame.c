@@ -6,6 +6,9 @@
 #include "renderer_internal.h"
 
 #include "../core/internal.h"
+#include "../effects/effects_internal.h"
+
+#include <pthread.h>
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -98,43 +101,66 @@ static pnpr_status plan_layers(const pnpr_effect_pipeline *p, const uint32_t *la
     return PNPR_OK;
 }
 
-/* Scratch of one layer. */
-typedef struct fx_buffers {
-    pnpr_image raster, filtered, out;
-    float *depth, *inpainted, *acc_depth;
-    uint8_t *mask;
-} fx_buffers;
+/* A rasterised layer (colour with coverage as alpha, depth), handed from the GL thread to the
+ * filters. */
+typedef struct fx_slot {
+    pnpr_image raster;
+    float *depth;
+    const fx_layer *layer;
+    int full; /* 1: rasterised, waiting for the filters (owned by the filter side until cleared) */
+} fx_slot;
 
-static void free_buffers(fx_buffers *b)
+/* The filter side of the frame: its scratch, the composite so far and what it measured. With a
+ * filter thread, mu/cv guard `full`, `closed`, `failed` and `st`; the rest belongs to one side. */
+typedef struct fx_frame {
+    const pnpr_effect_pipeline *p;
+    uint64_t seed;
+    fx_slot slot[2];          /* two with a filter thread (one rasterised while one is filtered) */
+    pnpr_image filtered, out; /* out: the composite (the caller's image, or the preview's) */
+    float *inpainted, *acc_depth;
+    uint8_t *mask;
+    double filter_s, inpaint_s, composite_s;
+    size_t merged;
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    int closed, failed;       /* no more layers will come; a layer failed (either side) */
+    pnpr_status st;           /* the filter side's failure */
+    pnpr_error err;
+} fx_frame;
+
+static void free_frame(fx_frame *f)
 {
-    free(b->raster.rgba);
-    free(b->filtered.rgba);
-    free(b->depth);
-    free(b->inpainted);
-    free(b->acc_depth);
-    free(b->mask);
+    for (int k = 0; k < 2; k++) { free(f->slot[k].raster.rgba); free(f->slot[k].depth); }
+    free(f->filtered.rgba);
+    free(f->inpainted);
+    free(f->acc_depth);
+    free(f->mask);
 }
 
-static pnpr_status alloc_buffers(fx_buffers *b, int w, int h, uint8_t *out)
+/* Scratch for w x h layers composited into `out` (w x h RGBA8); `slots` raster slots. */
+static pnpr_status alloc_frame(fx_frame *f, int w, int h, uint8_t *out, int slots)
 {
-    memset(b, 0, sizeof *b);
     size_t n = (size_t)w * (size_t)h;
-    b->raster = (pnpr_image){w, h, malloc(n * 4)};
-    b->filtered = (pnpr_image){w, h, malloc(n * 4)};
-    b->out = (pnpr_image){w, h, out};
-    b->depth = malloc(n * sizeof(float));
-    b->inpainted = malloc(n * sizeof(float));
-    b->acc_depth = malloc(n * sizeof(float));
-    b->mask = malloc(n);
-    if (b->raster.rgba && b->filtered.rgba && b->depth && b->inpainted && b->acc_depth && b->mask) return PNPR_OK;
-    free_buffers(b);
+    int ok = 1;
+    for (int k = 0; k < slots; k++) {
+        f->slot[k].raster = (pnpr_image){w, h, malloc(n * 4)};
+        f->slot[k].depth = malloc(n * sizeof(float));
+        ok = ok && f->slot[k].raster.rgba && f->slot[k].depth;
+    }
+    f->filtered = (pnpr_image){w, h, malloc(n * 4)};
+    f->out = (pnpr_image){w, h, out};
+    f->inpainted = malloc(n * sizeof(float));
+    f->acc_depth = malloc(n * sizeof(float));
+    f->mask = malloc(n);
+    if (ok && out && f->filtered.rgba && f->inpainted && f->acc_depth && f->mask) return PNPR_OK;
+    free_frame(f);
     return PNPR_ERR_OUT_OF_MEMORY;
 }
 
-/* Rasterises, filters, inpaints and merges one layer. */
-static pnpr_status do_layer(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *base,
-                            const pnpr_effect_pipeline *p, const fx_layer *l, uint64_t seed, fx_buffers *b,
-                            pnpr_effects_stats *s, pnpr_error *err)
+/* The GL side: draws layer l with its node's style into the renderer's frame and reads it back
+ * into the slot (coverage as alpha). */
+static pnpr_status rasterise(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *base,
+                             const pnpr_effect_pipeline *p, const fx_layer *l, fx_slot *slot, pnpr_error *err)
 {
     const pnpr_effect_node *nd = &p->nodes[l->node];
     pnpr_draw_options o = *base;
@@ -144,34 +170,126 @@ static pnpr_status do_layer(pnpr_renderer *r, const pnpr_camera *camera, const p
     o.layer_label_count = l->count;
     o.layer_exclude = l->count == 0;
     o.background[3] = 1.0f; /* opaque paper for the filters */
-    pnpr_target tgt = {0, 0, 0, b->raster.width, b->raster.height, 1};
-    double t0 = pnpr_now();
+    pnpr_target tgt = {0, 0, 0, slot->raster.width, slot->raster.height, 1};
     pnpr_status st = pnpr_renderer_draw(r, camera, &o, &tgt, NULL, err);
     if (st != PNPR_OK) return st;
-    st = pnpr_renderer_read_frame(r, b->raster.rgba, 1);
-    if (st == PNPR_OK) st = pnpr_renderer_read_depth(r, b->depth);
+    st = pnpr_renderer_read_frame(r, slot->raster.rgba, 1);
+    if (st == PNPR_OK) st = pnpr_renderer_read_depth(r, slot->depth);
     if (st != PNPR_OK) return pnpr_error_set(err, st, "effects: reading the layer of node '%s' back", nd->name);
-    size_t npx = (size_t)b->raster.width * (size_t)b->raster.height;
-    for (size_t i = 0; i < npx; i++) b->raster.rgba[4 * i + 3] = b->depth[i] < 1.0f ? 255 : 0; /* coverage */
+    size_t npx = (size_t)slot->raster.width * (size_t)slot->raster.height;
+    for (size_t i = 0; i < npx; i++) slot->raster.rgba[4 * i + 3] = slot->depth[i] < 1.0f ? 255 : 0; /* coverage */
+    slot->layer = l;
+    return PNPR_OK;
+}
+
+/* The filter side: filters, inpaints and merges the slot's layer into the composite. */
+static pnpr_status finish_layer(fx_frame *f, const fx_slot *slot, pnpr_error *err)
+{
+    const pnpr_effect_pipeline *p = f->p;
+    const fx_layer *l = slot->layer;
+    const pnpr_effect_node *nd = &p->nodes[l->node];
     double t1 = pnpr_now();
-    st = pnpr_effect_chain_apply(&nd->chain, &b->raster, &b->filtered, seed ^ (uint64_t)l->node, err);
+    pnpr_status st = pnpr_effect_chain_apply(&nd->chain, &slot->raster, &f->filtered, f->seed ^ (uint64_t)l->node, err);
     if (st != PNPR_OK) return st;
     double t2 = pnpr_now();
     /* the inpainted depth only where it is composited; layering none needs only the mask */
     int use_inpainted = p->layering == PNPR_LAYERING_INPAINTED && nd->inpaint;
     pnpr_inpaint_options io = nd->inpaint_opts;
     if (use_inpainted || p->layering == PNPR_LAYERING_NONE)
-        st = pnpr_depth_inpaint(&b->raster, &b->filtered, b->depth, &io, use_inpainted ? b->inpainted : NULL, b->mask, err);
+        st = pnpr_depth_inpaint(&slot->raster, &f->filtered, slot->depth, &io, use_inpainted ? f->inpainted : NULL,
+                                f->mask, err);
     if (st != PNPR_OK) return st;
     double t3 = pnpr_now();
-    pnpr_layer layer = {&b->filtered, use_inpainted ? b->inpainted : b->depth, b->mask};
-    st = pnpr_layers_merge(&layer, p->layering, &b->out, b->acc_depth, err);
-    double t4 = pnpr_now();
-    s->raster_s += t1 - t0;
-    s->filter_s += t2 - t1;
-    s->inpaint_s += t3 - t2;
-    s->composite_s += t4 - t3;
-    s->layers++;
+    pnpr_layer layer = {&f->filtered, use_inpainted ? f->inpainted : slot->depth, f->mask};
+    st = pnpr_layers_merge(&layer, p->layering, &f->out, f->acc_depth, err);
+    f->filter_s += t2 - t1;
+    f->inpaint_s += t3 - t2;
+    f->composite_s += pnpr_now() - t3;
+    f->merged += st == PNPR_OK;
+    return st;
+}
+
+/* The filter thread: takes the slots in turn until the GL side closes the frame or a layer fails. */
+static void *filter_thread(void *arg)
+{
+    fx_frame *f = arg;
+    for (size_t i = 0;; i++) {
+        fx_slot *slot = &f->slot[i % 2];
+        pthread_mutex_lock(&f->mu);
+        while (!slot->full && !f->closed) pthread_cond_wait(&f->cv, &f->mu);
+        int go = slot->full && !f->failed;
+        pthread_mutex_unlock(&f->mu);
+        if (!go) break;
+        pnpr_status st = finish_layer(f, slot, &f->err);
+        pthread_mutex_lock(&f->mu);
+        slot->full = 0;
+        if (st != PNPR_OK) { f->failed = 1; f->st = st; }
+        pthread_cond_broadcast(&f->cv);
+        pthread_mutex_unlock(&f->mu);
+        if (st != PNPR_OK) break;
+    }
+    return NULL;
+}
+
+/* Waits until `slot` is free (the filters took its layer); 0 when the filter side failed. */
+static int wait_free(fx_frame *f, fx_slot *slot)
+{
+    pthread_mutex_lock(&f->mu);
+    while (slot->full && !f->failed) pthread_cond_wait(&f->cv, &f->mu);
+    int ok = !f->failed;
+    pthread_mutex_unlock(&f->mu);
+    return ok;
+}
+
+/* Hands a rasterised slot to the filter thread (ok) or tells it that no more will come. */
+static void hand_over(fx_frame *f, fx_slot *slot, int ok)
+{
+    pthread_mutex_lock(&f->mu);
+    if (ok) slot->full = 1;
+    else f->closed = 1;
+    pthread_cond_broadcast(&f->cv);
+    pthread_mutex_unlock(&f->mu);
+}
+
+static pnpr_status report_layer(const pnpr_effects_options *eopts, size_t i, size_t n, pnpr_error *err)
+{
+    char stage[64];
+    snprintf(stage, sizeof stage, "layer %zu/%zu", i + 1, n);
+    if (pnpr_progress_report(eopts ? &eopts->progress : NULL, stage, (double)(i + 1) / (double)n))
+        return pnpr_error_set(err, PNPR_ERR_CANCELLED, "effects: cancelled");
+    return PNPR_OK;
+}
+
+/* Every layer: rasterised here (the GL thread), filtered and merged here (serial) or on a filter
+ * thread that overlaps layer i's filters with layer i+1's rasterisation. Layers are merged in
+ * order either way: the same pixels. */
+static pnpr_status run_layers(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *base,
+                              fx_frame *f, const fx_layer *layers, size_t n, const pnpr_effects_options *eopts,
+                              int threaded, double *r_raster_s, pnpr_error *err)
+{
+    pthread_t th;
+    if (threaded && pthread_create(&th, NULL, filter_thread, f) != 0) threaded = 0;
+    pnpr_status st = PNPR_OK;
+    for (size_t i = 0; i < n && st == PNPR_OK; i++) {
+        fx_slot *slot = &f->slot[threaded ? i % 2 : 0];
+        if (threaded && !wait_free(f, slot)) break;
+        double t0 = pnpr_now();
+        st = rasterise(r, camera, base, f->p, &layers[i], slot, err);
+        *r_raster_s += pnpr_now() - t0;
+        if (st == PNPR_OK && threaded) hand_over(f, slot, 1);
+        else if (st == PNPR_OK) st = finish_layer(f, slot, err);
+        if (st == PNPR_OK) st = report_layer(eopts, i, n, err);
+    }
+    if (!threaded) return st;
+    pthread_mutex_lock(&f->mu);
+    if (st != PNPR_OK) f->failed = 1; /* the filters drop what is left */
+    pthread_mutex_unlock(&f->mu);
+    hand_over(f, NULL, 0);
+    pthread_join(th, NULL);
+    if (st == PNPR_OK && f->failed) {
+        st = f->st;
+        if (err) *err = f->err;
+    }
     return st;
 }
 
@@ -179,6 +297,18 @@ static uint8_t to_byte(float v)
 {
     float c = v < 0 ? 0 : v > 1 ? 1 : v;
     return (uint8_t)(c * 255.0f + 0.5f);
+}
+
+/* The size of the layers: the image's, or `scale` of it (a preview), at least 1 x 1. */
+static void layer_size(const pnpr_effects_options *eopts, int width, int height, int *r_w, int *r_h)
+{
+    float s = eopts ? eopts->scale : 0.0f;
+    *r_w = width;
+    *r_h = height;
+    if (!(s > 0.0f && s < 1.0f)) return;
+    int w = (int)((float)width * s + 0.5f), h = (int)((float)height * s + 0.5f);
+    *r_w = w < 1 ? 1 : w;
+    *r_h = h < 1 ? 1 : h;
 }
 
 pnpr_status pnpr_renderer_effects(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
@@ -198,30 +328,45 @@ pnpr_status pnpr_renderer_effects(pnpr_renderer *r, const pnpr_camera *camera, c
     if (width <= 0 || height <= 0 || width > r->max_size || height > r->max_size)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "effects: image size %dx%d is outside 1..%d", width, height,
                               (int)r->max_size);
+    float scale = eopts ? eopts->scale : 0.0f;
+    if (!(scale >= 0.0f && scale <= 1.0f) || (scale > 0.0f && scale < PNPR_EFFECTS_SCALE_MIN))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "effects: scale %g is outside %g..1 (0 = 1)", (double)scale,
+                              (double)PNPR_EFFECTS_SCALE_MIN);
+    int lw, lh, threaded = !(eopts && eopts->serial);
+    layer_size(eopts, width, height, &lw, &lh);
+    int preview = lw != width || lh != height;
     uint32_t *labels = NULL;
     size_t *nodes = NULL, nl = 0, nlayers = 0;
     fx_layer *layers = NULL;
-    fx_buffers b;
+    fx_frame f;
+    memset(&f, 0, sizeof f);
+    f.p = p;
+    f.seed = eopts ? eopts->seed : 0;
+    uint8_t *small = preview ? malloc((size_t)lw * (size_t)lh * 4) : NULL;
     pnpr_status st = cloud_labels(r, p, &labels, &nodes, &nl);
     if (st == PNPR_OK) st = plan_layers(p, labels, nodes, nl, &layers, &nlayers);
-    if (st == PNPR_OK) st = alloc_buffers(&b, width, height, r_rgba);
+    if (st == PNPR_OK) st = alloc_frame(&f, lw, lh, preview ? small : r_rgba, threaded ? 2 : 1);
     if (st != PNPR_OK) {
-        free(labels); free(nodes); free(layers);
-        return pnpr_error_set(err, st, "effects: %dx%d image: out of memory", width, height);
+        free(labels); free(nodes); free(layers); free(small);
+        return pnpr_error_set(err, st, "effects: %dx%d image: out of memory", lw, lh);
     }
+    pthread_mutex_init(&f.mu, NULL);
+    pthread_cond_init(&f.cv, NULL);
     uint8_t bg[4];
     for (int c = 0; c < 4; c++) bg[c] = to_byte(base.background[c]);
-    st = pnpr_layers_clear(bg, &b.out, b.acc_depth, err);
-    uint64_t seed = eopts ? eopts->seed : 0;
-    for (size_t i = 0; i < nlayers && st == PNPR_OK; i++) {
-        st = do_layer(r, camera, &base, p, &layers[i], seed, &b, &stats, err);
-        char stage[64];
-        snprintf(stage, sizeof stage, "layer %zu/%zu", i + 1, nlayers);
-        if (st == PNPR_OK && pnpr_progress_report(eopts ? &eopts->progress : NULL, stage, (double)(i + 1) / (double)nlayers))
-            st = pnpr_error_set(err, PNPR_ERR_CANCELLED, "effects: cancelled");
-    }
-    free_buffers(&b);
-    free(labels); free(nodes); free(layers);
+    st = pnpr_layers_clear(bg, &f.out, f.acc_depth, err);
+    if (st == PNPR_OK) st = run_layers(r, camera, &base, &f, layers, nlayers, eopts, threaded, &stats.raster_s, err);
+    if (st == PNPR_OK && preview) st = pnpr_cv_resize_rgba8(small, lw, lh, r_rgba, width, height, err);
+    pthread_cond_destroy(&f.cv);
+    pthread_mutex_destroy(&f.mu);
+    stats.layers = f.merged;
+    stats.filter_s = f.filter_s;
+    stats.inpaint_s = f.inpaint_s;
+    stats.composite_s = f.composite_s;
+    stats.layer_width = lw;
+    stats.layer_height = lh;
+    free_frame(&f);
+    free(labels); free(nodes); free(layers); free(small);
     if (r_stats) *r_stats = stats;
     return st;
 }

@@ -260,14 +260,26 @@ int pnpr_renderer_has_labels(const pnpr_renderer *renderer);
 
 /* ---- segment-specific image-space effects (Wegen et al.; effects.h) -------------------------- */
 
+/* Smallest pnpr_effects_options.scale. */
+#define PNPR_EFFECTS_SCALE_MIN 0.0625f
+
 typedef struct pnpr_effects_options {
     uint64_t seed;          /* noise of the effects (paper, brushes): the same seed, the same image */
-    pnpr_progress progress; /* called after each layer with stage "layer i/n"; non-zero cancels */
+    pnpr_progress progress; /* called on the calling thread as each layer is rasterised, with stage
+                             * "layer i/n"; non-zero cancels */
+    float scale;            /* layers at this fraction of the image size (PNPR_EFFECTS_SCALE_MIN..1;
+                             * 0 = 1), the composite grown to the image bilinearly: a preview while
+                             * the camera moves (the filters' radii stay in layer pixels, so the
+                             * preview is coarser as well as faster) */
+    int serial;             /* 1: the filters run on the calling (GL) thread; 0: on a filter thread,
+                             * layer i filtered while layer i+1 is rasterised (the same pixels) */
 } pnpr_effects_options;
 
 typedef struct pnpr_effects_stats {
     size_t layers;          /* layers rasterised, filtered and composited */
-    double raster_s, filter_s, inpaint_s, composite_s; /* seconds spent in each step, all layers */
+    double raster_s, filter_s, inpaint_s, composite_s; /* seconds spent in each step, all layers
+                             * (with the filter thread, raster_s overlaps the other three) */
+    int layer_width, layer_height; /* the size the layers had (scale) */
 } pnpr_effects_stats;
 
 /* Renders a width x height image (within the GL limit) of the uploaded cloud through an effects

@@ -23,6 +23,8 @@ typedef struct cli_render_opts {
     pnpr_effect_pipeline fx;      /* read by cli_render_opts_finish (count 0: none) */
     pnpr_layering layering;       /* --layering, over the file's */
     int have_layering;
+    pnpr_effects_options fx_opts; /* --effects-scale, --effects-serial (seed and progress set per frame) */
+    int have_fx_opts;
     int uses[PNPR_STYLE_COUNT_];  /* the styles a frame may draw */
 } cli_render_opts;
 

@@ -49,6 +49,10 @@ void cli_render_usage(FILE *f, int width, int height)
             "                       posterise, grade, edges, smooth) and presets; one layer each,\n"
             "                       depth-inpainted and composited with a depth test\n"
             "  --layering M         effects: inpainted (default) | fragment | none (paper figure 12)\n"
+            "  --effects-scale S    effects: layers at S (1/16..1) of the size, grown to it: a quick\n"
+            "                       draft of a pipeline (the decorator's preview while moving)\n"
+            "  --effects-serial     effects: filters on the GL thread, not overlapped with the next\n"
+            "                       layer's rasterisation (the same pixels; for measurements)\n"
             "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
             "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n");
     draw_usage(f, "stroke-texture", "T");
@@ -228,6 +232,9 @@ static int style_option(cli_render_opts *o, const char *cmd, const char *a, cons
         } else if (v && !strcmp(a, "--layering")) {
             if (pnpr_layering_from_name(v, &o->layering) != PNPR_OK) { BAD("--layering wants inpainted, fragment or none, got '%s'\n", v); }
             o->have_layering = 1; i++;
+        } else if (v && !strcmp(a, "--effects-scale")) {
+            if (!cli_parse_number(v, PNPR_EFFECTS_SCALE_MIN, 1, &x)) { BAD("--effects-scale wants a number in %g..1, got '%s'\n", (double)PNPR_EFFECTS_SCALE_MIN, v); }
+            o->fx_opts.scale = (float)x; o->have_fx_opts = 1; i++;
         } else if (v && !strcmp(a, "--sketch")) {
             if (!strcmp(v, "a")) o->dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
             else if (!strcmp(v, "b")) o->dopt.sketch_variant = PNPR_SKETCH_NONDIRECTIONAL;
@@ -312,6 +319,7 @@ int cli_render_option(cli_render_opts *o, const char *cmd, int argc, char **argv
     if (r != 0) return r;
     if (!strcmp(a, "--quiet")) o->quiet = 1;
     else if (!strcmp(a, "--alpha")) o->alpha = 1;
+    else if (!strcmp(a, "--effects-serial")) o->fx_opts.serial = o->have_fx_opts = 1;
     else if (v && !strcmp(a, "--max-tile")) {
         if (!cli_parse_number(v, 16, 1e6, &x) || x != floor(x)) BAD("--max-tile wants an integer >= 16, got '%s'\n", v);
         o->max_tile = (int)x;
@@ -339,8 +347,8 @@ int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
     memset(o->uses, 0, sizeof o->uses); /* the default and the mapped styles */
     o->uses[o->dopt.style] = 1;
     for (size_t m = 0; m < o->smap.count; m++) o->uses[o->smap.entries[m].style] = 1;
-    if (o->have_layering && !o->effects_path) {
-        fprintf(stderr, "pointnpr %s: --layering is for --effects FILE\n", cmd);
+    if ((o->have_layering || o->have_fx_opts) && !o->effects_path) {
+        fprintf(stderr, "pointnpr %s: --layering, --effects-scale and --effects-serial are for --effects FILE\n", cmd);
         return 0;
     }
     if (!o->effects_path) return 1;
@@ -411,7 +419,7 @@ static int layer_progress(void *user, const char *stage, double fraction)
 static int effects_frame(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in,
                          const pnpr_camera *camera, pnpr_render_stats *r_stats)
 {
-    pnpr_effects_options eo = {0};
+    pnpr_effects_options eo = o->fx_opts;
     eo.seed = o->uopt.seed;
     eo.progress.fn = o->quiet ? NULL : layer_progress;
     pnpr_effects_stats es;
@@ -427,8 +435,9 @@ static int effects_frame(cli_render_session *s, const cli_render_opts *o, const 
                                            s->pixels, &es, &err);
     if (st != PNPR_OK) { cli_report_error_in(cmd, in, st, &err); return 0; }
     if (!o->quiet)
-        fprintf(stderr, "%s: effects: %zu layers (raster %.2f s, filters %.2f s, inpainting %.2f s, compositing %.2f s), layering %s\n",
-                in, es.layers, es.raster_s, es.filter_s, es.inpaint_s, es.composite_s, pnpr_layering_name(o->fx.layering));
+        fprintf(stderr, "%s: effects: %zu layers of %dx%d (raster %.2f s, filters %.2f s, inpainting %.2f s, compositing %.2f s%s), layering %s\n",
+                in, es.layers, es.layer_width, es.layer_height, es.raster_s, es.filter_s, es.inpaint_s, es.composite_s,
+                eo.serial ? "" : "; filters on their own thread", pnpr_layering_name(o->fx.layering));
     return 1;
 }
 

@@ -8,6 +8,9 @@
  *     the back plane; the per-fragment depth test and plain layering lose it (paper figure 12).
  *   - A sparse square (holes between its splats) smoothed by watercolour: no hole shows the back
  *     plane with inpainting, many do without; nothing bleeds beyond the inpainting radius.
+ *   - Filters on the filter thread give the bytes of serial filters; cancelling and a failing
+ *     filter end the frame on both paths; preview layers (scale) are smaller and close to the
+ *     full picture.
  *   - A layer's frame draws only its points; the next plain frame draws all again; an empty
  *     cloud gives one layer of paper.
  * Exits 77 (skipped) when this machine has no headless EGL / GL 3.3. */
@@ -284,6 +287,118 @@ static void test_layer_then_plain(pnpr_renderer *r)
     pnpr_cloud_free(&c);
 }
 
+/* The scene with the back plane cut into 4 stripes (labels 2..5): 5 segments. */
+static pnpr_status striped(pnpr_renderer *r)
+{
+    pnpr_cloud c = {0};
+    pnpr_status st = scene(&c, 3);
+    for (size_t q = 0; st == PNPR_OK && q < (size_t)BACK * BACK; q++) c.label[q] = 2 + (uint32_t)(q / BACK) * 4 / BACK;
+    if (st == PNPR_OK) st = pnpr_renderer_set_cloud(r, &c, NULL, NULL);
+    pnpr_cloud_free(&c);
+    return st;
+}
+
+static int cancel_at_2(void *user, const char *stage, double fraction)
+{
+    (void)stage; (void)fraction;
+    return ++*(int *)user >= 2;
+}
+
+/* Runs the pipeline `p` on the striped scene with the given options. */
+static pnpr_status striped_effects(pnpr_renderer *r, const pnpr_effect_pipeline *p, const pnpr_effects_options *eo,
+                                   uint8_t *px, pnpr_effects_stats *es)
+{
+    pnpr_camera cam = {{1, 1, 5}, {1, 1, 0}, {0, 1, 0}, 30, 0, 0};
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_renderer_effects(r, &cam, &o, p, W, H, eo, px, es, &err);
+    if (st != PNPR_OK && st != PNPR_ERR_CANCELLED) fprintf(stderr, "effects (expected or not): %s\n", err.message);
+    return st;
+}
+
+/* The filter thread: the same bytes as filtering on the GL thread, over more layers than it has
+ * slots; cancelling and a failing filter end the frame on either path (no hang, the status). */
+static void test_filter_thread(pnpr_renderer *r)
+{
+    CHECK_STATUS(striped(r), PNPR_OK);
+    const char *text = "per_label on\nwatercolour\nnode a labels 1 3\nper_label off\ntoon\n";
+    pnpr_effect_pipeline p = {0};
+    CHECK_STATUS(pnpr_effect_pipeline_parse(text, strlen(text), "x", &p, NULL), PNPR_OK);
+    uint8_t *a = malloc(W * H * 4), *b = malloc(W * H * 4);
+    pnpr_effects_options eo;
+    memset(&eo, 0, sizeof eo);
+    pnpr_effects_stats sa, sb;
+    CHECK_STATUS(striped_effects(r, &p, &eo, a, &sa), PNPR_OK);
+    eo.serial = 1;
+    CHECK_STATUS(striped_effects(r, &p, &eo, b, &sb), PNPR_OK);
+    CHECK_MSG(sa.layers == 4 && sb.layers == 4, "layers: threaded %zu, serial %zu (want 4: labels 2, 4, 5, then 1+3)",
+              sa.layers, sb.layers);
+    CHECK_MSG(memcmp(a, b, W * H * 4) == 0, "the filter thread gives the bytes of the serial filters");
+    for (int serial = 0; serial < 2; serial++) {
+        int calls = 0;
+        eo.serial = serial;
+        eo.progress.fn = cancel_at_2;
+        eo.progress.user = &calls;
+        CHECK_STATUS(striped_effects(r, &p, &eo, b, &sb), PNPR_ERR_CANCELLED);
+        CHECK_MSG(calls == 2 && sb.layers <= 2, "cancelled at layer 2 (serial %d): %d reports, %zu layers merged", serial,
+                  calls, sb.layers);
+        eo.progress.fn = NULL;
+        pnpr_effect_pipeline bad = p; /* a filter that fails on the filter side: a parameter out of range */
+        pnpr_effect_node nodes[2];
+        memcpy(nodes, p.nodes, sizeof nodes);
+        bad.nodes = nodes;
+        nodes[1].chain.effects[0].set = 1;
+        nodes[1].chain.effects[0].params[0] = 1e9f;
+        CHECK_STATUS(striped_effects(r, &bad, &eo, b, &sb), PNPR_ERR_INVALID_ARGUMENT);
+        CHECK_MSG(sb.layers < 4, "a failing filter ends the frame (serial %d): %zu layers", serial, sb.layers);
+    }
+    eo.serial = 0;
+    CHECK_STATUS(striped_effects(r, &p, &eo, b, &sb), PNPR_OK);
+    CHECK_MSG(memcmp(a, b, W * H * 4) == 0, "after a cancelled and a failed frame the next is whole");
+    pnpr_effect_pipeline_free(&p);
+    free(a); free(b);
+}
+
+/* Preview layers (scale): the layers at half size, the picture close to the full one (the square
+ * where it was within 2 px, few pixels far off); scales outside 1/16..1 are refused. */
+static void test_preview_scale(pnpr_renderer *r)
+{
+    uint8_t *full = malloc(W * H * 4), *half = malloc(W * H * 4);
+    pnpr_effect_pipeline p = {0};
+    CHECK_STATUS(pnpr_effect_pipeline_parse("toon\n", 5, "x", &p, NULL), PNPR_OK);
+    pnpr_cloud c = {0};
+    CHECK_STATUS(scene(&c, 1), PNPR_OK);
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
+    pnpr_effects_options eo;
+    memset(&eo, 0, sizeof eo);
+    pnpr_effects_stats es;
+    CHECK_STATUS(striped_effects(r, &p, &eo, full, &es), PNPR_OK);
+    CHECK(es.layer_width == W && es.layer_height == H);
+    eo.scale = 0.5f;
+    CHECK_STATUS(striped_effects(r, &p, &eo, half, &es), PNPR_OK);
+    CHECK_MSG(es.layer_width == W / 2 && es.layer_height == H / 2, "preview layers %dx%d", es.layer_width, es.layer_height);
+    box bf = ink_box(full), bh = ink_box(half);
+    CHECK_MSG(abs(bf.x0 - bh.x0) <= 2 && abs(bf.x1 - bh.x1) <= 2 && abs(bf.y0 - bh.y0) <= 2 && abs(bf.y1 - bh.y1) <= 2,
+              "square at (%d..%d, %d..%d) full, (%d..%d, %d..%d) preview", bf.x0, bf.x1, bf.y0, bf.y1, bh.x0, bh.x1, bh.y0,
+              bh.y1);
+    size_t far = 0;
+    for (int i = 0; i < W * H * 4; i++) far += abs((int)full[i] - (int)half[i]) > 64;
+    CHECK_MSG(far < (size_t)W * H * 4 / 20, "preview: %zu of %d channel values more than 64 off", far, W * H * 4);
+    eo.scale = 1.0f;
+    CHECK_STATUS(striped_effects(r, &p, &eo, half, &es), PNPR_OK);
+    CHECK_MSG(memcmp(full, half, W * H * 4) == 0, "scale 1 is the full image");
+    const float bad[] = {0.01f, -0.5f, 1.5f, NAN, INFINITY};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        eo.scale = bad[k];
+        CHECK_STATUS(striped_effects(r, &p, &eo, half, &es), PNPR_ERR_INVALID_ARGUMENT);
+    }
+    pnpr_effect_pipeline_free(&p);
+    pnpr_cloud_free(&c);
+    free(full); free(half);
+}
+
 int main(void)
 {
     pnpr_gl_context *ctx = NULL;
@@ -299,6 +414,8 @@ int main(void)
         test_every_effect_occludes(r);
         test_outlines_need_inpainting(r);
         test_sparse_holes(r);
+        test_filter_thread(r);
+        test_preview_scale(r);
     }
     pnpr_renderer_destroy(r);
     pnpr_gl_context_destroy(ctx);
