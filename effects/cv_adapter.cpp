@@ -92,8 +92,8 @@ extern "C" pnpr_status pnpr_cv_close_open(const float *src, float *dst, int w, i
         cv::Mat out = wrap(dst, w, h, ch);
         if (radius == 0) { wrap(src, w, h, ch).copyTo(out); return; }
         cv::Mat k = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1));
-        cv::morphologyEx(wrap(src, w, h, ch), out, cv::MORPH_OPEN, k, cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
-        cv::morphologyEx(out, out, cv::MORPH_CLOSE, k, cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
+        cv::morphologyEx(wrap(src, w, h, ch), out, cv::MORPH_CLOSE, k, cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
+        cv::morphologyEx(out, out, cv::MORPH_OPEN, k, cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
     });
 }
 

@@ -20,14 +20,15 @@ static const effect_def effect_defs[PNPR_EFFECT_COUNT_] = {
         {"radius", 4, 1, 32, "bilateral filter radius in px"},
         {"sigma_color", 0.1f, 0.01f, 1, "colour difference (0..1) that still smooths"},
         {"iterations", 2, 1, 8, "bilateral passes"}}},
-    [PNPR_EFFECT_TOON] = {"toon", pnpr_fx_toon, 7, {
+    [PNPR_EFFECT_TOON] = {"toon", pnpr_fx_toon, 8, {
         {"iterations", 3, 1, 8, "bilateral abstraction passes (Winnemoeller: 3-4)"},
         {"sigma_color", 0.1f, 0.01f, 1, "abstraction: colour difference that still smooths"},
         {"radius", 3, 1, 16, "abstraction: bilateral radius in px"},
         {"levels", 8, 2, 32, "luminance bins of the quantisation"},
         {"sharpness", 3, 0.5f, 20, "quantisation sharpness (phi_q)"},
         {"edge_sigma", 1, 0.3f, 8, "DoG edge scale in px (sigma_e)"},
-        {"edge_strength", 1, 0, 1, "darkness of the DoG edges (0 = none)"}}},
+        {"edge_strength", 1, 0, 1, "darkness of the DoG edges (0 = none)"},
+        {"silhouette", 1, 0, 1, "darkness of the segment's outline (its coverage border)"}}},
     [PNPR_EFFECT_WATERCOLOUR] = {"watercolour", pnpr_fx_watercolour, 7, {
         {"abstraction", 5, 1, 32, "colour abstraction radius in px"},
         {"density", 0.5f, 0, 2, "pigment density variation (paper + turbulence)"},
@@ -35,21 +36,24 @@ static const effect_def effect_defs[PNPR_EFFECT_COUNT_] = {
         {"turbulence_scale", 40, 4, 400, "pigment turbulence size in px"},
         {"edge_darkening", 0.8f, 0, 2, "pigment accumulated at colour edges"},
         {"edge_width", 2, 0.5f, 16, "width of the darkened edges in px"},
-        {"fill", 2, 0, 16, "morphological smoothing radius in px: gaps between splats narrower than it are painted over"}}},
+        {"fill", 2, 0, 16, "gap filling and morphological smoothing radius in px: gaps between splats narrower than it are painted over with their surroundings' mean colour"}}},
     [PNPR_EFFECT_OIL] = {"oil", pnpr_fx_oil, 5, {
         {"length", 8, 1, 32, "smoothing length along the flow in px"},
         {"tensor_sigma", 3, 0.5f, 10, "structure tensor smoothing in px"},
         {"brush_scale", 3, 1, 16, "brush bristle texture size in px"},
         {"relief", 0.5f, 0, 2, "relief lighting of the paint"},
         {"levels", 0, 0, 32, "colour levels per channel before painting (0 = none)"}}},
-    [PNPR_EFFECT_PENCIL] = {"pencil", pnpr_fx_pencil, 5, {
+    [PNPR_EFFECT_PENCIL] = {"pencil", pnpr_fx_pencil, 7, {
         {"spacing", 6, 2, 32, "hatch spacing in px"},
         {"angle", 45, -180, 180, "hatch angle in degrees"},
         {"layers", 3, 1, 4, "hatch layers (cross-hatching in darker tones)"},
         {"outline", 1, 0, 1, "outline darkness"},
-        {"color", 0, 0, 1, "how much of the source colour tints the paper (0 = grey)"}}},
-    [PNPR_EFFECT_POSTERISE] = {"posterise", pnpr_fx_posterise, 1, {
-        {"levels", 4, 2, 64, "levels per channel"}}},
+        {"color", 0, 0, 1, "how much of the source colour tints the paper (0 = grey)"},
+        {"silhouette", 1, 0, 1, "darkness of the segment's outline (its coverage border)"},
+        {"normalise", 1, 0, 1, "1 = the layer's tone range stretched before hatching (light, low-contrast scans get hatched)"}}},
+    [PNPR_EFFECT_POSTERISE] = {"posterise", pnpr_fx_posterise, 2, {
+        {"levels", 4, 2, 64, "levels per channel"},
+        {"normalise", 1, 0, 1, "1 = the luminance quantised over the layer's stretched tone range, hue kept (a light scan keeps several levels); 0 = each channel quantised as it is"}}},
     [PNPR_EFFECT_GRADE] = {"grade", pnpr_fx_grade, 7, {
         {"brightness", 0, -1, 1, "added to every channel"},
         {"contrast", 1, 0, 4, "around mid grey"},
@@ -58,12 +62,14 @@ static const effect_def effect_defs[PNPR_EFFECT_COUNT_] = {
         {"tint_g", 1, 0, 1, "tint colour, green"},
         {"tint_b", 1, 0, 1, "tint colour, blue"},
         {"recolour", 0, 0, 1, "mix towards the tint colour at the pixel's luminance (1 = recoloured)"}}},
-    [PNPR_EFFECT_EDGES] = {"edges", pnpr_fx_edges, 5, {
+    [PNPR_EFFECT_EDGES] = {"edges", pnpr_fx_edges, 7, {
         {"sigma", 1, 0.3f, 8, "XDoG scale in px"},
         {"k", 1.6f, 1.1f, 5, "ratio of the two Gaussians"},
         {"tau", 0.98f, 0.5f, 1, "XDoG tau (sharpening)"},
         {"phi", 40, 0.5f, 200, "XDoG soft threshold slope (on luminance 0..1)"},
-        {"strength", 1, 0, 1, "darkness of the edges"}}},
+        {"strength", 1, 0, 1, "darkness of the edges"},
+        {"silhouette", 1, 0, 1, "darkness of the segment's outline (its coverage border; catches outlines the colours do not show)"},
+        {"paper", 0, 0, 1, "1 = the lines alone on the paper colour (a line drawing); 0 = over the image"}}},
 };
 
 const char *pnpr_effect_name(pnpr_effect_kind kind)
@@ -164,10 +170,11 @@ static const pnpr_effect_preset presets[] = {
      {{FX(PNPR_EFFECT_SMOOTH), FX(PNPR_EFFECT_WATERCOLOUR)}, 2}},
     {"oil", "oil paint along the image's flow (Semmo)", {{FX(PNPR_EFFECT_OIL)}, 1}},
     {"pencil", "pencil hatching with outlines", {{FX(PNPR_EFFECT_PENCIL)}, 1}},
-    {"poster", "four colour levels with dark edges", {{FX(PNPR_EFFECT_SMOOTH), FX(PNPR_EFFECT_POSTERISE), FX(PNPR_EFFECT_EDGES)}, 3}},
-    {"muted", "desaturated and lighter: for context behind the subject",
-     {{FX1(PNPR_EFFECT_GRADE, 2, 0.3f)}, 1}},
-    {"ink", "edge enhancement only", {{FX(PNPR_EFFECT_EDGES)}, 1}},
+    {"poster", "four tone levels with dark edges", {{FX(PNPR_EFFECT_SMOOTH), FX(PNPR_EFFECT_POSTERISE), FX(PNPR_EFFECT_EDGES)}, 3}},
+    {"muted", "desaturated, lighter and softer: for context behind the subject",
+     {{{PNPR_EFFECT_GRADE, 0x7u, {0.12f, 0.75f, 0.3f}}}, 1}},
+    {"ink", "a line drawing: edges and outlines alone on the paper",
+     {{FX(PNPR_EFFECT_SMOOTH), FX1(PNPR_EFFECT_EDGES, 6, 1.0f)}, 2}},
 };
 
 const pnpr_effect_preset *pnpr_effect_presets(int *r_count)

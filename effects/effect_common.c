@@ -97,3 +97,77 @@ pnpr_status pnpr_fx_dog(const float *lum, float *r_edge, int w, int h, float sig
     free(wide);
     return st;
 }
+
+void pnpr_fx_tone_range(const pnpr_image *src, float *r_lo, float *r_hi)
+{
+    size_t hist[256] = {0}, n = (size_t)src->width * (size_t)src->height, covered = 0;
+    for (size_t i = 0; i < n; i++) {
+        const uint8_t *s = src->rgba + 4 * i;
+        if (s[3] == 0) continue;
+        int y = (int)(pnpr_fx_luma(s[0], s[1], s[2]) + 0.5f);
+        hist[y < 0 ? 0 : y > 255 ? 255 : y]++;
+        covered++;
+    }
+    *r_lo = 0;
+    *r_hi = 1;
+    if (covered == 0) return;
+    size_t cut = covered / 50, acc = 0; /* 2nd and 98th percentiles */
+    int lo = 0, hi = 255;
+    for (lo = 0; lo < 255 && acc + hist[lo] <= cut; lo++) acc += hist[lo];
+    acc = 0;
+    for (hi = 255; hi > lo && acc + hist[hi] <= cut; hi--) acc += hist[hi];
+    *r_lo = (float)lo / 255.0f;
+    *r_hi = (float)hi / 255.0f;
+}
+
+float pnpr_fx_stretch(float v, float lo, float hi)
+{
+    float range = hi - lo;
+    /* the gain allowed grows from 1 (flat layers keep their tone) to the maximum over 0.04..0.12 */
+    float t = (range - 0.04f) / 0.08f;
+    float cap = 1.0f + (PNPR_FX_STRETCH_GAIN_MAX - 1.0f) * (t < 0 ? 0 : t > 1 ? 1 : t);
+    float gain = range * cap > 0.9f ? 0.9f / range : cap;
+    if (gain < 1) gain = 1; /* only stretched, never squeezed */
+    /* the stretched range's middle moved (as little as it takes) into 0.05..0.95 */
+    float half = 0.5f * gain * range, mid = 0.5f * (lo + hi), lo_m = 0.05f + half, hi_m = 0.95f - half;
+    float mid2 = lo_m > hi_m ? 0.5f : mid < lo_m ? lo_m : mid > hi_m ? hi_m : mid;
+    float s = mid2 + (v - mid) * gain;
+    return s < 0 ? 0 : s > 1 ? 1 : s;
+}
+
+pnpr_status pnpr_fx_silhouette(const pnpr_image *src, float *r_ink, float *tmp, pnpr_error *err)
+{
+    int w = src->width, h = src->height;
+    size_t n = (size_t)w * (size_t)h;
+    for (size_t i = 0; i < n; i++) tmp[i] = src->rgba[4 * i + 3] ? 1.0f : 0.0f;
+    pnpr_status st = pnpr_cv_gaussian(tmp, tmp, w, h, 1, PNPR_FX_SILHOUETTE_GAP, err);
+    if (st != PNPR_OK) return st;
+    for (size_t i = 0; i < n; i++) tmp[i] = tmp[i] >= 0.5f ? 1.0f : 0.0f; /* coverage, gaps closed */
+    st = pnpr_cv_gaussian(tmp, r_ink, w, h, 1, PNPR_FX_SILHOUETTE_WIDTH, err);
+    if (st != PNPR_OK) return st;
+    for (size_t i = 0; i < n; i++) {
+        float s = r_ink[i], ink = 4.0f * s * (1.0f - s) * 1.25f; /* 1 across the border's middle */
+        r_ink[i] = ink < 0 ? 0 : ink > 1 ? 1 : ink;
+    }
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_fx_fill_gaps(const pnpr_image *src, float *rgb, int radius, float *tmp, pnpr_error *err)
+{
+    int w = src->width, h = src->height;
+    size_t n = (size_t)w * (size_t)h;
+    if (radius <= 0) return PNPR_OK;
+    float *cov = tmp, *acc = tmp + n;
+    for (size_t i = 0; i < n; i++) {
+        float c = src->rgba[4 * i + 3] ? 1.0f : 0.0f;
+        cov[i] = c;
+        for (int k = 0; k < 3; k++) acc[3 * i + k] = c * rgb[3 * i + k];
+    }
+    pnpr_status st = pnpr_cv_gaussian(cov, cov, w, h, 1, (float)radius, err);
+    if (st == PNPR_OK) st = pnpr_cv_gaussian(acc, acc, w, h, 3, (float)radius, err);
+    if (st != PNPR_OK) return st;
+    for (size_t i = 0; i < n; i++)
+        if (src->rgba[4 * i + 3] == 0 && cov[i] >= PNPR_FX_GAP_DENSITY)
+            for (int k = 0; k < 3; k++) rgb[3 * i + k] = acc[3 * i + k] / cov[i];
+    return PNPR_OK;
+}

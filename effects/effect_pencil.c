@@ -1,12 +1,15 @@
 /* The pencil effect (effects.h): hatching by tone with outlines.
- *  tone t = Rec. 709 luminance blurred by a Gaussian of 1 px (OpenCV GaussianBlur);
+ *  tone t = Rec. 709 luminance blurred by a Gaussian of 1 px (OpenCV GaussianBlur), with
+ *  normalise = 1 stretched over the layer's tone range (pnpr_fx_stretch: a light, low-contrast
+ *  colourless scan is hatched like a drawing of its shading instead of vanishing into the paper);
  *  hatch layer i < layers at angle + {0, 90, 45, -45} degrees is drawn where t < {0.8, 0.6, 0.4,
  *  0.2}[i], with pressure s = clamp((threshold - t) / 0.2, 0, 1): parallel lines `spacing` px
  *  apart whose centres wobble by up to PENCIL_WOBBLE px (value noise of `seed` along the line) and
  *  whose darkness varies along them (hash of the line and position); the line profile is a
  *  triangle of half-width 0.6 + 1.6 s px, the ink PENCIL_INK s; layers multiply (1 - ink);
  *  outlines: the DoG of the luminance (sigma 1.5, k 1.6, tau 0.98, phi 60; effects/effect_common.c)
- *  multiplied in with `outline` darkness;
+ *  multiplied in with `outline` darkness, and the segment's outline (pnpr_fx_silhouette) with
+ *  `silhouette` darkness;
  *  colour: the grey value v becomes v mix(1, C / Y, color) per channel (C the source colour, Y its
  *  luminance, the ratio at most 4): with color = 1 the hatching keeps the source's hue.
  * The constants make the mean grey of a flat area follow its tone roughly (test_effects checks
@@ -39,7 +42,8 @@ pnpr_status pnpr_fx_pencil(const float *p, const pnpr_image *src, pnpr_image *ds
     static const float offsets[4] = {0, 90, 45, -45}, thresholds[4] = {0.8f, 0.6f, 0.4f, 0.2f};
     int w = src->width, h = src->height, layers = (int)lroundf(p[2]);
     size_t n = (size_t)w * (size_t)h;
-    float *lum = pnpr_fx_floats(3 * n, err), *tone = lum ? lum + n : NULL, *edge = lum ? lum + 2 * n : NULL;
+    float *lum = pnpr_fx_floats(5 * n, err), *tone = lum ? lum + n : NULL, *edge = lum ? lum + 2 * n : NULL;
+    float *sil = lum ? lum + 3 * n : NULL, *tmp = lum ? lum + 4 * n : NULL;
     pnpr_status st = lum ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
     if (st == PNPR_OK) {
         for (size_t i = 0; i < n; i++) {
@@ -49,7 +53,13 @@ pnpr_status pnpr_fx_pencil(const float *p, const pnpr_image *src, pnpr_image *ds
         st = pnpr_cv_gaussian(lum, tone, w, h, 1, 1.0f, err);
     }
     if (st == PNPR_OK) st = pnpr_fx_dog(lum, edge, w, h, 1.5f, 1.6f, 0.98f, 60.0f, err);
+    if (st == PNPR_OK) st = pnpr_fx_silhouette(src, sil, tmp, err);
     if (st != PNPR_OK) { free(lum); return st; }
+    if (p[6] > 0.5f) {
+        float lo, hi;
+        pnpr_fx_tone_range(src, &lo, &hi);
+        for (size_t i = 0; i < n; i++) tone[i] = pnpr_fx_stretch(tone[i], lo, hi);
+    }
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             size_t i = (size_t)y * (size_t)w + (size_t)x;
@@ -59,7 +69,7 @@ pnpr_status pnpr_fx_pencil(const float *p, const pnpr_image *src, pnpr_image *ds
                 if (s <= 0) continue;
                 v *= 1 - hatch((float)x, (float)y, p[1] + offsets[l], p[0], s < 1 ? s : 1, l, seed);
             }
-            v *= 1 - p[3] * (1 - edge[i]);
+            v *= (1 - p[3] * (1 - edge[i])) * (1 - p[5] * sil[i]);
             const uint8_t *s = src->rgba + 4 * i;
             float y709 = lum[i] > 0.02f ? lum[i] : 0.02f;
             for (int c = 0; c < 3; c++) {

@@ -9,7 +9,9 @@
  *     with `levels` output values 0, 100 / (levels - 1), ..., 100, dq their spacing, q_b the bin
  *     boundary nearest to L and t = (L - q_b) / (dq / 2) in -1..1. Dividing by tanh(phi_q) (our
  *     choice) makes every level, white and black included, an exact output; phi_q = sharpness;
- *  4. back to RGB, multiplied by 1 - edge_strength (1 - E).
+ *  4. back to RGB, multiplied by 1 - edge_strength (1 - E) and by 1 - silhouette S, S the
+ *     segment's outline (pnpr_fx_silhouette: the border of its coverage, which the DoG misses
+ *     where the segment's colour is close to the paper's; our addition).
  * Alpha is kept. */
 #include "effects_internal.h"
 
@@ -36,7 +38,7 @@ pnpr_status pnpr_fx_toon(const float *p, const pnpr_image *src, pnpr_image *dst,
     int levels = (int)lroundf(p[3]);
     size_t n = (size_t)w * (size_t)h;
     float *rgb = pnpr_fx_floats(3 * n, err), *lab = rgb ? pnpr_fx_floats(3 * n, err) : NULL;
-    float *lum = lab ? pnpr_fx_floats(2 * n, err) : NULL, *edge = lum ? lum + n : NULL;
+    float *lum = lab ? pnpr_fx_floats(3 * n, err) : NULL, *edge = lum ? lum + n : NULL, *sil = lum ? lum + 2 * n : NULL;
     pnpr_status st = lum ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
     if (st == PNPR_OK) {
         pnpr_fx_to_rgb(src, rgb);
@@ -48,6 +50,7 @@ pnpr_status pnpr_fx_toon(const float *p, const pnpr_image *src, pnpr_image *dst,
         for (size_t i = 0; i < n; i++) lum[i] = lab[3 * i] * 0.01f;
         st = pnpr_fx_dog(lum, edge, w, h, p[5], TOON_K, TOON_TAU, TOON_PHI_E, err);
     }
+    if (st == PNPR_OK) st = pnpr_fx_silhouette(src, sil, lum, err);
     if (st == PNPR_OK && iterations > 1)
         st = pnpr_fx_bilateral_passes(lab, rgb, w, h, radius, 100 * p[1], iterations - 1, err);
     if (st == PNPR_OK) {
@@ -56,7 +59,7 @@ pnpr_status pnpr_fx_toon(const float *p, const pnpr_image *src, pnpr_image *dst,
     }
     if (st == PNPR_OK) {
         for (size_t i = 0; i < n; i++) {
-            float f = 1.0f - p[6] * (1.0f - edge[i]);
+            float f = (1.0f - p[6] * (1.0f - edge[i])) * (1.0f - p[7] * sil[i]);
             for (int c = 0; c < 3; c++) rgb[3 * i + c] *= f;
         }
         pnpr_fx_from_rgb(rgb, src, dst);

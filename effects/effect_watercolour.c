@@ -1,10 +1,11 @@
 /* The watercolour effect (effects.h), after Bousseau, Kaplan, Thollot and Sillion 2006,
  * "Interactive watercolor rendering with temporal coherence and abstraction":
- *  1. abstraction: two bilateral passes (OpenCV bilateralFilter), window `abstraction` px,
- *     colour sigma WC_SIGMA_COLOR, then their morphological smoothing (an opening and a closing,
- *     OpenCV morphologyEx) with a disk of radius `fill` px: details and gaps narrower than the
- *     disk go, so that the light holes between a sparse cloud's splats are painted over (their
- *     colour changes, which the depth inpainting then gives the segment's depth);
+ *  1. abstraction: the gaps between splats filled from the coverage (pnpr_fx_fill_gaps, radius
+ *     `fill` px: the light holes of a sparse cloud are painted over in their surroundings' colour,
+ *     which the depth inpainting then gives the segment's depth), two bilateral passes (OpenCV
+ *     bilateralFilter), window `abstraction` px, colour sigma WC_SIGMA_COLOR, then their
+ *     morphological smoothing (a closing and an opening, OpenCV morphologyEx) with a disk of
+ *     radius `fill` px: dark, then light details narrower than the disk go;
  *  2. pigment density d per pixel (their section 3): d = 1 + density N + edge_darkening E, with
  *     N = 0.4 P + 0.6 T in -1..1 from two deterministic hash value noises of `seed` and the pixel
  *     position: P, the paper grain (cells of paper_scale px, smoothed by a Gaussian of
@@ -63,6 +64,9 @@ pnpr_status pnpr_fx_watercolour(const float *p, const pnpr_image *src, pnpr_imag
     pnpr_status st = f ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
     if (st == PNPR_OK) {
         pnpr_fx_to_rgb(src, rgb);
+        st = pnpr_fx_fill_gaps(src, rgb, (int)lroundf(p[6]), f, err);
+    }
+    if (st == PNPR_OK) {
         st = pnpr_fx_bilateral_passes(rgb, tmp, w, h, (int)lroundf(p[0]), WC_SIGMA_COLOR, 2, err);
     }
     if (st == PNPR_OK) st = pnpr_cv_close_open(rgb, rgb, w, h, 3, (int)lroundf(p[6]), err);

@@ -35,10 +35,11 @@ pnpr_status pnpr_cv_bilateral(const float *src, float *dst, int w, int h, int ch
                               float sigma_space, pnpr_error *err);
 /* cv::GaussianBlur with a +-3 sigma kernel; src == dst allowed. */
 pnpr_status pnpr_cv_gaussian(const float *src, float *dst, int w, int h, int ch, float sigma, pnpr_error *err);
-/* Morphological smoothing: cv::morphologyEx opening, then closing, with an elliptical element of
- * the given radius (px): bright, then dark details narrower than the element go (Bousseau et al.'s
- * abstraction). Opening first: on light paper the gaps between splats are the bright details, and
- * they are filled before the closing could erase sparse splats. src == dst allowed. */
+/* Morphological smoothing: cv::morphologyEx closing, then opening, with an elliptical element of
+ * the given radius (px): dark, then bright details narrower than the element go (Bousseau et al.'s
+ * abstraction). Closing first, so that dense dark specks (texture noise of RGB-D frames) vanish
+ * instead of merging into blobs; the light gaps between splats are filled before, from the
+ * coverage (pnpr_fx_fill_gaps). src == dst allowed. */
 pnpr_status pnpr_cv_close_open(const float *src, float *dst, int w, int h, int ch, int radius, pnpr_error *err);
 /* cv::Sobel 3x3 first derivatives in x and y of every channel (a unit step gives 4). */
 pnpr_status pnpr_cv_sobel(const float *src, float *dx, float *dy, int w, int h, int ch, pnpr_error *err);
@@ -76,5 +77,33 @@ pnpr_status pnpr_fx_bilateral_passes(float *buf, float *tmp, int w, int h, int r
  * r_edge: w * h values 0..1; lum is kept. */
 pnpr_status pnpr_fx_dog(const float *lum, float *r_edge, int w, int h, float sigma, float k, float tau, float phi,
                         pnpr_error *err);
+
+/* Tone normalisation (pencil, posterise): the 2nd and 98th percentiles (0..1) of the luminance of
+ * src's covered pixels (alpha > 0), from a 256-bin histogram; 0 and 1 when none is covered. */
+void pnpr_fx_tone_range(const pnpr_image *src, float *r_lo, float *r_hi);
+/* v (0..1) stretched about the middle of lo..hi so that the range spans 0.9, with a gain never
+ * below 1 and at most PNPR_FX_STRETCH_GAIN_MAX, a cap that falls to 1 as the range
+ * shrinks from 0.12 to 0.04 (a flat layer keeps its tone: white paper stays unhatched); clamped
+ * to 0..1; the stretched range is then moved as little as it takes to lie within 0.05..0.95 (a
+ * layer whose range already spans that is unchanged). Light, low-contrast scans (colourless clouds shaded 0.65..0.85) then use the
+ * whole tone scale. */
+#define PNPR_FX_STRETCH_GAIN_MAX 4.0f
+float pnpr_fx_stretch(float v, float lo, float hi);
+
+/* Fills the gaps of a layer: every uncovered pixel (alpha 0) whose coverage density (a Gaussian of
+ * `radius` px over alpha > 0) is at least PNPR_FX_GAP_DENSITY takes the coverage-weighted mean
+ * colour of its neighbourhood (normalised convolution); rgb: 3 floats per pixel, changed in place.
+ * Unlike a morphological fill it never grows a dark speck. tmp: 4 * w * h floats of scratch. */
+#define PNPR_FX_GAP_DENSITY 0.3f
+pnpr_status pnpr_fx_fill_gaps(const pnpr_image *src, float *rgb, int radius, float *tmp, pnpr_error *err);
+
+/* Silhouette ink (0..1) of a layer into r_ink (w * h): the layer's coverage (alpha > 0) with the
+ * gaps between splats closed (a Gaussian of PNPR_FX_SILHOUETTE_GAP px thresholded at 1/2),
+ * blurred by PNPR_FX_SILHOUETTE_WIDTH px; the ink is 5 s (1 - s) clamped (1 along the border, a
+ * band about 2 px wide). The outline of a segment whose colour is close to the paper's, which the
+ * colour edges (DoG) miss. tmp: w * h floats of scratch. */
+#define PNPR_FX_SILHOUETTE_GAP 2.0f
+#define PNPR_FX_SILHOUETTE_WIDTH 0.8f
+pnpr_status pnpr_fx_silhouette(const pnpr_image *src, float *r_ink, float *tmp, pnpr_error *err);
 
 #endif

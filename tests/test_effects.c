@@ -68,6 +68,7 @@ static void test_posterise(void)
     for (int t = 0; t < 4; t++) {
         pnpr_effect e = effect(PNPR_EFFECT_POSTERISE);
         set(&e, "levels", (float)levels[t]);
+        set(&e, "normalise", 0); /* each channel as it is */
         CHECK_STATUS(pnpr_effect_apply(&e, &src, &dst, 0, NULL), PNPR_OK);
         int seen[256] = {0}, distinct = 0;
         for (int i = 0; i < 256 * 3; i++) {
@@ -79,6 +80,125 @@ static void test_posterise(void)
         CHECK(seen[0] && seen[255]); /* black and white are levels */
         CHECK(dst.rgba[0] == 0 && dst.rgba[4 * 255] == 255);
     }
+    free(src.rgba);
+    free(dst.rgba);
+}
+
+/* Tone normalisation on a light, low-contrast layer (a colourless scan shaded 0.67..0.86):
+ * posterise keeps several grey levels (one or two without), none of them paper white; pencil
+ * hatches the darker half and leaves the lighter light. */
+static void test_tone_normalise(void)
+{
+    const int w = 128, h = 64;
+    pnpr_image src = image_new(w, h), dst = image_new(w, h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint8_t *p = src.rgba + 4 * (y * w + x);
+            p[0] = p[1] = p[2] = (uint8_t)(170 + 50 * x / (w - 1));
+            p[3] = 255;
+        }
+    for (int norm = 0; norm < 2; norm++) {
+        pnpr_effect e = effect(PNPR_EFFECT_POSTERISE);
+        set(&e, "normalise", (float)norm);
+        CHECK_STATUS(pnpr_effect_apply(&e, &src, &dst, 0, NULL), PNPR_OK);
+        int seen[256] = {0}, distinct = 0, grey = 1;
+        for (int i = 0; i < w * h; i++) {
+            const uint8_t *p = dst.rgba + 4 * i;
+            grey &= p[0] == p[1] && p[1] == p[2];
+            if (!seen[p[0]]++) distinct++;
+        }
+        if (norm) CHECK_MSG(distinct >= 3 && grey && !seen[255] && !seen[0], "normalised posterise: %d greys", distinct);
+        else CHECK_MSG(distinct <= 2, "posterise per channel: %d values", distinct);
+    }
+    /* pencil: left half 0.70, right half 0.85 */
+    for (int i = 0; i < w * h; i++) {
+        uint8_t v = (i % w) < w / 2 ? 179 : 217;
+        src.rgba[4 * i] = src.rgba[4 * i + 1] = src.rgba[4 * i + 2] = v;
+    }
+    double mean[2][2] = {{0}};
+    for (int norm = 0; norm < 2; norm++) {
+        pnpr_effect e = effect(PNPR_EFFECT_PENCIL);
+        set(&e, "normalise", (float)norm);
+        set(&e, "outline", 0);
+        CHECK_STATUS(pnpr_effect_apply(&e, &src, &dst, 5, NULL), PNPR_OK);
+        for (int y = 8; y < h - 8; y++)
+            for (int x = 8; x < w - 8; x++)
+                if (x < w / 2 - 8 || x >= w / 2 + 8) mean[norm][x >= w / 2] += dst.rgba[4 * (y * w + x)] / 255.0 / ((w / 2 - 16) * (h - 16));
+    }
+    CHECK_MSG(mean[1][0] < 0.6 && mean[1][1] > 0.75 && mean[0][0] > mean[1][0] + 0.1,
+              "pencil on 0.70 | 0.85: normalised %.3f | %.3f, as is %.3f | %.3f", mean[1][0], mean[1][1], mean[0][0], mean[0][1]);
+    free(src.rgba);
+    free(dst.rgba);
+}
+
+/* The segment's outline from its coverage: a light grey square (230) on paper (alpha 0) gets a dark
+ * border from edges, toon and pencil (silhouette 1), not without (silhouette 0: the colour DoG
+ * barely sees 230 against 255); edges with paper = 1 leaves the square's inside paper white. */
+static void test_silhouette(void)
+{
+    const int w = 96, h = 96, x0 = 24, x1 = 71;
+    pnpr_image src = image_new(w, h), dst = image_new(w, h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint8_t *p = src.rgba + 4 * (y * w + x);
+            int in = x >= x0 && x <= x1 && y >= x0 && y <= x1;
+            p[0] = p[1] = p[2] = in ? 230 : 255;
+            p[3] = in ? 255 : 0;
+        }
+    const pnpr_effect_kind kinds[] = {PNPR_EFFECT_EDGES, PNPR_EFFECT_TOON, PNPR_EFFECT_PENCIL};
+    for (int k = 0; k < 3; k++)
+        for (int on = 0; on < 2; on++) {
+            pnpr_effect e = effect(kinds[k]);
+            set(&e, "silhouette", (float)on);
+            CHECK_STATUS(pnpr_effect_apply(&e, &src, &dst, 1, NULL), PNPR_OK);
+            int ring = 0, dark = 0;
+            for (int y = 0; y < h; y++)
+                for (int x = 0; x < w; x++) {
+                    int dx = x < x0 ? x0 - x : x > x1 ? x - x1 : 0, dy = y < x0 ? x0 - y : y > x1 ? y - x1 : 0;
+                    int inside = !dx && !dy, edge = inside && (x == x0 || x == x1 || y == x0 || y == x1);
+                    if (!edge || (x > x0 + 4 && x < x1 - 4 ? 0 : y > x0 + 4 && y < x1 - 4 ? 0 : 1)) continue;
+                    ring++; /* the border away from the corners */
+                    dark += dst.rgba[4 * (y * w + x)] < 128;
+                }
+            if (on) CHECK_MSG(dark >= ring * 9 / 10, "%s: %d of %d border px dark", pnpr_effect_name(kinds[k]), dark, ring);
+            else CHECK_MSG(dark <= ring / 10, "%s without silhouette: %d of %d border px dark", pnpr_effect_name(kinds[k]), dark, ring);
+        }
+    pnpr_effect e = effect(PNPR_EFFECT_EDGES);
+    set(&e, "paper", 1);
+    CHECK_STATUS(pnpr_effect_apply(&e, &src, &dst, 1, NULL), PNPR_OK);
+    const uint8_t *mid = dst.rgba + 4 * (48 * w + 48);
+    CHECK_MSG(mid[0] == 255 && mid[1] == 255 && mid[2] == 255 && mid[3] == 255, "paper inside: %d %d %d %d", mid[0], mid[1], mid[2], mid[3]);
+    free(src.rgba);
+    free(dst.rgba);
+}
+
+/* Watercolour on a yellow surface with 15% black specks (an RGB-D frame's texture noise): the
+ * morphological smoothing removes specks instead of merging them into blobs, and the coverage gap
+ * fill paints a 1-px hole grid over in the surface's colour. */
+static void test_watercolour_specks(void)
+{
+    const int w = 96, h = 96;
+    pnpr_image src = image_new(w, h), dst = image_new(w, h);
+    pnpr_test_rng rng = {11};
+    size_t dark_in = 0, dark_out = 0, holes = 0, hole_yellow = 0;
+    for (int i = 0; i < w * h; i++) {
+        uint8_t *p = src.rgba + 4 * i;
+        int speck = pnpr_test_uniform(&rng) < 0.15, hole = (i % w) % 4 == 0 && (i / w) % 4 == 0;
+        p[0] = hole ? 255 : speck ? 0 : 235;
+        p[1] = hole ? 255 : speck ? 0 : 220;
+        p[2] = hole ? 255 : speck ? 0 : 60;
+        p[3] = hole ? 0 : 255;
+        dark_in += speck && !hole;
+    }
+    pnpr_effect e = effect(PNPR_EFFECT_WATERCOLOUR);
+    CHECK_STATUS(pnpr_effect_apply(&e, &src, &dst, 3, NULL), PNPR_OK);
+    for (int i = 0; i < w * h; i++) {
+        const uint8_t *p = dst.rgba + 4 * i;
+        dark_out += luma(p) < 0.2;
+        if (src.rgba[4 * i + 3] == 0) { holes++; hole_yellow += p[2] < 150; }
+    }
+    CHECK_MSG(dark_out * 10 <= dark_in, "watercolour: %zu dark px of %zu black specks", dark_out, dark_in);
+    CHECK_MSG(hole_yellow >= holes * 9 / 10, "watercolour: %zu of %zu holes painted yellow", hole_yellow, holes);
     free(src.rgba);
     free(dst.rgba);
 }
@@ -396,6 +516,9 @@ static void test_no_opencv(void)
 int main(void)
 {
     test_posterise();
+    test_tone_normalise();
+    test_silhouette();
+    test_watercolour_specks();
     test_grade();
     test_ranges();
 #ifdef PNPR_HAVE_OPENCV
