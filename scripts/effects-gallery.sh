@@ -74,6 +74,23 @@ done < <(printf '%s\n' cartoon watercolour oil pencil poster muted ink)
 montage "${FONT[@]}" "${cells[@]}" -tile 4x -geometry 320x240+4+4 "$WORK/lion-presets.png"
 shrink "$WORK/lion-presets.png" "$OUT/lion-presets.png"
 
+# ---- the presets on scans they were not tuned on: a colourless building, an RGB-D frame ----
+"$BIN" convert "${SCAN[building]}" -o "$WORK/building.ply" --quiet
+"$BIN" convert "${SCAN[mug_stereo]}" -o "$WORK/mug.ply" --quiet
+for scan in building mug; do
+  cam=()
+  [[ $scan == mug ]] && cam=(--eye 0,0,0 --target 0,0,1 --up -y --fov 30) # from the sensor
+  render "$WORK/$scan.ply" "$scan-raw" "$WORK/none.fx" "${cam[@]}"
+  cells=(-label raw "$OUT/$scan-raw.png")
+  for p in cartoon watercolour oil pencil poster muted ink; do
+    render "$WORK/$scan.ply" "$scan-preset-$p" "$WORK/preset-$p.fx" "${cam[@]}"
+    cells+=(-label "preset $p" "$OUT/$scan-preset-$p.png")
+  done
+  montage "${FONT[@]}" "${cells[@]}" -tile 4x -geometry 320x240+4+4 "$WORK/$scan-presets.png"
+  shrink "$WORK/$scan-presets.png" "$OUT/$scan-presets.png"
+  rm -f "$OUT/$scan-raw.png" "$OUT"/"$scan"-preset-*.png # only the sheet is shown
+done
+
 # ---- figure 12: the three layerings on the house scene (segments per surface kind) ----
 cat > "$WORK/house.fx" <<'FX'
 # the generated house scene: 1 ground, 2 wall, 3 roof, 4 trunk, 5 crown, 6 sphere

@@ -348,7 +348,8 @@ int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
     o->uses[o->dopt.style] = 1;
     for (size_t m = 0; m < o->smap.count; m++) o->uses[o->smap.entries[m].style] = 1;
     if ((o->have_layering || o->have_fx_opts) && !o->effects_path) {
-        fprintf(stderr, "pointnpr %s: --layering, --effects-scale and --effects-serial are for --effects FILE\n", cmd);
+        const char *opt = o->have_layering ? "--layering" : o->fx_opts.scale > 0 ? "--effects-scale" : "--effects-serial";
+        fprintf(stderr, "pointnpr %s: %s is for --effects FILE\n", cmd, opt);
         return 0;
     }
     if (!o->effects_path) return 1;

@@ -61,6 +61,12 @@ check '[ ! -e "$dir/bad.png" ]' "nothing written"
 check '[ $rc -eq 2 ] && grep -q "must be a PNG" "$dir/log.txt"' "--effects with an SVG: $(cat "$dir/log.txt")"
 "$bin" render "$dir/scene.ply" -o "$dir/x.png" --layering none 2> "$dir/log.txt"; rc=$?
 check '[ $rc -eq 2 ] && grep -q "is for --effects" "$dir/log.txt"' "--layering alone: $(cat "$dir/log.txt")"
+"$bin" render "$dir/scene.ply" -o "$dir/x.png" --effects-scale 0.5 2> "$dir/log.txt"; rc=$?
+check '[ $rc -eq 2 ] && grep -q -- "--effects-scale is for --effects" "$dir/log.txt"' "--effects-scale alone: $(cat "$dir/log.txt")"
+"$bin" render "$dir/scene.ply" -o "$dir/x.png" --effects "$dir/two.fx" --effects-scale 0.01 2> "$dir/log.txt"; rc=$?
+check '[ $rc -eq 2 ] && grep -q "0.0625..1" "$dir/log.txt"' "--effects-scale out of range: $(cat "$dir/log.txt")"
+"$bin" render "$dir/scene.ply" -o "$dir/half.png" --size 200x150 --effects "$dir/two.fx" --effects-scale 0.5 2> "$dir/log.txt"; rc=$?
+check '[ $rc -eq 0 ] && grep -q "2 layers of 100x75" "$dir/log.txt" && [ -s "$dir/half.png" ]' "a preview draws half-size layers into the full image: $(grep layers "$dir/log.txt")"
 printf '1 sketchy\n' > "$dir/map.txt"
 "$bin" render "$dir/scene.ply" -o "$dir/x.png" --effects "$dir/two.fx" --style-map "$dir/map.txt" 2> "$dir/log.txt"; rc=$?
 check '[ $rc -eq 2 ] && grep -q "give one" "$dir/log.txt"' "--effects with --style-map: $(cat "$dir/log.txt")"
