@@ -22,6 +22,7 @@
 #include "decorate_glcontext.h"
 #include "vcg_attributes.h"
 
+#include <pointnpr/effects.h>
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
 #include <pointnpr/options.h>
@@ -35,7 +36,9 @@
 #include <QApplication>
 #include <QColor>
 #include <QElapsedTimer>
+#include <QDateTime>
 #include <QFile>
+#include <QFileInfo>
 #include <QImage>
 #include <QLineEdit>
 #include <QPushButton>
@@ -68,6 +71,9 @@ const char *const kOutline = "PointNPR::Outline";
 const char *const kOutlineWidth = "PointNPR::OutlineWidth";
 const char *const kToneSource = "PointNPR::ToneSource";
 const char *const kToneGamma = "PointNPR::ToneGamma";
+const char *const kEffects = "PointNPR::Effects";
+const char *const kEffectsFile = "PointNPR::EffectsFile";
+const char *const kEffectsPreview = "PointNPR::EffectsPreview";
 
 /* enum index -> renderer style (the order shown in the dialog; new styles go at the end so that
  * saved indices keep their meaning). The labels are the library's names (pnpr_style_name). */
@@ -180,10 +186,14 @@ struct DecorateContextState {
     QTimer *settle = nullptr;     /* full-budget repaint after motion stops */
     int frames = 0;
     bool snapshotDone = false;
+    pnpr_effect_pipeline fx;      /* the effects pipeline of fxKey (count 0: none or it failed) */
+    QString fxKey;                /* the preset or file (with its modification time) fx holds */
+    std::vector<unsigned char> fxPixels, fxRows; /* the effects frame, top row first / bottom first */
     DecorateContextState()
     {
         std::memset(&cloud, 0, sizeof cloud);
         std::memset(&lines, 0, sizeof lines);
+        std::memset(&fx, 0, sizeof fx);
     }
 };
 
@@ -210,6 +220,7 @@ DecoratePointnprPlugin::~DecoratePointnprPlugin()
         if (s->renderer && pnpr_meshlab::currentGLContext() == it.key()) pnpr_renderer_destroy(s->renderer);
         pnpr_cloud_free(&s->cloud);
         pnpr_lines_free(&s->lines);
+        pnpr_effect_pipeline_free(&s->fx);
         delete s->settle;
         delete s;
     }
@@ -337,6 +348,30 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
             par.addParam(RichInt(kMotionBudget, 200000, "Point budget while moving",
                                  "budget of frames drawn while the camera changes (a full frame follows 0.3 s "
                                  "after the motion stops); 0 = same as the point budget"));
+        if (!par.hasParameter(kEffects)) {
+            QStringList names;
+            names << "none";
+            int np = 0;
+            const pnpr_effect_preset *pr = pnpr_effect_presets(&np);
+            QString docs;
+            for (int i = 0; i < np; i++) {
+                names << QString::fromUtf8(pr[i].name);
+                docs += QString("; %1: %2").arg(QString::fromUtf8(pr[i].name)).arg(QString::fromUtf8(pr[i].doc));
+            }
+            names << "pipeline file";
+            par.addParam(RichEnum(kEffects, 0, names, "Image-space effects",
+                                  "segment-specific image-space effects (Wegen et al., docs/effects.md) over the "
+                                  "style: a preset for every point, or a pipeline file (effect chains per segment "
+                                  "label, as `pointnpr render --effects`)" + docs));
+        }
+        if (!par.hasParameter(kEffectsFile))
+            par.addParam(RichOpenFile(kEffectsFile, QString(), QStringList() << "*.fx" << "*.txt" << "*",
+                                      "Effects pipeline file", "the pipeline file read when the effects are 'pipeline "
+                                      "file' (read again when it changes)"));
+        if (!par.hasParameter(kEffectsPreview))
+            par.addParam(RichFloat(kEffectsPreview, 0.5f, "Effects preview scale while moving",
+                                   QString("effects layers at this fraction of the viewport while the camera moves "
+                                           "(%1..1; the full frame follows when it rests)").arg((double)PNPR_EFFECTS_SCALE_MIN)));
         if (!par.hasParameter(kPaper))
             par.addParam(RichColor(kPaper, QColor(255, 255, 255), "Paper colour", "background of the drawing"));
         if (!par.hasParameter(kLineWidth))
@@ -367,6 +402,7 @@ void DecoratePointnprPlugin::dropState(void *ctx)
     if (s->renderer && pnpr_meshlab::currentGLContext() == ctx) pnpr_renderer_destroy(s->renderer);
     pnpr_cloud_free(&s->cloud);
     pnpr_lines_free(&s->lines);
+    pnpr_effect_pipeline_free(&s->fx);
     delete s->settle;
     delete s;
 }
@@ -396,6 +432,8 @@ struct Params {
     float outlineWidth = 0;   /* 0 = the style's default */
     pnpr_tone_source toneSource = PNPR_TONE_AUTO;
     float toneGamma = 0;      /* 0 = the library's default */
+    QString effects;          /* "" none, a preset's name, or "file:PATH" */
+    float effectsPreview = 0.5f;
 };
 
 Params readParams(const RichParameterList *par)
@@ -425,13 +463,23 @@ Params readParams(const RichParameterList *par)
             if (i >= 0 && i < (int)PNPR_TONE_SOURCE_COUNT_) p.toneSource = (pnpr_tone_source)i;
         }
         if (par->hasParameter(kToneGamma)) p.toneGamma = par->getFloat(kToneGamma);
+        if (par->hasParameter(kEffects)) {
+            int i = par->getEnum(kEffects), np = 0;
+            const pnpr_effect_preset *pr = pnpr_effect_presets(&np);
+            if (i >= 1 && i <= np) p.effects = QString::fromUtf8(pr[i - 1].name);
+            else if (i == np + 1 && par->hasParameter(kEffectsFile)) p.effects = "file:" + par->getOpenFileName(kEffectsFile);
+        }
+        if (par->hasParameter(kEffectsPreview)) p.effectsPreview = par->getFloat(kEffectsPreview);
     }
+    if (!(p.effectsPreview >= PNPR_EFFECTS_SCALE_MIN && p.effectsPreview <= 1)) p.effectsPreview = 0.5f;
     if (!pnpr_option_in_range(drawOption("line-width"), p.lineWidth)) p.lineWidth = 0; /* the default */
     /* test-only override (tests/meshlab/run.sh): the style by name */
     if (const char *s = std::getenv("PNPR_MESHLAB_TEST_STYLE")) {
         pnpr_style st;
         if (pnpr_style_from_name(s, &st) == PNPR_OK) p.style = st;
     }
+    if (const char *e = std::getenv("PNPR_MESHLAB_TEST_EFFECTS")) /* a preset's name or file:PATH */
+        p.effects = QString::fromLocal8Bit(e);
     return p;
 }
 
@@ -633,6 +681,92 @@ void testSaveSnapshot()
     act->trigger(); /* MainWindow::saveSnapshot: dialog.exec() runs the poll above */
 }
 
+/* The effects pipeline of `what` ("" none, a preset's name, "file:PATH") in s->fx, kept while the
+ * preset, or the file with its modification time and size, stays the same (a file is read again
+ * after it was saved). False when there are no effects; msg then says why (empty for none), else
+ * what was loaded. */
+bool loadEffects(DecorateContextState *s, const QString &what, QString &msg)
+{
+    msg.clear();
+    if (what.isEmpty()) {
+        pnpr_effect_pipeline_free(&s->fx);
+        s->fxKey.clear();
+        return false;
+    }
+    bool file = what.startsWith("file:");
+    QString key = what;
+    if (file) {
+        QFileInfo fi(what.mid(5));
+        key += QString("@%1:%2").arg(fi.lastModified().toMSecsSinceEpoch()).arg(fi.size());
+    }
+    if (key == s->fxKey) return s->fx.count > 0;
+    s->fxKey = key;
+    pnpr_effect_pipeline_free(&s->fx);
+    pnpr_error err{};
+    pnpr_status st;
+    if (file) {
+        QByteArray path = what.mid(5).toLocal8Bit();
+        char *text = nullptr;
+        size_t size = 0;
+        st = pnpr_text_file_load(path.constData(), PNPR_EFFECT_PIPELINE_FILE_MAX, &text, &size, &err);
+        if (st == PNPR_OK) st = pnpr_effect_pipeline_parse(text, size, path.constData(), &s->fx, &err);
+        std::free(text);
+    } else {
+        QByteArray text = ("preset " + what + "\n").toUtf8();
+        st = pnpr_effect_pipeline_parse(text.constData(), (size_t)text.size(), "preset", &s->fx, &err);
+    }
+    if (st != PNPR_OK) {
+        msg = QString("effects %1: %2; drawn without").arg(file ? "file" : "preset").arg(status(st, err));
+        return false;
+    }
+    msg = QString("effects: %1, %2 node(s), layering %3")
+              .arg(file ? what.mid(5) : "preset " + what).arg(s->fx.count).arg(pnpr_layering_name(s->fx.layering));
+    return true;
+}
+
+/* Draws the effects frame (pnpr_renderer_effects, layers at `scale` of the viewport) and copies it
+ * into MeshLab's framebuffer `fb` at the viewport: the renderer's own frame holds the layers, so
+ * the host's framebuffer and viewport are bound again first. The fixed-function state that
+ * glDrawPixels goes through is in the caller's glPushAttrib; the program is restored here. */
+pnpr_status drawEffects(DecorateContextState *s, const pnpr_draw_options &o, const GLint vp[4], GLint fb, float scale,
+                        pnpr_effects_stats &es, pnpr_error *err)
+{
+    size_t row = (size_t)vp[2] * 4, n = row * (size_t)vp[3];
+    s->fxPixels.resize(n);
+    s->fxRows.resize(n);
+    pnpr_effects_options eo;
+    std::memset(&eo, 0, sizeof eo);
+    eo.scale = scale;
+    GLint program = 0, readFb = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFb);
+    pnpr_status st = pnpr_renderer_effects(s->renderer, nullptr, &o, &s->fx, vp[2], vp[3], &eo, s->fxPixels.data(), &es, err);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)fb);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)readFb);
+    glViewport(vp[0], vp[1], vp[2], vp[3]);
+    if (st != PNPR_OK) { glUseProgram((GLuint)program); return st; }
+    for (int y = 0; y < vp[3]; y++) /* GL rows go bottom-up */
+        std::memcpy(&s->fxRows[(size_t)(vp[3] - 1 - y) * row], &s->fxPixels[(size_t)y * row], row);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_ALPHA_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_TEXTURE_2D);
+    glDisable(GL_FOG);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+    glPixelZoom(1, 1);
+    glWindowPos2i(vp[0], vp[1]);
+    glDrawPixels(vp[2], vp[3], GL_RGBA, GL_UNSIGNED_BYTE, s->fxRows.data());
+    glUseProgram((GLuint)program);
+    return PNPR_OK;
+}
+
 bool writeImages(const QString &prefix, const std::vector<unsigned char> &rgba, int w, int h)
 {
     QImage img(w, h, QImage::Format_RGB888);
@@ -693,6 +827,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         lg.Logf(warning ? GLLogStream::WARNING : GLLogStream::FILTER, "NPR render: %s", qUtf8Printable(msg));
         std::fprintf(stderr, "pointnpr decorator: %s\n", qUtf8Printable(msg));
     };
+    QString fxKeyBefore = s->fxKey, fxMsg;
+    bool fxOn = loadEffects(s, prm.effects, fxMsg);
+    if (s->fxKey != fxKeyBefore && !fxMsg.isEmpty()) report(fxMsg, !fxOn);
 
     /* 1. the cloud, rebuilt from the layers when they changed */
     uint64_t sig = layerSignature(md);
@@ -734,6 +871,10 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     pnpr_plan_request req;
     std::memset(&req, 0, sizeof req);
     req.styles = 1u << prm.style;
+    if (fxOn) { /* the pipeline's nodes choose the styles of their layers */
+        req.styles = 0;
+        for (size_t k = 0; k < s->fx.count; k++) req.styles |= 1u << s->fx.nodes[k].style;
+    }
     req.sketch_variant = prm.variant;
     req.outline = prm.outline;
     pnpr_plan plan;
@@ -907,11 +1048,20 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (takeSnap) readViewport(vp, plain);
     glEnable(GL_POINT_SPRITE);
     pnpr_render_stats stats;
-    pnpr_status st = pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, &stats, &err);
+    std::memset(&stats, 0, sizeof stats);
+    pnpr_effects_stats es;
+    std::memset(&es, 0, sizeof es);
+    pnpr_status st = fxOn ? drawEffects(s, o, vp, fb, moving ? prm.effectsPreview : 0.0f, es, &err)
+                          : pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, &stats, &err);
     if (takeSnap && st == PNPR_OK) readViewport(vp, npr);
     glPopClientAttrib();
     glPopAttrib();
-    if (st != PNPR_OK) { report(QString("draw (%1) failed: %2").arg(pnpr_style_name(prm.style)).arg(status(st, err)), true); return; }
+    if (st != PNPR_OK) {
+        report(QString("draw (%1) failed: %2").arg(fxOn ? "effects" : pnpr_style_name(prm.style)).arg(status(st, err)), true);
+        return;
+    }
+    if (fxOn) report(QString("effects frame: %1 layers of %2x%3%4").arg(es.layers).arg(es.layer_width).arg(es.layer_height)
+                         .arg(moving ? " (preview while moving)" : ""), false);
     if (moving && s->settle) s->settle->start(300); /* a full-budget frame once the camera rests */
 
     if (snap && !s->snapshotDone) {
@@ -928,6 +1078,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
                 txt += QString("\nviewport %1 %2 %3 %4\nstyle %5\npoints %6 drawn %7 strokes %8\n")
                            .arg(vp[0]).arg(vp[1]).arg(vp[2]).arg(vp[3]).arg(pnpr_style_name(prm.style))
                            .arg(stats.points_total).arg(stats.points_drawn).arg(stats.strokes_drawn);
+                if (fxOn)
+                    txt += QString("effects %1 layers %2 of %3x%4\n").arg(prm.effects).arg(es.layers).arg(es.layer_width)
+                               .arg(es.layer_height);
                 ok = f.write(txt.toUtf8()) > 0;
                 f.close();
             }

@@ -1091,6 +1091,26 @@ decorate_styles)
   holds sketchy "default tone: <= 5% of the front face's samples dark" "${N_sketchy_DARKIN:-1} <= 0.05 && ${N_sketchy_NIN:-0} >= 500"
   holds darktone "tone gamma 0.25: >= 10% of the front face's samples dark and >= 4x the default tone's (${N_sketchy_DARKIN:-?})" \
     "${N_darktone_DARKIN:-0} >= 0.1 && ${N_darktone_DARKIN:-0} >= 4 * ${N_sketchy_DARKIN:-1}"
+
+  # 6. image-space effects (docs/effects.md). The cartoon preset from the settings (Effects = 1,
+  #    the library's first preset) over the points style: one layer (no labels), the toon's
+  #    outline from the layer's coverage inks the silhouette, the paper stays white. Then pipeline
+  #    files through the test hook PNPR_MESHLAB_TEST_EFFECTS=file:PATH: `preset ink` draws the
+  #    silhouette on paper (the faces white inside); a bad file is reported with FILE:LINE and the
+  #    style is drawn without effects (no crash).
+  gui fxcartoon points "$T/colour.ply" DrawStyle=0 Effects=1 && measure fxcartoon
+  expect_log fxcartoon "pointnpr decorator: effects: preset cartoon, 1 node\\(s\\), layering inpainted"
+  expect_log fxcartoon "pointnpr decorator: effects frame: 1 layers of [0-9]+x[0-9]+"
+  holds fxcartoon ">= 80% of the silhouette samples inked" "${N_fxcartoon_EDGE:-0} >= 0.8 && ${N_fxcartoon_NEDGE:-0} >= 100"
+  holds fxcartoon "paper-white background, >= 25% of the pixels restyled" "${N_fxcartoon_BG:-0} == 255 && ${N_fxcartoon_DIFFER:-0} >= 0.25"
+  printf 'preset ink\n' > "$T/ink.fx"
+  PNPR_MESHLAB_TEST_EFFECTS="file:$T/ink.fx" gui fxink points "$T/colour.ply" && measure fxink
+  expect_log fxink "pointnpr decorator: effects: $T/ink.fx, 1 node\\(s\\)"
+  holds fxink ">= 80% of the silhouette samples inked" "${N_fxink_EDGE:-0} >= 0.8"
+  holds fxink "the yellow half drawn as paper (mean grey >= 230)" "${N_fxink_MY:-0} >= 230"
+  printf 'node a labels 1\ntoon levels=99\n' > "$T/bad.fx"
+  PNPR_MESHLAB_TEST_EFFECTS="file:$T/bad.fx" gui fxbad points "$T/colour.ply"
+  expect_log fxbad "pointnpr decorator: effects file: .*bad.fx:2: .*levels.*; drawn without"
   ;;
 
 snapshot)
