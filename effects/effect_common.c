@@ -146,7 +146,7 @@ pnpr_status pnpr_fx_silhouette(const pnpr_image *src, float *r_ink, float *tmp, 
     st = pnpr_cv_gaussian(tmp, r_ink, w, h, 1, PNPR_FX_SILHOUETTE_WIDTH, err);
     if (st != PNPR_OK) return st;
     for (size_t i = 0; i < n; i++) {
-        float s = r_ink[i], ink = 4.0f * s * (1.0f - s) * 1.25f; /* 1 across the border's middle */
+        float s = r_ink[i], ink = 5.0f * s * (1.0f - s); /* 1 across the border's middle */
         r_ink[i] = ink < 0 ? 0 : ink > 1 ? 1 : ink;
     }
     return PNPR_OK;

@@ -293,20 +293,13 @@ static pnpr_status run_layers(pnpr_renderer *r, const pnpr_camera *camera, const
     return st;
 }
 
-static uint8_t to_byte(float v)
-{
-    float c = v < 0 ? 0 : v > 1 ? 1 : v;
-    return (uint8_t)(c * 255.0f + 0.5f);
-}
-
 /* The size of the layers: the image's, or `scale` of it (a preview), at least 1 x 1. */
-static void layer_size(const pnpr_effects_options *eopts, int width, int height, int *r_w, int *r_h)
+static void layer_size(float scale, int width, int height, int *r_w, int *r_h)
 {
-    float s = eopts ? eopts->scale : 0.0f;
     *r_w = width;
     *r_h = height;
-    if (!(s > 0.0f && s < 1.0f)) return;
-    int w = (int)((float)width * s + 0.5f), h = (int)((float)height * s + 0.5f);
+    if (!(scale > 0.0f && scale < 1.0f)) return;
+    int w = (int)((float)width * scale + 0.5f), h = (int)((float)height * scale + 0.5f);
     *r_w = w < 1 ? 1 : w;
     *r_h = h < 1 ? 1 : h;
 }
@@ -333,7 +326,7 @@ pnpr_status pnpr_renderer_effects(pnpr_renderer *r, const pnpr_camera *camera, c
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "effects: scale %g is outside %g..1 (0 = 1)", (double)scale,
                               (double)PNPR_EFFECTS_SCALE_MIN);
     int lw, lh, threaded = !(eopts && eopts->serial);
-    layer_size(eopts, width, height, &lw, &lh);
+    layer_size(scale, width, height, &lw, &lh);
     int preview = lw != width || lh != height;
     uint32_t *labels = NULL;
     size_t *nodes = NULL, nl = 0, nlayers = 0;
@@ -353,7 +346,7 @@ pnpr_status pnpr_renderer_effects(pnpr_renderer *r, const pnpr_camera *camera, c
     pthread_mutex_init(&f.mu, NULL);
     pthread_cond_init(&f.cv, NULL);
     uint8_t bg[4];
-    for (int c = 0; c < 4; c++) bg[c] = to_byte(base.background[c]);
+    for (int c = 0; c < 4; c++) bg[c] = pnpr_fx_byte(base.background[c]);
     st = pnpr_layers_clear(bg, &f.out, f.acc_depth, err);
     if (st == PNPR_OK) st = run_layers(r, camera, &base, &f, layers, nlayers, eopts, threaded, &stats.raster_s, err);
     if (st == PNPR_OK && preview) st = pnpr_cv_resize_rgba8(small, lw, lh, r_rgba, width, height, err);
