@@ -1,4 +1,5 @@
 /* The stage planner (include/pointnpr/plan.h). */
+#include <pointnpr/brush.h>
 #include <pointnpr/features.h>
 #include <pointnpr/plan.h>
 
@@ -39,6 +40,10 @@ static void style_needs(pnpr_plan *p, pnpr_style s, pnpr_sketch_variant v, int c
     case PNPR_STYLE_PAINTERLY:
         need(p, PNPR_WANT_DEGREE, "painterly sorts points into feature-degree bins");
         need(p, PNPR_WANT_CLASSES, "painterly puts directional strokes on top");
+        break;
+    case PNPR_STYLE_BRUSH:
+        p->brush = 1;
+        p->brush_why = "brush sizes its splats from kNN distances and fits normals per colour cluster";
         break;
     case PNPR_STYLE_LINES:
         p->lines = 1;
@@ -92,6 +97,7 @@ pnpr_status pnpr_plan_make(const pnpr_plan_request *req, const pnpr_cloud *cloud
     uint32_t features = p->needed & ~normal_bits;
     p->reused_features = features && pnpr_plan_cloud_has(cloud, features);
     p->reused_normals = cloud && cloud->normal;
+    if (p->brush && pnpr_brush_cloud_ready(cloud)) { p->brush = 0; p->brush_why = NULL; }
     p->want = p->needed;
     if (p->reused_features) p->want &= normal_bits;
     if (p->reused_normals) p->want &= ~normal_bits;

@@ -1,10 +1,11 @@
 /* Styles: names, needs and defaults (include/pointnpr/style.h). */
 #include <pointnpr/style.h>
 
+#include <stdio.h>
 #include <string.h>
 #include <strings.h>
 
-static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon", "painterly"};
+static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon", "painterly", "brush"};
 
 const char *pnpr_style_name(pnpr_style s)
 {
@@ -19,6 +20,19 @@ pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style)
     return PNPR_ERR_NOT_FOUND;
 }
 
+const char *pnpr_style_list(char *buf, size_t cap, const char *sep, uint32_t skip)
+{
+    size_t len = 0;
+    buf[0] = 0;
+    for (int s = 0; s < PNPR_STYLE_COUNT_ && len + 1 < cap; s++) {
+        if (skip & (1u << s)) continue;
+        int m = snprintf(buf + len, cap - len, "%s%s", len ? sep : "", style_names[s]);
+        if (m < 0) break;
+        len += (size_t)m < cap - len ? (size_t)m : cap - len - 1;
+    }
+    return buf;
+}
+
 int pnpr_style_needs_features(pnpr_style s)
 {
     return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE || s == PNPR_STYLE_PAINTERLY;
@@ -30,9 +44,9 @@ int pnpr_style_needs_features(pnpr_style s)
  * docs/benchmarks.md). */
 int pnpr_style_outline_default(pnpr_style s, float *r_width)
 {
-    /* points, sketchy, lines, stipple, cartoon, painterly: on by default; width when drawn */
-    static const int on[PNPR_STYLE_COUNT_] = {0, 0, 1, 0, 1, 0};
-    static const float width[PNPR_STYLE_COUNT_] = {2, 1.5f, 2.5f, 1.5f, 2.5f, 2};
+    /* points, sketchy, lines, stipple, cartoon, painterly, brush: on by default; width when drawn */
+    static const int on[PNPR_STYLE_COUNT_] = {0, 0, 1, 0, 1, 0, 0};
+    static const float width[PNPR_STYLE_COUNT_] = {2, 1.5f, 2.5f, 1.5f, 2.5f, 2, 2};
     int valid = (unsigned)s < PNPR_STYLE_COUNT_;
     if (r_width) *r_width = valid ? width[s] : 0;
     return valid && on[s];

@@ -50,8 +50,8 @@ static pnpr_status map_line(pnpr_style_map *m, size_t *cap, char *line, long ln,
     pnpr_style s;
     if (got != 2) return map_fail(err, name, ln, "want 'LABEL STYLE' or '* STYLE'");
     if (pnpr_style_from_name(b, &s) != PNPR_OK) {
-        char what[400];
-        snprintf(what, sizeof what, "unknown style '%s' (points, sketchy, lines, stipple, cartoon, painterly)", b);
+        char what[400], names[160];
+        snprintf(what, sizeof what, "unknown style '%s' (%s)", b, pnpr_style_list(names, sizeof names, ", ", 0));
         return map_fail(err, name, ln, what);
     }
     if (!strcmp(a, "*")) {

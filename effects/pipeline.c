@@ -314,9 +314,8 @@ static pnpr_status st_style(parser *ps, char **cur)
     const char *t = next_token(cur);
     pnpr_style s;
     if (!t || pnpr_style_from_name(t, &s) != PNPR_OK) {
-        char names[160] = "";
-        for (int i = 0; i < PNPR_STYLE_COUNT_; i++)
-            if (i != PNPR_STYLE_LINES) list_add(names, sizeof names, pnpr_style_name((pnpr_style)i));
+        char names[160];
+        pnpr_style_list(names, sizeof names, ", ", 1u << PNPR_STYLE_LINES);
         return t ? fail(ps, "unknown style '%.64s' (%s)", t, names) : fail(ps, "'style' wants a style (%s)", names);
     }
     if (s == PNPR_STYLE_LINES) return fail(ps, "the lines style cannot be a segment layer (profile lines have no labels)");

@@ -73,6 +73,14 @@ static const pnpr_option_desc outlier_table[] = {
       NULL, "far outliers: farther than this many robust extents"),
 };
 
+#define B(...) OPT("brush", pnpr_brush_options, __VA_ARGS__)
+static const pnpr_option_desc brush_table[] = {
+    B("brush-k", k, UINT, 8, 1, PNPR_BRUSH_K_MAX, 0, 0, NULL, "brush: splat size from the mean distance to this many neighbours"),
+    B("brush-eps", eps, FLOAT, 0, 0, UNB, EXCL, 0, "their std", "brush: the size's error term eps (units)"),
+    B("brush-normal-radius", normal_radius, FLOAT, 3, 0.5, 16, 0, 0, NULL,
+      "brush: normals fitted within the cluster over this many sizes"),
+};
+
 #define TABLE_FUNCTIONS(X, table)                                                                                     \
     const pnpr_option_desc *pnpr_##X##_option_table(size_t *r_count)                                                 \
     {                                                                                                                  \
@@ -87,6 +95,7 @@ TABLE_FUNCTIONS(rgbgrow, rgbgrow_table)
 TABLE_FUNCTIONS(components, components_table)
 TABLE_FUNCTIONS(hierarchy, hierarchy_table)
 TABLE_FUNCTIONS(outlier, outlier_table)
+TABLE_FUNCTIONS(brush, brush_table)
 
 #define DEFAULTS_FUNCTION(X, S, table)                                                                                \
     S pnpr_##X##_defaults(void)                                                                                        \
@@ -103,3 +112,4 @@ DEFAULTS_FUNCTION(rgbgrow, pnpr_rgbgrow_options, rgbgrow_table)
 DEFAULTS_FUNCTION(components, pnpr_components_options, components_table)
 DEFAULTS_FUNCTION(hierarchy, pnpr_hierarchy_options, hierarchy_table)
 DEFAULTS_FUNCTION(outlier, pnpr_outlier_options, outlier_table)
+DEFAULTS_FUNCTION(brush, pnpr_brush_options, brush_table)

@@ -39,6 +39,7 @@ static void release_gl(pnpr_renderer *r)
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
     if (r->info_tex) glDeleteTextures(1, &r->info_tex);
     pnpr_edges_release(&r->edges);
+    pnpr_brush_gl_release(&r->brush);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
 }
 
@@ -230,7 +231,9 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     pnpr_gl_state_save(&saved);
     pnpr_gl_state_neutral();
     pnpr_status st = PNPR_OK;
-    if (!link_programs(r, err) || pnpr_edges_create(&r->edges, err) != PNPR_OK) st = PNPR_ERR_UNSUPPORTED;
+    if (!link_programs(r, err) || pnpr_edges_create(&r->edges, err) != PNPR_OK ||
+        pnpr_brush_gl_create(&r->brush, err) != PNPR_OK)
+        st = PNPR_ERR_UNSUPPORTED;
     if (st == PNPR_OK) {
         find_uniforms(r);
         make_vertex_arrays(r);
@@ -286,7 +289,8 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
         !isfinite(o->dot_size) || o->dot_size < 0 || o->levels < 0 || o->levels == 1 || o->levels > 256 ||
         !isfinite(o->outline_width) || o->outline_width < 0 || o->outline_width > 64 ||
         !isfinite(o->line_min_px) || o->line_min_px < 0 ||
-        !isfinite(o->outline_jump) || o->outline_jump < 0 || !isfinite(o->outline_hole) || o->outline_hole < 0)
+        !isfinite(o->outline_jump) || o->outline_jump < 0 || !isfinite(o->outline_hole) || o->outline_hole < 0 ||
+        !isfinite(o->brush_scale) || o->brush_scale < 0 || !isfinite(o->brush_jitter))
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative (outline width at most 64 px)");
     if (o->outline < -1 || o->outline > 1)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: outline %d is not -1, 0 or 1", o->outline);
@@ -297,6 +301,9 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
     if (o->style == PNPR_STYLE_PAINTERLY && r->count > 0 && !r->paint_bins)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'painterly' needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)");
+    if (o->style == PNPR_STYLE_BRUSH && r->count > 0 && !r->brush.ready)
+        return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
+                              "renderer: style 'brush' needs the properties brush_size and brush_cluster (pnpr_brush_prepare)");
     if (o->style_map_count > 0 && !o->style_map)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style_map_count %zu without a style map", o->style_map_count);
     if (o->layer_label_count > 0 && !o->layer_labels)
@@ -312,6 +319,10 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
         if (s == PNPR_STYLE_PAINTERLY && !r->paint_bins)
             return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                                   "renderer: style map: label %u is 'painterly', which needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)",
+                                  (unsigned)o->style_map[i].label);
+        if (s == PNPR_STYLE_BRUSH && !r->brush.ready)
+            return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
+                                  "renderer: style map: label %u is 'brush', which needs the properties brush_size and brush_cluster (pnpr_brush_prepare)",
                                   (unsigned)o->style_map[i].label);
         if (pnpr_style_needs_features(s) && s != PNPR_STYLE_PAINTERLY && !r->has_features)
             return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
@@ -602,6 +613,8 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
         if (st != PNPR_OK) pnpr_error_set(err, st, "renderer: style map: out of memory");
     }
     free(vstyle);
+    int brush = f.n_draw > 0 && (f.mapped ? f.used[PNPR_STYLE_BRUSH] > 0 : f.o.style == PNPR_STYLE_BRUSH);
+    if (st == PNPR_OK && brush) st = pnpr_brush_gl_prepare(&r->brush, f.o.brush_preset, f.fw, f.fh, r->depth_rb, err);
     if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     clear_frame(r, &f);
     if (rec) record_frame(rec, &f);

@@ -7,11 +7,13 @@
  *                        stipple, lines, painterly, style maps)
  *   renderer_snapshot.c  read back, snapshots in tiles
  *   renderer_textures.c  the stroke and brush textures
+ *   brush_gl.c           the brush style (stroke-based splatting): programs, buffer, blending
  *   vector.c             reads a drawn frame back as paths (pnpr_renderer_drawing) */
 #ifndef PNPR_RENDERER_INTERNAL_H
 #define PNPR_RENDERER_INTERNAL_H
 
 #include "render_internal.h"
+#include "brush_gl.h"
 #include "edges.h"
 
 #include <pointnpr/options.h>
@@ -75,6 +77,7 @@ struct pnpr_renderer {
     GLuint fbo, color_tex, depth_rb;
     GLuint info_tex;     /* attachment 1: the mask's surface info (eye distance, depth extent, radius) */
     pnpr_edges edges;    /* outlines from it (edges.c) */
+    pnpr_brush_gl brush; /* the brush style (brush_gl.c) */
     int fb_w, fb_h;
     float max_point_size;
     GLint max_size;      /* min of GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS */

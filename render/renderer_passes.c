@@ -1,7 +1,7 @@
 /* The renderer's passes over one frame (docs/rendering.md): the visibility mask (pass 1, section
  * 4.3) shared by every style and by style maps, and the style passes: points, cartoon (5.4),
- * sketchy (5.1), stipple (5.4), lines (5.2), painterly (5.3), and style maps (intermingled
- * styles, figure 12). The frame is bound and cleared (renderer.c); each pass sets the GL state it
+ * sketchy (5.1), stipple (5.4), lines (5.2), painterly (5.3), brush (stroke-based splatting),
+ * and style maps (intermingled styles, figure 12). The frame is bound and cleared (renderer.c); each pass sets the GL state it
  * needs and leaves the programs' uniforms as it found them where later frames rely on it. */
 #include "renderer_internal.h"
 
@@ -335,6 +335,32 @@ static size_t draw_painterly(pnpr_renderer *r, const pnpr_frame_ctx *f, int filt
     return dabs;
 }
 
+/* ---- brush (stroke-based splatting) --------------------------------------------------------- */
+
+/* The brush style (Lopes et al.; brush_gl.c): the visibility mask into depth and colour (the
+ * point colours: an underpainting, so that no paper shows where the strokes' soft rims leave a
+ * pixel partly covered, e.g. along the near side of a depth jump) and the surface info when
+ * outlines follow, then the strokes of the queue prefixes depth-tested against it and
+ * blended order-independently over the frame. filter >= 0 (a style map): only the points of style
+ * `filter`; the shared mask is already drawn. Returns the strokes. */
+static size_t draw_brush(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter)
+{
+    if (filter < 0) {
+        splat_program(r, f);
+        mask_spec m = {f->mask_scale, -1, 0, 0, 0, f->outline, 1};
+        draw_mask(r, f, &m);
+    }
+    size_t first[GROUP_MAX + 1];
+    for (size_t g = 0; g < f->ng; g++) first[g] = r->group_start[g];
+    float jitter = f->o.brush_jitter < 0 ? 0.0f : f->o.brush_jitter;
+    pnpr_brush_pass p = {f->fc.view, f->fc.proj, f->o.brush_scale * f->point_scale * f->lod, jitter, filter,
+                         filter >= 0 ? filter + 1 : 0, r->fbo,
+                         r->vbo, r->style_vbo, first, f->gdraw, f->ng};
+    size_t n = pnpr_brush_gl_draw(&r->brush, &p);
+    glUseProgram(r->prog_splat);
+    return n;
+}
+
 /* ---- one style ------------------------------------------------------------------------------ */
 
 size_t pnpr_renderer_draw_single(pnpr_renderer *r, const pnpr_frame_ctx *f)
@@ -344,6 +370,7 @@ size_t pnpr_renderer_draw_single(pnpr_renderer *r, const pnpr_frame_ctx *f)
     int cartoon = s == PNPR_STYLE_CARTOON;
     size_t strokes = 0;
     if (f->n_draw > 0 && s == PNPR_STYLE_PAINTERLY) return draw_painterly(r, f, -1);
+    if (f->n_draw > 0 && s == PNPR_STYLE_BRUSH) return draw_brush(r, f, -1);
     if (f->n_draw > 0) {
         splat_program(r, f);
         if (s == PNPR_STYLE_LINES && o->faint > 0) {
@@ -391,7 +418,8 @@ static void draw_mapped_mask(pnpr_renderer *r, const pnpr_frame_ctx *f)
     splat_program(r, f);
     for (int s = 0; s < PNPR_STYLE_COUNT_; s++) {
         if (!f->used[s] || s == PNPR_STYLE_CARTOON) continue;
-        mask_spec m = {mask_scale, s, s + 1, s == PNPR_STYLE_PAINTERLY, 0, 0, 0};
+        /* brush: its underpainting (the point colours), as without a map */
+        mask_spec m = {mask_scale, s, s + 1, s == PNPR_STYLE_PAINTERLY, 0, 0, s == PNPR_STYLE_BRUSH};
         draw_mask(r, f, &m);
     }
     if (f->used[PNPR_STYLE_CARTOON]) { /* outline disks: depth and colour (ink) */
@@ -434,6 +462,10 @@ size_t pnpr_renderer_draw_mapped(pnpr_renderer *r, const pnpr_frame_ctx *f)
         glUseProgram(r->prog_paint);
         glUniform1i(r->up.style_filter, -1);
         glUseProgram(r->prog_splat);
+    }
+    if (used[PNPR_STYLE_BRUSH]) {
+        strokes += draw_brush(r, f, PNPR_STYLE_BRUSH);
+        glEnable(GL_DEPTH_TEST);
     }
     if (used[PNPR_STYLE_STIPPLE]) {
         glUniform1i(r->us_filter, PNPR_STYLE_STIPPLE);

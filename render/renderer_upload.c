@@ -5,6 +5,7 @@
 #include "gl_state.h"
 #include "../core/vec3.h"
 
+#include <pointnpr/brush.h>
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
 #include <pointnpr/outliers.h>
@@ -46,12 +47,20 @@ typedef struct upload_ctx {
     int paint;               /* painterly data built */
     uint32_t *vlabel, *paint_src; /* style maps: labels in queue order; painterly -> queue index */
     uint8_t *zeros;               /* the initial style bytes */
+    pnpr_brush_vertex *bverts;    /* brush: the brush attributes in queue order (NULL: no brush data) */
 } upload_ctx;
 
 static int cmp_float(const void *a, const void *b)
 {
     float x = *(const float *)a, y = *(const float *)b;
     return x < y ? -1 : x > y;
+}
+
+/* The median of v[0..n) (n > 0), sorting v. */
+static float median_float(float *v, size_t n)
+{
+    qsort(v, n, sizeof *v, cmp_float);
+    return v[n / 2];
 }
 
 /* radius[i] = distance from point i to its k-th nearest other point, capped at 4x the median
@@ -91,8 +100,7 @@ static pnpr_status spacing_radii(const float *xyz, size_t n, uint32_t k, int thr
     float *sorted = malloc(n * sizeof *sorted);
     if (!sorted) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     memcpy(sorted, radius, n * sizeof *sorted);
-    qsort(sorted, n, sizeof *sorted, cmp_float);
-    float med = sorted[n / 2];
+    float med = median_float(sorted, n);
     if (!(med > 0)) { /* mostly duplicates: the largest distance found, else 1 */
         med = sorted[n - 1] > 0 ? sorted[n - 1] : 1;
     }
@@ -374,6 +382,46 @@ static void fill_vertex(const upload_ctx *u, size_t q, pnpr_vertex *v)
     }
 }
 
+/* The brush attributes (stroke-based splatting, brush.h) in queue order when the cloud carries
+ * brush_size and brush_cluster: the size, and the stretch and layers of the point's cluster. */
+static pnpr_status brush_data(upload_ctx *u)
+{
+    const pnpr_cloud *c = u->cloud;
+    const pnpr_property *ps = pnpr_cloud_find_property(c, PNPR_PROP_BRUSH_SIZE);
+    const pnpr_property *pc = pnpr_cloud_find_property(c, PNPR_PROP_BRUSH_CLUSTER);
+    if (!ps || !pc || u->n == 0) return PNPR_OK;
+    size_t n = u->n;
+    uint32_t *cl = malloc(n * sizeof *cl);
+    float *stretch = malloc(n * sizeof *stretch);
+    uint8_t *layers = malloc(n);
+    u->bverts = malloc(n * sizeof *u->bverts);
+    pnpr_status st = PNPR_ERR_OUT_OF_MEMORY;
+    if (cl && stretch && layers && u->bverts) {
+        for (size_t j = 0; j < n; j++) {
+            double v = pnpr_type_get(pc->type, pc->data, u->src[j]);
+            cl[j] = v >= 0 && v < 4294967295.0 ? (uint32_t)v : 0xFFFFFFFFu;
+        }
+        st = pnpr_brush_cluster_shapes(u->xyz, cl, n, PNPR_BRUSH_SMALL_CLUSTER, stretch, layers);
+    }
+    /* sizes: capped at PNPR_BRUSH_SIZE_CAP x their median, as the disk radii are (a few isolated
+     * far points would otherwise paint washes across the picture) */
+    float *sz = (float *)cl; /* reuse: the labels are no longer needed */
+    size_t m = 0;
+    for (size_t j = 0; st == PNPR_OK && j < n; j++) {
+        double s = pnpr_type_get(ps->type, ps->data, u->src[j]);
+        if (isfinite(s) && s > 0) sz[m++] = (float)s;
+    }
+    float cap = m ? PNPR_BRUSH_SIZE_CAP * median_float(sz, m) : 0;
+    for (size_t q = 0; st == PNPR_OK && q < n; q++) {
+        uint32_t j = u->order[q];
+        double s = pnpr_type_get(ps->type, ps->data, u->src[j]);
+        float size = isfinite(s) && s > 0 ? (float)(s < cap ? s : cap) : 0.0f;
+        u->bverts[q] = (pnpr_brush_vertex){size, stretch[j], (float)layers[j]};
+    }
+    free(cl); free(stretch); free(layers);
+    return st;
+}
+
 /* The vertices, the painterly data, and for style maps the labels in queue order, the
  * painterly order's main indices and zero style bytes. */
 static pnpr_status upload_vertices(upload_ctx *u)
@@ -396,7 +444,8 @@ static pnpr_status upload_vertices(upload_ctx *u)
         for (size_t q = 0; q < n; q++) u->paint_src[q] = u->inv[u->porder[q]];
     }
     u->zeros = calloc(n ? n : 1, 1);
-    return u->zeros ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    if (!u->zeros) return PNPR_ERR_OUT_OF_MEMORY;
+    return brush_data(u);
 }
 
 /* The GL buffers: style bytes (zero), vertices, painterly vertices and colours. */
@@ -416,6 +465,7 @@ static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
     glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(n * sizeof *u->pverts) : 0, paint ? u->pverts : NULL, GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
     glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(u->nbins * n * 4) : 0, paint ? u->pcol : NULL, GL_STATIC_DRAW);
+    pnpr_brush_gl_upload(&r->brush, u->bverts, n);
     pnpr_gl_state_restore(&saved);
 }
 
@@ -454,7 +504,7 @@ static void upload_free(upload_ctx *u)
 {
     free(u->src); free(u->xyz); free(u->radius); free(u->group); free(u->order); free(u->verts); free(u->flat);
     free(u->nidx); free(u->nd2); free(u->porder); free(u->inv); free(u->pbin); free(u->pcol); free(u->pverts);
-    free(u->vlabel); free(u->paint_src); free(u->zeros); free(u->shade); free(u->grey);
+    free(u->vlabel); free(u->paint_src); free(u->zeros); free(u->shade); free(u->grey); free(u->bverts);
 }
 
 pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,

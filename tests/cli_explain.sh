@@ -27,6 +27,9 @@ expect "--style painterly" "dither" skip
 expect "--style cartoon" "segments" run
 expect "--style cartoon" "feature degree" skip
 expect "--style lines" "profile lines" run
+expect "--style brush" "brush sizes" run
+expect "--style brush" "kd-tree \+ knn" skip   # the brush stage has its own neighbourhoods
+expect "--style points" "brush sizes" skip
 expect "--style lines" "dither" skip
 expect "--segment components" "classify" skip
 expect "--features" "orient" run

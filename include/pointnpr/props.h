@@ -8,6 +8,8 @@
  *                                        directional, dithering point
  *   PNPR_PROP_FEATURE_CONFIDENCE  float  0..1, how well neighbouring feature points fit a line
  *   PNPR_PROP_FEATURE_DIR_X/Y/Z   float  the feature's direction (directional points)
+ *   PNPR_PROP_BRUSH_SIZE          float  stroke-based splatting: the splat size r + eps (brush.h)
+ *   PNPR_PROP_BRUSH_CLUSTER       uint   stroke-based splatting: the colour cluster (brush.h)
  *   PNPR_PROP_INTENSITY           ushort LAS intensity (text clouds: as read)
  *   PNPR_PROP_CLASSIFICATION      uchar  LAS classification
  *
@@ -27,6 +29,9 @@
 #define PNPR_PROP_FEATURE_DIR_Y "feature_dir_y"
 #define PNPR_PROP_FEATURE_DIR_Z "feature_dir_z"
 #define PNPR_PROP_FEATURE_DIR "feature_dir"
+
+#define PNPR_PROP_BRUSH_SIZE "brush_size"
+#define PNPR_PROP_BRUSH_CLUSTER "brush_cluster"
 
 #define PNPR_PROP_SEGMENT "segment"
 #define PNPR_PROP_LABEL "label"

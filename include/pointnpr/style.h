@@ -19,6 +19,9 @@ typedef enum pnpr_style {
                             * from enlarged pass-1 disks (section 5.4) */
     PNPR_STYLE_PAINTERLY,  /* brush dabs in blended colours, large to small over feature-degree bins,
                             * a stencil sky mask, directional strokes on top (section 5.3) */
+    PNPR_STYLE_BRUSH,      /* stroke-based splatting (Lopes et al.): Gaussian-sum brush strokes on
+                            * surface-aligned splats oriented by Householder frames, blended order-
+                            * independently (brush.h, docs/brush.md) */
     PNPR_STYLE_COUNT_
 } pnpr_style;
 
@@ -30,9 +33,13 @@ typedef enum pnpr_sketch_variant {
     PNPR_SKETCH_COUNT_
 } pnpr_sketch_variant;
 
-const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly"; "" if invalid */
+const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly", "brush"; "" if invalid */
 /* The style of a name, ignoring case ("Sketchy" is sketchy); PNPR_ERR_NOT_FOUND for others. */
 PNPR_NODISCARD pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
+/* The style names in order, joined by `sep` (", ", " | "), into buf (cap > 0 bytes, NUL-terminated,
+ * truncated to fit); styles whose bit (1u << style) is set in `skip` are left out. Returns buf.
+ * Messages and usage texts list the styles with it. */
+const char *pnpr_style_list(char *buf, size_t cap, const char *sep, uint32_t skip);
 /* Styles drawn from the feature classes (sketchy, stipple, painterly). */
 int pnpr_style_needs_features(pnpr_style style);
 /* Outline defaults shared by the renderer and the SVG export (docs/rendering.md, "Silhouettes and

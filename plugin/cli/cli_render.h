@@ -6,12 +6,14 @@
 
 #include "cli.h"
 
+#include <pointnpr/brush.h>
 #include <pointnpr/render.h>
 
 typedef struct cli_render_opts {
     pnpr_draw_options dopt;
     pnpr_upload_options uopt;
     pnpr_tone_options tone;
+    pnpr_brush_options bopt;      /* the brush stage's options (the plan runs it for the brush style) */
     double bg[3];                 /* 0..255 */
     int alpha, quiet, max_tile;
     cli_outliers outliers;

@@ -20,8 +20,24 @@
  * pnpr_upload_option_table), and their metavars: usage lines, defaults, ranges and parsing. */
 static const char *const draw_names[] = {"stroke-texture", "density", "point-scale", "line-width", "line-min",
                                          "dot-size", "queue-fade", "levels", "outline-scale", "outline-width",
-                                         "outline-jump", "outline-hole", "faint", NULL};
+                                         "outline-jump", "outline-hole", "faint", "brush-scale", "brush-jitter",
+                                         NULL};
 static const char *const upload_names[] = {"paint-bins", NULL};
+static const char *const brush_names[] = {"brush-k", "brush-eps", "brush-normal-radius", NULL};
+
+/* The brush presets' names, "flat | round | bristle", into buf. */
+static const char *brush_list(char *buf, size_t cap)
+{
+    size_t np, len = 0;
+    const pnpr_brush_preset *p = pnpr_brush_presets(&np);
+    buf[0] = 0;
+    for (size_t i = 0; i < np && len < cap; i++) {
+        int m = snprintf(buf + len, cap - len, "%s%s", i ? " | " : "", p[i].name);
+        if (m < 0) break;
+        len += (size_t)m;
+    }
+    return buf;
+}
 
 static void draw_usage(FILE *f, const char *name, const char *metavar)
 {
@@ -36,11 +52,14 @@ void cli_render_usage(FILE *f, int width, int height)
     pnpr_style_outline_default(PNPR_STYLE_LINES, &w_lines);
     pnpr_style_outline_default(PNPR_STYLE_CARTOON, &w_cartoon);
     pnpr_style_outline_default(PNPR_STYLE_SKETCHY, &w_sketchy);
-    size_t un;
-    const pnpr_option_desc *ut = pnpr_upload_option_table(&un);
+    size_t un, bn;
+    const pnpr_option_desc *ut = pnpr_upload_option_table(&un), *bt = pnpr_brush_option_table(&bn);
+    char styles[160], brushes[160];
     fprintf(f,
-            "  --style S            points | sketchy | lines | stipple | cartoon | painterly\n"
-            "                       (default points)\n"
+            "  --style S            %s\n"
+            "                       (default %s)\n",
+            pnpr_style_list(styles, sizeof styles, " | ", 0), pnpr_style_name((pnpr_style)0));
+    fprintf(f,
             "  --style-map FILE     intermingled styles: FILE has lines 'LABEL STYLE' (a segment label of\n"
             "                       IN, PLY property segment or label) and '* STYLE' (the default, else\n"
             "                       --style); '#' starts a comment\n"
@@ -93,6 +112,13 @@ void cli_render_usage(FILE *f, int width, int height)
     draw_usage(f, "outline-jump", "F");
     draw_usage(f, "outline-hole", "F");
     cli_table_usage(f, ut, un, "paint-bins", "N");
+    fprintf(f, "  --brush B            brush: %s (default %s; docs/brush.md)\n", brush_list(brushes, sizeof brushes),
+            pnpr_brush_presets(NULL)[0].name);
+    draw_usage(f, "brush-scale", "F");
+    draw_usage(f, "brush-jitter", "DEG");
+    cli_table_usage(f, bt, bn, "brush-k", "K");
+    cli_table_usage(f, bt, bn, "brush-eps", "E");
+    cli_table_usage(f, bt, bn, "brush-normal-radius", "F");
     draw_usage(f, "faint", "F");
     fprintf(f,
             "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
@@ -102,7 +128,8 @@ void cli_render_usage(FILE *f, int width, int height)
             "  --quiet              no progress on stderr\n"
             "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
             "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
-            "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels.\n");
+            "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels,\n"
+            "  brush sizes, colour clusters and normals for brush.\n");
     cli_outlier_usage(f);
     cli_columns_usage(f);
 }
@@ -159,12 +186,13 @@ static int tile_progress(void *user, const char *stage, double fraction)
 /* Runs the stage plan (pnpr_plan_make, the one `pointnpr explain` prints) for the styles this
  * frame draws: features (only the outputs the styles need, the dithering following `tone`) and
  * the cartoon's segments. Returns 0 after printing why. */
-static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, const pnpr_draw_options *dopt, const int *uses,
-                    const pnpr_tone_options *tone, int quiet, pnpr_progress prog)
+static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, const cli_render_opts *o, int quiet,
+                    pnpr_progress prog)
 {
+    const pnpr_draw_options *dopt = &o->dopt;
     pnpr_plan_request req = {0};
     for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
-        if (uses[s]) req.styles |= 1u << s;
+        if (o->uses[s]) req.styles |= 1u << s;
     req.sketch_variant = dopt->sketch_variant;
     req.outline = dopt->outline;
     pnpr_plan plan;
@@ -175,10 +203,22 @@ static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, const pn
         pnpr_features_options fo = {0};
         fo.progress = prog;
         fo.want = plan.want;
-        fo.tone = *tone;
+        fo.tone = o->tone;
         st = pnpr_compute_features(cloud, &fo, NULL);
     }
     if (st != PNPR_OK) { fprintf(stderr, "pointnpr %s: %s: features: %s\n", cmd, in, pnpr_status_string(st)); return 0; }
+    if (plan.brush && cloud->count > 0) {
+        if (!quiet) fprintf(stderr, "%s: preparing the brush strokes (sizes, colour clusters, normals)\n", in);
+        pnpr_brush_options bo = o->bopt;
+        bo.progress = prog;
+        pnpr_brush_stats bs;
+        pnpr_error err = {0};
+        if ((st = pnpr_brush_prepare(cloud, &bo, &bs, &err)) != PNPR_OK) {
+            fprintf(stderr, "pointnpr %s: %s: %s\n", cmd, in, err.message);
+            return 0;
+        }
+        if (!quiet) fprintf(stderr, "%s: %zu clusters, mean brush size %.4g\n", in, bs.clusters, bs.mean_size);
+    }
     if (plan.segments != PNPR_PLAN_SEGMENTS_JSEG || cloud->count == 0) return 1;
     if (!quiet) fprintf(stderr, "%s: segmenting the colours (JSEG) for the cartoon's flat regions (pointnpr segment saves them)\n", in);
     if ((st = pnpr_cloud_alloc_labels(cloud)) == PNPR_OK) {
@@ -223,8 +263,14 @@ static int style_option(cli_render_opts *o, const char *cmd, const char *a, cons
         if (0) {}
         else if (!strcmp(a, "--style")) {
             pnpr_style s;
-            if (pnpr_style_from_name(v, &s) != PNPR_OK) { BAD("--style wants points, sketchy, lines, stipple, cartoon or painterly, got '%s'\n", v); }
+            char names[160];
+            if (pnpr_style_from_name(v, &s) != PNPR_OK) { BAD("--style wants one of %s, got '%s'\n", pnpr_style_list(names, sizeof names, ", ", 0), v); }
             o->dopt.style = s; i++;
+        } else if (!strcmp(a, "--brush")) {
+            uint32_t b;
+            char names[160];
+            if (pnpr_brush_preset_find(v, &b) != PNPR_OK) { BAD("--brush wants %s, got '%s'\n", brush_list(names, sizeof names), v); }
+            o->dopt.brush_preset = (int)b; i++;
         } else if (v && !strcmp(a, "--style-map")) {
             o->style_map_path = v; i++;
         } else if (v && !strcmp(a, "--effects")) {
@@ -300,8 +346,11 @@ static int table_option(cli_render_opts *o, const char *cmd, int argc, char **ar
 {
     size_t dn, un;
     const pnpr_option_desc *dt = pnpr_draw_option_table(&dn), *ut = pnpr_upload_option_table(&un);
+    size_t bn;
+    const pnpr_option_desc *bt = pnpr_brush_option_table(&bn);
     int r = cli_table_option(dt, dn, draw_names, &o->dopt, cmd, argc, argv, ip);
     if (r == 0) r = cli_table_option(ut, un, upload_names, &o->uopt, cmd, argc, argv, ip);
+    if (r == 0) r = cli_table_option(bt, bn, brush_names, &o->bopt, cmd, argc, argv, ip);
     if (r > 0 && !strcmp(argv[*ip - 1], "--queue-fade") && o->dopt.queue_fade == 0) o->dopt.queue_fade = -1.0f;
     return r;
 }
@@ -389,7 +438,7 @@ int cli_render_start(cli_render_session *s, cli_render_opts *o, const char *cmd,
 {
     if (tone_up) memcpy(o->tone.up, tone_up, sizeof o->tone.up);
     o->uopt.tone = o->tone;
-    if (!run_plan(cmd, in, &s->cloud, &o->dopt, o->uses, &o->tone, o->quiet, s->prog)) return 0;
+    if (!run_plan(cmd, in, &s->cloud, o, o->quiet, s->prog)) return 0;
     pnpr_error err = {0};
     pnpr_status st = pnpr_gl_context_create(&s->ctx, &err);
     if (st == PNPR_OK) st = pnpr_renderer_create(NULL, &s->ren, &err);

@@ -14,7 +14,7 @@
 typedef struct row { const char *stage; int run; const char *why; } row;
 
 /* The rows of the plan, in pipeline order. */
-static int plan_rows(const pnpr_plan *p, int have_in, const char *segment_method, row *r)
+static int plan_rows(const pnpr_plan *p, int have_in, int brush_asked, const char *segment_method, row *r)
 {
     const uint32_t w = p->want, n = p->needed;
     const int oriented = (w & PNPR_WANT_NORMALS) != 0, normals = (w & (PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) != 0;
@@ -33,6 +33,8 @@ static int plan_rows(const pnpr_plan *p, int have_in, const char *segment_method
     int seg = segment_method ? 1 : p->segments == PNPR_PLAN_SEGMENTS_JSEG;
     r[k++] = (row){"segments", seg,
                    segment_method ? "requested (--segment)" : p->segments != PNPR_PLAN_SEGMENTS_NONE ? p->segments_why : "not requested"};
+    r[k++] = (row){"brush sizes", p->brush,
+                   p->brush ? p->brush_why : (brush_asked && have_in ? reuse : "no output draws brush strokes")};
     return k;
 }
 
@@ -43,7 +45,9 @@ int cli_explain(int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            printf("usage: pointnpr explain [IN] [--style points|sketchy|stipple|painterly|cartoon|lines]\n"
+            char names[160];
+            printf("usage: pointnpr explain [IN] [--style %s]\n", pnpr_style_list(names, sizeof names, "|", 0));
+            printf(
                    "                        [--sketch a|b|c] [--outline on|off] [--lines] [--segment METHOD]\n"
                    "                        [--features]\n"
                    "  prints the analysis stages the requested outputs need, and why; with IN, which of\n"
@@ -53,7 +57,8 @@ int cli_explain(int argc, char **argv)
         } else if (v && !strcmp(a, "--style")) {
             pnpr_style s;
             if (pnpr_style_from_name(v, &s) != PNPR_OK) {
-                fprintf(stderr, "pointnpr explain: unknown style '%s' (points, sketchy, stipple, painterly, cartoon, lines)\n", v);
+                char names[160];
+                fprintf(stderr, "pointnpr explain: unknown style '%s' (%s)\n", v, pnpr_style_list(names, sizeof names, ", ", 0));
                 return 2;
             }
             req.styles |= 1u << s;
@@ -87,12 +92,12 @@ int cli_explain(int argc, char **argv)
     pnpr_status st = pnpr_plan_make(&req, in ? &c : NULL, &p);
     pnpr_cloud_free(&c);
     if (st != PNPR_OK) { fprintf(stderr, "pointnpr explain: %s\n", pnpr_status_string(st)); return 2; }
-    row rows[8];
-    int nr = plan_rows(&p, in != NULL, segment_method, rows);
+    row rows[9];
+    int nr = plan_rows(&p, in != NULL, (req.styles >> PNPR_STYLE_BRUSH) & 1, segment_method, rows);
     printf("plan%s%s%s:\n", style ? " for --style " : "", style ? style : "", p.lines && !(style && !strcmp(style, "lines")) ? " + lines" : "");
     for (int r = 0; r < nr; r++) {
         printf("  %-16s %-5s %s", rows[r].stage, rows[r].run ? "run" : "skip", rows[r].why);
-        if (r == nr - 1 && rows[r].run) printf(" (method %s)", segment_method ? segment_method : "jseg");
+        if (!strcmp(rows[r].stage, "segments") && rows[r].run) printf(" (method %s)", segment_method ? segment_method : "jseg");
         printf("\n");
     }
     return 0;

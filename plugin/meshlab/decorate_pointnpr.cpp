@@ -67,6 +67,8 @@ const char *const kBudget = "PointNPR::PointBudget";
 const char *const kMotionBudget = "PointNPR::MotionBudget";
 const char *const kPaper = "PointNPR::PaperColor";
 const char *const kLineWidth = "PointNPR::LineWidth";
+const char *const kBrush = "PointNPR::Brush";
+const char *const kBrushScale = "PointNPR::BrushScale";
 const char *const kOutline = "PointNPR::Outline";
 const char *const kOutlineWidth = "PointNPR::OutlineWidth";
 const char *const kToneSource = "PointNPR::ToneSource";
@@ -78,7 +80,7 @@ const char *const kEffectsPreview = "PointNPR::EffectsPreview";
 /* enum index -> renderer style (the order shown in the dialog; new styles go at the end so that
  * saved indices keep their meaning). The labels are the library's names (pnpr_style_name). */
 const pnpr_style kStyles[] = {PNPR_STYLE_POINTS, PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE,
-                              PNPR_STYLE_CARTOON, PNPR_STYLE_LINES, PNPR_STYLE_PAINTERLY};
+                              PNPR_STYLE_CARTOON, PNPR_STYLE_LINES, PNPR_STYLE_PAINTERLY, PNPR_STYLE_BRUSH};
 const int kStyleCount = (int)(sizeof kStyles / sizeof kStyles[0]);
 static_assert(sizeof kStyles / sizeof kStyles[0] == PNPR_STYLE_COUNT_, "every library style is offered");
 
@@ -177,6 +179,7 @@ struct DecorateContextState {
     int failedToneSource = 0;     /*   only when the tone changes: a bad gamma fails it) */
     float failedToneGamma = 0;
     bool jsegFailed = false;
+    bool brushFailed = false;     /* the brush stage failed on these layers: not retried every frame */
     double up[3] = {0, 0, 1};     /* the scene's up (pnpr_scene_frame): where the tone's key light is */
     QString lastPlan;             /* the request whose plan was logged last */
     QString lastError;            /* the last message logged (not repeated every frame) */
@@ -315,7 +318,9 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
             par.addParam(RichEnum(kStyle, 1, names, "Style",
                                   "points: plain splats; sketchy: strokes along feature directions and hatches; "
                                   "stipple: ink dots; cartoon: flat colours (segments) and outlines; lines: profile "
-                                  "lines and outlines; painterly: brush dabs in the points' colours"));
+                                  "lines and outlines; painterly: brush dabs in the points' colours; brush: stroke-based "
+                                  "splatting, brush strokes on surface-aligned splats (colour clusters are computed "
+                                  "the first time)"));
         }
         if (!par.hasParameter(kVariant))
             par.addParam(RichEnum(kVariant, 0, QStringList() << "all (strokes + hatches)" << "directional strokes only"
@@ -377,6 +382,20 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
         if (!par.hasParameter(kLineWidth))
             par.addParam(RichFloat(kLineWidth, static_cast<float>(drawOption("line-width")->def), "Line width",
                                    QString("profile lines and sketch strokes, pixels, %1").arg(drawRange("line-width"))));
+        if (!par.hasParameter(kBrush)) {
+            size_t np = 0;
+            const pnpr_brush_preset *bp = pnpr_brush_presets(&np);
+            QStringList names;
+            QString tip = "brush style: the brush";
+            for (size_t i = 0; i < np; i++) {
+                names << QString::fromUtf8(bp[i].name);
+                tip += QString("; %1: %2").arg(bp[i].name).arg(bp[i].description);
+            }
+            par.addParam(RichEnum(kBrush, 0, names, "Brush", tip));
+        }
+        if (!par.hasParameter(kBrushScale))
+            par.addParam(RichFloat(kBrushScale, static_cast<float>(drawOption("brush-scale")->def), "Brush scale",
+                                   QString("brush style: %1, %2").arg(drawOption("brush-scale")->help).arg(drawRange("brush-scale"))));
     } catch (...) {
     }
 }
@@ -428,6 +447,8 @@ struct Params {
     int budget = 0, motionBudget = 200000;
     QColor paper = QColor(255, 255, 255);
     float lineWidth = 0;      /* 0 = the library's default (pnpr_draw_option_table) */
+    int brush = 0;            /* pnpr_brush_presets index */
+    float brushScale = 0;     /* 0 = the library's default */
     int outline = 0;          /* pnpr_draw_options.outline */
     float outlineWidth = 0;   /* 0 = the style's default */
     pnpr_tone_source toneSource = PNPR_TONE_AUTO;
@@ -452,6 +473,8 @@ Params readParams(const RichParameterList *par)
         if (par->hasParameter(kMotionBudget)) p.motionBudget = std::max(0, par->getInt(kMotionBudget));
         if (par->hasParameter(kPaper)) p.paper = par->getColor(kPaper);
         if (par->hasParameter(kLineWidth)) p.lineWidth = par->getFloat(kLineWidth);
+        if (par->hasParameter(kBrush)) p.brush = std::max(0, std::min(PNPR_BRUSH_PRESET_COUNT - 1, par->getEnum(kBrush)));
+        if (par->hasParameter(kBrushScale)) p.brushScale = par->getFloat(kBrushScale);
         if (par->hasParameter(kOutline)) {
             int i = par->getEnum(kOutline);
             if (i >= 0 && i < 3) p.outline = kOutlines[i];
@@ -473,6 +496,7 @@ Params readParams(const RichParameterList *par)
     }
     if (!(p.effectsPreview >= PNPR_EFFECTS_SCALE_MIN && p.effectsPreview <= 1)) p.effectsPreview = 0.5f;
     if (!pnpr_option_in_range(drawOption("line-width"), p.lineWidth)) p.lineWidth = 0; /* the default */
+    if (!pnpr_option_in_range(drawOption("brush-scale"), p.brushScale)) p.brushScale = 0;
     /* test-only override (tests/meshlab/run.sh): the style by name */
     if (const char *s = std::getenv("PNPR_MESHLAB_TEST_STYLE")) {
         pnpr_style st;
@@ -845,6 +869,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         s->ownFeatures = s->ownDither = false;
         s->failedWant = 0;
         s->jsegFailed = false;
+        s->brushFailed = false;
         s->lastPlan.clear();
         pnpr_lines_free(&s->lines);
         s->linesReady = false;
@@ -905,6 +930,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         else if (plan.segments == PNPR_PLAN_SEGMENTS_INPUT) parts << QString("segment labels reused (%1)").arg(plan.segments_why);
         else if (plan.segments == PNPR_PLAN_SEGMENTS_SHADE) parts << QString("shading bands (%1)").arg(plan.segments_why);
         if (plan.lines) parts << QString("profile lines (%1)").arg(plan.lines_why ? plan.lines_why : "");
+        if (plan.brush) parts << QString("brush sizes and clusters (%1)").arg(plan.brush_why);
         /* logged once per request and cloud (not again when its own results arrive) */
         QString key = QString("%1 %2 %3 %4").arg(s->signature).arg((int)prm.style).arg((int)prm.variant).arg(prm.outline);
         if (key != s->lastPlan) {
@@ -962,6 +988,22 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
             s->needUpload = true;
             report(QString("%1 segments (JSEG, %2 points, %3 ms) for the %4 style")
                        .arg(info.segment_count).arg(s->cloud.count).arg(t.elapsed()).arg(pnpr_style_name(prm.style)), false);
+        }
+    }
+    if (plan.brush && !s->brushFailed) {
+        QElapsedTimer t;
+        t.start();
+        pnpr_brush_stats bs;
+        pnpr_error berr;
+        std::memset(&berr, 0, sizeof berr);
+        pnpr_status st = pnpr_brush_prepare(&s->cloud, nullptr, &bs, &berr);
+        if (st != PNPR_OK) {
+            s->brushFailed = true;
+            report("brush preparation failed: " + status(st, berr), true);
+        } else {
+            s->needUpload = true;
+            report(QString("brush strokes prepared (%1 colour clusters, %2 points, %3 ms)")
+                       .arg(bs.clusters).arg(s->cloud.count).arg(t.elapsed()), false);
         }
     }
     if (s->needUpload) {
@@ -1023,6 +1065,8 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (moving && prm.motionBudget > 0 && (prm.budget == 0 || prm.motionBudget < prm.budget))
         o.budget = (size_t)prm.motionBudget;
     o.line_width = prm.lineWidth;
+    o.brush_preset = prm.brush;
+    o.brush_scale = prm.brushScale;
     o.stroke_width = prm.lineWidth;
     o.outline = prm.outline;
     o.outline_width = prm.outlineWidth;

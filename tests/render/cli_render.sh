@@ -93,6 +93,15 @@ check '[ $? -eq 0 ] && cmp -s "$dir/empty.png" "$dir/empty-lines.png"' "empty cl
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/paint.png")" -eq 120 ]' "painterly renders (--paint-bins 3)"
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --style painterly --paint-bins 17 > /dev/null 2>&1
 check '[ $? -eq 2 ]' "--paint-bins 17 is a usage error"
+# brush (stroke-based splatting): sizes, clusters and normals prepared on the fly; presets by name
+"$bin" render "$dir/cube.ply" -o "$dir/brush.png" --size 120x90 --style brush --brush bristle --brush-scale 2 2> "$dir/brush.txt"
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/brush.png")" -eq 120 ] && grep -q "clusters, mean brush size" "$dir/brush.txt"' "brush renders (--brush bristle, the stage reported)"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --style brush --brush sponge 2> "$dir/brush-bad.txt"
+check '[ $? -eq 2 ] && grep -q "flat | round | bristle" "$dir/brush-bad.txt"' "--brush sponge: a usage error naming the presets"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --style brush --brush-k 65 > /dev/null 2>&1
+check '[ $? -eq 2 ]' "--brush-k 65 is a usage error"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --style Brushy 2> "$dir/style-bad.txt"
+check '[ $? -eq 2 ] && grep -q "painterly, brush" "$dir/style-bad.txt"' "--style Brushy: the message lists the library's styles"
 # tiled snapshots: forced 64-pixel tiles report progress per tile; an 8K image (7680x4320) renders
 "$bin" render "$dir/cube.ply" -o "$dir/tiled.png" --size 200x150 --max-tile 64 2> "$dir/tiles.txt"
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/tiled.png")" -eq 200 ] && [ "$(grep -c "^render: tile [0-9]*/[0-9]*" "$dir/tiles.txt")" -ge 12 ]' "--max-tile 64: tiles with progress per tile"

@@ -11,6 +11,7 @@
 #include "testutil.h"
 #include "quality.h"
 
+#include <pointnpr/brush.h>
 #include <pointnpr/camera_path.h>
 #include <pointnpr/features.h>
 #include <pointnpr/io.h>
@@ -154,6 +155,7 @@ static int prepare(pnpr_renderer *r, pnpr_cloud *c, pnpr_camera_path *path)
     pnpr_error err = {0};
     /* the scene as a file, for the pictures of docs/export.md (pointnpr animate) */
     CHECK_STATUS(pnpr_write_file(PNPR_TEST_SCRATCH "/coherence-scene.ply", c, NULL, &err), PNPR_OK);
+    CHECK_STATUS(pnpr_brush_prepare(c, NULL, NULL, NULL), PNPR_OK); /* the brush style's data */
     CHECK_STATUS(pnpr_renderer_set_cloud(r, c, NULL, &err), PNPR_OK);
     pnpr_polylines lines = {0};
     CHECK_STATUS(pnpr_profile_lines(c, NULL, &lines, NULL), PNPR_OK);

@@ -3,6 +3,7 @@
  * style: snapshots compared bytewise. Exits 77 (skipped) without headless EGL / GL 3.3. */
 #include "testutil.h"
 
+#include <pointnpr/brush.h>
 #include <pointnpr/features.h>
 #include <pointnpr/options.h>
 #include <pointnpr/render.h>
@@ -36,6 +37,7 @@ int main(void)
     for (size_t i = 0; i < c.count; i++)
         for (int k = 0; k < 3; k++) c.rgb[3 * i + k] = (uint8_t)((i * (k + 3) * 37) % 230);
     CHECK_STATUS(pnpr_compute_features(&c, NULL, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_brush_prepare(&c, NULL, NULL, NULL), PNPR_OK); /* the brush style's data */
     uint8_t *a = malloc(W * H * 4), *b = malloc(W * H * 4);
     const pnpr_upload_options uz = {0}, ud = pnpr_upload_defaults();
     for (int u = 0; r && u < 2; u++) {
