@@ -1040,8 +1040,10 @@ decorate_styles)
   BASECONF=$(find "$T/home-cartoon/.config" -name '*.conf' | head -n 1)
   [[ -f "$BASECONF" ]] || die "MeshLab wrote no settings file under $T/home-cartoon/.config"
   conf_has() { grep -q "^PointNPR%3A%3A$1=.*$2" "$BASECONF" || fail "settings: PointNPR::$1 lacks /$2/"; }
-  conf_has DrawStyle 'enum_cardinality=\\"6\\"'
+  conf_has DrawStyle 'enum_cardinality=\\"7\\"'
   conf_has DrawStyle 'enum_val5=\\"painterly\\"'
+  conf_has DrawStyle 'enum_val6=\\"brush\\"'
+  conf_has Brush 'enum_val2=\\"bristle\\"'
   conf_has DrawStyle ' value=\\"1\\"'
   conf_has Outline 'enum_cardinality=\\"3\\"'
   conf_has Outline 'enum_val2=\\"off\\"'
@@ -1079,6 +1081,14 @@ decorate_styles)
     "(${N_painterly_MY:-0} - $INMY)^2 <= 400 && (${N_painterly_MB:-0} - $INMB)^2 <= 400"
   holds painterly "no paper or ink inside: <= 2% dark samples" "${N_painterly_DARKIN:-1} <= 0.02 && ${N_painterly_NIN:-0} >= 500"
   holds painterly "paper-white background, >= 25% of the pixels restyled" "${N_painterly_BG:-0} == 255 && ${N_painterly_DIFFER:-0} >= 0.25"
+  # 4b. brush (settings): the brush stage planned and run, strokes in the points' colours, no paper inside
+  gui brush brush "$T/colour.ply" DrawStyle=6 && measure brush
+  expect_log brush "pointnpr decorator: plan for the brush style: .*brush sizes and clusters"
+  expect_log brush "pointnpr decorator: brush strokes prepared \\([0-9]+ colour clusters, 15002 points, [0-9]+ ms\\)"
+  grep -q "pointnpr decorator: draw (brush) failed" "$T/brush.log" && fail "'brush': the draw failed"
+  holds brush "yellow half painted near its colour (grey $INMY +- 20), blue half too ($INMB +- 20)" \
+    "(${N_brush_MY:-0} - $INMY)^2 <= 400 && (${N_brush_MB:-0} - $INMB)^2 <= 400"
+  holds brush "no paper or ink inside: <= 2% dark samples" "${N_brush_DARKIN:-1} <= 0.02 && ${N_brush_NIN:-0} >= 500"
 
   # 5. Tone gamma (settings) reaches the dithering points: sketchy on the colourless cube, whose
   #    front face is lit (light tone: few hatches at the library's default curve); gamma 0.25

@@ -6,6 +6,7 @@
  * for the styles with strokes the vector export (drawing, SVG, PDF to DIR): times and sizes. */
 #include "testutil.h"
 
+#include <pointnpr/brush.h>
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
 #include <pointnpr/io.h>
@@ -13,6 +14,7 @@
 
 #include <epoxy/gl.h>
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -75,24 +77,28 @@ int main(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
     int w = 1024, h = 768, frames = 7;
+    double gen_points = 1e6;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--size") && i + 1 < argc) { if (sscanf(argv[++i], "%dx%d", &w, &h) != 2) return 2; }
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
         else if (!strcmp(argv[i], "--frames") && i + 1 < argc) frames = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--points") && i + 1 < argc) gen_points = atof(argv[++i]);
         else in = argv[i];
     }
-    if (frames < 1 || frames > 1000 || w < 1 || h < 1) return 2;
+    if (frames < 1 || frames > 1000 || w < 1 || h < 1 || !(gen_points >= 6 && gen_points <= 1e9)) return 2;
     pnpr_cloud cloud = {0};
     pnpr_error err = {0};
     double t0 = now();
     if (in) {
         if (pnpr_read_file(in, NULL, &cloud, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
     } else {
-        /* 6 faces of (1/h)^2 points: h = 1/408 gives 1,000,000 points (+ shared edges) */
+        /* 6 faces of (1/h)^2 points: h = 1/408 gives 1,000,000 points (+ shared edges); in tiles
+         * of 8 x 8 x 8 colours (the brush style's clusters) */
         static const double off[3] = {0, 0, 0};
-        if (pnpr_test_cube(&cloud, 1.0, 1.0 / 408, 0.0004, off, 11) != PNPR_OK) return 1;
+        if (pnpr_test_cube(&cloud, 1.0, 1.0 / floor(sqrt(gen_points / 6)), 0.0004, off, 11) != PNPR_OK) return 1;
         if (pnpr_cloud_alloc_rgb(&cloud) != PNPR_OK) return 1;
-        memset(cloud.rgb, 170, cloud.count * 3);
+        for (size_t i = 0; i < cloud.count; i++)
+            for (int c = 0; c < 3; c++) cloud.rgb[3 * i + c] = (uint8_t)(90 + 20 * ((int)floor(cloud.xyz[3 * i + c] * 8 + 4) & 3));
     }
     double t_read = now() - t0;
     t0 = now();
@@ -101,6 +107,10 @@ int main(int argc, char **argv)
         if (pnpr_compute_features(&cloud, &fo, NULL) != PNPR_OK) { fprintf(stderr, "features failed\n"); return 1; }
     }
     double t_feat = now() - t0;
+    t0 = now();
+    pnpr_brush_stats bs;
+    if (pnpr_brush_prepare(&cloud, NULL, &bs, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
+    double t_brush = now() - t0;
 
     pnpr_gl_context *ctx = NULL;
     if (pnpr_gl_context_create(&ctx, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
@@ -122,8 +132,9 @@ int main(int argc, char **argv)
     const char *renderer_name = (const char *)glGetString(GL_RENDERER);
     printf("cloud: %s, %zu points; %dx%d; %s; median of %d frames (after 1 warm-up)\n",
            in ? in : "generated noisy cube", cloud.count, w, h, renderer_name ? renderer_name : "?", frames);
-    printf("read %.2f s, features %.2f s, upload (kNN spacing + queue) %.2f s, profile lines + upload %.2f s\n",
-           t_read, t_feat, t_upload, t_lines);
+    printf("read %.2f s, features %.2f s, brush preparation %.2f s (%zu clusters), upload (kNN spacing + queue) %.2f s, "
+           "profile lines + upload %.2f s\n",
+           t_read, t_feat, t_brush, bs.clusters, t_upload, t_lines);
     printf("| style | points drawn | strokes | ms/frame | x points |%s\n|---|---:|---:|---:|---:|%s\n",
            out ? " animate frame: + read back + PNG, ms |" : "", out ? "---:|" : "");
     uint8_t *px = out ? malloc((size_t)w * h * 4) : NULL;
@@ -142,6 +153,7 @@ int main(int argc, char **argv)
         {"cartoon", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0, 0},
         {"cartoon, outline off", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0, -1},
         {"painterly", PNPR_STYLE_PAINTERLY, PNPR_SKETCH_ALL, 0, 0},
+        {"brush", PNPR_STYLE_BRUSH, PNPR_SKETCH_ALL, 0, 0},
     };
     double base = 0;
     double *ms = malloc(sizeof(double) * (size_t)frames);
