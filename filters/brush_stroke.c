@@ -35,12 +35,13 @@ void pnpr_householder_frame(const float n[3], float r_t[3], float r_b[3])
     }
 }
 
-/* The paper's figure 4 b-d (theta_dev and jitter are ours: the paper bounds them but gives no
- * values). */
+/* The paper's figure 4 c, d, b (theta_dev and jitter are ours: the paper bounds them but gives no
+ * values). bristle first, the default: an illustrator's review of the pictures (docs/brush.md)
+ * found it the one whose strokes read as paint on stone and foliage alike. */
 static const pnpr_brush_preset presets[] = {
+    {"bristle", "nine spread Gaussians, separate filaments (paper fig. 4 c)", {1, 0.38f, 2.7f, 0.142f, 0.071f, 9, 10, 0.15f}},
     {"flat", "six Gaussians, a broad flat brush (paper fig. 4 d)", {2.27f, 0.3f, 2.4f, 0.099f, 0.1259f, 6, 10, 0.15f}},
     {"round", "nine close Gaussians, one dense round dab (paper fig. 4 b)", {8, 0.03f, 3, 0.114f, 0.0989f, 9, 10, 0.15f}},
-    {"bristle", "nine spread Gaussians, separate filaments (paper fig. 4 c)", {1, 0.38f, 2.7f, 0.142f, 0.071f, 9, 10, 0.15f}},
 };
 
 _Static_assert(sizeof presets / sizeof presets[0] == PNPR_BRUSH_PRESET_COUNT, "PNPR_BRUSH_PRESET_COUNT");

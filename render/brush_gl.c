@@ -107,8 +107,8 @@ static pnpr_status ensure_targets(pnpr_brush_gl *b, int w, int h, GLuint depth_r
     }
     glBindFramebuffer(GL_FRAMEBUFFER, b->fbo);
     if (b->w != w || b->h != h) {
-        target_texture(b->accum_tex, GL_RGBA16F, GL_RGBA, w, h);
-        target_texture(b->optical_tex, GL_R16F, GL_RED, w, h);
+        target_texture(b->accum_tex, GL_RGBA32F, GL_RGBA, w, h);
+        target_texture(b->optical_tex, GL_R32F, GL_RED, w, h);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, b->accum_tex, 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, b->optical_tex, 0);
         b->w = w;

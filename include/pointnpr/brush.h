@@ -106,7 +106,7 @@ typedef struct pnpr_brush_preset {
 /* How many presets there are (pnpr_brush_presets). */
 #define PNPR_BRUSH_PRESET_COUNT 3
 
-/* The presets in order (the parameters of the paper's figure 4 b-d); index 0 is the default. */
+/* The presets in order (the parameters of the paper's figure 4 c, d, b); index 0 is the default. */
 const pnpr_brush_preset *pnpr_brush_presets(size_t *r_count);
 /* The preset index of a name (case ignored); PNPR_ERR_NOT_FOUND. */
 PNPR_NODISCARD pnpr_status pnpr_brush_preset_find(const char *name, uint32_t *r_index);

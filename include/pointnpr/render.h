@@ -137,7 +137,7 @@ typedef struct pnpr_draw_options {
                             * (0 = PNPR_QUEUE_FADE; negative = none: they pop) */
     int paint_no_sky_mask; /* painterly: no stencil test in the large passes (paper fig. 8 left) */
     int paint_no_strokes;  /* painterly: no directional strokes on top */
-    int brush_preset;      /* brush: the brush (pnpr_brush_presets index, brush.h; 0 = flat) */
+    int brush_preset;      /* brush: the brush (pnpr_brush_presets index, brush.h; 0 = bristle) */
     float brush_scale;     /* brush: a splat's half-size in brush_size units (r + eps) */
     float brush_jitter;    /* brush: each stroke turns by a per-point angle of at most this many
                             * degrees (negative = none) */
