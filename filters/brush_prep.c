@@ -148,9 +148,11 @@ pnpr_status pnpr_brush_prepare(pnpr_cloud *cloud, const pnpr_brush_options *opts
     if (n && (st = clusters(cloud, &o, label, &nclusters)) != PNPR_OK) goto done;
     if (fit && (st = pnpr_parallel_for(n, 2048, o.threads, normals_range, &j, &o.progress, "normals")) != PNPR_OK)
         goto done;
-    pnpr_property *ps = NULL, *pc = NULL;
-    if ((st = pnpr_cloud_add_property(cloud, PNPR_PROP_BRUSH_SIZE, PNPR_TYPE_FLOAT32, &ps)) != PNPR_OK) goto done;
-    if ((st = pnpr_cloud_add_property(cloud, PNPR_PROP_BRUSH_CLUSTER, PNPR_TYPE_UINT32, &pc)) != PNPR_OK) goto done;
+    if ((st = pnpr_cloud_add_property(cloud, PNPR_PROP_BRUSH_SIZE, PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK) goto done;
+    if ((st = pnpr_cloud_add_property(cloud, PNPR_PROP_BRUSH_CLUSTER, PNPR_TYPE_UINT32, NULL)) != PNPR_OK) goto done;
+    /* found after both are added: adding one may move the property array */
+    pnpr_property *ps = pnpr_cloud_find_property(cloud, PNPR_PROP_BRUSH_SIZE);
+    pnpr_property *pc = pnpr_cloud_find_property(cloud, PNPR_PROP_BRUSH_CLUSTER);
     if (n) {
         memcpy(ps->data, size, n * sizeof *size);
         memcpy(pc->data, label, n * sizeof *label);
