@@ -20,6 +20,12 @@ void pnpr_error_prefix_path(pnpr_error *err, const char *path);
  * past it. 1: a line; 0: the end of the text; -1: a line of cap - 1 characters or more. */
 int pnpr_text_line(const char *text, size_t size, size_t *pos, char *buf, size_t cap);
 
+/* Joins the `count` names (those whose bit i is set in `skip` left out, i < 32) with `sep` into
+ * buf (cap > 0 bytes, NUL-terminated, truncated to fit). Returns buf. The lists of names in
+ * messages and usage texts (styles, brush presets). */
+const char *pnpr_join_names(char *buf, size_t cap, const char *sep, const char *const *names, size_t count,
+                            uint32_t skip);
+
 /* Monotonic clock in seconds. */
 double pnpr_now(void);
 

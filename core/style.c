@@ -1,7 +1,8 @@
 /* Styles: names, needs and defaults (include/pointnpr/style.h). */
 #include <pointnpr/style.h>
 
-#include <stdio.h>
+#include "internal.h"
+
 #include <string.h>
 #include <strings.h>
 
@@ -22,15 +23,7 @@ pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style)
 
 const char *pnpr_style_list(char *buf, size_t cap, const char *sep, uint32_t skip)
 {
-    size_t len = 0;
-    buf[0] = 0;
-    for (int s = 0; s < PNPR_STYLE_COUNT_ && len + 1 < cap; s++) {
-        if (skip & (1u << s)) continue;
-        int m = snprintf(buf + len, cap - len, "%s%s", len ? sep : "", style_names[s]);
-        if (m < 0) break;
-        len += (size_t)m < cap - len ? (size_t)m : cap - len - 1;
-    }
-    return buf;
+    return pnpr_join_names(buf, cap, sep, style_names, PNPR_STYLE_COUNT_, skip);
 }
 
 int pnpr_style_needs_features(pnpr_style s)

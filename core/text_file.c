@@ -57,3 +57,17 @@ pnpr_status pnpr_text_file_load(const char *path, size_t max_size, char **r_text
     *r_size = size;
     return PNPR_OK;
 }
+
+const char *pnpr_join_names(char *buf, size_t cap, const char *sep, const char *const *names, size_t count,
+                            uint32_t skip)
+{
+    size_t len = 0;
+    buf[0] = 0;
+    for (size_t i = 0; i < count && len + 1 < cap; i++) {
+        if (i < 32 && (skip & (1u << i))) continue;
+        int m = snprintf(buf + len, cap - len, "%s%s", len ? sep : "", names[i]);
+        if (m < 0) break;
+        len += (size_t)m < cap - len ? (size_t)m : cap - len - 1;
+    }
+    return buf;
+}

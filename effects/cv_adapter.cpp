@@ -109,24 +109,25 @@ extern "C" pnpr_status pnpr_cv_sobel(const float *src, float *dx, float *dy, int
     });
 }
 
+/* One cv::cvtColor conversion `code` of 3-channel float images, named `what` in messages. */
+static pnpr_status convert_colour(const float *src, float *dst, int w, int h, int code, const char *what, pnpr_error *err)
+{
+    pnpr_status st = check_args(src, dst, w, h, 3, what, err);
+    if (st != PNPR_OK) return st;
+    return guarded(what, err, [&] {
+        cv::Mat out = wrap(dst, w, h, 3);
+        cv::cvtColor(wrap(src, w, h, 3), out, code);
+    });
+}
+
 extern "C" pnpr_status pnpr_cv_rgb_to_lab(const float *rgb, float *lab, int w, int h, pnpr_error *err)
 {
-    pnpr_status st = check_args(rgb, lab, w, h, 3, "RGB to Lab", err);
-    if (st != PNPR_OK) return st;
-    return guarded("RGB to Lab", err, [&] {
-        cv::Mat out = wrap(lab, w, h, 3);
-        cv::cvtColor(wrap(rgb, w, h, 3), out, cv::COLOR_RGB2Lab);
-    });
+    return convert_colour(rgb, lab, w, h, cv::COLOR_RGB2Lab, "RGB to Lab", err);
 }
 
 extern "C" pnpr_status pnpr_cv_lab_to_rgb(const float *lab, float *rgb, int w, int h, pnpr_error *err)
 {
-    pnpr_status st = check_args(lab, rgb, w, h, 3, "Lab to RGB", err);
-    if (st != PNPR_OK) return st;
-    return guarded("Lab to RGB", err, [&] {
-        cv::Mat out = wrap(rgb, w, h, 3);
-        cv::cvtColor(wrap(lab, w, h, 3), out, cv::COLOR_Lab2RGB);
-    });
+    return convert_colour(lab, rgb, w, h, cv::COLOR_Lab2RGB, "Lab to RGB", err);
 }
 
 extern "C" pnpr_status pnpr_cv_resize_rgba8(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh,

@@ -9,6 +9,8 @@
  * theta_dev from 0; the outer 8% of the square fade to 0 so that no stroke ends in a hard edge. */
 #include <pointnpr/brush.h>
 
+#include "../core/internal.h"
+
 #include <math.h>
 #include <stdint.h>
 #include <strings.h>
@@ -50,6 +52,13 @@ const pnpr_brush_preset *pnpr_brush_presets(size_t *r_count)
 {
     if (r_count) *r_count = sizeof presets / sizeof presets[0];
     return presets;
+}
+
+const char *pnpr_brush_preset_list(char *buf, size_t cap, const char *sep)
+{
+    const char *names[PNPR_BRUSH_PRESET_COUNT];
+    for (size_t i = 0; i < PNPR_BRUSH_PRESET_COUNT; i++) names[i] = presets[i].name;
+    return pnpr_join_names(buf, cap, sep, names, PNPR_BRUSH_PRESET_COUNT, 0);
 }
 
 pnpr_status pnpr_brush_preset_find(const char *name, uint32_t *r_index)

@@ -392,33 +392,32 @@ static pnpr_status brush_data(upload_ctx *u)
     if (!ps || !pc || u->n == 0) return PNPR_OK;
     size_t n = u->n;
     uint32_t *cl = malloc(n * sizeof *cl);
-    float *stretch = malloc(n * sizeof *stretch);
+    float *stretch = malloc(n * sizeof *stretch), *size = malloc(n * sizeof *size), *sorted = malloc(n * sizeof *sorted);
     uint8_t *layers = malloc(n);
     u->bverts = malloc(n * sizeof *u->bverts);
     pnpr_status st = PNPR_ERR_OUT_OF_MEMORY;
-    if (cl && stretch && layers && u->bverts) {
+    if (cl && stretch && size && sorted && layers && u->bverts) {
         for (size_t j = 0; j < n; j++) {
             double v = pnpr_type_get(pc->type, pc->data, u->src[j]);
             cl[j] = v >= 0 && v < 4294967295.0 ? (uint32_t)v : 0xFFFFFFFFu;
         }
         st = pnpr_brush_cluster_shapes(u->xyz, cl, n, PNPR_BRUSH_SMALL_CLUSTER, stretch, layers);
     }
-    /* sizes: capped at PNPR_BRUSH_SIZE_CAP x their median, as the disk radii are (a few isolated
-     * far points would otherwise paint washes across the picture) */
-    float *sz = (float *)cl; /* reuse: the labels are no longer needed */
+    /* sizes (0 = none: the disk radius is drawn), capped at PNPR_BRUSH_SIZE_CAP x the median of
+     * the others, as the disk radii are (a few isolated far points would otherwise paint washes
+     * across the picture) */
     size_t m = 0;
     for (size_t j = 0; st == PNPR_OK && j < n; j++) {
         double s = pnpr_type_get(ps->type, ps->data, u->src[j]);
-        if (isfinite(s) && s > 0) sz[m++] = (float)s;
+        size[j] = isfinite(s) && s > 0 ? (float)s : 0.0f;
+        if (size[j] > 0) sorted[m++] = size[j];
     }
-    float cap = m ? PNPR_BRUSH_SIZE_CAP * median_float(sz, m) : 0;
+    float cap = m ? PNPR_BRUSH_SIZE_CAP * median_float(sorted, m) : 0;
     for (size_t q = 0; st == PNPR_OK && q < n; q++) {
         uint32_t j = u->order[q];
-        double s = pnpr_type_get(ps->type, ps->data, u->src[j]);
-        float size = isfinite(s) && s > 0 ? (float)(s < cap ? s : cap) : 0.0f;
-        u->bverts[q] = (pnpr_brush_vertex){size, stretch[j], (float)layers[j]};
+        u->bverts[q] = (pnpr_brush_vertex){size[j] < cap ? size[j] : cap, stretch[j], (float)layers[j]};
     }
-    free(cl); free(stretch); free(layers);
+    free(cl); free(stretch); free(size); free(sorted); free(layers);
     return st;
 }
 

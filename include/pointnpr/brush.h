@@ -108,6 +108,9 @@ typedef struct pnpr_brush_preset {
 
 /* The presets in order (the parameters of the paper's figure 4 c, d, b); index 0 is the default. */
 const pnpr_brush_preset *pnpr_brush_presets(size_t *r_count);
+/* The presets' names in order, joined by `sep`, into buf (cap > 0 bytes, NUL-terminated,
+ * truncated to fit). Returns buf. */
+const char *pnpr_brush_preset_list(char *buf, size_t cap, const char *sep);
 /* The preset index of a name (case ignored); PNPR_ERR_NOT_FOUND. */
 PNPR_NODISCARD pnpr_status pnpr_brush_preset_find(const char *name, uint32_t *r_index);
 

@@ -25,20 +25,6 @@ static const char *const draw_names[] = {"stroke-texture", "density", "point-sca
 static const char *const upload_names[] = {"paint-bins", NULL};
 static const char *const brush_names[] = {"brush-k", "brush-eps", "brush-normal-radius", NULL};
 
-/* The brush presets' names, "flat | round | bristle", into buf. */
-static const char *brush_list(char *buf, size_t cap)
-{
-    size_t np, len = 0;
-    const pnpr_brush_preset *p = pnpr_brush_presets(&np);
-    buf[0] = 0;
-    for (size_t i = 0; i < np && len < cap; i++) {
-        int m = snprintf(buf + len, cap - len, "%s%s", i ? " | " : "", p[i].name);
-        if (m < 0) break;
-        len += (size_t)m;
-    }
-    return buf;
-}
-
 static void draw_usage(FILE *f, const char *name, const char *metavar)
 {
     size_t n;
@@ -112,7 +98,7 @@ void cli_render_usage(FILE *f, int width, int height)
     draw_usage(f, "outline-jump", "F");
     draw_usage(f, "outline-hole", "F");
     cli_table_usage(f, ut, un, "paint-bins", "N");
-    fprintf(f, "  --brush B            brush: %s (default %s; docs/brush.md)\n", brush_list(brushes, sizeof brushes),
+    fprintf(f, "  --brush B            brush: %s (default %s; docs/brush.md)\n", pnpr_brush_preset_list(brushes, sizeof brushes, " | "),
             pnpr_brush_presets(NULL)[0].name);
     draw_usage(f, "brush-scale", "F");
     draw_usage(f, "brush-jitter", "DEG");
@@ -269,7 +255,7 @@ static int style_option(cli_render_opts *o, const char *cmd, const char *a, cons
         } else if (!strcmp(a, "--brush")) {
             uint32_t b;
             char names[160];
-            if (pnpr_brush_preset_find(v, &b) != PNPR_OK) { BAD("--brush wants %s, got '%s'\n", brush_list(names, sizeof names), v); }
+            if (pnpr_brush_preset_find(v, &b) != PNPR_OK) { BAD("--brush wants %s, got '%s'\n", pnpr_brush_preset_list(names, sizeof names, " | "), v); }
             o->dopt.brush_preset = (int)b; i++;
         } else if (v && !strcmp(a, "--style-map")) {
             o->style_map_path = v; i++;

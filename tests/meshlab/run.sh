@@ -1073,23 +1073,26 @@ decorate_styles)
   holds wide "6 px outline bands hold 1.8..3.6 x the dark pixels of the default width (${N_cartoon_BAND:-?})" \
     "${N_wide_BAND:-0} >= 1.8 * ${N_cartoon_BAND:-1e9} && ${N_wide_BAND:-1e9} <= 3.6 * ${N_cartoon_BAND:-0}"
 
+  # A painting style's frame (painterly, brush): no draw failure, each half painted near its input
+  # grey, no paper or ink inside, paper-white around, most pixels restyled.
+  painted() {
+    local n=$1 my="N_$1_MY" mb="N_$1_MB" dark="N_$1_DARKIN" nin="N_$1_NIN" bg="N_$1_BG" differ="N_$1_DIFFER"
+    grep -q "pointnpr decorator: draw ($n) failed" "$T/$n.log" && fail "'$n': the draw failed"
+    holds "$n" "yellow half painted near its colour (grey $INMY +- 20), blue half too ($INMB +- 20)" \
+      "(${!my:-0} - $INMY)^2 <= 400 && (${!mb:-0} - $INMB)^2 <= 400"
+    holds "$n" "no paper or ink inside: <= 2% dark samples" "${!dark:-1} <= 0.02 && ${!nin:-0} >= 500"
+    holds "$n" "paper-white background, >= 25% of the pixels restyled" "${!bg:-0} == 255 && ${!differ:-0} >= 0.25"
+  }
   # 4. painterly (settings): features planned and computed, dabs in the points' colours
   gui painterly painterly "$T/colour.ply" DrawStyle=5 && measure painterly
   expect_log painterly "pointnpr decorator: plan for the painterly style: compute feature degree .*compute feature classes"
   expect_log painterly "pointnpr decorator: features computed for the painterly style \\(15002 points, [0-9]+ ms\\): feature degree, feature classes\$"
-  grep -q "pointnpr decorator: draw (painterly) failed" "$T/painterly.log" && fail "'painterly': the draw failed"
-  holds painterly "yellow half painted near its colour (grey $INMY +- 20), blue half too ($INMB +- 20)" \
-    "(${N_painterly_MY:-0} - $INMY)^2 <= 400 && (${N_painterly_MB:-0} - $INMB)^2 <= 400"
-  holds painterly "no paper or ink inside: <= 2% dark samples" "${N_painterly_DARKIN:-1} <= 0.02 && ${N_painterly_NIN:-0} >= 500"
-  holds painterly "paper-white background, >= 25% of the pixels restyled" "${N_painterly_BG:-0} == 255 && ${N_painterly_DIFFER:-0} >= 0.25"
-  # 4b. brush (settings): the brush stage planned and run, strokes in the points' colours, no paper inside
+  painted painterly
+  # 4b. brush (settings): the brush stage planned and run, strokes in the points' colours
   gui brush brush "$T/colour.ply" DrawStyle=6 && measure brush
   expect_log brush "pointnpr decorator: plan for the brush style: .*brush sizes and clusters"
   expect_log brush "pointnpr decorator: brush strokes prepared \\([0-9]+ colour clusters, 15002 points, [0-9]+ ms\\)"
-  grep -q "pointnpr decorator: draw (brush) failed" "$T/brush.log" && fail "'brush': the draw failed"
-  holds brush "yellow half painted near its colour (grey $INMY +- 20), blue half too ($INMB +- 20)" \
-    "(${N_brush_MY:-0} - $INMY)^2 <= 400 && (${N_brush_MB:-0} - $INMB)^2 <= 400"
-  holds brush "no paper or ink inside: <= 2% dark samples" "${N_brush_DARKIN:-1} <= 0.02 && ${N_brush_NIN:-0} >= 500"
+  painted brush
 
   # 5. Tone gamma (settings) reaches the dithering points: sketchy on the colourless cube, whose
   #    front face is lit (light tone: few hatches at the library's default curve); gamma 0.25
