@@ -81,6 +81,41 @@ static const pnpr_option_desc brush_table[] = {
       "brush: normals fitted within the cluster over this many sizes"),
 };
 
+#define T(...) OPT("sphere tree", pnpr_sphere_tree_options, __VA_ARGS__)
+static const pnpr_option_desc sphere_tree_table[] = {
+    T("hier-spacing", spacing, FLOAT, 0, 0, UNB, EXCL, 0, "leaf factor x median spacing",
+      "hierarchy: leaf sphere spacing (units)"),
+    T("hier-leaf-factor", leaf_factor, FLOAT, 1.5, 0.5, 64, 0, 0, NULL,
+      "hierarchy: leaf spacing in median point spacings"),
+    T("hier-k", k, UINT, 12, 4, PNPR_SPHERE_K_MAX, 0, 0, NULL, "hierarchy: neighbouring leaves for normals and directions"),
+    T("hier-features", feature_fraction, FLOAT, 0.1, 0, 1, EXCL, 0, NULL,
+      "hierarchy: fraction of leaves (highest curvature) whose direction is kept"),
+    T("hier-max-variation", max_variation, FLOAT, 0.02, 0, 0.34, EXCL, 0, NULL,
+      "hierarchy: colourless clouds: surface variation bound of the geometric regions"),
+};
+
+#define S(...) OPT("hierarchy style", pnpr_hier_params, __VA_ARGS__)
+static const pnpr_option_desc hier_table[] = {
+    S("hier-abstraction", abstraction, FLOAT, 0.01, 0, 1, NEG_OFF, 0, NULL,
+      "hierarchy: region nodes of dissimilarity below this fraction of the root's (negative: none)"),
+    S("stroke-px", stroke_px, FLOAT, 12, 1, 512, 0, 0, NULL, "hierarchy: stroke diameter on screen, pixels"),
+    S("stroke-radius", stroke_radius, FLOAT, 0, 0, UNB, EXCL, 0, "view-dependent",
+      "hierarchy: view-independent strokes of this radius (units)"),
+    S("stroke-scale", stroke_scale, FLOAT, 1.2, 0.1, 8, 0, 0, NULL, "hierarchy: stroke half-width in node radii"),
+    S("stroke-stretch", stretch, FLOAT, 1.6, 1, 8, 0, 0, NULL, "hierarchy: stroke length over width"),
+    S("no-smooth", no_smooth, INT, 0, 0, 1, ZERO_VALUE, 0, NULL, "hierarchy: plain level switching"),
+    S("node-colour", node_colour, INT, 0, 0, 1, ZERO_VALUE, 0, NULL, "hierarchy: strokes in node, not region, colour"),
+    S("node-direction", node_direction, INT, 0, 0, 1, ZERO_VALUE, 0, NULL,
+      "hierarchy: strokes along node, not region, direction"),
+    S("noise-angle", noise_angle, FLOAT, 12, 0, 90, NEG_OFF, 0, NULL, "hierarchy: Perlin noise on directions, degrees"),
+    S("noise-colour", noise_colour, FLOAT, 0.08, 0, 1, NEG_OFF, 0, NULL, "hierarchy: Perlin noise on brightness"),
+    S("silhouette-deg", silhouette_deg, FLOAT, 10, 0, 60, NEG_OFF, 0, NULL,
+      "hierarchy: silhouette band ThresholdDegree (negative: none)"),
+    S("borders", border_level, FLOAT, 0, 0, UNB, ZERO_VALUE, 0, NULL, "hierarchy: region borders at this merge level (0: none)"),
+    S("tam", tam, INT, 0, 0, PNPR_TAM_COUNT_ - 1, ZERO_VALUE, 0, NULL, "hierarchy: tonal art map"),
+    S("hier-layers", layers, INT, 1, 1, 2, 0, 0, NULL, "hierarchy: 2 = a fine layer over the first"),
+};
+
 #define TABLE_FUNCTIONS(X, table)                                                                                     \
     const pnpr_option_desc *pnpr_##X##_option_table(size_t *r_count)                                                 \
     {                                                                                                                  \
@@ -96,6 +131,8 @@ TABLE_FUNCTIONS(components, components_table)
 TABLE_FUNCTIONS(hierarchy, hierarchy_table)
 TABLE_FUNCTIONS(outlier, outlier_table)
 TABLE_FUNCTIONS(brush, brush_table)
+TABLE_FUNCTIONS(sphere_tree, sphere_tree_table)
+TABLE_FUNCTIONS(hier, hier_table)
 
 #define DEFAULTS_FUNCTION(X, S, table)                                                                                \
     S pnpr_##X##_defaults(void)                                                                                        \
@@ -113,3 +150,5 @@ DEFAULTS_FUNCTION(components, pnpr_components_options, components_table)
 DEFAULTS_FUNCTION(hierarchy, pnpr_hierarchy_options, hierarchy_table)
 DEFAULTS_FUNCTION(outlier, pnpr_outlier_options, outlier_table)
 DEFAULTS_FUNCTION(brush, pnpr_brush_options, brush_table)
+DEFAULTS_FUNCTION(sphere_tree, pnpr_sphere_tree_options, sphere_tree_table)
+DEFAULTS_FUNCTION(hier, pnpr_hier_params, hier_table)

@@ -17,6 +17,7 @@
 #define POINTNPR_OPTIONS_H
 
 #include "brush.h"
+#include "hierarchy.h"
 #include "core.h"
 #include "features.h"
 #include "lines.h"
@@ -72,6 +73,8 @@ const pnpr_option_desc *pnpr_components_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_hierarchy_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_outlier_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_brush_option_table(size_t *r_count);
+const pnpr_option_desc *pnpr_sphere_tree_option_table(size_t *r_count);
+const pnpr_option_desc *pnpr_hier_option_table(size_t *r_count);
 
 pnpr_features_options pnpr_features_defaults(void);
 pnpr_lines_options pnpr_lines_defaults(void);
@@ -81,6 +84,8 @@ pnpr_components_options pnpr_components_defaults(void);
 pnpr_hierarchy_options pnpr_hierarchy_defaults(void);
 pnpr_outlier_options pnpr_outlier_defaults(void);
 pnpr_brush_options pnpr_brush_defaults(void);
+pnpr_sphere_tree_options pnpr_sphere_tree_defaults(void);
+pnpr_hier_params pnpr_hier_defaults(void);
 
 /* The renderer's options (render.h; the table is in the core library, core/options_render.c):
  * per-frame pnpr_draw_options and pnpr_upload_options. pnpr_draw_defaults() leaves the members
