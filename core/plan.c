@@ -45,6 +45,12 @@ static void style_needs(pnpr_plan *p, pnpr_style s, pnpr_sketch_variant v, int c
         p->brush = 1;
         p->brush_why = "brush sizes its splats from kNN distances and fits normals per colour cluster";
         break;
+    case PNPR_STYLE_HIERARCHY:
+        p->hierarchy = 1;
+        p->hierarchy_why = labels ? "hierarchy builds its sphere tree over the input's segment labels (regions) and their merges"
+                                  : colours ? "hierarchy builds its sphere tree: leaf spheres, JSEG regions, their merges"
+                                            : "hierarchy builds its sphere tree: leaf spheres, geometric regions (no colours), their merges";
+        break;
     case PNPR_STYLE_LINES:
         p->lines = 1;
         p->lines_why = "the lines style draws them";

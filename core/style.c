@@ -6,7 +6,7 @@
 #include <string.h>
 #include <strings.h>
 
-static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon", "painterly", "brush"};
+static const char *const style_names[PNPR_STYLE_COUNT_] = {"points", "sketchy", "lines", "stipple", "cartoon", "painterly", "brush", "hierarchy"};
 
 const char *pnpr_style_name(pnpr_style s)
 {
@@ -37,9 +37,10 @@ int pnpr_style_needs_features(pnpr_style s)
  * docs/benchmarks.md). */
 int pnpr_style_outline_default(pnpr_style s, float *r_width)
 {
-    /* points, sketchy, lines, stipple, cartoon, painterly, brush: on by default; width when drawn */
-    static const int on[PNPR_STYLE_COUNT_] = {0, 0, 1, 0, 1, 0, 0};
-    static const float width[PNPR_STYLE_COUNT_] = {2, 1.5f, 2.5f, 1.5f, 2.5f, 2, 2};
+    /* points, sketchy, lines, stipple, cartoon, painterly, brush, hierarchy (which draws its own
+     * silhouettes): on by default; width when drawn */
+    static const int on[PNPR_STYLE_COUNT_] = {0, 0, 1, 0, 1, 0, 0, 0};
+    static const float width[PNPR_STYLE_COUNT_] = {2, 1.5f, 2.5f, 1.5f, 2.5f, 2, 2, 2};
     int valid = (unsigned)s < PNPR_STYLE_COUNT_;
     if (r_width) *r_width = valid ? width[s] : 0;
     return valid && on[s];

@@ -9,9 +9,6 @@
 #include <stdlib.h>
 
 enum { BRUSH_TEX_SIZE = 64 };
-/* the OIT weight a^BRUSH_WEIGHT: 2 keeps the brushes' dense cores over their neighbours' rims
- * (1 = a plain alpha-weighted mean, which blurs the strokes together; docs/brush.md) */
-#define BRUSH_WEIGHT 2.0f
 
 pnpr_status pnpr_brush_gl_create(pnpr_brush_gl *b, pnpr_error *err)
 {
@@ -97,8 +94,7 @@ static void target_texture(GLuint tex, GLint format, GLenum channels, int w, int
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
 }
 
-/* The blending targets at the frame's size, sharing its depth-stencil buffer. */
-static pnpr_status ensure_targets(pnpr_brush_gl *b, int w, int h, GLuint depth_rb, pnpr_error *err)
+pnpr_status pnpr_brush_gl_targets(pnpr_brush_gl *b, int w, int h, GLuint depth_rb, pnpr_error *err)
 {
     if (!b->fbo) {
         glGenFramebuffers(1, &b->fbo);
@@ -129,7 +125,7 @@ static pnpr_status ensure_targets(pnpr_brush_gl *b, int w, int h, GLuint depth_r
 pnpr_status pnpr_brush_gl_prepare(pnpr_brush_gl *b, int preset, int w, int h, GLuint depth_rb, pnpr_error *err)
 {
     pnpr_status st = brush_textures(b, preset, err);
-    return st == PNPR_OK ? ensure_targets(b, w, h, depth_rb, err) : st;
+    return st == PNPR_OK ? pnpr_brush_gl_targets(b, w, h, depth_rb, err) : st;
 }
 
 /* The strokes of one layer, group by group (attributes re-pointed at each group's start). */
@@ -151,7 +147,7 @@ static size_t draw_layer(pnpr_brush_gl *b, const pnpr_brush_pass *p, int layer)
     return n;
 }
 
-size_t pnpr_brush_gl_draw(pnpr_brush_gl *b, const pnpr_brush_pass *p)
+void pnpr_brush_gl_oit_begin(pnpr_brush_gl *b, int stencil)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, b->fbo);
     pnpr_renderer_draw_buffers(1, 1);
@@ -161,37 +157,29 @@ size_t pnpr_brush_gl_draw(pnpr_brush_gl *b, const pnpr_brush_pass *p)
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
-    if (p->stencil > 0) {
+    if (stencil > 0) {
         glEnable(GL_STENCIL_TEST);
         glStencilMask(0);
         glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-        glStencilFunc(GL_EQUAL, p->stencil, 0xFF);
+        glStencilFunc(GL_EQUAL, stencil, 0xFF);
     } else {
         glDisable(GL_STENCIL_TEST);
     }
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    glUseProgram(b->prog);
-    glUniformMatrix4fv(b->u_view, 1, GL_FALSE, p->view);
-    glUniformMatrix4fv(b->u_proj, 1, GL_FALSE, p->proj);
-    glUniform1f(b->u_scale, p->scale);
-    glUniform1f(b->u_jitter, p->jitter_deg * 3.14159265f / 180.0f);
-    glUniform1i(b->u_filter, p->filter);
-    glUniform1i(b->u_oit, 1);
-    glUniform1f(b->u_weight, BRUSH_WEIGHT);
-    glUniform1i(b->u_brush, 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, b->tex);
-    size_t strokes = draw_layer(b, p, 0);
-    draw_layer(b, p, 1);
-    /* resolve over the frame */
-    glBindFramebuffer(GL_FRAMEBUFFER, p->frame_fbo);
+}
+
+void pnpr_brush_gl_oit_resolve(pnpr_brush_gl *b, GLuint frame_fbo)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, frame_fbo);
     pnpr_renderer_draw_buffers(0, 1);
     glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(b->prog_resolve);
     glUniform1i(b->ur_accum, 0);
     glUniform1i(b->ur_optical, 1);
+    glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, b->accum_tex);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, b->optical_tex);
@@ -201,5 +189,24 @@ size_t pnpr_brush_gl_draw(pnpr_brush_gl *b, const pnpr_brush_pass *p)
     glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
     glEnable(GL_DEPTH_TEST);
+}
+
+size_t pnpr_brush_gl_draw(pnpr_brush_gl *b, const pnpr_brush_pass *p)
+{
+    pnpr_brush_gl_oit_begin(b, p->stencil);
+    glUseProgram(b->prog);
+    glUniformMatrix4fv(b->u_view, 1, GL_FALSE, p->view);
+    glUniformMatrix4fv(b->u_proj, 1, GL_FALSE, p->proj);
+    glUniform1f(b->u_scale, p->scale);
+    glUniform1f(b->u_jitter, p->jitter_deg * 3.14159265f / 180.0f);
+    glUniform1i(b->u_filter, p->filter);
+    glUniform1i(b->u_oit, 1);
+    glUniform1f(b->u_weight, PNPR_OIT_WEIGHT);
+    glUniform1i(b->u_brush, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, b->tex);
+    size_t strokes = draw_layer(b, p, 0);
+    draw_layer(b, p, 1);
+    pnpr_brush_gl_oit_resolve(b, p->frame_fbo);
     return strokes;
 }

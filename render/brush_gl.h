@@ -49,6 +49,21 @@ typedef struct pnpr_brush_pass {
  * targets cannot be made (message in err). */
 pnpr_status pnpr_brush_gl_prepare(pnpr_brush_gl *b, int preset, int w, int h, GLuint depth_rb, pnpr_error *err);
 
+/* The blending targets at the frame's size w x h, sharing its depth-stencil renderbuffer (also for
+ * the hierarchy style's strokes); PNPR_ERR_UNSUPPORTED when they cannot be made. */
+pnpr_status pnpr_brush_gl_targets(pnpr_brush_gl *b, int w, int h, GLuint depth_rb, pnpr_error *err);
+
+/* the OIT weight a^PNPR_OIT_WEIGHT: 2 keeps the strokes' dense cores over their neighbours' rims
+ * (1 = a plain alpha-weighted mean, which blurs the strokes together; docs/brush.md) */
+#define PNPR_OIT_WEIGHT 2.0f
+
+/* Order-independent blending of strokes whose fragment shader is brush.frag.glsl (u_oit 1): begin
+ * clears the targets and sets the state (depth test against the frame's depth without writes,
+ * stencil test for stencil > 0, additive blending); resolve composites them over the frame
+ * `frame_fbo` and leaves blending and stencil off, the depth test on. */
+void pnpr_brush_gl_oit_begin(pnpr_brush_gl *b, int stencil);
+void pnpr_brush_gl_oit_resolve(pnpr_brush_gl *b, GLuint frame_fbo);
+
 /* Draws the strokes of the queue prefixes (both layers), depth-tested against the frame's depth
  * (the visibility mask), blended order-independently and resolved over the frame's colour
  * (pnpr_brush_gl_prepare first). Leaves the frame FBO bound with draw buffer 0, blending off,

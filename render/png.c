@@ -46,3 +46,35 @@ pnpr_status pnpr_write_png(const char *path, const uint8_t *rgba, int width, int
     free(rgb);
     return st;
 }
+
+pnpr_status pnpr_read_png_grey(const char *path, uint8_t **r_grey, int *r_width, int *r_height, pnpr_error *err)
+{
+    if (!path || !r_grey || !r_width || !r_height)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "PNG: bad arguments");
+    *r_grey = NULL;
+    *r_width = *r_height = 0;
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&img, path))
+        return pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: cannot read PNG (%s)", path, img.message);
+    if (img.width == 0 || img.height == 0 || img.width > 16384 || img.height > 16384) {
+        png_image_free(&img);
+        return pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: PNG of %ux%u pixels (at most 16384 x 16384)", path,
+                              (unsigned)img.width, (unsigned)img.height);
+    }
+    img.format = PNG_FORMAT_GRAY;
+    uint8_t *g = malloc(PNG_IMAGE_SIZE(img));
+    if (!g) { png_image_free(&img); return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory", path); }
+    if (!png_image_finish_read(&img, NULL, g, 0, NULL)) {
+        free(g);
+        pnpr_status st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: cannot read PNG (%s)", path, img.message);
+        png_image_free(&img);
+        return st;
+    }
+    *r_grey = g;
+    *r_width = (int)img.width;
+    *r_height = (int)img.height;
+    png_image_free(&img);
+    return PNPR_OK;
+}

@@ -40,6 +40,7 @@ static void release_gl(pnpr_renderer *r)
     if (r->info_tex) glDeleteTextures(1, &r->info_tex);
     pnpr_edges_release(&r->edges);
     pnpr_brush_gl_release(&r->brush);
+    pnpr_hier_gl_release(&r->hier);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
 }
 
@@ -232,7 +233,7 @@ pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_rendere
     pnpr_gl_state_neutral();
     pnpr_status st = PNPR_OK;
     if (!link_programs(r, err) || pnpr_edges_create(&r->edges, err) != PNPR_OK ||
-        pnpr_brush_gl_create(&r->brush, err) != PNPR_OK)
+        pnpr_brush_gl_create(&r->brush, err) != PNPR_OK || pnpr_hier_gl_create(&r->hier, err) != PNPR_OK)
         st = PNPR_ERR_UNSUPPORTED;
     if (st == PNPR_OK) {
         find_uniforms(r);
@@ -304,6 +305,17 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
     if (o->style == PNPR_STYLE_BRUSH && r->count > 0 && !r->brush.ready)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'brush' needs the properties brush_size and brush_cluster (pnpr_brush_prepare)");
+    if (o->style == PNPR_STYLE_HIERARCHY && r->count > 0 && !r->hier.tree)
+        return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
+                              "renderer: style 'hierarchy' needs a sphere tree (pnpr_sphere_tree_build, pnpr_renderer_set_hierarchy)");
+    size_t nh;
+    const pnpr_option_desc *ht = pnpr_hier_option_table(&nh);
+    pnpr_status hst = pnpr_option_check(ht, nh, &o->hierarchy, err);
+    if (hst != PNPR_OK) return hst;
+    pnpr_option_fill_defaults(ht, nh, &o->hierarchy);
+    if (o->hierarchy.importance && (o->hierarchy.importance_w <= 0 || o->hierarchy.importance_h <= 0))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: hierarchy importance map of size %dx%d",
+                              o->hierarchy.importance_w, o->hierarchy.importance_h);
     if (o->style_map_count > 0 && !o->style_map)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style_map_count %zu without a style map", o->style_map_count);
     if (o->layer_label_count > 0 && !o->layer_labels)
@@ -319,6 +331,10 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
         if (s == PNPR_STYLE_PAINTERLY && !r->paint_bins)
             return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                                   "renderer: style map: label %u is 'painterly', which needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)",
+                                  (unsigned)o->style_map[i].label);
+        if (s == PNPR_STYLE_HIERARCHY && !r->hier.tree)
+            return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
+                                  "renderer: style map: label %u is 'hierarchy', which needs a sphere tree (pnpr_renderer_set_hierarchy)",
                                   (unsigned)o->style_map[i].label);
         if (s == PNPR_STYLE_BRUSH && !r->brush.ready)
             return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
@@ -476,6 +492,7 @@ static pnpr_status prepare_frame(const pnpr_renderer *r, const pnpr_camera *came
     st = pnpr_renderer_plan_frame(r, camera, o, w, h, &plan, err);
     if (st != PNPR_OK) { free(*r_vstyle); *r_vstyle = NULL; return st; }
     f->fc = plan.fc;
+    memcpy(f->image_proj, f->fc.proj, sizeof f->image_proj);
     if (tile) tile_projection(f->fc.proj, tile);
     f->n_draw = plan.n_draw;
     f->coverage = plan.coverage;
@@ -615,6 +632,8 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
     free(vstyle);
     int brush = f.n_draw > 0 && (f.mapped ? f.used[PNPR_STYLE_BRUSH] > 0 : f.o.style == PNPR_STYLE_BRUSH);
     if (st == PNPR_OK && brush) st = pnpr_brush_gl_prepare(&r->brush, f.o.brush_preset, f.fw, f.fh, r->depth_rb, err);
+    int hier = f.n_draw > 0 && (f.mapped ? f.used[PNPR_STYLE_HIERARCHY] > 0 : f.o.style == PNPR_STYLE_HIERARCHY);
+    if (st == PNPR_OK && hier) st = pnpr_brush_gl_targets(&r->brush, f.fw, f.fh, r->depth_rb, err);
     if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     clear_frame(r, &f);
     if (rec) record_frame(rec, &f);

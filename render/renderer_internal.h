@@ -8,12 +8,14 @@
  *   renderer_snapshot.c  read back, snapshots in tiles
  *   renderer_textures.c  the stroke and brush textures
  *   brush_gl.c           the brush style (stroke-based splatting): programs, buffer, blending
+ *   hierarchy_gl.c       the hierarchy style (Chi & Lee): the traversal's strokes, tonal art maps
  *   vector.c             reads a drawn frame back as paths (pnpr_renderer_drawing) */
 #ifndef PNPR_RENDERER_INTERNAL_H
 #define PNPR_RENDERER_INTERNAL_H
 
 #include "render_internal.h"
 #include "brush_gl.h"
+#include "hierarchy_gl.h"
 #include "edges.h"
 
 #include <pointnpr/options.h>
@@ -78,6 +80,7 @@ struct pnpr_renderer {
     GLuint info_tex;     /* attachment 1: the mask's surface info (eye distance, depth extent, radius) */
     pnpr_edges edges;    /* outlines from it (edges.c) */
     pnpr_brush_gl brush; /* the brush style (brush_gl.c) */
+    pnpr_hier_gl hier;   /* the hierarchy style (hierarchy_gl.c) */
     int fb_w, fb_h;
     float max_point_size;
     GLint max_size;      /* min of GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS */
@@ -209,6 +212,7 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
 typedef struct pnpr_frame_ctx {
     pnpr_draw_options o;             /* checked; o.style: the style (the only one a map left) */
     pnpr_frame_camera fc;            /* with the tile's projection when tiled */
+    float image_proj[16];            /* the whole image's projection */
     int fw, fh;                      /* the frame (framebuffer) */
     size_t n_draw;                   /* the queue prefix, all groups together */
     size_t ng;                       /* the groups drawn (group_count + "other", empty) */

@@ -361,6 +361,26 @@ static size_t draw_brush(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter)
     return n;
 }
 
+/* Chi & Lee's hierarchy (hierarchy_gl.c): the visibility mask (for the paint map with the point
+ * colours as underpainting, as brush; hatching and dots on the paper), then the strokes the
+ * traversal chose, within the style's stencil in a style map. */
+static size_t draw_hierarchy(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter)
+{
+    int paint = f->o.hierarchy.tam == PNPR_TAM_PAINT;
+    if (filter < 0) {
+        splat_program(r, f);
+        mask_spec m = {f->mask_scale, -1, 0, 0, 0, f->outline, paint};
+        draw_mask(r, f, &m);
+    }
+    pnpr_hier_pass p = {f->fc.view, f->fc.proj, f->image_proj, r->origin, f->fw, f->fh, f->fc.pixels_per_unit,
+                        f->fc.ortho, f->o.hierarchy, filter >= 0 ? filter + 1 : 0, r->fbo};
+    for (int k = 0; k < 3; k++) p.params.ink[k] = f->ink[k];
+    pnpr_hier_counts c;
+    size_t n = pnpr_hier_gl_draw(&r->hier, &r->brush, &p, &c) == PNPR_OK ? c.strokes[PNPR_HIER_PAINT] : 0;
+    glUseProgram(r->prog_splat);
+    return n;
+}
+
 /* ---- one style ------------------------------------------------------------------------------ */
 
 size_t pnpr_renderer_draw_single(pnpr_renderer *r, const pnpr_frame_ctx *f)
@@ -371,6 +391,7 @@ size_t pnpr_renderer_draw_single(pnpr_renderer *r, const pnpr_frame_ctx *f)
     size_t strokes = 0;
     if (f->n_draw > 0 && s == PNPR_STYLE_PAINTERLY) return draw_painterly(r, f, -1);
     if (f->n_draw > 0 && s == PNPR_STYLE_BRUSH) return draw_brush(r, f, -1);
+    if (f->n_draw > 0 && s == PNPR_STYLE_HIERARCHY) return draw_hierarchy(r, f, -1);
     if (f->n_draw > 0) {
         splat_program(r, f);
         if (s == PNPR_STYLE_LINES && o->faint > 0) {
@@ -419,7 +440,8 @@ static void draw_mapped_mask(pnpr_renderer *r, const pnpr_frame_ctx *f)
     for (int s = 0; s < PNPR_STYLE_COUNT_; s++) {
         if (!f->used[s] || s == PNPR_STYLE_CARTOON) continue;
         /* brush: its underpainting (the point colours), as without a map */
-        mask_spec m = {mask_scale, s, s + 1, s == PNPR_STYLE_PAINTERLY, 0, 0, s == PNPR_STYLE_BRUSH};
+        int under = s == PNPR_STYLE_BRUSH || (s == PNPR_STYLE_HIERARCHY && f->o.hierarchy.tam == PNPR_TAM_PAINT);
+        mask_spec m = {mask_scale, s, s + 1, s == PNPR_STYLE_PAINTERLY, 0, 0, under};
         draw_mask(r, f, &m);
     }
     if (f->used[PNPR_STYLE_CARTOON]) { /* outline disks: depth and colour (ink) */
@@ -465,6 +487,10 @@ size_t pnpr_renderer_draw_mapped(pnpr_renderer *r, const pnpr_frame_ctx *f)
     }
     if (used[PNPR_STYLE_BRUSH]) {
         strokes += draw_brush(r, f, PNPR_STYLE_BRUSH);
+        glEnable(GL_DEPTH_TEST);
+    }
+    if (used[PNPR_STYLE_HIERARCHY]) {
+        strokes += draw_hierarchy(r, f, PNPR_STYLE_HIERARCHY);
         glEnable(GL_DEPTH_TEST);
     }
     if (used[PNPR_STYLE_STIPPLE]) {

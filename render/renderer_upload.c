@@ -679,3 +679,8 @@ pnpr_status pnpr_renderer_upload_styles(pnpr_renderer *r, const uint8_t *vstyle)
     return PNPR_OK;
 }
 
+
+void pnpr_renderer_set_hierarchy(pnpr_renderer *r, const pnpr_sphere_tree *tree)
+{
+    if (r) r->hier.tree = tree;
+}

@@ -38,6 +38,8 @@ typedef struct pnpr_plan {
     const char *segments_why;
     int brush;              /* run pnpr_brush_prepare (brush.h): splat sizes, clusters, normals */
     const char *brush_why;
+    int hierarchy;          /* build the sphere tree (hierarchy.h) for the hierarchy style */
+    const char *hierarchy_why;
     int reused_features;    /* the cloud carries the feature outputs that are needed */
     int reused_normals;     /* the cloud carries normals */
 } pnpr_plan;

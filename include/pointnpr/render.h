@@ -24,6 +24,7 @@
 #include "crq.h"
 #include "drawing.h"
 #include "effects.h"
+#include "hierarchy.h"
 #include "polylines.h"
 #include "style.h"
 #include "tone.h"
@@ -141,6 +142,8 @@ typedef struct pnpr_draw_options {
     float brush_scale;     /* brush: a splat's half-size in brush_size units (r + eps) */
     float brush_jitter;    /* brush: each stroke turns by a per-point angle of at most this many
                             * degrees (negative = none) */
+    pnpr_hier_params hierarchy; /* hierarchy: the traversal's and strokes' options (zeros: the
+                            * defaults of pnpr_hier_option_table; its ink is the frame's) */
     /* An explicit camera (pnpr_camera_matrices, caller-owned, read during the call only) that
      * replaces the `camera` argument of pnpr_renderer_draw / pnpr_renderer_snapshot; NULL = use
      * `camera` (look-at + symmetric perspective). */
@@ -184,6 +187,11 @@ PNPR_NODISCARD pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *renderer, cons
  * with a non-finite end are dropped. PNPR_ERR_INVALID_ARGUMENT for inconsistent offsets. */
 PNPR_NODISCARD pnpr_status pnpr_renderer_set_lines(pnpr_renderer *renderer, const pnpr_polylines *lines,
                                     pnpr_error *err);
+
+/* The sphere tree the hierarchy style draws (hierarchy.h): borrowed, not copied: it must stay
+ * valid until it is replaced, set to NULL or the renderer is destroyed. Its origin may differ
+ * from the cloud's. */
+void pnpr_renderer_set_hierarchy(pnpr_renderer *renderer, const pnpr_sphere_tree *tree);
 
 /* Renders one frame. camera NULL = pnpr_camera_fit of the uploaded cloud for the target's
  * aspect. PNPR_ERR_NOT_FOUND when the style needs features the cloud does not carry;
@@ -313,6 +321,12 @@ PNPR_NODISCARD pnpr_status pnpr_gl_context_make_current(pnpr_gl_context *context
 void pnpr_gl_context_destroy(pnpr_gl_context *context); /* releases it if current; NULL ok */
 
 /* Writes RGBA8 pixels (top row first) as an 8-bit PNG, RGB or RGBA (alpha != 0). */
+/* Reads a PNG as grey bytes (any colour type, converted by libpng; row 0 at the top) into *r_grey
+ * (malloc'd, width x height bytes; free with free). At most 16384 x 16384. PNPR_ERR_FORMAT with
+ * the file and libpng's reason for anything it cannot read. */
+PNPR_NODISCARD pnpr_status pnpr_read_png_grey(const char *path, uint8_t **r_grey, int *r_width, int *r_height,
+                                              pnpr_error *err);
+
 PNPR_NODISCARD pnpr_status pnpr_write_png(const char *path, const uint8_t *rgba, int width, int height,
                            int alpha, pnpr_error *err);
 

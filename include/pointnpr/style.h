@@ -22,6 +22,9 @@ typedef enum pnpr_style {
     PNPR_STYLE_BRUSH,      /* stroke-based splatting (Lopes et al.): Gaussian-sum brush strokes on
                             * surface-aligned splats oriented by Householder frames, blended order-
                             * independently (brush.h, docs/brush.md) */
+    PNPR_STYLE_HIERARCHY,  /* Chi & Lee's painterly hierarchy: strokes of sphere-tree nodes chosen by
+                            * region abstraction and screen size, smooth level transitions, tonal
+                            * art maps, silhouettes, region borders (hierarchy.h, docs/hierarchy.md) */
     PNPR_STYLE_COUNT_
 } pnpr_style;
 
@@ -33,7 +36,7 @@ typedef enum pnpr_sketch_variant {
     PNPR_SKETCH_COUNT_
 } pnpr_sketch_variant;
 
-const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly", "brush"; "" if invalid */
+const char *pnpr_style_name(pnpr_style style);          /* "points", "sketchy", "lines", "stipple", "cartoon", "painterly", "brush", "hierarchy"; "" if invalid */
 /* The style of a name, ignoring case ("Sketchy" is sketchy); PNPR_ERR_NOT_FOUND for others. */
 PNPR_NODISCARD pnpr_status pnpr_style_from_name(const char *name, pnpr_style *r_style);
 /* The style names in order, joined by `sep` (", ", " | "), into buf (cap > 0 bytes, NUL-terminated,

@@ -14,6 +14,9 @@ typedef struct cli_render_opts {
     pnpr_upload_options uopt;
     pnpr_tone_options tone;
     pnpr_brush_options bopt;      /* the brush stage's options (the plan runs it for the brush style) */
+    pnpr_sphere_tree_options topt; /* the hierarchy's tree (the plan builds it for the hierarchy style) */
+    const char *importance_path;  /* --importance FILE.png */
+    uint8_t *importance;          /* read by cli_render_opts_finish (dopt.hierarchy points at it) */
     double bg[3];                 /* 0..255 */
     int alpha, quiet, max_tile;
     cli_outliers outliers;
@@ -49,6 +52,7 @@ typedef struct cli_render_session {
     cli_progress_state ps;
     pnpr_progress prog;
     uint8_t *pixels;              /* view.width x view.height RGBA */
+    pnpr_sphere_tree tree;        /* the hierarchy style's tree (when the plan builds it) */
 } cli_render_session;
 
 /* Reads IN and applies the outlier options. Returns 1, or 0 after printing why. */

@@ -24,6 +24,11 @@ static const char *const draw_names[] = {"stroke-texture", "density", "point-sca
                                          NULL};
 static const char *const upload_names[] = {"paint-bins", NULL};
 static const char *const brush_names[] = {"brush-k", "brush-eps", "brush-normal-radius", NULL};
+static const char *const hier_names[] = {"hier-abstraction", "stroke-px", "stroke-radius", "stroke-scale", "stroke-stretch",
+                                         "no-smooth", "node-colour", "node-direction", "noise-angle", "noise-colour",
+                                         "silhouette-deg", "borders", "hier-layers", NULL};
+static const char *const tree_names[] = {"hier-spacing", "hier-leaf-factor", "hier-k", "hier-features",
+                                         "hier-max-variation", NULL};
 
 static void draw_usage(FILE *f, const char *name, const char *metavar)
 {
@@ -105,6 +110,17 @@ void cli_render_usage(FILE *f, int width, int height)
     cli_table_usage(f, bt, bn, "brush-k", "K");
     cli_table_usage(f, bt, bn, "brush-eps", "E");
     cli_table_usage(f, bt, bn, "brush-normal-radius", "F");
+    fprintf(f, "  --tam M              hierarchy: tonal art map %s | %s | %s (default %s; docs/hierarchy.md)\n",
+            pnpr_tam_name(PNPR_TAM_PAINT), pnpr_tam_name(PNPR_TAM_HATCH), pnpr_tam_name(PNPR_TAM_DOTS),
+            pnpr_tam_name(PNPR_TAM_PAINT));
+    size_t hn, tn;
+    const pnpr_option_desc *ht = pnpr_hier_option_table(&hn), *tt = pnpr_sphere_tree_option_table(&tn);
+    static const char *const hier_meta[] = {"A", "PX", "R", "F", "F", "0|1", "0|1", "0|1", "DEG", "F", "DEG", "L", "N"};
+    for (int k = 0; hier_names[k]; k++) cli_table_usage(f, ht, hn, hier_names[k], hier_meta[k]);
+    static const char *const tree_meta[] = {"H", "F", "K", "F", "F"};
+    for (int k = 0; tree_names[k]; k++) cli_table_usage(f, tt, tn, tree_names[k], tree_meta[k]);
+    fprintf(f, "  --importance FILE    hierarchy: a grey PNG stretched over the image: white keeps detail\n"
+               "                       (every colour region, strokes half the size), black abstracts\n");
     draw_usage(f, "faint", "F");
     fprintf(f,
             "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
@@ -115,7 +131,7 @@ void cli_render_usage(FILE *f, int width, int height)
             "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
             "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
             "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels,\n"
-            "  brush sizes, colour clusters and normals for brush.\n");
+            "  brush sizes, colour clusters and normals for brush, the sphere hierarchy for hierarchy.\n");
     cli_outlier_usage(f);
     cli_columns_usage(f);
 }
@@ -172,7 +188,7 @@ static int tile_progress(void *user, const char *stage, double fraction)
 /* Runs the stage plan (pnpr_plan_make, the one `pointnpr explain` prints) for the styles this
  * frame draws: features (only the outputs the styles need, the dithering following `tone`) and
  * the cartoon's segments. Returns 0 after printing why. */
-static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, const cli_render_opts *o, int quiet,
+static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, pnpr_sphere_tree *tree, const cli_render_opts *o, int quiet,
                     pnpr_progress prog)
 {
     const pnpr_draw_options *dopt = &o->dopt;
@@ -204,6 +220,21 @@ static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, const cl
             return 0;
         }
         if (!quiet) fprintf(stderr, "%s: %zu clusters, mean brush size %.4g\n", in, bs.clusters, bs.mean_size);
+    }
+    if (plan.hierarchy) {
+        if (!quiet) fprintf(stderr, "%s: building the sphere hierarchy (leaf spheres, regions, their merges)\n", in);
+        pnpr_sphere_tree_options to = o->topt;
+        to.progress = prog;
+        to.use_labels = cloud->label != NULL;
+        pnpr_sphere_tree_stats ts;
+        pnpr_error err = {0};
+        if ((st = pnpr_sphere_tree_build(cloud, &to, tree, &ts, &err)) != PNPR_OK) {
+            fprintf(stderr, "pointnpr %s: %s: %s\n", cmd, in, err.message);
+            return 0;
+        }
+        if (!quiet)
+            fprintf(stderr, "%s: %zu leaf spheres, %zu regions, %zu nodes (%.2f s)\n", in, ts.leaves, ts.regions, ts.nodes,
+                    ts.seconds);
     }
     if (plan.segments != PNPR_PLAN_SEGMENTS_JSEG || cloud->count == 0) return 1;
     if (!quiet) fprintf(stderr, "%s: segmenting the colours (JSEG) for the cartoon's flat regions (pointnpr segment saves them)\n", in);
@@ -257,6 +288,12 @@ static int style_option(cli_render_opts *o, const char *cmd, const char *a, cons
             char names[160];
             if (pnpr_brush_preset_find(v, &b) != PNPR_OK) { BAD("--brush wants %s, got '%s'\n", pnpr_brush_preset_list(names, sizeof names, " | "), v); }
             o->dopt.brush_preset = (int)b; i++;
+        } else if (!strcmp(a, "--tam")) {
+            int k = pnpr_tam_find(v);
+            if (k < 0) { BAD("--tam wants %s, %s or %s, got '%s'\n", pnpr_tam_name(PNPR_TAM_PAINT), pnpr_tam_name(PNPR_TAM_HATCH), pnpr_tam_name(PNPR_TAM_DOTS), v); }
+            o->dopt.hierarchy.tam = k; i++;
+        } else if (!strcmp(a, "--importance")) {
+            o->importance_path = v; i++;
         } else if (v && !strcmp(a, "--style-map")) {
             o->style_map_path = v; i++;
         } else if (v && !strcmp(a, "--effects")) {
@@ -337,6 +374,10 @@ static int table_option(cli_render_opts *o, const char *cmd, int argc, char **ar
     int r = cli_table_option(dt, dn, draw_names, &o->dopt, cmd, argc, argv, ip);
     if (r == 0) r = cli_table_option(ut, un, upload_names, &o->uopt, cmd, argc, argv, ip);
     if (r == 0) r = cli_table_option(bt, bn, brush_names, &o->bopt, cmd, argc, argv, ip);
+    size_t hn, tn;
+    const pnpr_option_desc *ht = pnpr_hier_option_table(&hn), *tt = pnpr_sphere_tree_option_table(&tn);
+    if (r == 0) r = cli_table_option(ht, hn, hier_names, &o->dopt.hierarchy, cmd, argc, argv, ip);
+    if (r == 0) r = cli_table_option(tt, tn, tree_names, &o->topt, cmd, argc, argv, ip);
     if (r > 0 && !strcmp(argv[*ip - 1], "--queue-fade") && o->dopt.queue_fade == 0) o->dopt.queue_fade = -1.0f;
     return r;
 }
@@ -379,6 +420,19 @@ int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
     if (o->smap.have_default) o->dopt.style = o->smap.default_style;
     o->dopt.style_map = o->smap.entries;
     o->dopt.style_map_count = o->smap.count;
+#ifdef PNPR_HAVE_RENDER
+    if (o->importance_path) {
+        pnpr_error err = {0};
+        int w = 0, h = 0;
+        if (pnpr_read_png_grey(o->importance_path, &o->importance, &w, &h, &err) != PNPR_OK) {
+            fprintf(stderr, "pointnpr %s: --importance %s\n", cmd, err.message);
+            return 0;
+        }
+        o->dopt.hierarchy.importance = o->importance;
+        o->dopt.hierarchy.importance_w = w;
+        o->dopt.hierarchy.importance_h = h;
+    }
+#endif
     memset(o->uses, 0, sizeof o->uses); /* the default and the mapped styles */
     o->uses[o->dopt.style] = 1;
     for (size_t m = 0; m < o->smap.count; m++) o->uses[o->smap.entries[m].style] = 1;
@@ -401,6 +455,8 @@ int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
 
 void cli_render_opts_free(cli_render_opts *o)
 {
+    free(o->importance);
+    o->importance = NULL;
     pnpr_style_map_free(&o->smap);
     pnpr_effect_pipeline_free(&o->fx);
 }
@@ -424,13 +480,14 @@ int cli_render_start(cli_render_session *s, cli_render_opts *o, const char *cmd,
 {
     if (tone_up) memcpy(o->tone.up, tone_up, sizeof o->tone.up);
     o->uopt.tone = o->tone;
-    if (!run_plan(cmd, in, &s->cloud, o, o->quiet, s->prog)) return 0;
+    if (!run_plan(cmd, in, &s->cloud, &s->tree, o, o->quiet, s->prog)) return 0;
     pnpr_error err = {0};
     pnpr_status st = pnpr_gl_context_create(&s->ctx, &err);
     if (st == PNPR_OK) st = pnpr_renderer_create(NULL, &s->ren, &err);
     if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
     st = pnpr_renderer_set_cloud(s->ren, &s->cloud, &o->uopt, &err);
     if (st != PNPR_OK) { cli_report_error_in(cmd, in, st, &err); return 0; }
+    if (s->tree.nodes) pnpr_renderer_set_hierarchy(s->ren, &s->tree);
     if (o->uses[PNPR_STYLE_LINES] && !set_profile_lines(cmd, in, &s->cloud, s->ren, o->quiet, s->prog)) return 0;
     size_t bytes = 0;
     st = pnpr_image_bytes(o->view.width, o->view.height, 0, &bytes, &err);
@@ -500,5 +557,6 @@ void cli_render_end(cli_render_session *s)
     pnpr_gl_context_destroy(s->ctx);
 #endif
     pnpr_cloud_free(&s->cloud);
+    pnpr_sphere_tree_free(&s->tree);
     memset(s, 0, sizeof *s);
 }

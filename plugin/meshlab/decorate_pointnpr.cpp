@@ -80,7 +80,8 @@ const char *const kEffectsPreview = "PointNPR::EffectsPreview";
 /* enum index -> renderer style (the order shown in the dialog; new styles go at the end so that
  * saved indices keep their meaning). The labels are the library's names (pnpr_style_name). */
 const pnpr_style kStyles[] = {PNPR_STYLE_POINTS, PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE,
-                              PNPR_STYLE_CARTOON, PNPR_STYLE_LINES, PNPR_STYLE_PAINTERLY, PNPR_STYLE_BRUSH};
+                              PNPR_STYLE_CARTOON, PNPR_STYLE_LINES, PNPR_STYLE_PAINTERLY, PNPR_STYLE_BRUSH,
+                              PNPR_STYLE_HIERARCHY};
 const int kStyleCount = (int)(sizeof kStyles / sizeof kStyles[0]);
 static_assert(sizeof kStyles / sizeof kStyles[0] == PNPR_STYLE_COUNT_, "every library style is offered");
 
@@ -180,6 +181,8 @@ struct DecorateContextState {
     float failedToneGamma = 0;
     bool jsegFailed = false;
     bool brushFailed = false;     /* the brush stage failed on these layers: not retried every frame */
+    pnpr_sphere_tree tree;        /* the hierarchy style's sphere tree of these layers (treeReady) */
+    bool treeReady = false, treeFailed = false;
     double up[3] = {0, 0, 1};     /* the scene's up (pnpr_scene_frame): where the tone's key light is */
     QString lastPlan;             /* the request whose plan was logged last */
     QString lastError;            /* the last message logged (not repeated every frame) */
@@ -197,6 +200,7 @@ struct DecorateContextState {
         std::memset(&cloud, 0, sizeof cloud);
         std::memset(&lines, 0, sizeof lines);
         std::memset(&fx, 0, sizeof fx);
+        std::memset(&tree, 0, sizeof tree);
     }
 };
 
@@ -222,6 +226,7 @@ DecoratePointnprPlugin::~DecoratePointnprPlugin()
         DecorateContextState *s = it.value();
         if (s->renderer && pnpr_meshlab::currentGLContext() == it.key()) pnpr_renderer_destroy(s->renderer);
         pnpr_cloud_free(&s->cloud);
+        pnpr_sphere_tree_free(&s->tree);
         pnpr_lines_free(&s->lines);
         pnpr_effect_pipeline_free(&s->fx);
         delete s->settle;
@@ -320,7 +325,8 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                                   "stipple: ink dots; cartoon: flat colours (segments) and outlines; lines: profile "
                                   "lines and outlines; painterly: brush dabs in the points' colours; brush: stroke-based "
                                   "splatting, brush strokes on surface-aligned splats (colour clusters are computed "
-                                  "the first time)"));
+                                  "the first time); hierarchy: Chi & Lee's painterly strokes over a sphere hierarchy "
+                                  "of colour regions (built the first time)"));
         }
         if (!par.hasParameter(kVariant))
             par.addParam(RichEnum(kVariant, 0, QStringList() << "all (strokes + hatches)" << "directional strokes only"
@@ -420,6 +426,7 @@ void DecoratePointnprPlugin::dropState(void *ctx)
     if (!s) return;
     if (s->renderer && pnpr_meshlab::currentGLContext() == ctx) pnpr_renderer_destroy(s->renderer);
     pnpr_cloud_free(&s->cloud);
+    pnpr_sphere_tree_free(&s->tree);
     pnpr_lines_free(&s->lines);
     pnpr_effect_pipeline_free(&s->fx);
     delete s->settle;
@@ -870,6 +877,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         s->failedWant = 0;
         s->jsegFailed = false;
         s->brushFailed = false;
+        if (s->renderer) pnpr_renderer_set_hierarchy(s->renderer, nullptr);
+        pnpr_sphere_tree_free(&s->tree);
+        s->treeReady = s->treeFailed = false;
         s->lastPlan.clear();
         pnpr_lines_free(&s->lines);
         s->linesReady = false;
@@ -931,6 +941,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         else if (plan.segments == PNPR_PLAN_SEGMENTS_SHADE) parts << QString("shading bands (%1)").arg(plan.segments_why);
         if (plan.lines) parts << QString("profile lines (%1)").arg(plan.lines_why ? plan.lines_why : "");
         if (plan.brush) parts << QString("brush sizes and clusters (%1)").arg(plan.brush_why);
+        if (plan.hierarchy) parts << QString("sphere hierarchy (%1)").arg(plan.hierarchy_why);
         /* logged once per request and cloud (not again when its own results arrive) */
         QString key = QString("%1 %2 %3 %4").arg(s->signature).arg((int)prm.style).arg((int)prm.variant).arg(prm.outline);
         if (key != s->lastPlan) {
@@ -1006,6 +1017,20 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
                        .arg(bs.clusters).arg(s->cloud.count).arg(t.elapsed()), false);
         }
     }
+    if (plan.hierarchy && !s->treeReady && !s->treeFailed) {
+        QElapsedTimer t;
+        t.start();
+        pnpr_sphere_tree_stats ts;
+        pnpr_error terr;
+        std::memset(&terr, 0, sizeof terr);
+        pnpr_status st = pnpr_sphere_tree_build(&s->cloud, nullptr, &s->tree, &ts, &terr);
+        s->treeReady = st == PNPR_OK;
+        s->treeFailed = !s->treeReady;
+        if (st != PNPR_OK) report("sphere hierarchy failed: " + status(st, terr), true);
+        else
+            report(QString("sphere hierarchy built (%1 leaves, %2 regions, %3 points, %4 ms)")
+                       .arg(ts.leaves).arg(ts.regions).arg(s->cloud.count).arg(t.elapsed()), false);
+    }
     if (s->needUpload) {
         QElapsedTimer t;
         t.start();
@@ -1067,6 +1092,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     o.line_width = prm.lineWidth;
     o.brush_preset = prm.brush;
     o.brush_scale = prm.brushScale;
+    pnpr_renderer_set_hierarchy(s->renderer, s->treeReady ? &s->tree : nullptr);
     o.stroke_width = prm.lineWidth;
     o.outline = prm.outline;
     o.outline_width = prm.outlineWidth;
