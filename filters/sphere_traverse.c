@@ -227,7 +227,7 @@ static void paint(trav *s, const draw_node *d, const pnpr_sphere_node *R)
     for (int k = 0; k < 3; k++) dir[k] = (float)(s->p.node_direction || s->p.fine_layer ? d->d[k] : R->dir[k]);
     stroke_axes(s, d, n, dir, t, b);
     double shade = known ? fmax(0.0, pnpr_dot3(n, s->light)) : 0.8;
-    double tone = floor((1.0 - shade) * (PNPR_TAM_TONES - 1) + 0.5);
+    double tone = (1.0 - shade) * (PNPR_TAM_TONES - 1); /* between two layers: blended */
     if (s->p.tam != PNPR_TAM_PAINT) {
         for (int k = 0; k < 3; k++) col[k] = s->p.ink[k];
     } else {

@@ -111,17 +111,25 @@ static void draw_range(pnpr_hier_gl *h, pnpr_brush_gl *oit, const pnpr_hier_pass
     pnpr_brush_gl_oit_resolve(oit, p->frame_fbo);
 }
 
+static void tree_view(const float *view, const double *tree_origin, const double *origin, float *r_view)
+{
+    memcpy(r_view, view, 16 * sizeof *r_view);
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++) r_view[12 + i] += view[4 * k + i] * (float)(tree_origin[k] - origin[k]);
+}
+
 pnpr_status pnpr_hier_gl_draw(pnpr_hier_gl *h, pnpr_brush_gl *oit, const pnpr_hier_pass *p, pnpr_hier_counts *r_counts)
 {
     pnpr_hier_counts c1 = {0}, c2 = {0};
     if (r_counts) *r_counts = c1;
     if (!h->tree || h->tree->root == PNPR_INDEX_NONE) return PNPR_OK;
-    /* the tree's frame: the view translated by the origins' difference */
-    float view[16];
-    memcpy(view, p->view, sizeof view);
-    for (int i = 0; i < 3; i++)
-        for (int k = 0; k < 3; k++) view[12 + i] += p->view[4 * k + i] * (float)(h->tree->origin[k] - p->origin[k]);
-    pnpr_hier_view v = {view, p->proj, p->width, p->height, p->pixels_per_unit, p->ortho, p->image_proj};
+    /* the tree's frame: the views translated by the origins' difference */
+    float view[16], lview[16];
+    tree_view(p->view, h->tree->origin, p->origin, view);
+    tree_view(p->lod_view ? p->lod_view : p->view, h->tree->origin, p->origin, lview);
+    pnpr_hier_view v = {lview, p->lod_proj ? p->lod_proj : p->proj, p->width, p->height,
+                        p->lod_view ? p->lod_pixels_per_unit : p->pixels_per_unit, p->ortho,
+                        p->lod_view ? NULL : p->image_proj};
     pnpr_status st = tam_texture(h, p->params.tam);
     if (st == PNPR_OK) st = traverse(h, 0, &v, &p->params, &c1);
     if (st != PNPR_OK) return st;

@@ -30,6 +30,8 @@ typedef struct pnpr_hier_pass {
     int width, height;
     float pixels_per_unit;
     int ortho;
+    const float *lod_view, *lod_proj; /* the camera that chooses the strokes (NULL = view, proj) */
+    float lod_pixels_per_unit;
     pnpr_hier_params params;       /* the style's options, ink filled in */
     int stencil;                   /* > 0: only where the stencil equals it (style maps) */
     GLuint frame_fbo;

@@ -372,8 +372,12 @@ static size_t draw_hierarchy(pnpr_renderer *r, const pnpr_frame_ctx *f, int filt
         mask_spec m = {f->mask_scale, -1, 0, 0, 0, f->outline, paint};
         draw_mask(r, f, &m);
     }
+    pnpr_frame_camera lod;
+    int frozen = f->o.hierarchy.lod_camera &&
+                 pnpr_frame_camera_from_matrices(f->o.hierarchy.lod_camera, r->origin, f->fw, f->fh, &lod, NULL) == PNPR_OK;
     pnpr_hier_pass p = {f->fc.view, f->fc.proj, f->image_proj, r->origin, f->fw, f->fh, f->fc.pixels_per_unit,
-                        f->fc.ortho, f->o.hierarchy, filter >= 0 ? filter + 1 : 0, r->fbo};
+                        f->fc.ortho, frozen ? lod.view : NULL, frozen ? lod.proj : NULL, frozen ? lod.pixels_per_unit : 0,
+                        f->o.hierarchy, filter >= 0 ? filter + 1 : 0, r->fbo};
     for (int k = 0; k < 3; k++) p.params.ink[k] = f->ink[k];
     pnpr_hier_counts c;
     size_t n = pnpr_hier_gl_draw(&r->hier, &r->brush, &p, &c) == PNPR_OK ? c.strokes[PNPR_HIER_PAINT] : 0;

@@ -18,7 +18,11 @@ layout(location = 1) out vec4 o_optical;
 
 void main()
 {
-    float a = texture(u_brush, vec3(v_uv, v_variant)).r * v_color.a;
+    // a fractional layer (the hierarchy's tones) blends the two layers around it
+    float l0 = floor(v_variant), f = v_variant - l0;
+    float t = texture(u_brush, vec3(v_uv, l0)).r;
+    if (f > 0.0) t = mix(t, texture(u_brush, vec3(v_uv, l0 + 1.0)).r, f);
+    float a = t * v_color.a;
     if (a < 0.5 / 255.0)
         discard;
     if (u_oit == 1) {

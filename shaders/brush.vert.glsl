@@ -79,7 +79,9 @@ void main()
     vec4 eye = u_view * vec4(a_pos, 1.0);
     eye.z = min(eye.z + size * stretch, 0.5 * eye.z); // the camera looks down -z; stay in front of it
     vec4 pulled = u_proj * eye;
-    gl_Position = vec4(clip.xy / max(clip.w, 1e-6) * pulled.w, pulled.z, pulled.w);
+    // not in front of the near plane (the automatic one hugs the cloud): the pulled depth clamped
+    // to it rather than the stroke clipped away
+    gl_Position = vec4(clip.xy / max(clip.w, 1e-6) * pulled.w, max(pulled.z, -0.9999 * pulled.w), pulled.w);
     v_uv = q * 0.5 + 0.5;
     // the second layer: a slightly altered colour (the paper's "slightly altered color parameters")
     v_color = u_layer == 1 ? vec4(clamp(a_color.rgb * 1.12 + 0.02, 0.0, 1.0), a_color.a) : a_color;

@@ -26,7 +26,9 @@ void main()
     vec4 eye = u_view * vec4(a_pos, 1.0);
     eye.z = min(eye.z + max(length(a_u), length(a_v)), 0.5 * eye.z);
     vec4 pulled = u_proj * eye;
-    gl_Position = vec4(clip.xy / max(clip.w, 1e-6) * pulled.w, pulled.z, pulled.w);
+    // not in front of the near plane (the automatic one hugs the cloud): the pulled depth clamped
+    // to it rather than the stroke clipped away
+    gl_Position = vec4(clip.xy / max(clip.w, 1e-6) * pulled.w, max(pulled.z, -0.9999 * pulled.w), pulled.w);
     v_uv = q * 0.5 + 0.5;
     v_color = a_color;
     v_variant = a_tone;

@@ -310,7 +310,7 @@ static void test_plan(void)
     CHECK(!strcmp(pnpr_brush_preset_list(buf, sizeof buf, " | "), "bristle | flat | round"));
     CHECK(!strcmp(pnpr_brush_preset_list(buf, 9, ", "), "bristle,")); /* truncated to fit */
     CHECK(!strcmp(pnpr_style_list(buf, sizeof buf, ",", 1u << PNPR_STYLE_LINES | 1u << PNPR_STYLE_POINTS),
-                  "sketchy,stipple,cartoon,painterly,brush"));
+                  "sketchy,stipple,cartoon,painterly,brush,hierarchy"));
     CHECK(!strcmp(pnpr_style_list(buf, 1, ",", 0), ""));
     pnpr_style s;
     CHECK_STATUS(pnpr_style_from_name("Brush", &s), PNPR_OK);

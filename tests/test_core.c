@@ -87,7 +87,7 @@ static void test_style_map(void)
     CHECK_STATUS(pnpr_style_map_parse("", 0, "e.txt", &m, &err), PNPR_OK);
     CHECK(m.count == 0 && !m.have_default);
     static const struct { const char *text, *message; } bad[] = {
-        {"1 points\n2 nosuch\n", "b.txt:2: unknown style 'nosuch' (points, sketchy, lines, stipple, cartoon, painterly, brush)"},
+        {"1 points\n2 nosuch\n", "b.txt:2: unknown style 'nosuch' (points, sketchy, lines, stipple, cartoon, painterly, brush, hierarchy)"},
         {"4294967296 points\n", "b.txt:1: label '4294967296' is not an integer in 0..4294967295 or '*'"},
         {"-1 points\n", "b.txt:1: label '-1' is not an integer in 0..4294967295 or '*'"},
         {"\n\n1 points extra\n", "b.txt:3: want 'LABEL STYLE' or '* STYLE'"},

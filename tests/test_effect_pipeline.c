@@ -285,7 +285,7 @@ static void test_errors(void)
         {"node a labels 1-2-3\n", 1, "bad label '1-2-3'"},
         {"node a labels 5-3\n", 1, "reversed range '5-3'"},
         {"style lines\n", 1, "the lines style cannot be a segment layer (profile lines have no labels)"},
-        {"style nosuch\n", 1, "unknown style 'nosuch' (points, sketchy, stipple, cartoon, painterly, brush)"},
+        {"style nosuch\n", 1, "unknown style 'nosuch' (points, sketchy, stipple, cartoon, painterly, brush, hierarchy)"},
         {"style points extra\n", 1, "unexpected 'extra' after the style"},
         {"size 0.01\n", 1, "'size' wants a number in 0.05..20"},
         {"size inf\n", 1, "'size' wants a number in 0.05..20"},

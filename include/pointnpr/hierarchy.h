@@ -109,6 +109,8 @@ PNPR_NODISCARD pnpr_status pnpr_sphere_tree_build(const pnpr_cloud *cloud, const
                                                   pnpr_error *err);
 void pnpr_sphere_tree_free(pnpr_sphere_tree *tree); /* leaves a zeroed tree; NULL ok */
 
+struct pnpr_camera_matrices; /* camera.h */
+
 /* ---- the traversal ----------------------------------------------------------------------------- */
 
 /* One stroke of a frame: a quad centred at pos spanned by +-u and +-v (offsets from the tree's
@@ -118,7 +120,8 @@ typedef struct pnpr_hier_stroke {
     float u[3];           /* half-length along the stroke direction */
     float v[3];           /* half-width */
     uint8_t rgba[4];
-    float tone;           /* TAM tone 0 .. PNPR_TAM_TONES - 1 (silhouettes, borders: the darkest) */
+    float tone;           /* TAM tone 0 .. PNPR_TAM_TONES - 1, fractions blend the two tones around
+                           * (silhouettes, borders: the darkest) */
 } pnpr_hier_stroke;
 
 typedef enum pnpr_hier_kind { PNPR_HIER_PAINT = 0, PNPR_HIER_SILHOUETTE, PNPR_HIER_BORDER, PNPR_HIER_KIND_COUNT_ } pnpr_hier_kind;
@@ -158,6 +161,9 @@ typedef struct pnpr_hier_params {
     int importance_w, importance_h;
     float light[3];       /* direction towards the light in eye space (0 = from the upper left) */
     float ink[3];         /* silhouette and border colour, 0..1 */
+    const struct pnpr_camera_matrices *lod_camera; /* the renderer: strokes chosen as this camera
+                           * (camera.h, world matrices) sees them, drawn through the frame's: the
+                           * selection frozen while the view moves (NULL = the frame's camera) */
 } pnpr_hier_params;
 
 typedef struct pnpr_hier_counts {

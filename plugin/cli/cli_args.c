@@ -44,7 +44,9 @@ void cli_table_usage(FILE *f, const pnpr_option_desc *table, size_t count, const
 
 int cli_option_value(const pnpr_option_desc *d, const char *cmd, const char *v, double *r)
 {
-    if (cli_parse_number(v, -HUGE_VAL, HUGE_VAL, r) && pnpr_option_in_range(d, *r)) return 1;
+    if (cli_parse_number(v, -HUGE_VAL, HUGE_VAL, r) &&
+        (pnpr_option_in_range(d, *r) || ((d->flags & PNPR_OPTION_NEGATIVE_OFF) && *r < 0 && isfinite(*r))))
+        return 1; /* a negative value of a NEGATIVE_OFF option: off */
     char range[64];
     pnpr_option_range_text(d, range, sizeof range);
     const int integer = d->type == PNPR_OPTION_INT || d->type == PNPR_OPTION_UINT;

@@ -101,7 +101,7 @@ check '[ $? -eq 2 ] && grep -q "bristle | flat | round" "$dir/brush-bad.txt"' "-
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --style brush --brush-k 65 > /dev/null 2>&1
 check '[ $? -eq 2 ]' "--brush-k 65 is a usage error"
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --style Brushy 2> "$dir/style-bad.txt"
-check '[ $? -eq 2 ] && grep -q "painterly, brush" "$dir/style-bad.txt"' "--style Brushy: the message lists the library's styles"
+check '[ $? -eq 2 ] && grep -q "painterly, brush, hierarchy" "$dir/style-bad.txt"' "--style Brushy: the message lists the library's styles"
 # tiled snapshots: forced 64-pixel tiles report progress per tile; an 8K image (7680x4320) renders
 "$bin" render "$dir/cube.ply" -o "$dir/tiled.png" --size 200x150 --max-tile 64 2> "$dir/tiles.txt"
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/tiled.png")" -eq 200 ] && [ "$(grep -c "^render: tile [0-9]*/[0-9]*" "$dir/tiles.txt")" -ge 12 ]' "--max-tile 64: tiles with progress per tile"

@@ -146,7 +146,7 @@ static void check_still(pnpr_renderer *r, const pnpr_camera_path *path, uint8_t 
 }
 
 /* The scene with features and profile lines uploaded; the slow orbit around its preset start. */
-static int prepare(pnpr_renderer *r, pnpr_cloud *c, pnpr_camera_path *path)
+static int prepare(pnpr_renderer *r, pnpr_cloud *c, pnpr_sphere_tree *tree, pnpr_camera_path *path)
 {
     pnpr_quality_scene scene;
     pnpr_quality_scene_init(&scene, PNPR_QUALITY_PRESET_SPARSE);
@@ -156,7 +156,9 @@ static int prepare(pnpr_renderer *r, pnpr_cloud *c, pnpr_camera_path *path)
     /* the scene as a file, for the pictures of docs/export.md (pointnpr animate) */
     CHECK_STATUS(pnpr_write_file(PNPR_TEST_SCRATCH "/coherence-scene.ply", c, NULL, &err), PNPR_OK);
     CHECK_STATUS(pnpr_brush_prepare(c, NULL, NULL, NULL), PNPR_OK); /* the brush style's data */
+    CHECK_STATUS(pnpr_sphere_tree_build(c, NULL, tree, NULL, NULL), PNPR_OK); /* the hierarchy style's */
     CHECK_STATUS(pnpr_renderer_set_cloud(r, c, NULL, &err), PNPR_OK);
+    pnpr_renderer_set_hierarchy(r, tree);
     pnpr_polylines lines = {0};
     CHECK_STATUS(pnpr_profile_lines(c, NULL, &lines, NULL), PNPR_OK);
     CHECK_STATUS(pnpr_renderer_set_lines(r, &lines, &err), PNPR_OK);
@@ -182,7 +184,8 @@ int main(void)
     pnpr_cloud c = {0};
     pnpr_camera_path path = {0};
     uint8_t *px[2] = {malloc((size_t)W * H * 4), malloc((size_t)W * H * 4)};
-    if (r && px[0] && px[1] && prepare(r, &c, &path)) {
+    pnpr_sphere_tree tree = {0};
+    if (r && px[0] && px[1] && prepare(r, &c, &tree, &path)) {
         check_still(r, &path, px);
         double base = orbit_change(r, &path, PNPR_STYLE_POINTS, PNPR_SKETCH_ALL, px);
         CHECK(base > 0);
@@ -205,6 +208,7 @@ int main(void)
     pnpr_camera_path_free(&path);
     pnpr_cloud_free(&c);
     pnpr_renderer_destroy(r);
+    pnpr_sphere_tree_free(&tree);
     pnpr_gl_context_destroy(ctx);
     return pnpr_test_finish("test_render_coherence");
 }

@@ -38,11 +38,14 @@ int main(void)
         for (int k = 0; k < 3; k++) c.rgb[3 * i + k] = (uint8_t)((i * (k + 3) * 37) % 230);
     CHECK_STATUS(pnpr_compute_features(&c, NULL, NULL), PNPR_OK);
     CHECK_STATUS(pnpr_brush_prepare(&c, NULL, NULL, NULL), PNPR_OK); /* the brush style's data */
+    pnpr_sphere_tree tree = {0};
+    CHECK_STATUS(pnpr_sphere_tree_build(&c, NULL, &tree, NULL, NULL), PNPR_OK); /* the hierarchy style's */
     uint8_t *a = malloc(W * H * 4), *b = malloc(W * H * 4);
     const pnpr_upload_options uz = {0}, ud = pnpr_upload_defaults();
     for (int u = 0; r && u < 2; u++) {
         /* the upload: zeroed, then the defaults written out; each frame the same either way */
         CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, u ? &ud : &uz, NULL), PNPR_OK);
+        pnpr_renderer_set_hierarchy(r, &tree);
         for (int s = 0; s < PNPR_STYLE_COUNT_; s++) {
             pnpr_draw_options z = {0}, d = pnpr_draw_defaults();
             z.style = d.style = (pnpr_style)s;
@@ -56,6 +59,7 @@ int main(void)
     free(a);
     free(b);
     pnpr_cloud_free(&c);
+    pnpr_sphere_tree_free(&tree);
     pnpr_renderer_destroy(r);
     pnpr_gl_context_destroy(ctx);
     return pnpr_test_finish("test_render_defaults");
