@@ -30,6 +30,9 @@ expect "--style lines" "profile lines" run
 expect "--style brush" "brush sizes" run
 expect "--style brush" "kd-tree \+ knn" skip   # the brush stage has its own neighbourhoods
 expect "--style points" "brush sizes" skip
+expect "--style hierarchy" "sphere hierarchy" run
+expect "--style hierarchy" "kd-tree \+ knn" skip   # the tree finds its own neighbourhoods
+expect "--style brush" "sphere hierarchy" skip
 expect "--style lines" "dither" skip
 expect "--segment components" "classify" skip
 expect "--features" "orient" run

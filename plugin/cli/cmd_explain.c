@@ -35,6 +35,7 @@ static int plan_rows(const pnpr_plan *p, int have_in, int brush_asked, const cha
                    segment_method ? "requested (--segment)" : p->segments != PNPR_PLAN_SEGMENTS_NONE ? p->segments_why : "not requested"};
     r[k++] = (row){"brush sizes", p->brush,
                    p->brush ? p->brush_why : (brush_asked && have_in ? reuse : "no output draws brush strokes")};
+    r[k++] = (row){"sphere hierarchy", p->hierarchy, p->hierarchy ? p->hierarchy_why : "no output draws the hierarchy's strokes"};
     return k;
 }
 
@@ -92,7 +93,7 @@ int cli_explain(int argc, char **argv)
     pnpr_status st = pnpr_plan_make(&req, in ? &c : NULL, &p);
     pnpr_cloud_free(&c);
     if (st != PNPR_OK) { fprintf(stderr, "pointnpr explain: %s\n", pnpr_status_string(st)); return 2; }
-    row rows[9];
+    row rows[10];
     int nr = plan_rows(&p, in != NULL, (req.styles >> PNPR_STYLE_BRUSH) & 1, segment_method, rows);
     printf("plan%s%s%s:\n", style ? " for --style " : "", style ? style : "", p.lines && !(style && !strcmp(style, "lines")) ? " + lines" : "");
     for (int r = 0; r < nr; r++) {

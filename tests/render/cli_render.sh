@@ -100,6 +100,17 @@ check '[ $? -eq 0 ] && [ "$(png_w "$dir/brush.png")" -eq 120 ] && grep -q "clust
 check '[ $? -eq 2 ] && grep -q "bristle | flat | round" "$dir/brush-bad.txt"' "--brush sponge: a usage error naming the presets"
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --style brush --brush-k 65 > /dev/null 2>&1
 check '[ $? -eq 2 ]' "--brush-k 65 is a usage error"
+# hierarchy (Chi & Lee): the sphere tree built on the fly; tonal art maps by name; an importance map
+"$bin" render "$dir/cube.ply" -o "$dir/hier.png" --size 120x90 --style hierarchy --tam hatch --borders 0.01 --hier-layers 2 2> "$dir/hier.txt"
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/hier.png")" -eq 120 ] && grep -q "leaf spheres, .* regions" "$dir/hier.txt"' "hierarchy renders (--tam hatch, borders, two layers; the tree reported)"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --style hierarchy --tam crayon 2> "$dir/hier-bad.txt"
+check '[ $? -eq 2 ] && grep -q "paint, hatch or dots" "$dir/hier-bad.txt"' "--tam crayon: a usage error naming the maps"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --style hierarchy --stroke-px 0.5 > /dev/null 2>&1
+check '[ $? -eq 2 ]' "--stroke-px 0.5 is a usage error"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --style hierarchy --importance "$dir/no-such.png" 2> "$dir/imp-bad.txt"
+check '[ $? -ne 0 ] && grep -q "no-such.png" "$dir/imp-bad.txt"' "--importance with a missing file: an error naming it"
+"$bin" render "$dir/cube.ply" -o "$dir/hier-imp.png" --size 120x90 --style hierarchy --importance "$dir/hier.png" --silhouette-deg -1 2> /dev/null
+check '[ $? -eq 0 ] && [ "$(png_w "$dir/hier-imp.png")" -eq 120 ]' "--importance with a PNG (any colour type) and silhouettes off"
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --style Brushy 2> "$dir/style-bad.txt"
 check '[ $? -eq 2 ] && grep -q "painterly, brush, hierarchy" "$dir/style-bad.txt"' "--style Brushy: the message lists the library's styles"
 # tiled snapshots: forced 64-pixel tiles report progress per tile; an 8K image (7680x4320) renders
