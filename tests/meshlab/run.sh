@@ -1040,9 +1040,10 @@ decorate_styles)
   BASECONF=$(find "$T/home-cartoon/.config" -name '*.conf' | head -n 1)
   [[ -f "$BASECONF" ]] || die "MeshLab wrote no settings file under $T/home-cartoon/.config"
   conf_has() { grep -q "^PointNPR%3A%3A$1=.*$2" "$BASECONF" || fail "settings: PointNPR::$1 lacks /$2/"; }
-  conf_has DrawStyle 'enum_cardinality=\\"7\\"'
+  conf_has DrawStyle 'enum_cardinality=\\"8\\"'
   conf_has DrawStyle 'enum_val5=\\"painterly\\"'
   conf_has DrawStyle 'enum_val6=\\"brush\\"'
+  conf_has DrawStyle 'enum_val7=\\"hierarchy\\"'
   conf_has Brush 'enum_val0=\\"bristle\\"'
   conf_has Brush 'enum_val2=\\"round\\"'
   conf_has DrawStyle ' value=\\"1\\"'
@@ -1073,7 +1074,7 @@ decorate_styles)
   holds wide "6 px outline bands hold 1.8..3.6 x the dark pixels of the default width (${N_cartoon_BAND:-?})" \
     "${N_wide_BAND:-0} >= 1.8 * ${N_cartoon_BAND:-1e9} && ${N_wide_BAND:-1e9} <= 3.6 * ${N_cartoon_BAND:-0}"
 
-  # A painting style's frame (painterly, brush): no draw failure, each half painted near its input
+  # A painting style's frame (painterly, brush, hierarchy): no draw failure, each half painted near its input
   # grey, no paper or ink inside, paper-white around, most pixels restyled.
   painted() {
     local n=$1 my="N_$1_MY" mb="N_$1_MB" dark="N_$1_DARKIN" nin="N_$1_NIN" bg="N_$1_BG" differ="N_$1_DIFFER"
@@ -1093,6 +1094,11 @@ decorate_styles)
   expect_log brush "pointnpr decorator: plan for the brush style: .*brush sizes and clusters"
   expect_log brush "pointnpr decorator: brush strokes prepared \\([0-9]+ colour clusters, 15002 points, [0-9]+ ms\\)"
   painted brush
+  # 4c. hierarchy (settings): the sphere tree planned and built, strokes in the regions' colours
+  gui hierarchy hierarchy "$T/colour.ply" DrawStyle=7 && measure hierarchy
+  expect_log hierarchy "pointnpr decorator: plan for the hierarchy style: .*sphere hierarchy"
+  expect_log hierarchy "pointnpr decorator: sphere hierarchy built \\([0-9]+ leaves, [0-9]+ regions, 15002 points, [0-9]+ ms\\)"
+  painted hierarchy
 
   # 5. Tone gamma (settings) reaches the dithering points: sketchy on the colourless cube, whose
   #    front face is lit (light tone: few hatches at the library's default curve); gamma 0.25

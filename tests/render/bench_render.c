@@ -7,6 +7,7 @@
 #include "testutil.h"
 
 #include <pointnpr/brush.h>
+#include <pointnpr/hierarchy.h>
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
 #include <pointnpr/io.h>
@@ -73,6 +74,48 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+/* The hierarchy's frame time against its leaf count (the trend of Chi & Lee's table 1): trees of
+ * coarser leaves (leaf factor), the same view and stroke size; the median of `frames`. */
+static void hierarchy_sweep(pnpr_renderer *r, const pnpr_cloud *c, const pnpr_camera *cam, int w, int h, int frames,
+                            double base, double *ms)
+{
+    printf("\nhierarchy: frame time against leaf count (stroke size 12 px; and 6 px)\n"
+           "| leaf factor | leaves | build s | strokes | ms/frame | x points | strokes at 6 px | ms/frame |\n"
+           "|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    const float factors[4] = {1.5f, 3, 6, 12};
+    for (int k = 0; k < 4; k++) {
+        pnpr_sphere_tree t;
+        pnpr_sphere_tree_options to = {0};
+        to.leaf_factor = factors[k];
+        pnpr_sphere_tree_stats ts;
+        if (pnpr_sphere_tree_build(c, &to, &t, &ts, NULL) != PNPR_OK) return;
+        pnpr_renderer_set_hierarchy(r, &t);
+        printf("| %g | %zu | %.2f |", (double)factors[k], ts.leaves, ts.seconds);
+        for (int px = 12; px >= 6; px -= 6) {
+            pnpr_draw_options o;
+            memset(&o, 0, sizeof o);
+            o.style = PNPR_STYLE_HIERARCHY;
+            o.hierarchy.stroke_px = (float)px;
+            o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+            pnpr_target tg = {0, 0, 0, w, h, 1};
+            pnpr_render_stats st = {0};
+            for (int f = -1; f < frames; f++) {
+                glFinish();
+                double s = now();
+                if (pnpr_renderer_draw(r, cam, &o, &tg, &st, NULL) != PNPR_OK) break;
+                glFinish();
+                if (f >= 0) ms[f] = (now() - s) * 1e3;
+            }
+            qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
+            if (px == 12) printf(" %zu | %.1f | %.2f |", st.strokes_drawn, ms[frames / 2], ms[frames / 2] / base);
+            else printf(" %zu | %.1f |", st.strokes_drawn, ms[frames / 2]);
+        }
+        printf("\n");
+        pnpr_renderer_set_hierarchy(r, NULL);
+        pnpr_sphere_tree_free(&t);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
@@ -111,6 +154,11 @@ int main(int argc, char **argv)
     pnpr_brush_stats bs;
     if (pnpr_brush_prepare(&cloud, NULL, &bs, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
     double t_brush = now() - t0;
+    t0 = now();
+    pnpr_sphere_tree tree;
+    pnpr_sphere_tree_stats ts;
+    if (pnpr_sphere_tree_build(&cloud, NULL, &tree, &ts, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
+    double t_tree = now() - t0;
 
     pnpr_gl_context *ctx = NULL;
     if (pnpr_gl_context_create(&ctx, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
@@ -119,6 +167,7 @@ int main(int argc, char **argv)
     t0 = now();
     if (pnpr_renderer_set_cloud(r, &cloud, NULL, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
     double t_upload = now() - t0;
+    pnpr_renderer_set_hierarchy(r, &tree);
     t0 = now();
     pnpr_polylines lines = {0};
     if (pnpr_profile_lines(&cloud, NULL, &lines, NULL) != PNPR_OK) { fprintf(stderr, "profile lines failed\n"); return 1; }
@@ -132,9 +181,9 @@ int main(int argc, char **argv)
     const char *renderer_name = (const char *)glGetString(GL_RENDERER);
     printf("cloud: %s, %zu points; %dx%d; %s; median of %d frames (after 1 warm-up)\n",
            in ? in : "generated noisy cube", cloud.count, w, h, renderer_name ? renderer_name : "?", frames);
-    printf("read %.2f s, features %.2f s, brush preparation %.2f s (%zu clusters), upload (kNN spacing + queue) %.2f s, "
-           "profile lines + upload %.2f s\n",
-           t_read, t_feat, t_brush, bs.clusters, t_upload, t_lines);
+    printf("read %.2f s, features %.2f s, brush preparation %.2f s (%zu clusters), sphere hierarchy %.2f s (%zu leaves, "
+           "%zu regions), upload (kNN spacing + queue) %.2f s, profile lines + upload %.2f s\n",
+           t_read, t_feat, t_brush, bs.clusters, t_tree, ts.leaves, ts.regions, t_upload, t_lines);
     printf("| style | points drawn | strokes | ms/frame | x points |%s\n|---|---:|---:|---:|---:|%s\n",
            out ? " animate frame: + read back + PNG, ms |" : "", out ? "---:|" : "");
     uint8_t *px = out ? malloc((size_t)w * h * 4) : NULL;
@@ -154,6 +203,7 @@ int main(int argc, char **argv)
         {"cartoon, outline off", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0, -1},
         {"painterly", PNPR_STYLE_PAINTERLY, PNPR_SKETCH_ALL, 0, 0},
         {"brush", PNPR_STYLE_BRUSH, PNPR_SKETCH_ALL, 0, 0},
+        {"hierarchy", PNPR_STYLE_HIERARCHY, PNPR_SKETCH_ALL, 0, 0},
     };
     double base = 0;
     double *ms = malloc(sizeof(double) * (size_t)frames);
@@ -185,7 +235,10 @@ int main(int argc, char **argv)
         }
         printf("\n");
     }
+    hierarchy_sweep(r, &cloud, &cam, w, h, frames, base, ms);
     free(ms);
+    pnpr_renderer_set_hierarchy(r, NULL);
+    pnpr_sphere_tree_free(&tree);
     if (out) {
         printf("\nvector export, %dx%d:\n| style | paths | drawing s | SVG s | SVG MB | PDF s | PDF MB |\n|---|---:|---:|---:|---:|---:|---:|\n", w, h);
         const pnpr_style vs[4] = {PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE, PNPR_STYLE_LINES, PNPR_STYLE_CARTOON};
