@@ -98,7 +98,7 @@ static const pnpr_option_desc sphere_tree_table[] = {
 static const pnpr_option_desc hier_table[] = {
     S("hier-abstraction", abstraction, FLOAT, 0.01, 0, 1, NEG_OFF, 0, NULL,
       "hierarchy: region nodes of dissimilarity below this fraction of the root's (negative: none)"),
-    S("stroke-px", stroke_px, FLOAT, 12, 1, 512, 0, 0, NULL, "hierarchy: stroke diameter on screen, pixels"),
+    S("stroke-px", stroke_px, FLOAT, 8, 1, 512, 0, 0, NULL, "hierarchy: stroke diameter on screen, pixels"),
     S("stroke-radius", stroke_radius, FLOAT, 0, 0, UNB, EXCL, 0, "view-dependent",
       "hierarchy: view-independent strokes of this radius (units)"),
     S("stroke-scale", stroke_scale, FLOAT, 1.2, 0.1, 8, 0, 0, NULL, "hierarchy: stroke half-width in node radii"),
@@ -109,7 +109,7 @@ static const pnpr_option_desc hier_table[] = {
       "hierarchy: strokes along node, not region, direction"),
     S("noise-angle", noise_angle, FLOAT, 12, 0, 90, NEG_OFF, 0, NULL, "hierarchy: Perlin noise on directions, degrees"),
     S("noise-colour", noise_colour, FLOAT, 0.08, 0, 1, NEG_OFF, 0, NULL, "hierarchy: Perlin noise on brightness"),
-    S("silhouette-deg", silhouette_deg, FLOAT, 10, 0, 60, NEG_OFF, 0, NULL,
+    S("silhouette-deg", silhouette_deg, FLOAT, 8, 0, 60, NEG_OFF, 0, NULL,
       "hierarchy: silhouette band ThresholdDegree (negative: none)"),
     S("borders", border_level, FLOAT, 0, 0, UNB, ZERO_VALUE, 0, NULL, "hierarchy: region borders at this merge level (0: none)"),
     S("tam", tam, INT, 0, 0, PNPR_TAM_COUNT_ - 1, ZERO_VALUE, 0, NULL, "hierarchy: tonal art map"),

@@ -30,6 +30,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Silhouettes: width in pixels, the darkening of the paint colour, the opacity. */
+#define SILHOUETTE_PX 2.5
+#define SILHOUETTE_OUT 0.6
+#define SILHOUETTE_TINT 0.3
+#define SILHOUETTE_ALPHA 0.85
+/* The ink maps: no ink below this darkness (1 - light); strokes overlapping a pixel, about
+ * (stroke_scale x node extent)^2 x stretch x pi / node area: 1.2^2 x 1.6 ~ 2.3, rounded up. */
+#define INK_PAPER 0.1
+#define INK_FLOOR 0.1
+#define INK_OVERLAP 2.5
+
 typedef struct trav {
     const pnpr_sphere_tree *t;
     const pnpr_hier_view *v;
@@ -175,21 +186,57 @@ static void view_vector(const trav *s, const double c[3], double r_v[3])
     if (pnpr_normalize3(r_v) == 0) memcpy(r_v, s->back, sizeof s->back);
 }
 
+/* One pixel in cloud units at c. */
+static double pixel_size(const trav *s, const double c[3])
+{
+    double z = s->v->ortho ? 1.0 : fmax(eye_depth(s, c), 1e-9);
+    return z / s->v->pixels_per_unit;
+}
+
+/* A silhouette stroke along the outline: a line SILHOUETTE_PX wide whatever the stroke size (a
+ * line, not a dab), as long as the node's stroke, moved from the node's centre (inside a curved
+ * outline) out towards the outline by SILHOUETTE_OUT of its extent; paint: the node's colour
+ * darkened, slightly transparent (an illustrator's tinted contour), the ink maps: ink. */
 static void silhouette(trav *s, const draw_node *d, const double n[3], const double vv[3])
 {
-    double t[3], w[3], u[3], v[3];
+    double t[3], w[3], u[3], v[3], col[3], c[3], out[3];
     pnpr_cross3(n, vv, t);
     if (pnpr_normalize3(t) < 1e-9) return;
     pnpr_cross3(vv, t, w);
     pnpr_normalize3(w);
-    double len = d->r * s->p.stroke_scale;
+    double nv = pnpr_dot3(n, vv);
+    for (int k = 0; k < 3; k++) out[k] = n[k] - nv * vv[k];
+    if (pnpr_normalize3(out) < 1e-9) memset(out, 0, sizeof out);
+    for (int k = 0; k < 3; k++) c[k] = d->c[k] + SILHOUETTE_OUT * d->r * out[k];
+    double len = d->r * s->p.stroke_scale * s->p.stretch, half_w = 0.5 * SILHOUETTE_PX * pixel_size(s, c);
     for (int k = 0; k < 3; k++) {
-        u[k] = t[k] * len * s->p.stretch;
-        v[k] = w[k] * len * 0.35;
+        u[k] = t[k] * len;
+        v[k] = w[k] * half_w;
+        col[k] = s->p.tam == PNPR_TAM_PAINT ? d->col[k] / 255.0 * SILHOUETTE_TINT : s->p.ink[k];
     }
-    double ink[3] = {s->p.ink[0], s->p.ink[1], s->p.ink[2]};
     pnpr_hier_stroke *o = slot(s, PNPR_HIER_SILHOUETTE);
-    if (o) put(o, d->c, u, v, ink, d->alpha, PNPR_TAM_TONES - 1);
+    if (o) put(o, c, u, v, col, d->alpha * SILHOUETTE_ALPHA, PNPR_HIER_LINE_LAYER);
+}
+
+/* The ink maps' tone for a light level: the faint INK_FLOOR where the surface is lit (darkness
+ * below INK_PAPER: a lit plane keeps a few strokes and does not vanish), then the coverage that,
+ * laid down by about INK_OVERLAP overlapping strokes
+ * (1 - (1 - c)^n), gives the darkness (a painter's value scale; without it, overlapping strokes
+ * darken every tone: the first pictures drowned the features in ink). Returns the layer (with a
+ * fraction) and *r_fade, the stroke's alpha below tone 0's coverage. */
+static double ink_tone(double darkness, double *r_fade)
+{
+    double want = (darkness - INK_PAPER) / (1.0 - INK_PAPER);
+    want = INK_FLOOR + (1.0 - INK_FLOOR) * (want < 0 ? 0 : want > 1 ? 1 : want);
+    double c = 1.0 - pow(1.0 - 0.9 * want, 1.0 / INK_OVERLAP);
+    *r_fade = 1.0;
+    double c0 = pnpr_tam_tone_coverage(0);
+    if (c <= c0) { *r_fade = c0 > 0 ? c / c0 : 0; return 0; }
+    for (int t = 1; t < PNPR_TAM_TONES; t++) {
+        double a = pnpr_tam_tone_coverage(t - 1), b = pnpr_tam_tone_coverage(t);
+        if (c <= b) return (t - 1) + (c - a) / (b - a);
+    }
+    return PNPR_TAM_TONES - 1;
 }
 
 /* The stroke's axes: the direction in the tangent plane, turned by the noise. */
@@ -227,8 +274,9 @@ static void paint(trav *s, const draw_node *d, const pnpr_sphere_node *R)
     for (int k = 0; k < 3; k++) dir[k] = (float)(s->p.node_direction || s->p.fine_layer ? d->d[k] : R->dir[k]);
     stroke_axes(s, d, n, dir, t, b);
     double shade = known ? fmax(0.0, pnpr_dot3(n, s->light)) : 0.8;
-    double tone = (1.0 - shade) * (PNPR_TAM_TONES - 1); /* between two layers: blended */
+    double tone = (1.0 - shade) * (PNPR_TAM_TONES - 1), fade = 1.0; /* between two layers: blended */
     if (s->p.tam != PNPR_TAM_PAINT) {
+        tone = ink_tone(1.0 - shade, &fade);
         for (int k = 0; k < 3; k++) col[k] = s->p.ink[k];
     } else {
         /* the light in the paint too (TAM tones alone leave colourless scans flat) */
@@ -245,7 +293,7 @@ static void paint(trav *s, const draw_node *d, const pnpr_sphere_node *R)
         v[k] = b[k] * w;
     }
     pnpr_hier_stroke *o = slot(s, PNPR_HIER_PAINT);
-    if (o) put(o, d->c, u, v, col, d->alpha, tone);
+    if (o) put(o, d->c, u, v, col, d->alpha * fade, tone);
     s->c->weighted += d->alpha;
 }
 
@@ -381,8 +429,7 @@ static void border_stroke(trav *s, const pnpr_sphere_node *a, const pnpr_sphere_
     if (pnpr_normalize3(t) < 1e-12) return;
     pnpr_cross3(n, t, w);
     pnpr_normalize3(w);
-    double z = s->v->ortho ? 1.0 : fmax(eye_depth(s, c), 1e-9);
-    double px = z / s->v->pixels_per_unit; /* one pixel in cloud units there */
+    double px = pixel_size(s, c);
     double half_w = fmax(0.12 * s->t->spacing, 0.7 * px), half_l = fmax(0.6 * s->t->spacing, 1.5 * px);
     for (int k = 0; k < 3; k++) {
         u[k] = t[k] * half_l;
@@ -390,7 +437,7 @@ static void border_stroke(trav *s, const pnpr_sphere_node *a, const pnpr_sphere_
     }
     double ink[3] = {s->p.ink[0], s->p.ink[1], s->p.ink[2]};
     pnpr_hier_stroke *o = slot(s, PNPR_HIER_BORDER);
-    if (o) put(o, c, u, v, ink, 1.0, PNPR_TAM_TONES - 1);
+    if (o) put(o, c, u, v, ink, 1.0, PNPR_HIER_LINE_LAYER);
 }
 
 /* Borders between the regions of the cut at border_level: merges in order while their level

@@ -327,3 +327,8 @@ int pnpr_tam_find(const char *name)
         if (!strcasecmp(name, tam_names[i])) return i;
     return -1;
 }
+
+double pnpr_tam_tone_coverage(int tone)
+{
+    return tone >= 0 && tone < PNPR_TAM_TONES ? tone_target[tone] : 0.0;
+}

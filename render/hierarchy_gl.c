@@ -3,6 +3,7 @@
 #include "gl_state.h"
 #include "pnpr_shaders.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,20 +36,36 @@ void pnpr_hier_gl_release(pnpr_hier_gl *h)
     memset(h, 0, sizeof *h);
 }
 
-/* The tonal art map `kind`: its tones as layers, its levels as the mipmaps (Praun et al.: a
- * column of the map is one tone's mipmap chain; view-independent strokes pick the level by GL's
- * mipmapping, view-dependent ones are drawn near the finest level's size). */
+/* The line layer (PNPR_HIER_LINE_LAYER) of side s: full across the middle half of v, fading to
+ * the edges; along u, tapered over the last fifth at both ends. */
+static void line_layer(int s, uint8_t *a)
+{
+    for (int y = 0; y < s; y++)
+        for (int x = 0; x < s; x++) {
+            double u = fabs((x + 0.5) / s * 2 - 1), v = fabs((y + 0.5) / s * 2 - 1);
+            double across = v < 0.5 ? 1 : v > 1 ? 0 : 1 - (v - 0.5) / 0.5;
+            double along = u < 0.8 ? 1 : (1 - u) / 0.2;
+            a[(size_t)y * s + x] = (uint8_t)lrint(255.0 * across * along);
+        }
+}
+
+/* The tonal art map `kind`: its tones as layers (and the line layer after them), its levels as
+ * the mipmaps (Praun et al.: a column of the map is one tone's mipmap chain; view-independent
+ * strokes pick the level by GL's mipmapping, view-dependent ones are drawn near the finest
+ * level's size). */
 static pnpr_status tam_texture(pnpr_hier_gl *h, int kind)
 {
     if (h->tam == kind) return PNPR_OK;
-    uint8_t *a = malloc((size_t)PNPR_TAM_TONES * PNPR_TAM_SIZE * PNPR_TAM_SIZE);
+    const size_t layer = (size_t)PNPR_TAM_SIZE * PNPR_TAM_SIZE;
+    uint8_t *a = malloc(layer * (PNPR_TAM_TONES + 1));
     if (!a) return PNPR_ERR_OUT_OF_MEMORY;
     glBindTexture(GL_TEXTURE_2D_ARRAY, h->tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int l = 0; l < PNPR_TAM_LEVELS; l++) {
         int side = PNPR_TAM_SIZE >> l;
         if (pnpr_tam_level((pnpr_tam_kind)kind, l, a) != PNPR_OK) { free(a); return PNPR_ERR_INVALID_ARGUMENT; }
-        glTexImage3D(GL_TEXTURE_2D_ARRAY, l, GL_R8, side, side, PNPR_TAM_TONES, 0, GL_RED, GL_UNSIGNED_BYTE, a);
+        line_layer(side, a + (size_t)side * side * PNPR_TAM_TONES);
+        glTexImage3D(GL_TEXTURE_2D_ARRAY, l, GL_R8, side, side, PNPR_TAM_TONES + 1, 0, GL_RED, GL_UNSIGNED_BYTE, a);
     }
     free(a);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);

@@ -383,7 +383,12 @@ static void test_silhouettes(void)
         double r = sqrt(x * x + y * y);
         on += r >= 0.9 * outline && r <= 1.03 * outline;
         bins[(int)((atan2(y, x) + 3.14159265) / (2 * 3.14159266) * 36) % 36]++;
-        CHECK(buf[i].rgba[0] == 0 && buf[i].rgba[3] > 0); /* ink (black by default) */
+        /* the paint map's silhouettes: the node's colour darkened to 0.3 (at most 0.3 x 255), about
+         * 85% opaque, 2.5 px wide */
+        CHECK(buf[i].rgba[0] <= 77 && buf[i].rgba[1] <= 77 && buf[i].rgba[2] <= 77 &&
+              buf[i].rgba[3] <= 217);
+        double wv = sqrt(buf[i].v[0] * buf[i].v[0] + buf[i].v[1] * buf[i].v[1] + buf[i].v[2] * buf[i].v[2]);
+        CHECK_NEAR(wv * k.v.pixels_per_unit / z, 1.25, 0.01); /* half of 2.5 px */
     }
     CHECK_MSG(ns > 30 && on * 10 >= ns * 9, "%zu of %zu silhouette strokes on the outline (%g px)", on, ns, outline);
     int empty = 0;

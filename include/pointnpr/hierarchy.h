@@ -120,9 +120,13 @@ typedef struct pnpr_hier_stroke {
     float u[3];           /* half-length along the stroke direction */
     float v[3];           /* half-width */
     uint8_t rgba[4];
-    float tone;           /* TAM tone 0 .. PNPR_TAM_TONES - 1, fractions blend the two tones around
-                           * (silhouettes, borders: the darkest) */
+    float tone;           /* TAM tone 0 .. PNPR_TAM_TONES - 1, fractions blend the two tones around;
+                           * PNPR_HIER_LINE_LAYER: a plain tapered line (silhouettes, borders) */
 } pnpr_hier_stroke;
+
+/* The tone of silhouette and border strokes: the renderer's layer after the map's tones, a solid
+ * line tapered at its ends (a hatch or dot texture would break a 2-pixel line into dashes). */
+#define PNPR_HIER_LINE_LAYER PNPR_TAM_TONES
 
 typedef enum pnpr_hier_kind { PNPR_HIER_PAINT = 0, PNPR_HIER_SILHOUETTE, PNPR_HIER_BORDER, PNPR_HIER_KIND_COUNT_ } pnpr_hier_kind;
 
@@ -194,6 +198,8 @@ typedef enum pnpr_tam_kind { PNPR_TAM_PAINT = 0, PNPR_TAM_HATCH, PNPR_TAM_DOTS, 
  * images of side x side coverage bytes (255 = full paint/ink), tone-major, row-major.
  * PNPR_ERR_INVALID_ARGUMENT for a kind or level out of range. Deterministic. */
 PNPR_NODISCARD pnpr_status pnpr_tam_level(pnpr_tam_kind kind, int level, uint8_t *r_alpha);
+/* The mean ink coverage that tone `tone` of the hatch and dots maps is made for (0 out of range). */
+double pnpr_tam_tone_coverage(int tone);
 const char *pnpr_tam_name(pnpr_tam_kind kind);  /* "paint", "hatch", "dots"; "" out of range */
 int pnpr_tam_find(const char *name);            /* the kind, -1 when unknown (case-insensitive) */
 

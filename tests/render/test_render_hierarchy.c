@@ -51,6 +51,14 @@ static void test_sphere(pnpr_renderer *r, pnpr_sphere_tree *t, uint8_t *px)
     double R = outline_px();
     size_t inside = 0, painted = 0, beyond = 0, beyond_ink = 0, interior = 0, interior_dark = 0;
     int bins[36] = {0};
+    double paint = 0; /* the interior's mean luma: silhouettes are darker than 0.6 of it */
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double dx = x + 0.5 - W / 2.0, dy = y + 0.5 - H / 2.0;
+            if (dx * dx + dy * dy < 0.25 * R * R) { paint += luma(pixel(px, x, y)); interior++; }
+        }
+    paint /= interior ? (double)interior : 1.0;
+    interior = 0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             double dx = x + 0.5 - W / 2.0, dy = y + 0.5 - H / 2.0, d = sqrt(dx * dx + dy * dy);
@@ -58,7 +66,7 @@ static void test_sphere(pnpr_renderer *r, pnpr_sphere_tree *t, uint8_t *px)
             if (d < 0.9 * R) { inside++; painted += !is_paper(p); }
             if (d > 1.1 * R) { beyond++; beyond_ink += !is_paper(p); }
             if (d < 0.6 * R) { interior++; interior_dark += luma(p) < 40; }
-            if (d > 0.9 * R && d < 1.06 * R && luma(p) < 60) bins[(int)((atan2(dy, dx) + 3.14159265) / 6.2831854 * 36) % 36]++;
+            if (d > 0.9 * R && d < 1.06 * R && luma(p) < 0.6 * paint) bins[(int)((atan2(dy, dx) + 3.14159265) / 6.2831854 * 36) % 36]++;
         }
     CHECK_MSG(painted >= inside * 97 / 100, "%zu of %zu pixels inside the outline painted", painted, inside);
     CHECK_MSG(beyond_ink * 100 <= beyond, "%zu of %zu pixels beyond the outline not paper", beyond_ink, beyond);
@@ -73,7 +81,7 @@ static void test_sphere(pnpr_renderer *r, pnpr_sphere_tree *t, uint8_t *px)
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             double dx = x + 0.5 - W / 2.0, dy = y + 0.5 - H / 2.0, d = sqrt(dx * dx + dy * dy);
-            ring_dark += d > 0.9 * R && d < 1.06 * R && luma(pixel(px, x, y)) < 40;
+            ring_dark += d > 0.9 * R && d < 1.06 * R && luma(pixel(px, x, y)) < 0.6 * paint;
         }
     CHECK_MSG(ring_dark < 20, "%zu ink pixels on the outline without silhouettes", ring_dark);
     /* hatching: more ink away from the light (upper left) than towards it */
