@@ -42,6 +42,8 @@ static const pnpr_option_desc draw_table[] = {
     D("brush-preset", brush_preset, INT, 0, 0, PNPR_BRUSH_PRESET_COUNT - 1, ZERO_VALUE, 0, NULL,
       "brush: the brush, by its index in pnpr_brush_presets (brush.h)"),
     D("brush-scale", brush_scale, FLOAT, 1, 0.05, 20, 0, 0, NULL, "brush: splat half-size in r + eps units"),
+    D("brush-blur", brush_blur, FLOAT, 0, 0, 8, ZERO_VALUE, 0, NULL,
+      "brush: > 0: the fast blend while moving (alpha blending + Gaussian blur of this sigma, px)"),
     D("brush-jitter", brush_jitter, FLOAT, 15, 0, 90, NEG_OFF, 0, NULL,
       "brush: strokes turn by up to this many degrees per point"),
     D("queue-fade", queue_fade, FLOAT, PNPR_QUEUE_FADE, 0, 1, NEG_OFF, 0, NULL,

@@ -17,7 +17,13 @@ pnpr_status pnpr_brush_gl_create(pnpr_brush_gl *b, pnpr_error *err)
     b->prog_resolve = b->prog ? pnpr_gl_link_program(pnpr_shader_composite_vert, pnpr_shader_brush_resolve_frag,
                                                      "brush_resolve", err)
                               : 0;
-    if (!b->prog_resolve) return PNPR_ERR_UNSUPPORTED;
+    b->prog_blur = b->prog_resolve ? pnpr_gl_link_program(pnpr_shader_composite_vert, pnpr_shader_brush_blur_frag,
+                                                          "brush_blur", err)
+                                   : 0;
+    if (!b->prog_blur) return PNPR_ERR_UNSUPPORTED;
+    b->ub_src = glGetUniformLocation(b->prog_blur, "u_src");
+    b->ub_dir = glGetUniformLocation(b->prog_blur, "u_dir");
+    b->ub_sigma = glGetUniformLocation(b->prog_blur, "u_sigma");
     GLuint p = b->prog;
     b->u_view = glGetUniformLocation(p, "u_view");
     b->u_proj = glGetUniformLocation(p, "u_proj");
@@ -41,6 +47,9 @@ void pnpr_brush_gl_release(pnpr_brush_gl *b)
 {
     if (b->prog) glDeleteProgram(b->prog);
     if (b->prog_resolve) glDeleteProgram(b->prog_resolve);
+    if (b->prog_blur) glDeleteProgram(b->prog_blur);
+    if (b->blur_fbo) glDeleteFramebuffers(1, &b->blur_fbo);
+    if (b->blur_tex) glDeleteTextures(1, &b->blur_tex);
     GLuint vaos[2] = {b->vao, b->vao_empty}, texs[3] = {b->tex, b->accum_tex, b->optical_tex};
     glDeleteVertexArrays(2, vaos);
     glDeleteTextures(3, texs);
@@ -191,8 +200,66 @@ void pnpr_brush_gl_oit_resolve(pnpr_brush_gl *b, GLuint frame_fbo)
     glEnable(GL_DEPTH_TEST);
 }
 
+/* The blur's intermediate target at the frame's size (no depth). */
+static int blur_target(pnpr_brush_gl *b)
+{
+    if (!b->blur_fbo) {
+        glGenFramebuffers(1, &b->blur_fbo);
+        glGenTextures(1, &b->blur_tex);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, b->blur_fbo);
+    if (b->blur_w != b->w || b->blur_h != b->h) {
+        target_texture(b->blur_tex, GL_RGBA16F, GL_RGBA, b->w, b->h);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, b->blur_tex, 0);
+        b->blur_w = b->w;
+        b->blur_h = b->h;
+    }
+    return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+}
+
+static void blur_pass(pnpr_brush_gl *b, GLuint src, float dx, float dy, float sigma)
+{
+    glUseProgram(b->prog_blur);
+    glUniform1i(b->ub_src, 0);
+    glUniform2f(b->ub_dir, dx, dy);
+    glUniform1f(b->ub_sigma, sigma);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, src);
+    glBindVertexArray(b->vao_empty);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+/* The fast blend while moving (the paper's): the strokes alpha-blended in draw order into the
+ * accumulation target, blurred horizontally into the intermediate, then vertically over the
+ * frame. Falls back to the order-independent blend when the intermediate cannot be made. */
+static size_t draw_blurred(pnpr_brush_gl *b, const pnpr_brush_pass *p)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, b->fbo);
+    pnpr_renderer_draw_buffers(0, 1);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glUniform1i(b->u_oit, 0);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    size_t strokes = draw_layer(b, p, 0);
+    draw_layer(b, p, 1);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_BLEND);
+    glBindFramebuffer(GL_FRAMEBUFFER, b->blur_fbo);
+    blur_pass(b, b->accum_tex, 1, 0, p->blur);
+    glBindFramebuffer(GL_FRAMEBUFFER, p->frame_fbo);
+    pnpr_renderer_draw_buffers(0, 1);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    blur_pass(b, b->blur_tex, 0, 1, p->blur);
+    glDisable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+    return strokes;
+}
+
 size_t pnpr_brush_gl_draw(pnpr_brush_gl *b, const pnpr_brush_pass *p)
 {
+    int blur = p->blur > 0 && blur_target(b);
     pnpr_brush_gl_oit_begin(b, p->stencil);
     glUseProgram(b->prog);
     glUniformMatrix4fv(b->u_view, 1, GL_FALSE, p->view);
@@ -205,6 +272,7 @@ size_t pnpr_brush_gl_draw(pnpr_brush_gl *b, const pnpr_brush_pass *p)
     glUniform1i(b->u_brush, 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, b->tex);
+    if (blur) return draw_blurred(b, p);
     size_t strokes = draw_layer(b, p, 0);
     draw_layer(b, p, 1);
     pnpr_brush_gl_oit_resolve(b, p->frame_fbo);

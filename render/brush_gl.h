@@ -11,7 +11,10 @@
 #include <stddef.h>
 
 typedef struct pnpr_brush_gl {
-    GLuint prog, prog_resolve, vao, vao_empty, vbo, tex, fbo, accum_tex, optical_tex;
+    GLuint prog, prog_resolve, prog_blur, vao, vao_empty, vbo, tex, fbo, accum_tex, optical_tex;
+    GLuint blur_fbo, blur_tex;   /* the blur's intermediate (made at the first blurred frame) */
+    GLint ub_src, ub_dir, ub_sigma;
+    int blur_w, blur_h;
     GLint u_view, u_proj, u_scale, u_jitter, u_layer, u_filter, u_brush, u_oit, u_weight;
     GLint ur_accum, ur_optical;
     int preset;      /* the preset in `tex`; -1 = none yet */
@@ -34,6 +37,7 @@ typedef struct pnpr_brush_pass {
     const float *view, *proj;    /* the frame's camera */
     float scale;                 /* brush scale x point scale x disk growth */
     float jitter_deg;
+    float blur;                  /* > 0: alpha blending + a Gaussian blur of this sigma (px) */
     int filter;                  /* style-map filter (-1 = all) */
     int stencil;                 /* > 0: strokes only where the stencil equals it (a style map's
                                   * surfaces of this style); 0: no stencil test */

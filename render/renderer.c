@@ -305,6 +305,13 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
     if (o->style == PNPR_STYLE_BRUSH && r->count > 0 && !r->brush.ready)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'brush' needs the properties brush_size and brush_cluster (pnpr_brush_prepare)");
+    size_t dn;
+    const pnpr_option_desc *dt = pnpr_draw_option_table(&dn), *blur = pnpr_option_find(dt, dn, "brush-blur");
+    if (o->brush_blur != 0 && (!blur || !pnpr_option_in_range(blur, o->brush_blur))) {
+        char range[64] = "";
+        if (blur) pnpr_option_range_text(blur, range, sizeof range);
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: brush_blur %g is not %s", (double)o->brush_blur, range);
+    }
     if (o->style == PNPR_STYLE_HIERARCHY && r->count > 0 && !r->hier.tree)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'hierarchy' needs a sphere tree (pnpr_sphere_tree_build, pnpr_renderer_set_hierarchy)");

@@ -353,7 +353,7 @@ static size_t draw_brush(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter)
     size_t first[GROUP_MAX + 1];
     for (size_t g = 0; g < f->ng; g++) first[g] = r->group_start[g];
     float jitter = f->o.brush_jitter < 0 ? 0.0f : f->o.brush_jitter;
-    pnpr_brush_pass p = {f->fc.view, f->fc.proj, f->o.brush_scale * f->point_scale * f->lod, jitter, filter,
+    pnpr_brush_pass p = {f->fc.view, f->fc.proj, f->o.brush_scale * f->point_scale * f->lod, jitter, f->o.brush_blur, filter,
                          filter >= 0 ? filter + 1 : 0, r->fbo,
                          r->vbo, r->style_vbo, first, f->gdraw, f->ng};
     size_t n = pnpr_brush_gl_draw(&r->brush, &p);

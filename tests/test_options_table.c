@@ -275,7 +275,8 @@ static void check_usage_entry(const char *cmd, const char *usage, const pnpr_opt
     CHECK_MSG(strstr(entry, want) != NULL, "%s --help: --%s shows '%s', the table says '%s'", cmd, d->name, entry, want);
 }
 
-/* The parser takes the bounds of the range and refuses just beyond them. */
+/* The parser takes the bounds of the range and refuses just beyond them; below the minimum, a
+ * NEGATIVE_OFF entry takes a negative value (off). */
 static void check_parser(const char *cmd, const pnpr_option_desc *d)
 {
     char args[256], refusal[96];
@@ -292,7 +293,10 @@ static void check_parser(const char *cmd, const pnpr_option_desc *d)
         if (isnan(bad[i])) continue;
         snprintf(args, sizeof args, "%s --%s %.17g", cmd, d->name, bad[i]);
         out = run_cli(args);
-        CHECK_MSG(out && strstr(out, refusal), "pointnpr %s: not refused: %s", args, out ? out : "");
+        if (i == 1 && (d->flags & PNPR_OPTION_NEGATIVE_OFF) && bad[i] < 0)
+            CHECK_MSG(out && !strstr(out, refusal), "pointnpr %s: a negative (off) refused: %s", args, out ? out : "");
+        else
+            CHECK_MSG(out && strstr(out, refusal), "pointnpr %s: not refused: %s", args, out ? out : "");
         free(out);
     }
 }

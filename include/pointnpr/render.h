@@ -142,6 +142,9 @@ typedef struct pnpr_draw_options {
     float brush_scale;     /* brush: a splat's half-size in brush_size units (r + eps) */
     float brush_jitter;    /* brush: each stroke turns by a per-point angle of at most this many
                             * degrees (negative = none) */
+    float brush_blur;      /* brush: > 0: the paper's blend while the camera moves: strokes alpha-
+                            * blended in draw order, then a two-pass Gaussian blur of this sigma in
+                            * pixels; 0: order-independent blending (docs/brush.md, "Blending") */
     pnpr_hier_params hierarchy; /* hierarchy: the traversal's and strokes' options (zeros: the
                             * defaults of pnpr_hier_option_table; its ink is the frame's) */
     /* An explicit camera (pnpr_camera_matrices, caller-owned, read during the call only) that

@@ -20,7 +20,7 @@
  * pnpr_upload_option_table), and their metavars: usage lines, defaults, ranges and parsing. */
 static const char *const draw_names[] = {"stroke-texture", "density", "point-scale", "line-width", "line-min",
                                          "dot-size", "queue-fade", "levels", "outline-scale", "outline-width",
-                                         "outline-jump", "outline-hole", "faint", "brush-scale", "brush-jitter",
+                                         "outline-jump", "outline-hole", "faint", "brush-scale", "brush-jitter", "brush-blur",
                                          NULL};
 static const char *const upload_names[] = {"paint-bins", NULL};
 static const char *const brush_names[] = {"brush-k", "brush-eps", "brush-normal-radius", NULL};
@@ -107,6 +107,7 @@ void cli_render_usage(FILE *f, int width, int height)
             pnpr_brush_presets(NULL)[0].name);
     draw_usage(f, "brush-scale", "F");
     draw_usage(f, "brush-jitter", "DEG");
+    draw_usage(f, "brush-blur", "PX");
     cli_table_usage(f, bt, bn, "brush-k", "K");
     cli_table_usage(f, bt, bn, "brush-eps", "E");
     cli_table_usage(f, bt, bn, "brush-normal-radius", "F");

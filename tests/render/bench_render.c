@@ -203,6 +203,7 @@ int main(int argc, char **argv)
         {"cartoon, outline off", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 0, -1},
         {"painterly", PNPR_STYLE_PAINTERLY, PNPR_SKETCH_ALL, 0, 0},
         {"brush", PNPR_STYLE_BRUSH, PNPR_SKETCH_ALL, 0, 0},
+        {"brush, moving (--brush-blur 1.5)", PNPR_STYLE_BRUSH, PNPR_SKETCH_ALL, 0, 0},
         {"hierarchy", PNPR_STYLE_HIERARCHY, PNPR_SKETCH_ALL, 0, 0},
     };
     double base = 0;
@@ -214,6 +215,7 @@ int main(int argc, char **argv)
         o.sketch_variant = runs[k].v;
         o.faint = runs[k].faint;
         o.outline = runs[k].outline;
+        o.brush_blur = strstr(runs[k].name, "blur") ? 1.5f : 0.0f;
         o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
         pnpr_target t = {0, 0, 0, w, h, 1};
         pnpr_render_stats st;

@@ -130,6 +130,28 @@ static void test_sphere(pnpr_renderer *r)
         if (d > worst) worst = d;
     }
     CHECK_MSG(worst <= 1, "shuffled points: a channel differs by %d", worst);
+    /* while moving (--brush-blur): alpha blending in draw order, blurred: the shuffled order shows
+     * through less than without the blur, and the picture is smoother (a smaller mean difference
+     * between horizontal neighbours) than the order-independent one */
+    o.brush_blur = 2;
+    CHECK_STATUS(render(r, &o, b, &err), PNPR_OK);
+    double grad[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        const uint8_t *img = k ? b : a;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x + 1 < W; x++)
+                for (int ch = 0; ch < 3 && hypot(x + 0.5 - W / 2.0, y + 0.5 - H / 2.0) < outline_px() - 6; ch++)
+                    grad[k] += abs((int)img[4 * (y * W + x) + ch] - (int)img[4 * (y * W + x + 1) + ch]);
+    }
+    CHECK_MSG(grad[1] < 0.7 * grad[0], "blurred: neighbour differences %.0f, order-independent %.0f", grad[1], grad[0]);
+    size_t painted = 0, disk = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            if (hypot(x + 0.5 - W / 2.0, y + 0.5 - H / 2.0) < outline_px() - 4) { disk++; painted += !is_paper(b + 4 * (y * W + x)); }
+    CHECK_MSG(painted == disk, "blurred: %zu of %zu pixels inside the outline painted", painted, disk);
+    o.brush_blur = 9; /* beyond its range */
+    CHECK_STATUS(render(r, &o, b, &err), PNPR_ERR_INVALID_ARGUMENT);
+    o.brush_blur = 0;
     /* bad presets and scales are refused */
     o.brush_preset = PNPR_BRUSH_PRESET_COUNT;
     CHECK_STATUS(render(r, &o, a, &err), PNPR_ERR_INVALID_ARGUMENT);
