@@ -69,6 +69,9 @@ const char *const kPaper = "PointNPR::PaperColor";
 const char *const kLineWidth = "PointNPR::LineWidth";
 const char *const kBrush = "PointNPR::Brush";
 const char *const kBrushScale = "PointNPR::BrushScale";
+const char *const kTam = "PointNPR::TonalArtMap";
+const char *const kAbstraction = "PointNPR::Abstraction";
+const char *const kStrokePx = "PointNPR::StrokeSize";
 const char *const kOutline = "PointNPR::Outline";
 const char *const kOutlineWidth = "PointNPR::OutlineWidth";
 const char *const kToneSource = "PointNPR::ToneSource";
@@ -312,6 +315,22 @@ QString drawRange(const char *name)
     pnpr_option_range_text(drawOption(name), buf, sizeof buf);
     return QString::fromUtf8(buf);
 }
+
+/* The hierarchy style's entry `name` (pnpr_hier_option_table), as drawOption. */
+const pnpr_option_desc *hierOption(const char *name)
+{
+    size_t n = 0;
+    const pnpr_option_desc *t = pnpr_hier_option_table(&n);
+    return pnpr_option_find(t, n, name);
+}
+
+QString hierTip(const char *name)
+{
+    char buf[64];
+    const pnpr_option_desc *d = hierOption(name);
+    pnpr_option_range_text(d, buf, sizeof buf);
+    return QString("%1, %2").arg(QString::fromUtf8(d->help)).arg(QString::fromUtf8(buf));
+}
 } // namespace
 
 void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList &par)
@@ -402,6 +421,18 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
         if (!par.hasParameter(kBrushScale))
             par.addParam(RichFloat(kBrushScale, static_cast<float>(drawOption("brush-scale")->def), "Brush scale",
                                    QString("brush style: %1, %2").arg(drawOption("brush-scale")->help).arg(drawRange("brush-scale"))));
+        if (!par.hasParameter(kTam)) {
+            QStringList names;
+            for (int k = 0; k < PNPR_TAM_COUNT_; k++) names << QString::fromUtf8(pnpr_tam_name((pnpr_tam_kind)k));
+            par.addParam(RichEnum(kTam, 0, names, "Tonal art map",
+                                  "hierarchy style: paint (coloured dabs), hatch (pencil hatching in ink), dots (halftone)"));
+        }
+        if (!par.hasParameter(kAbstraction))
+            par.addParam(RichFloat(kAbstraction, static_cast<float>(hierOption("hier-abstraction")->def), "Abstraction",
+                                   hierTip("hier-abstraction")));
+        if (!par.hasParameter(kStrokePx))
+            par.addParam(RichFloat(kStrokePx, static_cast<float>(hierOption("stroke-px")->def), "Stroke size (px)",
+                                   hierTip("stroke-px")));
     } catch (...) {
     }
 }
@@ -456,6 +487,9 @@ struct Params {
     float lineWidth = 0;      /* 0 = the library's default (pnpr_draw_option_table) */
     int brush = 0;            /* pnpr_brush_presets index */
     float brushScale = 0;     /* 0 = the library's default */
+    int tam = 0;              /* pnpr_tam_kind */
+    float abstraction = 0;    /* 0 = the library's default (pnpr_hier_option_table) */
+    float strokePx = 0;       /* 0 = the library's default */
     int outline = 0;          /* pnpr_draw_options.outline */
     float outlineWidth = 0;   /* 0 = the style's default */
     pnpr_tone_source toneSource = PNPR_TONE_AUTO;
@@ -482,6 +516,9 @@ Params readParams(const RichParameterList *par)
         if (par->hasParameter(kLineWidth)) p.lineWidth = par->getFloat(kLineWidth);
         if (par->hasParameter(kBrush)) p.brush = std::max(0, std::min(PNPR_BRUSH_PRESET_COUNT - 1, par->getEnum(kBrush)));
         if (par->hasParameter(kBrushScale)) p.brushScale = par->getFloat(kBrushScale);
+        if (par->hasParameter(kTam)) p.tam = std::max(0, std::min((int)PNPR_TAM_COUNT_ - 1, par->getEnum(kTam)));
+        if (par->hasParameter(kAbstraction)) p.abstraction = par->getFloat(kAbstraction);
+        if (par->hasParameter(kStrokePx)) p.strokePx = par->getFloat(kStrokePx);
         if (par->hasParameter(kOutline)) {
             int i = par->getEnum(kOutline);
             if (i >= 0 && i < 3) p.outline = kOutlines[i];
@@ -504,6 +541,9 @@ Params readParams(const RichParameterList *par)
     if (!(p.effectsPreview >= PNPR_EFFECTS_SCALE_MIN && p.effectsPreview <= 1)) p.effectsPreview = 0.5f;
     if (!pnpr_option_in_range(drawOption("line-width"), p.lineWidth)) p.lineWidth = 0; /* the default */
     if (!pnpr_option_in_range(drawOption("brush-scale"), p.brushScale)) p.brushScale = 0;
+    /* abstraction: a negative value is "none" (NEGATIVE_OFF); out of range otherwise: the default */
+    if (p.abstraction > 0 && !pnpr_option_in_range(hierOption("hier-abstraction"), p.abstraction)) p.abstraction = 0;
+    if (!pnpr_option_in_range(hierOption("stroke-px"), p.strokePx)) p.strokePx = 0;
     /* test-only override (tests/meshlab/run.sh): the style by name */
     if (const char *s = std::getenv("PNPR_MESHLAB_TEST_STYLE")) {
         pnpr_style st;
@@ -1093,6 +1133,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     o.brush_preset = prm.brush;
     o.brush_scale = prm.brushScale;
     pnpr_renderer_set_hierarchy(s->renderer, s->treeReady ? &s->tree : nullptr);
+    o.hierarchy.tam = prm.tam;
+    o.hierarchy.abstraction = prm.abstraction;
+    o.hierarchy.stroke_px = prm.strokePx;
     o.stroke_width = prm.lineWidth;
     o.outline = prm.outline;
     o.outline_width = prm.outlineWidth;

@@ -1044,6 +1044,9 @@ decorate_styles)
   conf_has DrawStyle 'enum_val5=\\"painterly\\"'
   conf_has DrawStyle 'enum_val6=\\"brush\\"'
   conf_has DrawStyle 'enum_val7=\\"hierarchy\\"'
+  conf_has TonalArtMap 'enum_val1=\\"hatch\\"'
+  conf_has Abstraction ' value=\\"0.01\\"'
+  conf_has StrokeSize ' value=\\"8\\"'
   conf_has Brush 'enum_val0=\\"bristle\\"'
   conf_has Brush 'enum_val2=\\"round\\"'
   conf_has DrawStyle ' value=\\"1\\"'
@@ -1099,6 +1102,11 @@ decorate_styles)
   expect_log hierarchy "pointnpr decorator: plan for the hierarchy style: .*sphere hierarchy"
   expect_log hierarchy "pointnpr decorator: sphere hierarchy built \\([0-9]+ leaves, [0-9]+ regions, 15002 points, [0-9]+ ms\\)"
   painted hierarchy
+  # 4d. hierarchy with the hatch map (settings): ink hatching on paper, the lit front face light
+  gui hierhatch hierarchy "$T/colour.ply" DrawStyle=7 TonalArtMap=1 && measure hierhatch
+  grep -q "pointnpr decorator: draw (hierhatch) failed" "$T/hierhatch.log" && fail "'hierhatch': the draw failed"
+  holds hierhatch "hatching leaves paper between its strokes: lighter than the painted frame (${N_hierarchy_MY:-?})" \
+    "${N_hierhatch_MY:-0} > ${N_hierarchy_MY:-255} + 10"
 
   # 5. Tone gamma (settings) reaches the dithering points: sketchy on the colourless cube, whose
   #    front face is lit (light tone: few hatches at the library's default curve); gamma 0.25
