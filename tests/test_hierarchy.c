@@ -362,15 +362,21 @@ static void test_smooth_transition(void)
     pnpr_cloud_free(&c);
 }
 
+/* The two-colour sphere, its tree, a camera 4 radii away. */
+static void sphere_scene(pnpr_cloud *c, pnpr_sphere_tree *t, cam *k)
+{
+    two_colour_sphere(c, 20000);
+    CHECK_STATUS(pnpr_sphere_tree_build(c, NULL, t, NULL, NULL), PNPR_OK);
+    camera_at(k, 4, 400, 400);
+}
+
 /* Silhouette strokes of a sphere seen from 4 radii: on its outline all around. */
 static void test_silhouettes(void)
 {
     pnpr_cloud c = {0};
-    two_colour_sphere(&c, 20000);
     pnpr_sphere_tree t;
-    CHECK_STATUS(pnpr_sphere_tree_build(&c, NULL, &t, NULL, NULL), PNPR_OK);
     cam k;
-    camera_at(&k, 4, 400, 400);
+    sphere_scene(&c, &t, &k);
     pnpr_hier_stroke *buf = NULL;
     pnpr_hier_counts cnt;
     size_t n = run(&t, &k, NULL, &buf, &cnt);
@@ -410,11 +416,9 @@ static void test_silhouettes(void)
 static void test_controls(void)
 {
     pnpr_cloud c = {0};
-    two_colour_sphere(&c, 20000);
     pnpr_sphere_tree t;
-    CHECK_STATUS(pnpr_sphere_tree_build(&c, NULL, &t, NULL, NULL), PNPR_OK);
     cam k;
-    camera_at(&k, 4, 400, 400);
+    sphere_scene(&c, &t, &k);
     pnpr_hier_stroke *buf = NULL;
     pnpr_hier_counts cnt;
     pnpr_hier_params p = {0};

@@ -300,36 +300,32 @@ QString outlineDefaults()
 } // namespace
 
 namespace {
-/* The draw options' entry `name` of the library's table (options.h): the dialog's defaults and
+/* The entry `name` of one of the library's option tables (options.h): the dialog's defaults and
  * ranges, no numeric default of these options is written in this file. */
-const pnpr_option_desc *drawOption(const char *name)
+const pnpr_option_desc *tableOption(const pnpr_option_desc *(*table)(size_t *), const char *name)
 {
     size_t n = 0;
-    const pnpr_option_desc *t = pnpr_draw_option_table(&n);
+    const pnpr_option_desc *t = table(&n);
     return pnpr_option_find(t, n, name);
 }
 
-QString drawRange(const char *name)
+const pnpr_option_desc *drawOption(const char *name) { return tableOption(pnpr_draw_option_table, name); }
+const pnpr_option_desc *hierOption(const char *name) { return tableOption(pnpr_hier_option_table, name); }
+
+QString rangeText(const pnpr_option_desc *d)
 {
     char buf[64];
-    pnpr_option_range_text(drawOption(name), buf, sizeof buf);
+    pnpr_option_range_text(d, buf, sizeof buf);
     return QString::fromUtf8(buf);
 }
 
-/* The hierarchy style's entry `name` (pnpr_hier_option_table), as drawOption. */
-const pnpr_option_desc *hierOption(const char *name)
-{
-    size_t n = 0;
-    const pnpr_option_desc *t = pnpr_hier_option_table(&n);
-    return pnpr_option_find(t, n, name);
-}
+QString drawRange(const char *name) { return rangeText(drawOption(name)); }
 
+/* A hierarchy option's tooltip: the table's help and range. */
 QString hierTip(const char *name)
 {
-    char buf[64];
     const pnpr_option_desc *d = hierOption(name);
-    pnpr_option_range_text(d, buf, sizeof buf);
-    return QString("%1, %2").arg(QString::fromUtf8(d->help)).arg(QString::fromUtf8(buf));
+    return QString("%1, %2").arg(QString::fromUtf8(d->help)).arg(rangeText(d));
 }
 } // namespace
 
