@@ -36,7 +36,7 @@
 #define SILHOUETTE_TINT 0.3
 #define SILHOUETTE_ALPHA 0.85
 /* The ink maps: no ink below this darkness (1 - light); strokes overlapping a pixel, about
- * (stroke_scale x node extent)^2 x stretch x pi / node area: 1.2^2 x 1.6 ~ 2.3, rounded up. */
+ * (stroke_scale x node extent)^2 x stretch x pi / node area: 1.0^2 x 2.2 ~ 2.2, rounded up. */
 #define INK_PAPER 0.1
 #define INK_FLOOR 0.1
 #define INK_OVERLAP 2.5
