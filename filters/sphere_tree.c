@@ -124,7 +124,8 @@ typedef struct proj_item { float t; uint32_t leaf; } proj_item;
 static int cmp_proj(const void *a, const void *b)
 {
     const proj_item *x = a, *y = b;
-    return (x->t > y->t) - (x->t < y->t) ? (x->t > y->t) - (x->t < y->t) : (x->leaf > y->leaf) - (x->leaf < y->leaf);
+    int by_t = (x->t > y->t) - (x->t < y->t);
+    return by_t ? by_t : (x->leaf > y->leaf) - (x->leaf < y->leaf);
 }
 
 /* Splits leaves[0..n) into [0, m) and [m, n) (covariance splitting); returns m. */
