@@ -2,6 +2,9 @@
 
 #include <pointnpr/core.h>
 
+#include <stddef.h>
+#include <string.h>
+
 const GLenum pnpr_gl_state_enables[PNPR_GL_STATE_ENABLES] = {
     GL_SCISSOR_TEST, GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_STENCIL_TEST,
     GL_PROGRAM_POINT_SIZE, GL_FRAMEBUFFER_SRGB, GL_POLYGON_OFFSET_FILL,
@@ -153,8 +156,14 @@ void pnpr_gl_state_restore(const pnpr_gl_state *s)
 
 static GLuint compile(GLenum type, const char *src, const char *name, pnpr_error *err)
 {
+    /* the #version line, then the constants the C side defines (pnpr_shader_prelude), then the rest */
+    char prelude[512];
+    pnpr_shader_prelude(prelude, sizeof prelude);
+    const char *nl = strchr(src, '\n');
+    const char *parts[3] = {src, prelude, nl ? nl + 1 : ""};
+    GLint lens[3] = {nl ? (GLint)(nl + 1 - src) : (GLint)strlen(src), -1, -1};
     GLuint sh = glCreateShader(type);
-    glShaderSource(sh, 1, &src, NULL);
+    glShaderSource(sh, 3, parts, lens);
     glCompileShader(sh);
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);

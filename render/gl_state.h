@@ -5,6 +5,8 @@
 
 #include <epoxy/gl.h>
 
+#include <stddef.h>
+
 enum { PNPR_GL_STATE_ENABLES = 14 };
 
 typedef struct pnpr_gl_state {
@@ -39,6 +41,11 @@ void pnpr_gl_state_neutral(void);
 
 /* Compiles and links a program from GLSL sources; 0 with the compiler's log in err. */
 #include <pointnpr/core.h>
+/* The #defines every shader gets after its #version line: the constants both C and GLSL use
+ * (PNPR_VSTYLE_HIDDEN, PNPR_BRUSH_VARIANTS, PNPR_HATCH_DIR, PNPR_HATCH_DIR2), written from the C
+ * values, so no shader restates them (renderer.c). */
+void pnpr_shader_prelude(char *buf, size_t cap);
+
 GLuint pnpr_gl_link_program(const char *vs, const char *fs, const char *name, pnpr_error *err);
 
 #endif

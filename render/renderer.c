@@ -7,11 +7,13 @@
 #include "gl_state.h"
 #include "pnpr_shaders.h"
 
+#include <pointnpr/brush.h>
 #include <pointnpr/features.h>
 
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -210,6 +212,16 @@ static void query_limits(pnpr_renderer *r)
     glGetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
     if (vp[0] > 0 && vp[0] < r->max_size) r->max_size = vp[0];
     if (vp[1] > 0 && vp[1] < r->max_size) r->max_size = vp[1];
+}
+
+void pnpr_shader_prelude(char *buf, size_t cap)
+{
+    const float h1[3] = {HATCH_DIR}, h2[3] = {HATCH_DIR2};
+    snprintf(buf, cap,
+             "#define PNPR_VSTYLE_HIDDEN %uu\n#define PNPR_BRUSH_VARIANTS %uu\n"
+             "#define PNPR_HATCH_DIR vec3(%.9g, %.9g, %.9g)\n#define PNPR_HATCH_DIR2 vec3(%.9g, %.9g, %.9g)\n",
+             (unsigned)PNPR_VSTYLE_HIDDEN, (unsigned)PNPR_BRUSH_VARIANTS, (double)h1[0], (double)h1[1], (double)h1[2],
+             (double)h2[0], (double)h2[1], (double)h2[2]);
 }
 
 pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_renderer **r_renderer,

@@ -37,7 +37,8 @@ enum { STROKE_TEX_W = 128, STROKE_TEX_H = 32, STROKE_LAYERS = 4, STROKE_LAYER_HA
 #define SKETCH_TONE_INK 0.8f
 /* sketchy: hatches follow the surface: the world direction HATCH_DIR projected onto the point's
  * tangent plane, HATCH_DIR2 where the normal lies within about 18 degrees of HATCH_DIR
- * (stroke.vert.glsl; vector.c repeats it) */
+ * (stroke.vert.glsl reads them as PNPR_HATCH_DIR / PNPR_HATCH_DIR2, written into every shader by
+ * pnpr_shader_prelude from these values; vector.c reads them too) */
 #define HATCH_DIR 0.57735027f, 0.57735027f, 0.57735027f
 #define HATCH_DIR2 0.70710678f, -0.70710678f, 0.0f
 
@@ -170,7 +171,7 @@ float pnpr_paint_brush(size_t pass, size_t bins);
 pnpr_status pnpr_renderer_resolve_styles(const pnpr_renderer *r, const pnpr_draw_options *o, uint8_t *r_style,
                                          size_t *r_used);
 /* The style byte of a vertex outside the frame's segment layer (pnpr_draw_options.layer_labels):
- * every vertex shader drops it (the literal 255u in splat/stroke/paint.vert.glsl). Style maps and
+ * every vertex shader drops it (PNPR_VSTYLE_HIDDEN there too: pnpr_shader_prelude). Style maps and
  * layers are counted in r_used only for the vertices in the layer. */
 #define PNPR_VSTYLE_HIDDEN 255u
 /* Whether o asks for a segment layer. */

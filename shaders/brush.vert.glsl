@@ -32,7 +32,7 @@ uint mix_bits(uint h)
 
 void main()
 {
-    bool hidden = a_style == 255u || (u_style_filter >= 0 && int(a_style) != u_style_filter); // 255u: PNPR_VSTYLE_HIDDEN
+    bool hidden = a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter);
     if (hidden || (u_layer == 1 && a_brush.z < 1.5)) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         v_uv = vec2(0.0);
@@ -85,5 +85,5 @@ void main()
     v_uv = q * 0.5 + 0.5;
     // the second layer: a slightly altered colour (the paper's "slightly altered color parameters")
     v_color = u_layer == 1 ? vec4(clamp(a_color.rgb * 1.12 + 0.02, 0.0, 1.0), a_color.a) : a_color;
-    v_variant = float((hsh >> 16) & 15u); // PNPR_BRUSH_VARIANTS
+    v_variant = float((hsh >> 16) % PNPR_BRUSH_VARIANTS);
 }

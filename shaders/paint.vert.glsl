@@ -19,7 +19,7 @@ out vec2 v_rot;                  // cos, sin of the dab's angle
 
 void main()
 {
-    if (a_style == 255u || (u_style_filter >= 0 && int(a_style) != u_style_filter)) { // 255u: PNPR_VSTYLE_HIDDEN
+    if (a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter)) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         gl_PointSize = 1.0;
         v_color = vec4(0.0);

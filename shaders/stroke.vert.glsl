@@ -35,7 +35,7 @@ out float v_fade;
 
 void main()
 {
-    if (a_style == 255u || (u_style_filter >= 0 && int(a_style) != u_style_filter)) { // 255u: PNPR_VSTYLE_HIDDEN
+    if (a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter)) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         v_color = vec4(0.0);
         v_uv = vec2(0.0);
@@ -53,10 +53,10 @@ void main()
         dir = vec3(0.0);
         if (dot(n, n) > 0.25) {
             n = normalize(n);
-            vec3 t = vec3(0.57735027) - n * dot(n, vec3(0.57735027));
+            vec3 t = PNPR_HATCH_DIR - n * dot(n, PNPR_HATCH_DIR);
             // the normal within about 18 degrees of (1,1,1): a second world direction, orthogonal
             if (dot(t, t) < 0.1)
-                t = vec3(0.70710678, -0.70710678, 0.0) - n * dot(n, vec3(0.70710678, -0.70710678, 0.0));
+                t = PNPR_HATCH_DIR2 - n * dot(n, PNPR_HATCH_DIR2);
             dir = normalize(t);
         }
     }
