@@ -39,6 +39,9 @@ r "$out/lion_features.ply" -o "$out/lion_painterly.png" --style painterly
 r "$out/lion_segments.ply" -o "$out/lion_cartoon.png" --style cartoon
 r "$out/lion_features.ply" -o "$out/lion_lines.png" --style lines --faint 0.35 --line-width 1.5
 r "$out/lion_segments.ply" -o "$out/lion_style_map.png" --style-map "$out/style-map.txt"
+r "$out/lion.ply" -o "$out/lion_brush.png" --style brush
+r "$out/lion.ply" -o "$out/lion_hierarchy.png" --style hierarchy
+r "$out/lion.ply" -o "$out/lion_hierarchy_hatch.png" --style hierarchy --tam hatch
 if [ "$render_ok" -ne 1 ]; then
   echo "demo: rendering failed (is there an EGL/OpenGL 3.3 driver? Mesa's llvmpipe is installed by packaging/install-deps.sh)" >&2
   exit 1
@@ -63,6 +66,9 @@ Demo outputs in $out:
   lion_cartoon.png         cartoon (segment colours, silhouettes)
   lion_lines.png           profile lines over a faint rendering
   lion_style_map.png       intermingled styles per segment (style-map.txt)
+  lion_brush.png           brush (stroke-based splatting: Gaussian-sum brush strokes, docs/brush.md)
+  lion_hierarchy.png       hierarchy (Chi & Lee: strokes over a sphere hierarchy of colour regions, docs/hierarchy.md)
+  lion_hierarchy_hatch.png hierarchy with the hatching tonal art map
   scene.ply                a generated scene with known edges
   scene_features.ply       its features
 Open the PLY files in MeshLab (feature_degree/feature_class are per-vertex properties).
