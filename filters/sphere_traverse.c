@@ -270,11 +270,8 @@ static void paint(trav *s, const draw_node *d, const pnpr_sphere_node *R)
     } else {
         memcpy(n, s->back, sizeof n);
     }
-    /* the region's direction for paint (sec. 4.3, fig. 10d); hatching follows the form: the ink
-     * maps take the node's (region directions left seams across a surface at region borders) */
-    int own = s->p.node_direction || s->p.fine_layer || s->p.tam != PNPR_TAM_PAINT;
     float dir[3];
-    for (int k = 0; k < 3; k++) dir[k] = (float)(own ? d->d[k] : R->dir[k]);
+    for (int k = 0; k < 3; k++) dir[k] = (float)(s->p.node_direction || s->p.fine_layer ? d->d[k] : R->dir[k]);
     stroke_axes(s, d, n, dir, t, b);
     double shade = known ? fmax(0.0, pnpr_dot3(n, s->light)) : 0.8;
     double tone = (1.0 - shade) * (PNPR_TAM_TONES - 1), fade = 1.0; /* between two layers: blended */

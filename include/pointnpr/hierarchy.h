@@ -148,8 +148,7 @@ typedef struct pnpr_hier_params {
     float stretch;        /* its half-length in half-widths */
     int no_smooth;        /* 1: plain level switching (no interpolated nodes, sec. 4.2.3) */
     int node_colour;      /* 1: strokes in the node's colour; 0: the region node's (sec. 4.3) */
-    int node_direction;   /* 1: the node's direction; 0: the region node's (paint; the ink maps
-                           * always follow the node's) */
+    int node_direction;   /* 1: the node's direction; 0: the region node's */
     float noise_angle;    /* Perlin noise on the direction: at most this many degrees (negative = none) */
     float noise_colour;   /* and on the brightness: at most this fraction (negative = none) */
     float silhouette_deg; /* ThresholdDegree: nodes with |n.v| < sin(this) are drawn as silhouettes
