@@ -42,7 +42,7 @@ mkdir -p "$OUT" "$WORK" "$(dirname "$MD")" "$CACHE"
 
 SIZE=480x360
 LIMIT=$((120 * 1024))
-STYLES=(points sketchy stipple lines cartoon painterly)
+STYLES=(points sketchy stipple lines cartoon painterly brush hierarchy)
 # The one tuned setting per style (cartoon's is the segmentation, chosen per scan below).
 declare -A TUNED=(
   [points]="--point-scale 0.5"
@@ -51,6 +51,8 @@ declare -A TUNED=(
   [lines]="--faint 0.35"
   [cartoon]="segments"
   [painterly]="--paint-bins 8"
+  [brush]="--brush flat"
+  [hierarchy]="--tam hatch"
 )
 declare -A WHY=(
   [points]="smaller splats: the default disks blot out sparse scans"
@@ -59,6 +61,8 @@ declare -A WHY=(
   [lines]="the cloud drawn faintly under the lines, for context"
   [cartoon]="flat colours per segment of \`pointnpr segment\` (the scan's own segment property where it has one, JSEG where it has colour, connected components otherwise)"
   [painterly]="twice the feature-degree bins (passes)"
+  [brush]="the flat brush of the paper's figure 4 d (docs/brush.md)"
+  [hierarchy]="the hatching tonal art map instead of paint (docs/hierarchy.md)"
 )
 declare -A KIND=(
   [b9_training]="aerial LiDAR, georeferenced (CGAL data, libcgal-demo 5.5.1-2)"
