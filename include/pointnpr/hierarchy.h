@@ -93,7 +93,8 @@ typedef struct pnpr_sphere_tree_options {
     int use_labels;       /* 1: regions from cloud->label (a leaf takes its seed point's label)
                            * instead of JSEG; 0: JSEG (colourless: covariance split) */
     int threads;          /* 0 = all cores */
-    pnpr_progress progress; /* stages "leaves", "knn", "regions", "hierarchy", "tree" */
+    pnpr_progress progress; /* stages "leaves", "knn", JSEG's ("quantise", "J", "grow", "merge"),
+                           * "hierarchy", "tree" */
 } pnpr_sphere_tree_options;
 
 typedef struct pnpr_sphere_tree_stats {
