@@ -273,9 +273,9 @@ static pnpr_status order_leaves(const sphere_build *b, uint32_t root, uint32_t *
     return PNPR_OK;
 }
 
-/* The leaves' regions into label (b->leaves entries); *r_S. */
+/* The leaves' regions into label (b->leaves entries); *r_S. rgb: the leaves' colours as bytes. */
 static pnpr_status leaf_regions(const pnpr_cloud *c, const sphere_build *b, const uint32_t *seed, const float *lxyz,
-                                const pnpr_sphere_tree_options *o, uint32_t *label, uint32_t *r_S)
+                                const uint8_t *rgb, const pnpr_sphere_tree_options *o, uint32_t *label, uint32_t *r_S)
 {
     size_t L = b->leaves;
     if (o->use_labels && c->label) {
@@ -286,34 +286,24 @@ static pnpr_status leaf_regions(const pnpr_cloud *c, const sphere_build *b, cons
         memset(label, 0, L * sizeof *label);
         return pnpr_segment_covariance_split(lxyz, L, label, 1, o->max_variation, 0, label, r_S);
     }
-    uint8_t *rgb = malloc(3 * L);
-    if (!rgb) return PNPR_ERR_OUT_OF_MEMORY;
-    for (size_t i = 0; i < 3 * L; i++) rgb[i] = (uint8_t)lrintf(b->nodes[i / 3].colour[i % 3]);
     pnpr_jseg_options jo = o->jseg;
     jo.threads = o->threads;
     jo.progress = o->progress;
     pnpr_segment_info info;
     pnpr_status st = pnpr_segment_jseg(lxyz, rgb, L, &jo, label, &info);
-    free(rgb);
     *r_S = st == PNPR_OK ? info.segment_count : 0;
     return st;
 }
 
 /* The region adjacency graph's merges over the leaves' regions (r_merges: S entries). */
-static pnpr_status region_merges(const sphere_build *b, const uint32_t *knn, size_t k, const uint32_t *label,
-                                 uint32_t S, const pnpr_sphere_tree_options *o, pnpr_segment_merge *r_merges,
-                                 uint32_t *r_nm)
+static pnpr_status region_merges(const sphere_build *b, const uint32_t *knn, size_t k, const uint8_t *rgb,
+                                 const uint32_t *label, uint32_t S, const pnpr_sphere_tree_options *o,
+                                 pnpr_segment_merge *r_merges, uint32_t *r_nm)
 {
-    size_t L = b->leaves;
-    uint8_t *rgb = malloc(3 * L);
-    if (!rgb) return PNPR_ERR_OUT_OF_MEMORY;
-    for (size_t i = 0; i < 3 * L; i++) rgb[i] = (uint8_t)lrintf(b->nodes[i / 3].colour[i % 3]);
     pnpr_region_graph g = {knn, k, k};
     pnpr_hierarchy_options ho = o->merge;
     ho.progress = o->progress;
-    pnpr_status st = pnpr_segment_hierarchy(rgb, L, &g, label, S, &ho, r_merges, r_nm);
-    free(rgb);
-    return st;
+    return pnpr_segment_hierarchy(rgb, b->leaves, &g, label, S, &ho, r_merges, r_nm);
 }
 
 /* Leaf pairs adjacent across regions (leaf-order indices). */
@@ -400,12 +390,15 @@ static pnpr_status build_above(const pnpr_cloud *c, const pnpr_sphere_tree_optio
     size_t L = b->leaves;
     uint32_t S = 0, nm = 0;
     uint32_t *label = malloc(L * sizeof *label), *rank = malloc(L * sizeof *rank);
+    uint8_t *rgb = malloc(3 * L); /* the leaves' colours as bytes: JSEG's and the merges' input */
     pnpr_segment_merge *mg = NULL;
     uint32_t *top = NULL;
-    pnpr_status st = !label || !rank ? PNPR_ERR_OUT_OF_MEMORY : leaf_regions(c, b, seed, lxyz, o, label, &S);
+    if (rgb)
+        for (size_t i = 0; i < 3 * L; i++) rgb[i] = (uint8_t)lrintf(b->nodes[i / 3].colour[i % 3]);
+    pnpr_status st = !label || !rank || !rgb ? PNPR_ERR_OUT_OF_MEMORY : leaf_regions(c, b, seed, lxyz, rgb, o, label, &S);
     if (st == PNPR_OK && !(mg = malloc(((size_t)S + 1) * sizeof *mg))) st = PNPR_ERR_OUT_OF_MEMORY;
     if (st == PNPR_OK && !(top = malloc((2 * (size_t)S + 1) * sizeof *top))) st = PNPR_ERR_OUT_OF_MEMORY;
-    if (st == PNPR_OK) st = region_merges(b, knn, o->k, label, S, o, mg, &nm);
+    if (st == PNPR_OK) st = region_merges(b, knn, o->k, rgb, label, S, o, mg, &nm);
     if (st == PNPR_OK) st = region_trees(b, label, S, top);
     if (st == PNPR_OK && !pnpr_progress_report(&o->progress, "tree", 0.5)) {
         t->merge_first = (uint32_t)b->count;
@@ -421,7 +414,7 @@ static pnpr_status build_above(const pnpr_cloud *c, const pnpr_sphere_tree_optio
     }
     for (size_t i = 0; st == PNPR_OK && i < c->count; i++)
         if (b->point_leaf[i] != PNPR_INDEX_NONE) b->point_leaf[i] = rank[b->point_leaf[i]];
-    free(label); free(rank); free(mg); free(top);
+    free(label); free(rank); free(rgb); free(mg); free(top);
     return st;
 }
 

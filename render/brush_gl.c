@@ -229,15 +229,14 @@ static void blur_pass(pnpr_brush_gl *b, GLuint src, float dx, float dy, float si
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-/* The fast blend while moving (the paper's): the strokes alpha-blended in draw order into the
+/* The fast blend while moving (the paper's), after pnpr_brush_gl_oit_begin (the cleared targets
+ * bound, depth and stencil tests set): the strokes alpha-blended in draw order into the
  * accumulation target, blurred horizontally into the intermediate, then vertically over the
- * frame. Falls back to the order-independent blend when the intermediate cannot be made. */
+ * frame. pnpr_brush_gl_draw falls back to the order-independent blend when the intermediate
+ * cannot be made. */
 static size_t draw_blurred(pnpr_brush_gl *b, const pnpr_brush_pass *p)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, b->fbo);
     pnpr_renderer_draw_buffers(0, 1);
-    const float zero[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, 0, zero);
     glUniform1i(b->u_oit, 0);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     size_t strokes = draw_layer(b, p, 0);

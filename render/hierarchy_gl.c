@@ -78,21 +78,23 @@ static pnpr_status tam_texture(pnpr_hier_gl *h, int kind)
     return PNPR_OK;
 }
 
-/* One traversal into buffer b, grown until everything fits; uploaded into vbo[b]. */
+/* One traversal into buffer b; when it did not fit, the buffer grows to the counts and the
+ * traversal runs again (it is deterministic: the same strokes, now all of them). Uploaded into
+ * vbo[b]. */
 static pnpr_status traverse(pnpr_hier_gl *h, int b, const pnpr_hier_view *v, const pnpr_hier_params *prm,
                             pnpr_hier_counts *c)
 {
-    for (int tries = 0; tries < 3; tries++) {
-        pnpr_status st = pnpr_sphere_tree_traverse(h->tree, v, prm, h->buf[b], h->cap[b], c);
-        if (st != PNPR_OK) return st;
-        if (!c->truncated) break;
-        size_t need = c->strokes[0] + c->strokes[1] + c->strokes[2];
-        pnpr_hier_stroke *nb = realloc(h->buf[b], need * sizeof *nb);
+    pnpr_status st = pnpr_sphere_tree_traverse(h->tree, v, prm, h->buf[b], h->cap[b], c);
+    size_t n = c->strokes[0] + c->strokes[1] + c->strokes[2];
+    if (st == PNPR_OK && c->truncated) {
+        pnpr_hier_stroke *nb = realloc(h->buf[b], n * sizeof *nb);
         if (!nb) return PNPR_ERR_OUT_OF_MEMORY;
         h->buf[b] = nb;
-        h->cap[b] = need;
+        h->cap[b] = n;
+        st = pnpr_sphere_tree_traverse(h->tree, v, prm, h->buf[b], h->cap[b], c);
+        if (st == PNPR_OK && c->truncated) st = PNPR_ERR_NUMERIC; /* never uploads beyond the buffer */
     }
-    size_t n = c->strokes[0] + c->strokes[1] + c->strokes[2];
+    if (st != PNPR_OK) return st;
     glBindBuffer(GL_ARRAY_BUFFER, h->vbo[b]);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof(pnpr_hier_stroke)), h->buf[b], GL_STREAM_DRAW);
     return PNPR_OK;

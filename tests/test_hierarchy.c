@@ -285,13 +285,19 @@ static size_t run(const pnpr_sphere_tree *t, const cam *k, const pnpr_hier_param
     return n;
 }
 
+/* A colourless n x n plane of spacing h (centred on the origin) and its tree. */
+static void plane_scene(pnpr_cloud *c, pnpr_sphere_tree *t, size_t n, double h)
+{
+    CHECK_STATUS(pnpr_test_plane(c, n, n, h, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_sphere_tree_build(c, NULL, t, NULL, NULL), PNPR_OK);
+}
+
 /* Strokes per projected pixel of a plane seen from d and 2d: the view-dependent rule keeps it. */
 static void test_density(void)
 {
     pnpr_cloud c = {0};
-    CHECK_STATUS(pnpr_test_plane(&c, 200, 200, 0.005, NULL), PNPR_OK);
     pnpr_sphere_tree t;
-    CHECK_STATUS(pnpr_sphere_tree_build(&c, NULL, &t, NULL, NULL), PNPR_OK);
+    plane_scene(&c, &t, 200, 0.005);
     pnpr_hier_stroke *buf = NULL;
     pnpr_hier_counts cnt;
     double dens[2];
@@ -334,9 +340,8 @@ static size_t popped(const pnpr_hier_stroke *a, size_t na, const pnpr_hier_strok
 static void test_smooth_transition(void)
 {
     pnpr_cloud c = {0};
-    CHECK_STATUS(pnpr_test_plane(&c, 100, 100, 0.01, NULL), PNPR_OK);
     pnpr_sphere_tree t;
-    CHECK_STATUS(pnpr_sphere_tree_build(&c, NULL, &t, NULL, NULL), PNPR_OK);
+    plane_scene(&c, &t, 100, 0.01);
     size_t pops[2] = {0, 0};
     for (int plain = 0; plain < 2; plain++) {
         pnpr_hier_params p = {0};
