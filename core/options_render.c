@@ -6,6 +6,8 @@
  * tests/test_options_table.c holds them to it. */
 #include "options_internal.h"
 
+#include <string.h>
+
 #define PER_STYLE PNPR_OPTION_STYLE_DEFAULT
 
 #define D(...) OPT("draw", pnpr_draw_options, __VA_ARGS__)
@@ -82,6 +84,17 @@ pnpr_upload_options pnpr_upload_defaults(void)
     pnpr_upload_options o = {0};
     pnpr_option_set_defaults(upload_table, COUNT(upload_table), &o);
     return o;
+}
+
+pnpr_status pnpr_draw_check(const pnpr_draw_options *o, pnpr_error *err)
+{
+    const char *other = o && o->style == PNPR_STYLE_CARTOON ? "mask-scale" : "outline-scale";
+    for (size_t i = 0; o && i < COUNT(draw_table); i++) {
+        if (!strcmp(draw_table[i].name, other)) continue; /* mask_scale: the entry of o's style */
+        pnpr_status st = pnpr_option_check(&draw_table[i], 1, o, err);
+        if (st != PNPR_OK) return st;
+    }
+    return PNPR_OK;
 }
 
 static double draw_default(const char *name)

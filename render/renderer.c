@@ -295,18 +295,10 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: unknown composite mode %d", (int)o->composite);
     if (o->stroke_texture < 0 || o->stroke_texture > 2)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: stroke texture %d is not 0, 1 or 2", o->stroke_texture);
-    if (!finite4(o->background) || !finite4(o->ink) || !isfinite(o->density) || o->density < 0 ||
-        !isfinite(o->point_scale) || o->point_scale < 0 || !isfinite(o->mask_scale) || o->mask_scale < 0 ||
-        !isfinite(o->stroke_length) || o->stroke_length < 0 || !isfinite(o->stroke_width) || o->stroke_width < 0 ||
-        !isfinite(o->line_width) || o->line_width < 0 || !(o->faint >= 0 && o->faint <= 1) || !isfinite(o->queue_fade) ||
-        !isfinite(o->dot_size) || o->dot_size < 0 || o->levels < 0 || o->levels == 1 || o->levels > 256 ||
-        !isfinite(o->outline_width) || o->outline_width < 0 || o->outline_width > 64 ||
-        !isfinite(o->line_min_px) || o->line_min_px < 0 ||
-        !isfinite(o->outline_jump) || o->outline_jump < 0 || !isfinite(o->outline_hole) || o->outline_hole < 0 ||
-        !isfinite(o->brush_scale) || o->brush_scale < 0 || !isfinite(o->brush_jitter))
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: draw options must be finite and not negative (outline width at most 64 px)");
-    if (o->outline < -1 || o->outline > 1)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: outline %d is not -1, 0 or 1", o->outline);
+    if (!finite4(o->background))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: the background colour must be finite");
+    pnpr_status cst = pnpr_draw_check(o, err); /* every tabled option against its range (options.h) */
+    if (cst != PNPR_OK) return cst;
     if (pnpr_style_needs_features(o->style) && o->style != PNPR_STYLE_PAINTERLY && r->count > 0 && !r->has_features)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style '%s' needs the feature properties feature_class and feature_dir_x/y/z (pnpr_compute_features)",
@@ -317,13 +309,6 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
     if (o->style == PNPR_STYLE_BRUSH && r->count > 0 && !r->brush.ready)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'brush' needs the properties brush_size and brush_cluster (pnpr_brush_prepare)");
-    size_t dn;
-    const pnpr_option_desc *dt = pnpr_draw_option_table(&dn), *blur = pnpr_option_find(dt, dn, "brush-blur");
-    if (o->brush_blur != 0 && (!blur || !pnpr_option_in_range(blur, o->brush_blur))) {
-        char range[64] = "";
-        if (blur) pnpr_option_range_text(blur, range, sizeof range);
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: brush_blur %g is not %s", (double)o->brush_blur, range);
-    }
     if (o->style == PNPR_STYLE_HIERARCHY && r->count > 0 && !r->hier.tree)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'hierarchy' needs a sphere tree (pnpr_sphere_tree_build, pnpr_renderer_set_hierarchy)");

@@ -110,6 +110,25 @@ static void renderer_defaults(void)
     CHECK_MSG(pnpr_draw_ink(&z, ink) == 1 && ink[0] == 1 && ink[3] == 0, "given ink");
     pnpr_draw_options d = pnpr_draw_defaults();
     CHECK_MSG(d.style == PNPR_STYLE_POINTS && d.mask_scale == 0 && d.ink[3] == 0 && d.outline == 0, "style defaults left 0");
+    /* the renderer's check: each tabled member against its entry, mask_scale against its style's */
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_draw_check(&d, &err), PNPR_OK);
+    d.mask_scale = 0.5f; /* in "mask-scale"'s range, below "outline-scale"'s */
+    CHECK_STATUS(pnpr_draw_check(&d, &err), PNPR_OK);
+    d.style = PNPR_STYLE_CARTOON;
+    CHECK_STATUS(pnpr_draw_check(&d, &err), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(err.message, "mask_scale") != NULL, "cartoon mask scale: '%s'", err.message);
+    d.mask_scale = 3;
+    CHECK_STATUS(pnpr_draw_check(&d, &err), PNPR_OK);
+    d.outline_width = 65; /* "outline-width" ends at 64 */
+    CHECK_STATUS(pnpr_draw_check(&d, &err), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(err.message, "outline_width") != NULL, "outline width: '%s'", err.message);
+    d.outline_width = 0;
+    d.levels = 1;
+    CHECK_STATUS(pnpr_draw_check(&d, &err), PNPR_ERR_INVALID_ARGUMENT);
+    d.levels = 0;
+    d.point_scale = NAN;
+    CHECK_STATUS(pnpr_draw_check(&d, &err), PNPR_ERR_INVALID_ARGUMENT);
 }
 
 /* A noisy coloured cube: feature lines along the edges, colours per face. */

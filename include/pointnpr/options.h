@@ -97,6 +97,10 @@ const pnpr_option_desc *pnpr_draw_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_upload_option_table(size_t *r_count);
 pnpr_draw_options pnpr_draw_defaults(void);
 pnpr_upload_options pnpr_upload_defaults(void);
+/* Checks every tabled member of o against its entry (pnpr_option_check), mask_scale against the
+ * entry of o->style ("outline-scale" for cartoon, else "mask-scale"). The renderer calls it on
+ * every frame's options; hosts need not re-check. */
+PNPR_NODISCARD pnpr_status pnpr_draw_check(const pnpr_draw_options *o, pnpr_error *err);
 /* mask_scale of o (NULL ok) for `style`, its default when 0 (cartoon: "outline-scale"). */
 float pnpr_draw_mask_scale(const pnpr_draw_options *o, pnpr_style style);
 /* The ink of o (NULL ok) into r_ink, the default when all four are 0; returns whether o gives one. */
