@@ -63,59 +63,6 @@ static float median_float(float *v, size_t n)
     return v[n / 2];
 }
 
-/* radius[i] = distance from point i to its k-th nearest other point, capped at 4x the median
- * (isolated points), floored at 1/8 of the median (duplicates). */
-/* want_kk > 0: the neighbour lists (want_kk per point, the point itself included, nearest first)
- * are handed over in *r_idx / *r_d2 (kk of them each, *r_kk), for the painterly colours. */
-static pnpr_status spacing_radii(const float *xyz, size_t n, uint32_t k, int threads, float *radius,
-                                 size_t want_kk, uint32_t **r_idx, float **r_d2, size_t *r_kk)
-{
-    if (r_idx) { *r_idx = NULL; *r_d2 = NULL; *r_kk = 0; }
-    if (n == 1) { radius[0] = 1; return PNPR_OK; }
-    size_t kr = (size_t)k + 1 < n ? (size_t)k + 1 : n; /* + the point itself */
-    size_t kk = kr > want_kk ? kr : want_kk < n ? want_kk : n;
-    pnpr_kdtree *tree = NULL;
-    pnpr_status st = pnpr_kdtree_build_threads(xyz, n, 0, threads, &tree);
-    if (st != PNPR_OK) return st;
-    uint32_t *idx = malloc(n * kk * sizeof *idx);
-    float *d2 = malloc(n * kk * sizeof *d2);
-    if (!idx || !d2) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    pnpr_knn_options ko;
-    memset(&ko, 0, sizeof ko);
-    ko.threads = threads;
-    st = pnpr_knn_self(tree, n, kk, &ko, idx, d2);
-    if (st != PNPR_OK) goto done;
-    for (size_t i = 0; i < n; i++) {
-        float r = 0;
-        for (size_t j = kr; j-- > 0;)
-            if (idx[i * kk + j] != PNPR_INDEX_NONE && isfinite(d2[i * kk + j])) { r = sqrtf(d2[i * kk + j]); break; }
-        radius[i] = r;
-    }
-    if (r_idx && want_kk > 0) { /* hand the lists over */
-        *r_idx = idx; *r_d2 = d2; *r_kk = kk;
-        idx = NULL;
-        d2 = NULL;
-    }
-    /* median of the radii */
-    float *sorted = malloc(n * sizeof *sorted);
-    if (!sorted) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
-    memcpy(sorted, radius, n * sizeof *sorted);
-    float med = median_float(sorted, n);
-    if (!(med > 0)) { /* mostly duplicates: the largest distance found, else 1 */
-        med = sorted[n - 1] > 0 ? sorted[n - 1] : 1;
-    }
-    free(sorted);
-    for (size_t i = 0; i < n; i++) {
-        if (radius[i] > 4 * med) radius[i] = 4 * med;
-        if (!(radius[i] >= 0.125f * med)) radius[i] = 0.125f * med;
-    }
-done:
-    free(idx);
-    free(d2);
-    pnpr_kdtree_free(tree);
-    return st;
-}
-
 typedef struct label_index { uint32_t label, j; } label_index;
 
 static int cmp_label(const void *a, const void *b)
@@ -340,9 +287,12 @@ static pnpr_status upload_order(upload_ctx *u)
     pnpr_status st = PNPR_OK;
     if (n > 0) {
         int paint = u->pdeg != NULL;
-        st = spacing_radii(u->xyz, n, u->k, u->o.threads, u->radius, paint ? PAINT_K : 0, paint ? &u->nidx : NULL,
-                           paint ? &u->nd2 : NULL, paint ? &u->nkk : NULL);
+        pnpr_spacing_lists lists = {paint ? PAINT_K : 0, NULL, NULL, 0};
+        st = pnpr_point_spacing(u->xyz, n, u->k, u->o.threads, u->radius, &lists);
         if (st != PNPR_OK) return st;
+        u->nidx = lists.idx;
+        u->nd2 = lists.d2;
+        u->nkk = lists.k;
     }
     u->ngroups = u->features ? GROUP_MAX : 1;
     st = pnpr_crq_order(n, u->group, (uint32_t)u->ngroups, u->o.seed, u->order, u->starts);

@@ -103,10 +103,50 @@ static void test_stride(void)
     pnpr_kdtree_free(t);
 }
 
+/* pnpr_point_spacing's known answers: a square grid of step h (its 4th nearest other point is at h),
+ * a far point clamped to 4 x the median, duplicates raised to 1/8 of it, a NaN point at 1/8, a lone
+ * point 1; the handed-over lists are pnpr_knn_self's rows. */
+static void test_spacing(void)
+{
+    enum { G = 20, N = G * G + 4 };
+    const float h = 0.25f;
+    float *xyz = calloc(3 * N, sizeof *xyz), *sp = malloc(N * sizeof *sp);
+    for (int i = 0; i < G * G; i++) { xyz[3 * i] = h * (float)(i % G); xyz[3 * i + 1] = h * (float)(i / G); }
+    float *far = xyz + 3 * (G * G), *nanp = far + 3;
+    far[0] = 1000;                          /* isolated: spacing about 1000 before the clamp */
+    nanp[0] = NAN;
+    for (int d = 0; d < 2; d++) {           /* two duplicates of point 0 (with it: 3 at one place) */
+        float *p = nanp + 3 * (d + 1);
+        p[0] = p[1] = p[2] = 0;
+    }
+    pnpr_spacing_lists lists = {6, NULL, NULL, 0};
+    CHECK_STATUS(pnpr_point_spacing(xyz, N, 4, 1, sp, &lists), PNPR_OK);
+    CHECK_MSG(fabsf(sp[G * 5 + 5] - h) < 1e-6f, "interior grid point: %g, want %g", (double)sp[G * 5 + 5], (double)h);
+    CHECK_MSG(fabsf(sp[G * G] - 4 * h) < 1e-6f, "far point: %g, want 4 x the median %g", (double)sp[G * G], (double)(4 * h));
+    CHECK_MSG(fabsf(sp[G * G + 1] - 0.125f * h) < 1e-6f, "NaN point: %g", (double)sp[G * G + 1]);
+    /* point 0 has its two duplicates, then its grid neighbours at h and h: its 4th other is at h */
+    CHECK_MSG(fabsf(sp[0] - h) < 1e-6f, "corner with duplicates: %g", (double)sp[0]);
+    CHECK_MSG(lists.idx && lists.d2 && lists.k == 6 && lists.idx[6 * (G * 5 + 5)] == G * 5 + 5 && lists.d2[6 * (G * 5 + 5) + 1] > 0,
+              "lists: k %zu", lists.k);
+    free(lists.idx);
+    free(lists.d2);
+    /* all duplicates: a median of 0 becomes the largest (0) then 1; spacing 1/8 */
+    float dup[9] = {1, 2, 3, 1, 2, 3, 1, 2, 3};
+    CHECK_STATUS(pnpr_point_spacing(dup, 3, 4, 1, sp, NULL), PNPR_OK);
+    CHECK_MSG(sp[0] == 0.125f && sp[2] == 0.125f, "duplicates: %g", (double)sp[0]);
+    CHECK_STATUS(pnpr_point_spacing(xyz, 1, 4, 1, sp, NULL), PNPR_OK);
+    CHECK_MSG(sp[0] == 1, "lone point: %g", (double)sp[0]);
+    CHECK_STATUS(pnpr_point_spacing(xyz, 0, 4, 1, sp, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_point_spacing(xyz, 4, 0, 1, sp, NULL), PNPR_ERR_INVALID_ARGUMENT);
+    free(xyz);
+    free(sp);
+}
+
 int main(void)
 {
     test_against_brute_force();
     test_degenerate();
     test_stride();
+    test_spacing();
     return pnpr_test_finish("test_knn");
 }

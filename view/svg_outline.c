@@ -1,8 +1,9 @@
 /* Outlines for the SVG export (svg_outline.h): the renderer's image-space rules (edge_fill,
  * edge_erode, edge_ink shaders) on a CPU surface buffer, traced into vector polylines.
  *
- * 1. Surface buffer: every point is a disk of 1.5 x the distance to its 4th nearest other point
- *    (clamped to [1/8, 4] x the median, as the renderer's visibility mask), splatted with its
+ * 1. Surface buffer: every point is a disk of the renderer's visibility mask (pnpr_point_spacing
+ *    of the default spacing_k times the lines style's mask scale: 1.5 x the distance to the 4th
+ *    nearest other point, clamped to [1/8, 4] x the median), splatted with its
  *    perspective size (at most 64 px); each pixel keeps the nearest disk's view depth, depth
  *    extent (radius / max(0.1, |cos(normal, view ray)|), 2.5 radii without normals) and radius.
  * 2. Hole closing: a pixel is a sampling hole when along all 8 directions a march meets a surface
@@ -27,13 +28,12 @@
 #include "svg_outline.h"
 
 #include <pointnpr/knn.h>
+#include <pointnpr/options.h>
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define DISK_SCALE 1.5f   /* disk radius in spacings (the renderer's mask_scale) */
-#define SPACING_K 4       /* the spacing: distance to the 4th nearest other point */
 #define HOLE_RADII 4.0f   /* holes close within this many projected radii */
 #define INSET_RADII 0.9   /* the disks' overhang beyond the outermost points: 0.9 radii */
 #define INSET_PX 0.3      /* + 0.3 px (both measured on spheres, docs/lines.md) */
@@ -82,54 +82,14 @@ static float radius_px(const outline_ctx *c, float r, float z)
 
 /* ---- disk radii ---- */
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : x > y;
-}
-
-/* Clamps the spacings to [1/8, 4] x their median and scales them to disk radii. */
-static pnpr_status clamp_radii(float *radius, size_t n)
-{
-    float *sorted = malloc(n * sizeof *sorted);
-    if (!sorted) return PNPR_ERR_OUT_OF_MEMORY;
-    memcpy(sorted, radius, n * sizeof *sorted);
-    qsort(sorted, n, sizeof *sorted, cmp_float);
-    float med = sorted[n / 2];
-    if (!(med > 0)) med = sorted[n - 1] > 0 ? sorted[n - 1] : 0; /* mostly duplicates */
-    free(sorted);
-    for (size_t i = 0; i < n; i++) {
-        float r = radius[i];
-        if (r > 4 * med) r = 4 * med;
-        if (!(r >= 0.125f * med)) r = 0.125f * med;
-        radius[i] = DISK_SCALE * r;
-    }
-    return PNPR_OK;
-}
-
+/* The renderer's disks (render.h): the point spacing of the upload's default spacing_k times the
+ * default mask scale of the lines style. */
 static pnpr_status disk_radii(const pnpr_cloud *cloud, float *radius)
 {
-    size_t n = cloud->count, k = SPACING_K + 1; /* + the point itself */
-    pnpr_kdtree *tree = NULL;
-    pnpr_status st = pnpr_kdtree_build(cloud->xyz, n, 0, &tree);
-    if (st != PNPR_OK) return st;
-    uint32_t *idx = malloc(n * k * sizeof *idx);
-    float *d2 = malloc(n * k * sizeof *d2);
-    if (!idx || !d2) st = PNPR_ERR_OUT_OF_MEMORY;
-    else {
-        pnpr_knn_options ko;
-        memset(&ko, 0, sizeof ko);
-        st = pnpr_knn_self(tree, n, k, &ko, idx, d2);
-    }
-    for (size_t i = 0; st == PNPR_OK && i < n; i++) {
-        radius[i] = 0;
-        for (size_t j = k; j-- > 0;)
-            if (idx[i * k + j] != PNPR_INDEX_NONE && isfinite(d2[i * k + j])) { radius[i] = sqrtf(d2[i * k + j]); break; }
-    }
-    free(idx);
-    free(d2);
-    pnpr_kdtree_free(tree);
-    return st == PNPR_OK ? clamp_radii(radius, n) : st;
+    pnpr_status st = pnpr_point_spacing(cloud->xyz, cloud->count, pnpr_upload_defaults().spacing_k, 0, radius, NULL);
+    float scale = pnpr_draw_mask_scale(NULL, PNPR_STYLE_LINES);
+    for (size_t i = 0; st == PNPR_OK && i < cloud->count; i++) radius[i] *= scale;
+    return st;
 }
 
 /* ---- the surface buffer ---- */

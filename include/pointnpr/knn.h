@@ -70,6 +70,29 @@ PNPR_NODISCARD pnpr_status pnpr_knn_all(const pnpr_kdtree *tree, const float *qu
 PNPR_NODISCARD pnpr_status pnpr_knn_self(const pnpr_kdtree *tree, size_t count, size_t k,
                           const pnpr_knn_options *opts, uint32_t *r_idx, float *r_dist2);
 
+/* ---- the local point spacing (filters/spacing.c) ---- */
+
+#define PNPR_SPACING_CLAMP_LO 0.125f /* spacings are clamped to [LO, HI] x their median: */
+#define PNPR_SPACING_CLAMP_HI 4.0f   /* duplicates (0) and isolated points (far) */
+
+/* Optional neighbour lists handed over by pnpr_point_spacing: set `want` (the neighbours per point,
+ * itself included); on return idx / d2 hold n x k entries (k >= want unless n is smaller; nearest
+ * first, as pnpr_knn_self), or NULL when want is 0. Release both with free(). */
+typedef struct pnpr_spacing_lists {
+    size_t want;
+    uint32_t *idx;
+    float *d2;
+    size_t k;
+} pnpr_spacing_lists;
+
+/* r_spacing[i] = the distance from point i of xyz[0..n) to its k-th nearest other point (fewer when
+ * the cloud has fewer), clamped to [PNPR_SPACING_CLAMP_LO, PNPR_SPACING_CLAMP_HI] x the median
+ * (a median of 0: the largest, else 1); a lone point: 1. Non-finite points get the low clamp.
+ * The renderer's disk radii (render.h, pnpr_upload_options.spacing_k) and the SVG outlines'
+ * surface buffer are this spacing times the mask scale. lists may be NULL. */
+PNPR_NODISCARD pnpr_status pnpr_point_spacing(const float *xyz, size_t n, uint32_t k, int threads, float *r_spacing,
+                                              pnpr_spacing_lists *lists);
+
 #ifdef __cplusplus
 }
 #endif
