@@ -2,6 +2,7 @@
  * The tables themselves are in filters/options_table.c and core/options_render.c. */
 #include <pointnpr/options.h>
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -66,11 +67,21 @@ static double range_max(const pnpr_option_desc *d)
     return d->max >= PNPR_OPTION_UNBOUNDED ? type_max(d) : d->max;
 }
 
+/* A float member holds the float nearest to the value given: compared in float precision, so that
+ * the float nearest to a bound (0.34f > 0.34) is that bound. */
+static double in_precision(const pnpr_option_desc *d, double v)
+{
+    return d->type == PNPR_OPTION_FLOAT && fabs(v) <= FLT_MAX ? (double)(float)v : v;
+}
+
 int pnpr_option_in_range(const pnpr_option_desc *d, double value)
 {
-    if (!isfinite(value) || value > range_max(d)) return 0;
+    if (!isfinite(value)) return 0;
+    value = in_precision(d, value);
+    double lo = in_precision(d, d->min);
+    if (value > in_precision(d, range_max(d))) return 0;
     if (is_integer_type(d) && value != floor(value)) return 0;
-    return (d->flags & PNPR_OPTION_MIN_EXCLUSIVE) ? value > d->min : value >= d->min;
+    return (d->flags & PNPR_OPTION_MIN_EXCLUSIVE) ? value > lo : value >= lo;
 }
 
 void pnpr_option_range_text(const pnpr_option_desc *d, char *buf, size_t cap)

@@ -61,6 +61,13 @@ static const pnpr_option_desc components_table[] = {
     C("min-size", min_size, UINT, 1, 1, UNB, 0, 0, NULL, "smaller components join the nearest kept one"),
 };
 
+#define P(...) OPT("split", pnpr_split_options, __VA_ARGS__)
+static const pnpr_option_desc split_table[] = {
+    P("split", max_variation, FLOAT, 0.02, 0, 0.34, EXCL, 0, NULL, /* the variation is at most 1/3 */
+      "split segments whose surface variation exceeds this"),
+    P("split-min", min_size, UINT, 32, 1, UNB, 0, 0, NULL, "smallest part a split may leave"),
+};
+
 #define H(...) OPT("hierarchy", pnpr_hierarchy_options, __VA_ARGS__)
 static const pnpr_option_desc hierarchy_table[] = {
     H("alpha", alpha, FLOAT, 0.3, 0, UNB, EXCL, 0, NULL, "size rule: small = size < alpha x mean initial size"),
@@ -90,7 +97,7 @@ static const pnpr_option_desc sphere_tree_table[] = {
     T("hier-k", k, UINT, 12, 4, PNPR_SPHERE_K_MAX, 0, 0, NULL, "hierarchy: neighbouring leaves for normals and directions"),
     T("hier-features", feature_fraction, FLOAT, 0.1, 0, 1, EXCL, 0, NULL,
       "hierarchy: fraction of leaves (highest curvature) whose direction is kept"),
-    T("hier-max-variation", max_variation, FLOAT, 0.02, 0, 0.34, EXCL, 0, NULL,
+    T("hier-max-variation", max_variation, FLOAT, 0, 0, 0.34, EXCL, 0, "the split's",
       "hierarchy: colourless clouds: surface variation bound of the geometric regions"),
 };
 
@@ -129,6 +136,7 @@ TABLE_FUNCTIONS(jseg, jseg_table)
 TABLE_FUNCTIONS(rgbgrow, rgbgrow_table)
 TABLE_FUNCTIONS(components, components_table)
 TABLE_FUNCTIONS(hierarchy, hierarchy_table)
+TABLE_FUNCTIONS(split, split_table)
 TABLE_FUNCTIONS(outlier, outlier_table)
 TABLE_FUNCTIONS(brush, brush_table)
 TABLE_FUNCTIONS(sphere_tree, sphere_tree_table)
@@ -148,6 +156,7 @@ DEFAULTS_FUNCTION(jseg, pnpr_jseg_options, jseg_table)
 DEFAULTS_FUNCTION(rgbgrow, pnpr_rgbgrow_options, rgbgrow_table)
 DEFAULTS_FUNCTION(components, pnpr_components_options, components_table)
 DEFAULTS_FUNCTION(hierarchy, pnpr_hierarchy_options, hierarchy_table)
+DEFAULTS_FUNCTION(split, pnpr_split_options, split_table)
 DEFAULTS_FUNCTION(outlier, pnpr_outlier_options, outlier_table)
 DEFAULTS_FUNCTION(brush, pnpr_brush_options, brush_table)
 DEFAULTS_FUNCTION(sphere_tree, pnpr_sphere_tree_options, sphere_tree_table)

@@ -16,6 +16,7 @@
  * after the others. Choices the paper leaves open: the split plane through the centroid (not a
  * median), the stop rule on surface variation (the paper: "curvature variations") and size. */
 #include <pointnpr/features.h>
+#include <pointnpr/options.h>
 #include <pointnpr/segment.h>
 
 #include <math.h>
@@ -51,9 +52,13 @@ pnpr_status pnpr_segment_covariance_split(const float *xyz, size_t count, const 
                                           uint32_t *r_segment_count)
 {
     if (!r_segment_count || (count && (!xyz || !labels || !r_labels))) return PNPR_ERR_INVALID_ARGUMENT;
-    if (!isfinite(max_variation) || max_variation < 0) return PNPR_ERR_INVALID_ARGUMENT;
-    if (max_variation == 0) max_variation = 0.02f;
-    if (min_size == 0) min_size = 32;
+    pnpr_split_options so = {max_variation, min_size};
+    size_t nt;
+    const pnpr_option_desc *table = pnpr_split_option_table(&nt);
+    if (pnpr_option_check(table, nt, &so, NULL) != PNPR_OK) return PNPR_ERR_INVALID_ARGUMENT;
+    pnpr_option_fill_defaults(table, nt, &so); /* the zeros: the table's defaults (options.h) */
+    max_variation = so.max_variation;
+    min_size = so.min_size;
     *r_segment_count = 0;
     if (count >= PNPR_LABEL_NONE) return PNPR_ERR_UNSUPPORTED;
     /* points grouped by region (counting sort), invalid ones left out */

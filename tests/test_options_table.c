@@ -73,6 +73,11 @@ static void check_refusals(const table_case *tc)
     unsigned char *o = malloc(tc->size);
     for (size_t i = 0; i < n; i++) {
         const pnpr_option_desc *d = &t[i];
+        if (d->type == PNPR_OPTION_FLOAT && d->max < PNPR_OPTION_UNBOUNDED) { /* stored as the float nearest */
+            memcpy(o, tc->defaults, tc->size);
+            pnpr_option_set(d, o, d->max);
+            CHECK_MSG(pnpr_option_check(&t[i], 1, o, NULL) == PNPR_OK, "%s.%s = its max %g refused", tc->name, d->field, d->max);
+        }
         double bad[2] = {d->max < PNPR_OPTION_UNBOUNDED ? d->max + 1 : NAN,
                          (d->flags & PNPR_OPTION_MIN_EXCLUSIVE) ? d->min : d->min - 1};
         for (int b = 0; b < 2; b++) {
@@ -379,6 +384,8 @@ static void check_cli(void)
     check_cli_options("lines", pnpr_lines_option_table, lines);
     check_cli_options("lines", pnpr_features_option_table, lines_features);
     check_cli_options("segment", pnpr_outlier_option_table, outliers);
+    static const char *const split[] = {"split", "split-min", NULL};
+    check_cli_options("segment", pnpr_split_option_table, split);
     check_cli_options("info", pnpr_outlier_option_table, outliers);
     check_segment_usage();
     /* render and animate: the draw and upload options of the renderer's tables */
@@ -410,6 +417,7 @@ int main(void)
     pnpr_components_options c = pnpr_components_defaults();
     pnpr_hierarchy_options h = pnpr_hierarchy_defaults();
     pnpr_outlier_options o = pnpr_outlier_defaults();
+    pnpr_split_options sp = pnpr_split_defaults();
     pnpr_draw_options dr = pnpr_draw_defaults();
     pnpr_upload_options up = pnpr_upload_defaults();
     const table_case cases[] = {
@@ -420,6 +428,7 @@ int main(void)
         {"components", pnpr_components_option_table, sizeof c, &c},
         {"hierarchy", pnpr_hierarchy_option_table, sizeof h, &h},
         {"outlier", pnpr_outlier_option_table, sizeof o, &o},
+        {"split", pnpr_split_option_table, sizeof sp, &sp},
         {"draw", pnpr_draw_option_table, sizeof dr, &dr},
         {"upload", pnpr_upload_option_table, sizeof up, &up},
     };

@@ -64,8 +64,9 @@ int main(void)
     CHECK(same);
     /* a huge threshold splits nothing; defined results for degenerate calls */
     for (size_t i = 0; i < n; i++) lab[i] = truth[i] == 0 ? 0 : (truth[i] == 99 ? 9 : 1);
-    CHECK_STATUS(pnpr_segment_covariance_split(xyz, n, lab, 2, 1.0f, 0, out, &S2), PNPR_OK);
+    CHECK_STATUS(pnpr_segment_covariance_split(xyz, n, lab, 2, 0.34f, 0, out, &S2), PNPR_OK);
     CHECK(S2 == 3); /* two regions + the invalid label */
+    CHECK_STATUS(pnpr_segment_covariance_split(xyz, n, lab, 2, 0.5f, 0, out, &S2), PNPR_ERR_INVALID_ARGUMENT); /* beyond the table's range */
     CHECK_STATUS(pnpr_segment_covariance_split(xyz, 0, lab, 2, 0, 0, out, &S2), PNPR_OK);
     CHECK(S2 == 0);
     CHECK_STATUS(pnpr_segment_covariance_split(xyz, n, lab, 2, -1, 0, out, &S2), PNPR_ERR_INVALID_ARGUMENT);

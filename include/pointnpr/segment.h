@@ -146,10 +146,18 @@ PNPR_NODISCARD pnpr_status pnpr_segment_hierarchy_cut(const uint32_t *labels, si
                                        uint32_t target_segments, float threshold,
                                        uint32_t *r_labels, uint32_t *r_segment_count);
 
+/* The covariance split's two settings (pnpr_segment_covariance_split takes them as arguments);
+ * their defaults and ranges: pnpr_split_option_table (options.h). Zero = the default. */
+typedef struct pnpr_split_options {
+    float max_variation; /* split regions whose surface variation exceeds this */
+    uint32_t min_size;   /* no split leaves a part smaller than this */
+} pnpr_split_options;
+
 /* Covariance splitting within regions (Chi & Lee sec. 3.2, Pauly et al.): every region whose
- * surface variation (PCA: lambda_min / trace) exceeds max_variation (0 = 0.02) is split by the
+ * surface variation (PCA: lambda_min / trace) exceeds max_variation is split by the
  * plane through its centroid perpendicular to its direction of greatest variation, recursively,
- * while both halves keep at least min_size points (0 = 32), at most PNPR_SPLIT_DEPTH_MAX levels
+ * while both halves keep at least min_size points (0 for either: the default of
+ * pnpr_split_option_table; out of its range: PNPR_ERR_INVALID_ARGUMENT), at most PNPR_SPLIT_DEPTH_MAX levels
  * deep (the cost is at most that many passes over the points). Output: sub-region labels in
  * r_labels (may equal labels), numbered by first appearance; points with label >= segment_count
  * or non-finite coordinates share one extra label, the last. (segment_split.c) */

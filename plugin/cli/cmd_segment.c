@@ -107,10 +107,13 @@ static void usage(FILE *f)
             "  --segments N     cut the region hierarchy (HSI colour, size rule) at N segments\n"
             "  --threshold T    cut the region hierarchy where the HSI colour distance exceeds T\n");
     for (int i = 0; i < METHOD_OPTIONS; i++) method_usage(f, &method_options[i]);
+    size_t ns;
+    const pnpr_option_desc *split = pnpr_split_option_table(&ns);
+    fprintf(f, "  then, with --split, each segment is split along its direction of greatest variation\n"
+               "  (Chi & Lee's covariance split):\n");
+    cli_table_usage(f, split, ns, "split", "V");
+    cli_table_usage(f, split, ns, "split-min", "M");
     fprintf(f,
-            "  --split V        then split every segment whose surface variation exceeds V along\n"
-            "                   its direction of greatest variation (Chi & Lee; e.g. 0.02)\n"
-            "  --split-min M    smallest part a split may leave (32)\n"
             "  --property NAME  labels: the property to read\n"
             "  --threads N, --ascii, --quiet\n");
     cli_outlier_usage(f);
@@ -120,7 +123,11 @@ static void usage(FILE *f)
 int cli_segment(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *method = "jseg", *property = NULL;
-    double segments = 0, threshold = 0, threads = 0, split = 0, split_min = 0;
+    double segments = 0, threshold = 0, threads = 0;
+    pnpr_split_options split = {0};
+    size_t nsplit;
+    const pnpr_option_desc *split_table = pnpr_split_option_table(&nsplit);
+    static const char *const split_names[] = {"split", "split-min", NULL};
     double values[METHOD_OPTIONS] = {0}; /* method_options */
     pnpr_write_options wo = {0};
     cli_outliers outliers = {0, 0};
@@ -131,6 +138,9 @@ int cli_segment(int argc, char **argv)
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         int oo = cli_outlier_option(&outliers, "segment", argc, argv, &i);
         if (oo == 0) oo = cli_columns_option(&columns, "segment", argc, argv, &i);
+        if (oo < 0) return 2;
+        if (oo > 0) continue;
+        if (oo == 0) oo = cli_table_option(split_table, nsplit, split_names, &split, "segment", argc, argv, &i);
         if (oo < 0) return 2;
         if (oo > 0) continue;
         int mo = method_option_arg(values, argc, argv, &i);
@@ -152,12 +162,6 @@ int cli_segment(int argc, char **argv)
             i++;
         } else if (v && !strcmp(a, "--threshold")) {
             if (!cli_parse_number(v, 1e-9, 1e9, &threshold)) { fprintf(stderr, "pointnpr segment: --threshold wants a positive number, got '%s'\n", v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--split")) {
-            if (!cli_parse_number(v, 1e-9, 1.0 / 3.0, &split)) { fprintf(stderr, "pointnpr segment: --split wants a surface variation in (0, 1/3], got '%s'\n", v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--split-min")) {
-            if (!cli_parse_number(v, 1, 4294967295.0, &split_min) || !is_int(split_min)) { fprintf(stderr, "pointnpr segment: --split-min wants an integer >= 1, got '%s'\n", v); return 2; }
             i++;
         } else if (v && !strcmp(a, "--threads")) {
             if (!cli_parse_number(v, 1, PNPR_THREADS_MAX, &threads) || !is_int(threads)) { fprintf(stderr, "pointnpr segment: --threads wants an integer in 1..%d, got '%s'\n", PNPR_THREADS_MAX, v); return 2; }
@@ -252,10 +256,10 @@ int cli_segment(int argc, char **argv)
             goto fail;
         if (!quiet) fprintf(stderr, "hierarchy: %u regions, %u merges, cut at %u segments\n", hs, nm, S);
     }
-    if (split > 0) {
+    if (split.max_variation > 0) { /* --split given */
         /* the invalid segment (last) stays as it is: split only 0 .. S-2 then */
         uint32_t regions = info.invalid_segment != PNPR_LABEL_NONE && S ? S - 1 : S, before = S;
-        if ((st = pnpr_segment_covariance_split(cloud.xyz, cloud.count, labels, regions, (float)split, (uint32_t)split_min,
+        if ((st = pnpr_segment_covariance_split(cloud.xyz, cloud.count, labels, regions, split.max_variation, split.min_size,
                                                 labels, &S)) != PNPR_OK)
             goto fail;
         if (!quiet) fprintf(stderr, "covariance split: %u segments -> %u\n", before, S);
