@@ -20,6 +20,7 @@ int cli_bench(int argc, char **argv);
 int cli_bench_quality(int argc, char **argv); /* `bench quality`, argv[1] = "quality" */
 int cli_explain(int argc, char **argv);
 int cli_animate(int argc, char **argv);
+int cli_options(int argc, char **argv);
 
 /* Progress on stderr; never cancels. user: a cli_progress_state (zeroed before first use).
  * On a terminal: one updating "\r<stage> 42%" line per stage; otherwise (logs, CI) one line

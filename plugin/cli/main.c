@@ -68,6 +68,7 @@ static void usage(FILE *f)
             "  segment IN -o OUT.ply        segments (jseg, components, rgbgrow, labels)\n"
             "  bench accuracy [--out DIR]   error against run time of the feature analysis\n"
             "  explain [IN] --style S ...   which analysis stages an output needs, and why\n"
+            "  options [--markdown]         every option's default and range (docs/options.md)\n"
             "run 'pointnpr <command> --help' for the options of a command\n",
             PNPR_VERSION_STRING);
 }
@@ -88,6 +89,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "segment")) return cli_segment(argc - 1, argv + 1);
     if (!strcmp(cmd, "bench")) return cli_bench(argc - 1, argv + 1);
     if (!strcmp(cmd, "explain")) return cli_explain(argc - 1, argv + 1);
+    if (!strcmp(cmd, "options")) return cli_options(argc - 1, argv + 1);
     fprintf(stderr, "pointnpr: unknown command '%s'\n", cmd);
     usage(stderr);
     return 2;
