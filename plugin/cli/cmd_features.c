@@ -1,5 +1,6 @@
 /* pointnpr features IN -o OUT.ply: normals, feature degree, classification, dithering points. */
 #include "cli.h"
+#include "cli_opts.h"
 
 #include <pointnpr/features.h>
 
@@ -24,6 +25,29 @@ static void weights_usage(FILE *f, const pnpr_option_desc *table, size_t n)
                "                       not both 0; only their ratio matters)\n", g->def, c->def, range);
 }
 
+/* --weights G,C and --viewpoint X,Y,Z (below): CLI_CUSTOM entries on the features options. */
+static int parse_weights(void *fo, const char *cmd, const char *v);
+static int parse_viewpoint(void *fo, const char *cmd, const char *v);
+
+/* The command's arguments: the library's features options and the CLI's own. */
+typedef struct features_args {
+    cli_common c;
+    pnpr_features_options fo;
+    int ascii;
+} features_args;
+
+static const cli_opt features_opts[] = {
+    {"--weights", NULL, CLI_CUSTOM, offsetof(features_args, fo), 0, 0, 0, 0, NULL, parse_weights, "G,C",
+     "weights of the geometry and colour terms (weights_usage)"},
+    {"--viewpoint", NULL, CLI_CUSTOM, offsetof(features_args, fo), 0, 0, 0, 0, NULL, parse_viewpoint, "X,Y,Z",
+     "orient normals towards this point (world coordinates)"},
+    {"--recompute-normals", NULL, CLI_FLAG, offsetof(features_args, fo.recompute_normals), 0, 0, 0, 0, NULL, NULL,
+     NULL, "recompute normals even when the input has them"},
+    CLI_THREADS_OPT(features_args, fo.threads),
+    {"--ascii", NULL, CLI_FLAG, offsetof(features_args, ascii), 0, 0, 0, 0, NULL, NULL, NULL,
+     "write ascii PLY (default binary little endian)"},
+};
+
 static void usage(FILE *f)
 {
     size_t n;
@@ -38,18 +62,14 @@ static void usage(FILE *f)
         cli_table_usage(f, table, n, table_names[i], table_metavars[i]);
         if (!strcmp(table_names[i], "threshold")) weights_usage(f, table, n);
     }
-    fprintf(f,
-            "  --viewpoint X,Y,Z    orient normals towards this point (world coordinates)\n"
-            "  --recompute-normals  recompute normals even when the input has them\n"
-            "  --threads N          worker threads (default: all cores)\n"
-            "  --ascii              write ascii PLY (default binary little endian)\n"
-            "  --quiet              no progress on stderr\n");
+    cli_opts_usage(f, features_opts + 1, CLI_COUNT(features_opts) - 1); /* --weights: weights_usage */
+    cli_opts_usage(f, cli_common_opts + 1, 1); /* --quiet */
     cli_outlier_usage(f);
     cli_columns_usage(f);
 }
 
 /* --weights G,C: two values in the weight entries' range, not both 0. 0 after saying why. */
-static int parse_weights(pnpr_features_options *fo, const char *v)
+static int parse_weights(void *fo, const char *cmd, const char *v)
 {
     size_t n;
     const pnpr_option_desc *table = pnpr_features_option_table(&n);
@@ -60,12 +80,23 @@ static int parse_weights(pnpr_features_options *fo, const char *v)
         xs[0] + xs[1] <= 0) {
         char range[64];
         pnpr_option_range_text(g, range, sizeof range);
-        fprintf(stderr, "pointnpr features: --weights wants G,C (two numbers %s, not both 0; "
-                        "only their ratio matters), got '%s'\n", range, v);
+        fprintf(stderr, "pointnpr %s: --weights wants G,C (two numbers %s, not both 0; "
+                        "only their ratio matters), got '%s'\n", cmd, range, v);
         return 0;
     }
     pnpr_option_set(g, fo, xs[0]);
     pnpr_option_set(c, fo, xs[1]);
+    return 1;
+}
+
+static int parse_viewpoint(void *fo, const char *cmd, const char *v)
+{
+    pnpr_features_options *o = fo;
+    if (!cli_parse_list(v, 3, o->viewpoint)) {
+        fprintf(stderr, "pointnpr %s: --viewpoint wants X,Y,Z, got '%s'\n", cmd, v);
+        return 0;
+    }
+    o->has_viewpoint = 1;
     return 1;
 }
 
@@ -80,46 +111,35 @@ static void warn_few_points(const char *in, size_t count, const pnpr_features_st
 
 int cli_features(int argc, char **argv)
 {
-    const char *in = NULL, *out = NULL;
-    pnpr_features_options fo = {0};
+    const char *in = NULL;
+    features_args A;
+    memset(&A, 0, sizeof A);
+    pnpr_features_options *fo = &A.fo;
     pnpr_write_options wo = {0};
     cli_outliers outliers = {0, 0};
     const char *columns = NULL;
-    int quiet = 0;
+    size_t tn;
+    const pnpr_option_desc *table = pnpr_features_option_table(&tn);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         int oo = cli_outlier_option(&outliers, "features", argc, argv, &i);
         if (oo == 0) oo = cli_columns_option(&columns, "features", argc, argv, &i);
+        if (oo == 0) oo = cli_table_option(table, tn, table_names, fo, "features", argc, argv, &i);
+        if (oo == 0) oo = cli_opts_parse(features_opts, CLI_COUNT(features_opts), &A, "features", argc, argv, &i);
+        if (oo == 0) oo = cli_opts_parse(cli_common_opts, CLI_COUNT(cli_common_opts), &A.c, "features", argc, argv, &i);
         if (oo < 0) return 2;
+        if (A.c.help) { usage(stdout); return 0; }
         if (oo > 0) continue;
-        size_t tn;
-        const pnpr_option_desc *table = pnpr_features_option_table(&tn);
-        int to = cli_table_option(table, tn, table_names, &fo, "features", argc, argv, &i);
-        if (to < 0) return 2;
-        if (to > 0) continue;
-        double x;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
-        else if (!strcmp(a, "--quiet")) quiet = 1;
-        else if (!strcmp(a, "--ascii")) wo.encoding = PNPR_PLY_ASCII;
-        else if (!strcmp(a, "--recompute-normals")) fo.recompute_normals = 1;
-        else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
-        else if (v && !strcmp(a, "--weights")) {
-            if (!parse_weights(&fo, v)) return 2;
-            i++;
-        } else if (v && !strcmp(a, "--viewpoint")) {
-            if (!cli_parse_list(v, 3, fo.viewpoint)) { fprintf(stderr, "pointnpr features: --viewpoint wants X,Y,Z, got '%s'\n", v); return 2; }
-            fo.has_viewpoint = 1; i++;
-        } else if (v && !strcmp(a, "--threads")) {
-            if (!cli_parse_number(v, 1, PNPR_THREADS_MAX, &x) || x != floor(x)) { fprintf(stderr, "pointnpr features: --threads wants an integer in 1..%d, got '%s'\n", PNPR_THREADS_MAX, v); return 2; }
-            fo.threads = (int)x; i++;
-        } else if (a[0] == '-' && a[1]) {
+        if (a[0] == '-' && a[1]) {
             fprintf(stderr, "pointnpr features: unknown option or missing value: %s\n", a);
             usage(stderr);
             return 2;
         } else if (!in) in = a;
         else { fprintf(stderr, "pointnpr features: more than one input given ('%s')\n", a); return 2; }
     }
+    const char *out = A.c.out;
+    int quiet = A.c.quiet;
+    if (A.ascii) wo.encoding = PNPR_PLY_ASCII;
     if (!cli_need_in_out("features", in, out, "OUT.ply")) return 2;
     int out_rc = cli_cloud_output("features", out, in, &wo);
     if (out_rc) return out_rc;
@@ -129,7 +149,7 @@ int cli_features(int argc, char **argv)
     pnpr_read_options ro = {0};
     ro.columns = columns;
     ro.progress = prog;
-    fo.progress = prog;
+    fo->progress = prog;
     wo.progress = prog;
     pnpr_cloud cloud = {0};
     pnpr_error err = {0};
@@ -138,8 +158,8 @@ int cli_features(int argc, char **argv)
     if (cli_outliers_apply(&outliers, "features", in, &cloud, quiet, NULL)) { pnpr_cloud_free(&cloud); return 1; }
 
     pnpr_features_stats stats;
-    st = pnpr_features_check_options(&fo, &err);
-    if (st == PNPR_OK) st = pnpr_compute_features(&cloud, &fo, &stats);
+    st = pnpr_features_check_options(fo, &err);
+    if (st == PNPR_OK) st = pnpr_compute_features(&cloud, fo, &stats);
     if (st != PNPR_OK) {
         if (err.message[0]) cli_report_error("features", st, &err);
         else fprintf(stderr, "pointnpr features: %s: %s\n", in, pnpr_status_string(st));
@@ -149,7 +169,7 @@ int cli_features(int argc, char **argv)
     if (stats.valid_points < 3) warn_few_points(in, cloud.count, &stats);
     if (!quiet) {
         fprintf(stderr, "points %zu (valid %zu), k %u, threshold %.3f%s\n", cloud.count, stats.valid_points,
-                stats.k_used, stats.threshold_used, fo.threshold > 0 ? "" : " (automatic)");
+                stats.k_used, stats.threshold_used, fo->threshold > 0 ? "" : " (automatic)");
         fprintf(stderr, "feature points %zu (directional %zu, non-directional %zu), dithering points %zu\n",
                 stats.feature_points, stats.directional_points, stats.feature_points - stats.directional_points,
                 stats.dither_points);

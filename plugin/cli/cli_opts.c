@@ -1,0 +1,125 @@
+/* The CLI's option tables (cli_opts.h): one parser and one usage printer for every command. */
+#include "cli.h"
+#include "cli_opts.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+
+const cli_opt cli_common_opts[3] = {
+    {"--output", "-o", CLI_TEXT, offsetof(cli_common, out), 0, 0, 0, 0, NULL, NULL, "OUT", "the output file"},
+    {"--quiet", NULL, CLI_FLAG, offsetof(cli_common, quiet), 0, 0, 0, 0, NULL, NULL, NULL, "no progress or summary"},
+    {"--help", "-h", CLI_FLAG, offsetof(cli_common, help), 0, 0, 0, 0, NULL, NULL, NULL, "this text"},
+};
+
+const cli_opt *cli_opts_find(const cli_opt *t, size_t n, const char *name)
+{
+    for (size_t k = 0; k < n; k++)
+        if (!strcmp(t[k].name, name) || (t[k].alias && !strcmp(t[k].alias, name))) return &t[k];
+    return NULL;
+}
+
+int cli_choice_index(const char *const *choices, const char *v)
+{
+    for (int c = 0; choices && choices[c]; c++)
+        if (!strcasecmp(choices[c], v)) return c;
+    return -1;
+}
+
+/* "in 1..1024", "in (0, 1]", ">= 1", "> 0" */
+static void range_text(const cli_opt *o, char *buf, size_t cap)
+{
+    if (o->max >= CLI_UNBOUNDED) snprintf(buf, cap, "%s %g", o->min_excl ? ">" : ">=", o->min);
+    else if (o->kind == CLI_INT) snprintf(buf, cap, "in %g..%g", o->min, o->max);
+    else snprintf(buf, cap, "in %s%g, %g]", o->min_excl ? "(" : "[", o->min, o->max);
+}
+
+/* "a, b or c" */
+static void choices_text(const char *const *choices, char *buf, size_t cap)
+{
+    size_t len = 0, n = 0;
+    while (choices[n]) n++;
+    buf[0] = 0;
+    for (size_t c = 0; c < n && len < cap; c++)
+        len += (size_t)snprintf(buf + len, cap - len, "%s%s", c == 0 ? "" : c + 1 == n ? " or " : ", ", choices[c]);
+}
+
+static int refuse(const cli_opt *o, const char *cmd, const char *v)
+{
+    char want[256];
+    if (o->kind == CLI_CHOICE) choices_text(o->choices, want, sizeof want);
+    else if (o->kind == CLI_LIST) snprintf(want, sizeof want, "%d comma-separated numbers (%s)", o->count, o->metavar);
+    else {
+        char range[64];
+        range_text(o, range, sizeof range);
+        snprintf(want, sizeof want, "%s %s", o->kind == CLI_INT ? "an integer" : "a number", range);
+    }
+    fprintf(stderr, "pointnpr %s: %s wants %s, got '%s'\n", cmd, o->name, want, v);
+    return -1;
+}
+
+static int take_value(const cli_opt *o, void *member, const char *cmd, const char *v)
+{
+    double x;
+    int c;
+    switch (o->kind) {
+    case CLI_INT:
+        if (!cli_parse_number(v, o->min, o->max, &x) || x != floor(x)) return refuse(o, cmd, v);
+        *(int *)member = (int)x;
+        return 1;
+    case CLI_NUMBER:
+        if (!cli_parse_number(v, o->min, o->max, &x) || (o->min_excl && x == o->min)) return refuse(o, cmd, v);
+        *(double *)member = x;
+        return 1;
+    case CLI_TEXT: *(const char **)member = v; return 1;
+    case CLI_CHOICE:
+        if ((c = cli_choice_index(o->choices, v)) < 0) return refuse(o, cmd, v);
+        *(int *)member = c;
+        return 1;
+    case CLI_LIST: return cli_parse_list(v, o->count, (double *)member) ? 1 : refuse(o, cmd, v);
+    case CLI_CUSTOM: return o->parse(member, cmd, v) ? 1 : -1;
+    case CLI_FLAG: break;
+    }
+    return -1;
+}
+
+int cli_opts_parse(const cli_opt *t, size_t n, void *opts, const char *cmd, int argc, char **argv, int *i)
+{
+    const cli_opt *o = cli_opts_find(t, n, argv[*i]);
+    if (!o) return 0;
+    void *member = (char *)opts + o->offset;
+    if (o->kind == CLI_FLAG) { *(int *)member = 1; return 1; }
+    if (*i + 1 >= argc) {
+        fprintf(stderr, "pointnpr %s: %s needs a value (%s)\n", cmd, o->name, o->metavar ? o->metavar : "see --help");
+        return -1;
+    }
+    int r = take_value(o, member, cmd, argv[*i + 1]);
+    if (r > 0) (*i)++;
+    return r;
+}
+
+void cli_opts_usage(FILE *f, const cli_opt *t, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        const cli_opt *o = &t[k];
+        char left[80], extra[256] = "";
+        if (o->kind == CLI_CHOICE) {
+            size_t len = 0;
+            char names[200] = "";
+            for (int c = 0; o->choices[c] && len < sizeof names; c++)
+                len += (size_t)snprintf(names + len, sizeof names - len, "%s%s", c ? "|" : "", o->choices[c]);
+            snprintf(left, sizeof left, "%s%s%s %s", o->alias ? o->alias : "", o->alias ? ", " : "", o->name, names);
+        } else
+            snprintf(left, sizeof left, "%s%s%s%s%s", o->alias ? o->alias : "", o->alias ? ", " : "", o->name,
+                     o->metavar ? " " : "", o->metavar ? o->metavar : "");
+        if (o->kind == CLI_INT || o->kind == CLI_NUMBER) {
+            char range[64];
+            range_text(o, range, sizeof range);
+            snprintf(extra, sizeof extra, " (%s)", range);
+        }
+        if (strlen(left) > 20) fprintf(f, "  %s\n  %-20s %s%s\n", left, "", o->help, extra);
+        else fprintf(f, "  %-20s %s%s\n", left, o->help, extra);
+    }
+}
