@@ -31,9 +31,9 @@ int cli_choice_index(const char *const *choices, const char *v)
 /* "in 1..1024", "in (0, 1]", ">= 1", "> 0" */
 static void range_text(const cli_opt *o, char *buf, size_t cap)
 {
-    if (o->max >= CLI_UNBOUNDED) snprintf(buf, cap, "%s %g", o->min_excl ? ">" : ">=", o->min);
-    else if (o->kind == CLI_INT) snprintf(buf, cap, "in %g..%g", o->min, o->max);
-    else snprintf(buf, cap, "in %s%g, %g]", o->min_excl ? "(" : "[", o->min, o->max);
+    if (o->max >= CLI_UNBOUNDED) snprintf(buf, cap, "%s %.10g", o->min_excl ? ">" : ">=", o->min);
+    else if (o->kind == CLI_INT || o->kind == CLI_UINT) snprintf(buf, cap, "in %.10g..%.10g", o->min, o->max);
+    else snprintf(buf, cap, "in %s%.10g, %.10g]", o->min_excl ? "(" : "[", o->min, o->max);
 }
 
 /* "a, b or c" */
@@ -54,7 +54,7 @@ static int refuse(const cli_opt *o, const char *cmd, const char *v)
     else {
         char range[64];
         range_text(o, range, sizeof range);
-        snprintf(want, sizeof want, "%s %s", o->kind == CLI_INT ? "an integer" : "a number", range);
+        snprintf(want, sizeof want, "%s %s", o->kind == CLI_NUMBER ? "a number" : "an integer", range);
     }
     fprintf(stderr, "pointnpr %s: %s wants %s, got '%s'\n", cmd, o->name, want, v);
     return -1;
@@ -68,6 +68,11 @@ static int take_value(const cli_opt *o, void *member, const char *cmd, const cha
     case CLI_INT:
         if (!cli_parse_number(v, o->min, o->max, &x) || x != floor(x)) return refuse(o, cmd, v);
         *(int *)member = (int)x;
+        return 1;
+    case CLI_UINT:
+        if (!cli_parse_number(v, o->min, o->max, &x) || x != floor(x) || x < 0 || x > 4294967295.0)
+            return refuse(o, cmd, v);
+        *(uint32_t *)member = (uint32_t)x;
         return 1;
     case CLI_NUMBER:
         if (!cli_parse_number(v, o->min, o->max, &x) || (o->min_excl && x == o->min)) return refuse(o, cmd, v);
@@ -114,12 +119,30 @@ void cli_opts_usage(FILE *f, const cli_opt *t, size_t n)
         } else
             snprintf(left, sizeof left, "%s%s%s%s%s", o->alias ? o->alias : "", o->alias ? ", " : "", o->name,
                      o->metavar ? " " : "", o->metavar ? o->metavar : "");
-        if (o->kind == CLI_INT || o->kind == CLI_NUMBER) {
+        if (o->kind == CLI_INT || o->kind == CLI_UINT || o->kind == CLI_NUMBER) {
             char range[64];
             range_text(o, range, sizeof range);
             snprintf(extra, sizeof extra, " (%s)", range);
         }
-        if (strlen(left) > 20) fprintf(f, "  %s\n  %-20s %s%s\n", left, "", o->help, extra);
-        else fprintf(f, "  %-20s %s%s\n", left, o->help, extra);
+        if (strlen(left) > 20) fprintf(f, "  %s\n  %-20s", left, "");
+        else fprintf(f, "  %-20s", left);
+        /* the range on a continuation line when the line would pass 90 columns */
+        fprintf(f, 23 + strlen(o->help) + strlen(extra) > 90 ? " %s\n%23s%s\n" : " %s%s%s\n", o->help, "",
+                extra + (23 + strlen(o->help) + strlen(extra) > 90));
     }
+}
+
+int cli_operand(const char *cmd, const char *a, const char **in, void (*usage)(FILE *f))
+{
+    if (a[0] == '-' && a[1]) {
+        fprintf(stderr, "pointnpr %s: unknown option or missing value: %s\n", cmd, a);
+        if (usage) usage(stderr);
+        return 2;
+    }
+    if (*in) {
+        fprintf(stderr, "pointnpr %s: more than one input given ('%s')\n", cmd, a);
+        return 2;
+    }
+    *in = a;
+    return 0;
 }

@@ -7,11 +7,13 @@
 #define PNPR_CLI_OPTS_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 typedef enum cli_kind {
     CLI_FLAG = 0, /* no value: the int member becomes 1 */
     CLI_INT,      /* an integer in [min, max] into an int member */
+    CLI_UINT,     /* an integer in [min, max] (within 0..2^32-1) into a uint32_t member */
     CLI_NUMBER,   /* a finite number in [min, max] into a double member (min_excl: (min, max]) */
     CLI_TEXT,     /* the value itself into a const char * member */
     CLI_CHOICE,   /* one of `choices` (case-insensitive) into an int member: its index */
@@ -27,7 +29,7 @@ typedef struct cli_opt {
     const char *alias;            /* "-o", or NULL */
     cli_kind kind;
     size_t offset;                /* offsetof(the command's options struct, member) */
-    double min, max;              /* CLI_INT, CLI_NUMBER: the range */
+    double min, max;              /* CLI_INT, CLI_UINT, CLI_NUMBER: the range */
     int min_excl;                 /* CLI_NUMBER: min itself is refused */
     int count;                    /* CLI_LIST: how many numbers */
     const char *const *choices;   /* CLI_CHOICE: NULL-terminated */
@@ -48,6 +50,9 @@ void cli_opts_usage(FILE *f, const cli_opt *t, size_t n);
 const cli_opt *cli_opts_find(const cli_opt *t, size_t n, const char *name);
 /* The index of v in choices (case-insensitive), or -1. */
 int cli_choice_index(const char *const *choices, const char *v);
+/* argv[i] = a, taken by no table: the input when it is the first operand (*in still NULL),
+ * else says why not (an unknown option, with the usage; a second input) and returns 2; 0 ok. */
+int cli_operand(const char *cmd, const char *a, const char **in, void (*usage)(FILE *f));
 
 /* The options every file-writing command shares: -o/--output, --quiet, --help. */
 typedef struct cli_common {

@@ -130,12 +130,7 @@ int cli_features(int argc, char **argv)
         if (oo < 0) return 2;
         if (A.c.help) { usage(stdout); return 0; }
         if (oo > 0) continue;
-        if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "pointnpr features: unknown option or missing value: %s\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!in) in = a;
-        else { fprintf(stderr, "pointnpr features: more than one input given ('%s')\n", a); return 2; }
+        if (cli_operand("features", a, &in, usage)) return 2;
     }
     const char *out = A.c.out;
     int quiet = A.c.quiet;

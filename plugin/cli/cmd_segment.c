@@ -1,6 +1,7 @@
 /* pointnpr segment IN -o OUT.ply: segments (3D JSEG, connected components, colour region growing,
  * or labels imported from a property), optionally a level of the region hierarchy. */
 #include "cli.h"
+#include "cli_opts.h"
 
 #include <pointnpr/options.h>
 #include <pointnpr/segment.h>
@@ -11,7 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int is_int(double x) { return x == floor(x); }
 
 /* The methods' options tables (options.h); the first that has an option gives its range. */
 typedef const pnpr_option_desc *(*table_fn)(size_t *r_count);
@@ -91,6 +91,29 @@ static int method_option_arg(double *values, int argc, char **argv, int *i)
     return 0;
 }
 
+/* The command's own arguments (cli_opts.h). */
+static const char *const method_names[] = {"jseg", "components", "rgbgrow", "labels", NULL};
+typedef struct segment_args {
+    cli_common c;
+    int method; /* method_names */
+    const char *property;
+    uint32_t segments;
+    double threshold;
+    int threads, ascii;
+} segment_args;
+static const cli_opt segment_opts[] = {
+    {"--method", NULL, CLI_CHOICE, offsetof(segment_args, method), 0, 0, 0, 0, method_names, NULL, NULL,
+     "the segmentation (above)"},
+    {"--segments", NULL, CLI_UINT, offsetof(segment_args, segments), 1, 4294967294.0, 0, 0, NULL, NULL, "N",
+     "cut the region hierarchy (HSI colour, size rule) at N segments"},
+    {"--threshold", NULL, CLI_NUMBER, offsetof(segment_args, threshold), 0, 1e9, 1, 0, NULL, NULL, "T",
+     "cut the region hierarchy where the HSI colour distance exceeds T"},
+    {"--property", NULL, CLI_TEXT, offsetof(segment_args, property), 0, 0, 0, 0, NULL, NULL, "NAME",
+     "labels: the property to read (default 'segment')"},
+    CLI_THREADS_OPT(segment_args, threads),
+    {"--ascii", NULL, CLI_FLAG, offsetof(segment_args, ascii), 0, 0, 0, 0, NULL, NULL, NULL, "write ascii PLY"},
+};
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -103,9 +126,8 @@ static void usage(FILE *f)
             "  components  connected components at a distance (--radius)\n"
             "  rgbgrow     colour region growing (needs colours)\n"
             "  labels      segments from a per-point property (--property, default 'segment')\n"
-            "options:\n"
-            "  --segments N     cut the region hierarchy (HSI colour, size rule) at N segments\n"
-            "  --threshold T    cut the region hierarchy where the HSI colour distance exceeds T\n");
+            "options:\n");
+    cli_opts_usage(f, segment_opts + 1, 2); /* --segments, --threshold */
     for (int i = 0; i < METHOD_OPTIONS; i++) method_usage(f, &method_options[i]);
     size_t ns;
     const pnpr_option_desc *split = pnpr_split_option_table(&ns);
@@ -113,17 +135,17 @@ static void usage(FILE *f)
                "  (Chi & Lee's covariance split):\n");
     cli_table_usage(f, split, ns, "split", "V");
     cli_table_usage(f, split, ns, "split-min", "M");
-    fprintf(f,
-            "  --property NAME  labels: the property to read\n"
-            "  --threads N, --ascii, --quiet\n");
+    cli_opts_usage(f, segment_opts + 3, CLI_COUNT(segment_opts) - 3);
+    cli_opts_usage(f, cli_common_opts + 1, 1); /* --quiet */
     cli_outlier_usage(f);
     cli_columns_usage(f);
 }
 
 int cli_segment(int argc, char **argv)
 {
-    const char *in = NULL, *out = NULL, *method = "jseg", *property = NULL;
-    double segments = 0, threshold = 0, threads = 0;
+    const char *in = NULL;
+    segment_args A;
+    memset(&A, 0, sizeof A);
     pnpr_split_options split = {0};
     size_t nsplit;
     const pnpr_option_desc *split_table = pnpr_split_option_table(&nsplit);
@@ -132,47 +154,21 @@ int cli_segment(int argc, char **argv)
     pnpr_write_options wo = {0};
     cli_outliers outliers = {0, 0};
     const char *columns = NULL;
-    int quiet = 0;
     for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         int oo = cli_outlier_option(&outliers, "segment", argc, argv, &i);
         if (oo == 0) oo = cli_columns_option(&columns, "segment", argc, argv, &i);
-        if (oo < 0) return 2;
-        if (oo > 0) continue;
         if (oo == 0) oo = cli_table_option(split_table, nsplit, split_names, &split, "segment", argc, argv, &i);
+        if (oo == 0) oo = method_option_arg(values, argc, argv, &i);
+        if (oo == 0) oo = cli_opts_parse(segment_opts, CLI_COUNT(segment_opts), &A, "segment", argc, argv, &i);
+        if (oo == 0) oo = cli_opts_parse(cli_common_opts, CLI_COUNT(cli_common_opts), &A.c, "segment", argc, argv, &i);
         if (oo < 0) return 2;
-        if (oo > 0) continue;
-        int mo = method_option_arg(values, argc, argv, &i);
-        if (mo < 0) return 2;
-        if (mo > 0) continue;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
-        else if (!strcmp(a, "--quiet")) quiet = 1;
-        else if (!strcmp(a, "--ascii")) wo.encoding = PNPR_PLY_ASCII;
-        else if (v && (!strcmp(a, "-o") || !strcmp(a, "--output"))) { out = v; i++; }
-        else if (v && !strcmp(a, "--method")) {
-            if (strcmp(v, "jseg") && strcmp(v, "components") && strcmp(v, "rgbgrow") && strcmp(v, "labels")) {
-                fprintf(stderr, "pointnpr segment: --method wants jseg, components, rgbgrow or labels, got '%s'\n", v);
-                return 2;
-            }
-            method = v; i++;
-        } else if (v && !strcmp(a, "--property")) { property = v; i++; }
-        else if (v && !strcmp(a, "--segments")) {
-            if (!cli_parse_number(v, 1, 4294967294.0, &segments) || !is_int(segments)) { fprintf(stderr, "pointnpr segment: --segments wants an integer >= 1, got '%s'\n", v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--threshold")) {
-            if (!cli_parse_number(v, 1e-9, 1e9, &threshold)) { fprintf(stderr, "pointnpr segment: --threshold wants a positive number, got '%s'\n", v); return 2; }
-            i++;
-        } else if (v && !strcmp(a, "--threads")) {
-            if (!cli_parse_number(v, 1, PNPR_THREADS_MAX, &threads) || !is_int(threads)) { fprintf(stderr, "pointnpr segment: --threads wants an integer in 1..%d, got '%s'\n", PNPR_THREADS_MAX, v); return 2; }
-            i++;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "pointnpr segment: unknown option or missing value: %s\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!in) in = a;
-        else { fprintf(stderr, "pointnpr segment: more than one input given ('%s')\n", a); return 2; }
+        if (A.c.help) { usage(stdout); return 0; }
+        if (oo == 0 && cli_operand("segment", argv[i], &in, usage)) return 2;
     }
+    const char *out = A.c.out, *method = method_names[A.method], *property = A.property;
+    const int quiet = A.c.quiet;
+    const double segments = A.segments, threshold = A.threshold, threads = A.threads;
+    if (A.ascii) wo.encoding = PNPR_PLY_ASCII;
     if (!cli_need_in_out("segment", in, out, "OUT.ply")) return 2;
     int out_rc = cli_cloud_output("segment", out, in, &wo);
     if (out_rc) return out_rc;
