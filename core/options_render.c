@@ -60,6 +60,26 @@ static const pnpr_option_desc upload_table[] = {
       "painterly: feature-degree bins = passes"),
 };
 
+#define V(...) OPT("svg", pnpr_svg_options, __VA_ARGS__)
+static const pnpr_option_desc svg_table[] = {
+    V("stroke-width", stroke_width, FLOAT, 1.5, 1e-3, 1e3, 0, 0, NULL, "SVG stroke width in pixels"),
+    V("taper", taper, FLOAT, 0, 0, 1, ZERO_VALUE, 0, NULL,
+      "strokes narrow to a point over this fraction of their length"),
+    V("point-radius", point_radius, FLOAT, 0, 0, UNB, EXCL, 0, "median spacing",
+      "the occluders' disk radius (world units)"),
+    V("depth-tolerance", depth_tolerance, FLOAT, 0, 0, UNB, EXCL, 3, " point radii",
+      "a line is hidden behind a surface nearer by more than this (world units)"),
+    V("outline-width", outline_width, FLOAT, PNPR_SVG_OUTLINE_WIDTH, 0.1, 64, 0, 0, NULL, "outline width in pixels"),
+    V("outline-jump", outline_jump, FLOAT, PNPR_OUTLINE_JUMP, 0.01, 1e3, 0, 0, NULL,
+      "a contour is a depth jump over this many extents"),
+};
+
+const pnpr_option_desc *pnpr_svg_option_table(size_t *r_count)
+{
+    if (r_count) *r_count = COUNT(svg_table);
+    return svg_table;
+}
+
 const pnpr_option_desc *pnpr_draw_option_table(size_t *r_count)
 {
     if (r_count) *r_count = COUNT(draw_table);

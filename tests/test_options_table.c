@@ -386,6 +386,8 @@ static void check_cli(void)
     check_cli_options("segment", pnpr_outlier_option_table, outliers);
     static const char *const split[] = {"split", "split-min", NULL};
     check_cli_options("segment", pnpr_split_option_table, split);
+    static const char *const svg[] = {"stroke-width", "taper", "outline-width", "outline-jump", NULL};
+    check_cli_options("lines", pnpr_svg_option_table, svg);
     check_cli_options("info", pnpr_outlier_option_table, outliers);
     check_segment_usage();
     /* render and animate: the draw and upload options of the renderer's tables */
@@ -420,6 +422,10 @@ int main(void)
     pnpr_split_options sp = pnpr_split_defaults();
     pnpr_draw_options dr = pnpr_draw_defaults();
     pnpr_upload_options up = pnpr_upload_defaults();
+    pnpr_svg_options sv = {0};
+    size_t nsv;
+    const pnpr_option_desc *svt = pnpr_svg_option_table(&nsv);
+    pnpr_option_set_defaults(svt, nsv, &sv);
     const table_case cases[] = {
         {"features", pnpr_features_option_table, sizeof f, &f},
         {"lines", pnpr_lines_option_table, sizeof l, &l},
@@ -431,6 +437,7 @@ int main(void)
         {"split", pnpr_split_option_table, sizeof sp, &sp},
         {"draw", pnpr_draw_option_table, sizeof dr, &dr},
         {"upload", pnpr_upload_option_table, sizeof up, &up},
+        {"svg", pnpr_svg_option_table, sizeof sv, &sv},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         check_table(&cases[i]);

@@ -19,6 +19,7 @@
 #include <pointnpr/output.h>
 
 #include <pointnpr/knn.h>
+#include <pointnpr/options.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -130,19 +131,21 @@ static int write_outlines(FILE *f, const pnpr_outline_set *o, double width, cons
     return fprintf(f, "</g>\n") < 0 ? -1 : 0;
 }
 
+/* Checks the arguments; r_o: the options with their zeros filled from the table (options.h). */
 static pnpr_status check_options(const char *path, const pnpr_polylines *lines, const pnpr_svg_options *opts,
-                                 int *r_w, int *r_h, pnpr_error *err)
+                                 pnpr_svg_options *r_o, int *r_w, int *r_h, pnpr_error *err)
 {
     if (!path || !lines || (lines->count && (!lines->offset || !lines->xyz || !lines->closed)))
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: invalid arguments");
     int w = opts->width ? opts->width : 1024, h = opts->height ? opts->height : 768;
     if (w < 1 || h < 1 || w > 32768 || h > 32768)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: size %dx%d is not in 1..32768", w, h);
-    const float fopts[6] = {opts->stroke_width, opts->taper, opts->point_radius, opts->depth_tolerance,
-                            opts->outline_width, opts->outline_jump};
-    for (int i = 0; i < 6; i++)
-        if (!isfinite(fopts[i]) || fopts[i] < 0)
-            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: options must be finite and >= 0");
+    size_t nt;
+    const pnpr_option_desc *table = pnpr_svg_option_table(&nt);
+    pnpr_status st = pnpr_option_check(table, nt, opts, err); /* the ranges: options.h */
+    if (st != PNPR_OK) return st;
+    *r_o = *opts;
+    pnpr_option_fill_defaults(table, nt, r_o);
     const pnpr_cloud *occ = opts->occluders;
     if (occ && occ->count && !occ->xyz) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "svg: occluders without points");
     *r_w = w;
@@ -280,8 +283,8 @@ static int print_drawing(FILE *f, const void *ctx)
         bad |= fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"#%02x%02x%02x\"/>\n", o->background_rgb[0],
                        o->background_rgb[1], o->background_rgb[2]) < 0;
     if (d->outl)
-        bad |= write_outlines(f, d->outl, o->outline_width > 0 ? o->outline_width : PNPR_SVG_OUTLINE_WIDTH, colour) < 0;
-    bad |= write_lines(f, d->lines, d->pr, d->zb, d->tol, o, o->stroke_width > 0 ? o->stroke_width : 1.5, colour) < 0;
+        bad |= write_outlines(f, d->outl, o->outline_width, colour) < 0;
+    bad |= write_lines(f, d->lines, d->pr, d->zb, d->tol, o, o->stroke_width, colour) < 0;
     bad |= fprintf(f, "</svg>\n") < 0;
     return bad;
 }
@@ -300,8 +303,10 @@ pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
     static const pnpr_svg_options defaults;
     if (!opts) opts = &defaults;
     int w = 0, h = 0;
-    pnpr_status st = check_options(path, lines, opts, &w, &h, err);
+    pnpr_svg_options filled;
+    pnpr_status st = check_options(path, lines, opts, &filled, &w, &h, err);
     if (st != PNPR_OK) return st;
+    opts = &filled;
     /* the lines' frame (the occluders' when there are no line vertices: georeferenced origins
      * stay out of the float matrices) */
     const pnpr_cloud *occ = opts->occluders;
@@ -318,7 +323,7 @@ pnpr_status pnpr_write_lines_svg(const char *path, const pnpr_polylines *lines,
     if ((st = depth_buffer(occ, shift, &pr, opts, bmin, bmax, &zb, &tol, err)) != PNPR_OK) return st;
     pnpr_outline_set outl = {0};
     int outlines = occ && occ->count && opts->outline >= 0;
-    if (outlines) st = pnpr_svg_outlines(occ, shift, &pr.fc, w, h, opts->outline_jump > 0 ? opts->outline_jump : PNPR_OUTLINE_JUMP, &outl, err);
+    if (outlines) st = pnpr_svg_outlines(occ, shift, &pr.fc, w, h, opts->outline_jump, &outl, err);
     if (st == PNPR_OK) st = write_drawing(path, lines, &pr, zb, tol, outlines ? &outl : NULL, opts, err);
     pnpr_outline_set_free(&outl);
     free(zb);

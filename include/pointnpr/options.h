@@ -97,6 +97,8 @@ pnpr_hier_params pnpr_hier_defaults(void);
  * budget, seed, threads and the colours of the background are not in the tables. */
 const pnpr_option_desc *pnpr_draw_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_upload_option_table(size_t *r_count);
+/* The SVG drawing of profile lines (pnpr_svg_options, camera.h; `lines --svg`). */
+const pnpr_option_desc *pnpr_svg_option_table(size_t *r_count);
 pnpr_draw_options pnpr_draw_defaults(void);
 pnpr_upload_options pnpr_upload_defaults(void);
 /* Checks every tabled member of o against its entry (pnpr_option_check), mask_scale against the
