@@ -105,6 +105,28 @@ int cli_opts_parse(const cli_opt *t, size_t n, void *opts, const char *cmd, int 
     return r;
 }
 
+/* Writes text word by word after a usage line's left column (at `indent`), breaking lines before
+ * `width` columns onto continuation lines at the same indent. */
+static void wrap(FILE *f, const char *text, int indent, int width)
+{
+    int col = indent - 1;
+    while (*text) {
+        while (*text == ' ') text++;
+        int len = 0;
+        while (text[len] && text[len] != ' ') len++;
+        if (!len) break;
+        if (col > indent - 1 && col + 1 + len > width) {
+            fprintf(f, "\n%*s", indent - 1, "");
+            col = indent - 1;
+        }
+        fputc(' ', f);
+        for (int c = 0; c < len; c++) fputc(text[c] == '\x1f' ? ' ' : text[c], f); /* a space that never breaks */
+        col += 1 + len;
+        text += len;
+    }
+    fputc('\n', f);
+}
+
 void cli_opts_usage(FILE *f, const cli_opt *t, size_t n)
 {
     for (size_t k = 0; k < n; k++) {
@@ -123,12 +145,14 @@ void cli_opts_usage(FILE *f, const cli_opt *t, size_t n)
             char range[64];
             range_text(o, range, sizeof range);
             snprintf(extra, sizeof extra, " (%s)", range);
+            for (char *c = extra + 1; *c; c++)
+                if (*c == ' ') *c = '\x1f'; /* the range stays on one line */
         }
-        if (strlen(left) > 20) fprintf(f, "  %s\n  %-20s", left, "");
+        if (strlen(left) > 20) fprintf(f, "  %s\n%22s", left, "");
         else fprintf(f, "  %-20s", left);
-        /* the range on a continuation line when the line would pass 90 columns */
-        fprintf(f, 23 + strlen(o->help) + strlen(extra) > 90 ? " %s\n%23s%s\n" : " %s%s%s\n", o->help, "",
-                extra + (23 + strlen(o->help) + strlen(extra) > 90));
+        char text[512];
+        snprintf(text, sizeof text, "%s%s", o->help, extra);
+        wrap(f, text, 23, 90);
     }
 }
 
