@@ -8,19 +8,25 @@
  *   GL's depth test (LEQUAL against the mask, at the point's depth): a stroke is sampled every
  *   pixel along its axis and split into its visible runs, a dot is kept when half the pixels
  *   under it pass; hidden marks are absent from the file;
- * - a stroke's vector shape is its texture's support (the rows and columns with ink, measured on
- *   the generated textures, pnpr_stroke_textures), drawn at the ink's opacity x the tone
- *   hatches' lighter pencil x the queue's fade-in x the texture's mean alpha there: the same ink
- *   as the raster stroke, so pencil tone stays grey (a shape where the stroke is 40% opaque,
- *   drawn opaque, differed from the PNG at 1.42% of the pixels of the test scene and 5.1% of the
- *   lion's; this at 0.63% and 3.0%);
+ * - a stroke's vector shape is its texture as the frame shows it at that size (the mipmap level GL
+ *   picks from the texels a pixel spans, bilinear and between levels): the extent along and
+ *   across where its averaged profiles reach half their peak, drawn at the opacity that carries
+ *   the texture's ink there x the ink's opacity x the tone hatches' lighter pencil x the queue's
+ *   fade-in; small marks (tone hatches of 3 x 2 px) are then the whole quad at its mean ink, as
+ *   the frame draws them; a shape where the stroke is 40% opaque, drawn opaque, differed from the
+ *   PNG at 1.42% of the pixels of the test scene and 5.1% of the lion's;
+ * - a stipple dot is drawn whole when 90% of its ink passes the depth test; a partly hidden dot
+ *   is its visible pixels (splat.frag's coverage) as one short stroke along their principal axis,
+ *   as long and wide as their spread, at the opacity that carries their ink (the slivers the
+ *   frame draws along occluding edges; dropping dots under half visible differed at 3.3% of the
+ *   lion's pixels);
  * - profile lines (the `lines` style) follow line.vert (pulled towards the eye, the near plane,
  *   the minimum on-screen length), sampled and split the same way, joined across segments;
  * - outlines: the frame is drawn with only the outlines' ink in its colour attachment; that ink
- *   is read back and traced into centre lines (pnpr_drawing_trace_ink), so they are the
- *   outlines of the PNG, hidden parts already gone;
- * - marks repeated by duplicate points (ends within a quarter pixel) are drawn once
- *   (pnpr_drawing_dedupe);
+ *   is read back and traced into centre lines as wide as its bands (pnpr_drawing_trace_ink), so
+ *   they are the outlines of the PNG, hidden parts already gone;
+ * - marks repeated by duplicate points (ends within a quarter pixel) are drawn once, with the
+ *   opacity of all of them blended (pnpr_drawing_dedupe);
  * - cartoon's colour areas: a frame drawn without outlines, its colours read back and traced
  *   along the pixel borders into filled areas (pnpr_drawing_trace_regions). */
 #include "renderer_internal.h"
@@ -33,14 +39,21 @@
 #include <string.h>
 
 enum { READ_CHUNK = 65536 }; /* vertices read back at a time */
-#define DOT_VISIBLE 0.5  /* a dot is kept when this fraction of its pixels passes the depth test */
+#define DOT_WHOLE 0.9 /* a dot drawn whole when this fraction of its ink passes the depth test */
+#define OUTLINE_MIN_WIDTH 1.0f /* px: traced outlines are as wide as the frame's bands, at least this */
+
+enum { MIP_LEVELS = 8 }; /* a 128 x 32 texture: levels 0 (128 x 32) to 7 (1 x 1) */
+
+/* A texture's alpha averaged over one axis, with its mipmap chain (levels concatenated). */
+typedef struct mip_profile { float t[2 * STROKE_TEX_W + MIP_LEVELS]; int n; } mip_profile;
 
 typedef struct vec_ctx {
     pnpr_renderer *r;
     const pnpr_frame_record *rec;
     const float *depth;          /* w x h window depths, GL rows bottom-up */
     int w, h;
-    float frac_len[STROKE_LAYERS], frac_wid[STROKE_LAYERS], mean_alpha[STROKE_LAYERS]; /* texture_extents */
+    mip_profile prof_u[STROKE_LAYERS], prof_v[STROKE_LAYERS]; /* texture_profiles */
+    float prof_mean[STROKE_LAYERS];
     pnpr_drawing *out;
     uint8_t ink[4];
     float queue_end, queue_fade; /* the group being read: its prefix and fade-in (as the shaders) */
@@ -56,35 +69,107 @@ static double queue_alpha(const vec_ctx *c, size_t k)
 
 static uint8_t unit_byte(float v) { return (uint8_t)(v <= 0 ? 0 : v >= 1 ? 255 : (int)(v * 255.0f + 0.5f)); }
 
-/* Each texture's support (the columns and rows where it has any ink, as fractions of its length
- * and width) and its mean alpha there (grain and soft profile): a stroke's vector shape is the
- * support, drawn at that opacity, so that it carries the same ink as the raster stroke. */
-static void texture_extents(vec_ctx *c)
+static void mip_build(mip_profile *m);
+
+/* Each texture's alpha averaged across (along its length u) and along (across its width v), with
+ * their mipmaps, and its mean. */
+static void texture_profiles(vec_ctx *c)
 {
     uint8_t *tex = malloc((size_t)STROKE_LAYERS * STROKE_TEX_W * STROKE_TEX_H);
-    for (int L = 0; L < STROKE_LAYERS; L++) { c->frac_len[L] = 0.9f; c->frac_wid[L] = 0.5f; c->mean_alpha[L] = 1; }
-    if (!tex) return;
-    pnpr_stroke_textures(tex);
     for (int L = 0; L < STROKE_LAYERS; L++) {
+        mip_profile *pu = &c->prof_u[L], *pv = &c->prof_v[L];
+        pu->n = STROKE_TEX_W;
+        pv->n = STROKE_TEX_H;
+        for (int x = 0; x < STROKE_TEX_W; x++) pu->t[x] = tex ? 0 : 1; /* without memory: a plain bar */
+        for (int y = 0; y < STROKE_TEX_H; y++) pv->t[y] = tex ? 0 : 1;
+        c->prof_mean[L] = 1;
+    }
+    if (tex) pnpr_stroke_textures(tex);
+    for (int L = 0; L < STROKE_LAYERS && tex; L++) {
         const uint8_t *t = tex + (size_t)L * STROKE_TEX_W * STROKE_TEX_H;
-        int row[STROKE_TEX_W] = {0}, col[STROKE_TEX_H] = {0}, nl = 0, nw = 0, cnt = 0;
         double sum = 0;
         for (int y = 0; y < STROKE_TEX_H; y++)
             for (int x = 0; x < STROKE_TEX_W; x++) {
-                row[x] |= t[y * STROKE_TEX_W + x] > 0;
-                col[y] |= t[y * STROKE_TEX_W + x] > 0;
+                c->prof_u[L].t[x] += t[y * STROKE_TEX_W + x] / (255.0f * STROKE_TEX_H);
+                c->prof_v[L].t[y] += t[y * STROKE_TEX_W + x] / (255.0f * STROKE_TEX_W);
+                sum += t[y * STROKE_TEX_W + x] / 255.0;
             }
-        for (int x = 0; x < STROKE_TEX_W; x++) nl += row[x];
-        for (int y = 0; y < STROKE_TEX_H; y++) nw += col[y];
-        for (int y = 0; y < STROKE_TEX_H; y++)
-            for (int x = 0; x < STROKE_TEX_W; x++)
-                if (row[x] && col[y]) { sum += t[y * STROKE_TEX_W + x] / 255.0; cnt++; }
-        if (!cnt) continue;
-        c->frac_len[L] = (float)nl / STROKE_TEX_W;
-        c->frac_wid[L] = (float)nw / STROKE_TEX_H;
-        c->mean_alpha[L] = (float)(sum / cnt);
+        c->prof_mean[L] = (float)(sum / (STROKE_TEX_W * STROKE_TEX_H));
     }
+    for (int L = 0; L < STROKE_LAYERS; L++) { mip_build(&c->prof_u[L]); mip_build(&c->prof_v[L]); }
     free(tex);
+}
+
+/* Level l of a profile's mipmap chain (as glGenerateMipmap: texel pairs averaged, at least one
+ * texel): its texels and their count. */
+static const float *mip_level(const mip_profile *m, int l, int *r_n)
+{
+    int off = 0, n = m->n;
+    for (int k = 0; k < l; k++) { off += n; n = n > 1 ? n / 2 : 1; }
+    *r_n = n;
+    return m->t + off;
+}
+
+/* Builds the chain above level 0 (m->t[0 .. n - 1] and m->n set). */
+static void mip_build(mip_profile *m)
+{
+    for (int l = 1; l < MIP_LEVELS; l++) {
+        int np, n;
+        const float *p = mip_level(m, l - 1, &np);
+        float *q = (float *)mip_level(m, l, &n);
+        for (int i = 0; i < n; i++) q[i] = np > 1 ? 0.5f * (p[2 * i] + p[2 * i + 1]) : p[0];
+    }
+}
+
+/* GL_LINEAR_MIPMAP_LINEAR with GL_CLAMP_TO_EDGE at coordinate t in [0, 1], level of detail lod. */
+static double mip_sample(const mip_profile *m, double lod, double t)
+{
+    lod = fmin(fmax(lod, 0), MIP_LEVELS - 1);
+    int l0 = (int)floor(lod), l1 = l0 + 1 < MIP_LEVELS ? l0 + 1 : l0;
+    double v[2];
+    for (int k = 0; k < 2; k++) {
+        int n;
+        const float *p = mip_level(m, k ? l1 : l0, &n);
+        double x = t * n - 0.5, f = x - floor(x);
+        int i0 = (int)floor(x), i1 = i0 + 1;
+        i0 = i0 < 0 ? 0 : i0 >= n ? n - 1 : i0;
+        i1 = i1 < 0 ? 0 : i1 >= n ? n - 1 : i1;
+        v[k] = (1 - f) * p[i0] + f * p[i1];
+    }
+    return v[0] + (lod - l0) * (v[1] - v[0]);
+}
+
+/* A profile as the frame shows it at level of detail lod: the extent where it reaches half its
+ * peak, as a fraction of its length, and its mean. */
+static void drawn_extent(const mip_profile *m, double lod, double *r_frac, double *r_mean)
+{
+    enum { N = 128 };
+    double d[N], peak = 0, mean = 0;
+    int lo = N, hi = -1;
+    for (int i = 0; i < N; i++) {
+        d[i] = mip_sample(m, lod, (i + 0.5) / N);
+        peak = fmax(peak, d[i]);
+        mean += d[i] / N;
+    }
+    for (int i = 0; i < N; i++)
+        if (peak > 0 && d[i] >= 0.5 * peak) { lo = i < lo ? i : lo; hi = i; }
+    *r_frac = hi >= lo ? (double)(hi - lo + 1) / N : 0;
+    *r_mean = mean;
+}
+
+/* The vector shape of a stroke of texture layer L, half_len x half_wid px along axis: GL's level
+ * of detail from the texels a pixel spans; the fractions of the quad's length and width where the
+ * texture as drawn reaches half its peak, and the opacity that carries its ink there. */
+static void stroke_shape(const vec_ctx *c, int L, double half_len, double half_wid, const double axis[2], double *r_fl,
+                         double *r_fw, double *r_alpha)
+{
+    double su = STROKE_TEX_W / (2 * half_len), sv = STROKE_TEX_H / (2 * half_wid);
+    double rx = hypot(su * axis[0], sv * axis[1]), ry = hypot(su * axis[1], sv * axis[0]);
+    double lod = log2(fmax(fmax(rx, ry), 1e-9)), mu, mv;
+    drawn_extent(&c->prof_u[L], lod, r_fl, &mu);
+    drawn_extent(&c->prof_v[L], lod, r_fw, &mv);
+    double area = *r_fl * *r_fw;
+    *r_alpha = area > 0 ? mu * mv / area / fmax(c->prof_mean[L], 1e-9) : 0; /* the ink as drawn */
 }
 
 /* clip = proj * view * p (column-major), in double. */
@@ -205,15 +290,69 @@ static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instan
     memcpy(rgba, c->ink, 4);
     if (rec->o.ink_from_points) memcpy(rgba, v->rgba, 3);
     /* the texture's support at ink x tone pencil x fade-in x the texture's mean alpha */
-    double alpha = rgba[3] / 255.0 * queue_alpha(c, instance) * (thin ? SKETCH_TONE_INK : 1) * c->mean_alpha[tex_layer];
+    double fl, fw, fa;
+    stroke_shape(c, tex_layer, half_len, half_wid, axis, &fl, &fw, &fa);
+    if (fa > 1) { fw *= fa; fa = 1; } /* more ink than an opaque shape carries: wider */
+    double alpha = rgba[3] / 255.0 * queue_alpha(c, instance) * (thin ? SKETCH_TONE_INK : 1) * fa;
     rgba[3] = (uint8_t)(alpha * 255 + 0.5);
-    double hl = half_len * c->frac_len[tex_layer];
+    double hl = half_len * fl;
     if (!rgba[3] || !(hl > 0)) return PNPR_OK;
     double a[2] = {centre[0] - axis[0] * hl, centre[1] - axis[1] * hl}, b[2] = {centre[0] + axis[0] * hl, centre[1] + axis[1] * hl};
-    return add_visible(c, a, b, z, z, (float)(2 * half_wid * c->frac_wid[tex_layer]), rgba, layer);
+    return add_visible(c, a, b, z, z, (float)(2 * half_wid * fw), rgba, layer);
 }
 
-/* One stipple dot of splat.vert (fixed size; thin: tone), kept when DOT_VISIBLE of it passes. */
+/* The ink of a mark's visible pixels: its coverage summed, first and second moments (window
+ * pixels, GL y up); `all`: the coverage of the whole mark. */
+typedef struct ink_moments { double all, vis, sx, sy, sxx, sxy, syy; } ink_moments;
+
+static void moments_add(ink_moments *m, double x, double y, double a)
+{
+    m->vis += a;
+    m->sx += a * x;
+    m->sy += a * y;
+    m->sxx += a * x * x;
+    m->sxy += a * x * y;
+    m->syy += a * y * y;
+}
+
+/* The pixels splat.frag inks for a dot of `size` px at `centre` (a sprite of size + 1 px, the
+ * coverage falling off over the edge's last pixel), and those of them that pass the depth test. */
+static void dot_coverage(const vec_ctx *c, const double centre[2], double z, double size, ink_moments *m)
+{
+    memset(m, 0, sizeof *m);
+    double rad = 0.5 * size, half = 0.5 * (size + 1);
+    for (int y = (int)floor(centre[1] - half); y <= (int)floor(centre[1] + half); y++)
+        for (int x = (int)floor(centre[0] - half); x <= (int)floor(centre[0] + half); x++) {
+            double px = x + 0.5, py = y + 0.5, dist = hypot(px - centre[0], py - centre[1]);
+            double a = fmin(fmax(rad + 0.5 - dist, 0), 1);
+            if (dist > half || !(a > 0)) continue;
+            m->all += a;
+            if (passes(c, px, py, z)) moments_add(m, px, py, a);
+        }
+}
+
+/* A partly hidden mark as the raster draws it: its visible pixels as one short stroke along their
+ * principal axis, as long and wide as their spread (a pixel counted as its square), at the opacity
+ * that carries their ink. */
+static pnpr_status partial_mark(vec_ctx *c, const ink_moments *m, const uint8_t rgba_in[4], pnpr_drawing_layer layer)
+{
+    double mx = m->sx / m->vis, my = m->sy / m->vis;
+    double vxx = m->sxx / m->vis - mx * mx + 1.0 / 12, vyy = m->syy / m->vis - my * my + 1.0 / 12;
+    double vxy = m->sxy / m->vis - mx * my;
+    double tr = 0.5 * (vxx + vyy), det = vxx * vyy - vxy * vxy, disc = sqrt(fmax(tr * tr - det, 0));
+    double l1 = tr + disc, l2 = fmax(tr - disc, 1.0 / 12), ang = 0.5 * atan2(2 * vxy, vxx - vyy);
+    double len = sqrt(12 * l1), wid = sqrt(12 * l2);
+    double alpha = rgba_in[3] / 255.0 * m->vis / (len * wid);
+    if (alpha > 1) { wid *= alpha; alpha = 1; } /* the ink as a wider stroke */
+    uint8_t rgba[4] = {rgba_in[0], rgba_in[1], rgba_in[2], (uint8_t)(alpha * 255 + 0.5)};
+    if (!rgba[3]) return PNPR_OK;
+    double ax = 0.5 * len * cos(ang), ay = 0.5 * len * sin(ang);
+    float xy[4] = {(float)(mx - ax), (float)(c->h - (my - ay)), (float)(mx + ax), (float)(c->h - (my + ay))};
+    return pnpr_drawing_add(c->out, xy, 2, (float)wid, rgba, layer, 0);
+}
+
+/* One stipple dot of splat.vert (fixed size; thin: tone): whole when DOT_WHOLE of its ink passes
+ * the depth test, else its visible part (partial_mark). */
 static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id, size_t k, int thin)
 {
     const pnpr_frame_record *rec = c->rec;
@@ -229,22 +368,18 @@ static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id
     }
     double centre[2], z;
     to_window(c, clip, clip[3], centre, &z);
-    double rad = 0.5 * size;
-    int in = 0, vis = 0;
-    for (int y = (int)floor(centre[1] - rad); y <= (int)floor(centre[1] + rad); y++)
-        for (int x = (int)floor(centre[0] - rad); x <= (int)floor(centre[0] + rad); x++) {
-            double dx = x + 0.5 - centre[0], dy = y + 0.5 - centre[1];
-            if (dx * dx + dy * dy > rad * rad) continue;
-            in++;
-            vis += passes(c, x + 0.5, y + 0.5, z);
-        }
-    if (in == 0 || vis < DOT_VISIBLE * in) return PNPR_OK;
-    float xy[2] = {(float)centre[0], (float)(c->h - centre[1])};
     uint8_t rgba[4];
     memcpy(rgba, c->ink, 4);
     rgba[3] = (uint8_t)(rgba[3] * queue_alpha(c, k) + 0.5);
     if (!rgba[3]) return PNPR_OK;
-    return pnpr_drawing_add(c->out, xy, 1, (float)size, rgba, PNPR_LAYER_DOTS, PNPR_PATH_DOT);
+    ink_moments m;
+    dot_coverage(c, centre, z, size, &m);
+    if (!(m.vis > 0)) return PNPR_OK;
+    if (m.vis >= DOT_WHOLE * m.all) {
+        float xy[2] = {(float)centre[0], (float)(c->h - centre[1])};
+        return pnpr_drawing_add(c->out, xy, 1, (float)size, rgba, PNPR_LAYER_DOTS, PNPR_PATH_DOT);
+    }
+    return partial_mark(c, &m, rgba, PNPR_LAYER_DOTS);
 }
 
 /* The queue prefix of group g read back in chunks; each vertex becomes a mark. */
@@ -414,7 +549,7 @@ static pnpr_status outline_marks(vec_ctx *c, pnpr_error *err)
     if (st != PNPR_OK) { free(rgba); return pnpr_error_set(err, st, "vector: outlines: no frame to read"); }
     for (size_t i = 0; i < n; i++) rgba[i] = rgba[4 * i + 3]; /* alpha, in place */
     uint8_t threshold = (uint8_t)(c->ink[3] / 2 > 0 ? c->ink[3] / 2 : 1);
-    st = pnpr_drawing_trace_ink(c->out, rgba, c->w, c->h, 1, threshold, rec->outline_width, c->ink,
+    st = pnpr_drawing_trace_ink(c->out, rgba, c->w, c->h, 1, threshold, OUTLINE_MIN_WIDTH, c->ink,
                                 PNPR_LAYER_OUTLINES);
     free(rgba);
     if (st != PNPR_OK) pnpr_error_set(err, st, "vector: outlines of a %dx%d frame: out of memory", c->w, c->h);
@@ -478,7 +613,7 @@ static pnpr_status drawing_from_frame(vec_ctx *c, pnpr_error *err)
     st = pnpr_renderer_read_raw(c->r, GL_DEPTH_COMPONENT, GL_FLOAT, depth);
     if (st != PNPR_OK) { free(depth); return pnpr_error_set(err, st, "vector: depth: no frame to read"); }
     c->depth = depth;
-    texture_extents(c);
+    texture_profiles(c);
     /* bottom to top as the frame draws them: strokes or dots, lines, outlines */
     st = point_marks(c);
     if (st == PNPR_OK) st = line_marks(c);

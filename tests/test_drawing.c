@@ -37,7 +37,7 @@ static void check_ring(void)
 
 /* A horizontal bar 3 px thick from x = 20 to 100 (rows bottom-up): one open path along y = 64.5,
  * about 80 px long and 3 px wide; a cross of two 88 px bars: 2 to 4 paths (crossing strokes or arms from a
- * junction) of their length; a 2 x 1 speck: nothing. */
+ * junction) of their length; a 2 x 1 speck: one path over its 2 px; a single pixel: a dot on it. */
 static void check_bar_cross_speck(void)
 {
     static uint8_t a[S * S];
@@ -62,8 +62,16 @@ static void check_bar_cross_speck(void)
     pnpr_drawing_free(&d);
     memset(a, 0, sizeof a);
     a[10 * S + 10] = a[10 * S + 11] = 255;
-    CHECK_STATUS(pnpr_drawing_trace_ink(&d, a, S, S, 0, 128, 2, INK, PNPR_LAYER_LINES), PNPR_OK);
-    CHECK(d.count == 0);
+    CHECK_STATUS(pnpr_drawing_trace_ink(&d, a, S, S, 0, 128, 1, INK, PNPR_LAYER_LINES), PNPR_OK);
+    len = pnpr_drawing_ink_length(&d, PNPR_LAYER_LINES);
+    printf("speck: %zu paths, length %.2f, width %.2f\n", d.count, len, d.count ? d.stroke_width[0] : 0);
+    CHECK(d.count == 1 && fabs(len - 2) < 0.01 && fabs(d.stroke_width[0] - 1) < 0.01); /* the 2 x 1 px it inks */
+    pnpr_drawing_free(&d);
+    a[10 * S + 11] = 0;
+    CHECK_STATUS(pnpr_drawing_trace_ink(&d, a, S, S, 0, 128, 1, INK, PNPR_LAYER_LINES), PNPR_OK);
+    CHECK(d.count == 1 && (d.flags[0] & PNPR_PATH_DOT) && fabs(d.xy[0] - 10.5) < 0.01 && fabs(d.xy[1] - 10.5) < 0.01);
+    pnpr_drawing_free(&d);
+    a[10 * S + 10] = 0;
     memset(a, 0, sizeof a);
     CHECK_STATUS(pnpr_drawing_trace_ink(&d, a, S, S, 0, 128, 2, INK, PNPR_LAYER_LINES), PNPR_OK);
     CHECK(d.count == 0);

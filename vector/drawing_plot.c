@@ -182,6 +182,13 @@ static int cmp_dup(const void *a, const void *b)
     return (x->idx > y->idx) - (x->idx < y->idx);
 }
 
+/* The opacity of `times` marks of opacity *a drawn over each other, as the frame blends them. */
+static void composite_alpha(uint8_t *a, size_t times)
+{
+    double clear = pow(1 - *a / 255.0, (double)times);
+    *a = (uint8_t)((1 - clear) * 255 + 0.5);
+}
+
 static int dedupable(const pnpr_drawing *d, size_t i)
 {
     return d->offset[i + 1] - d->offset[i] <= 2 && !(d->flags[i] & (PNPR_PATH_FILL | PNPR_PATH_SUBPATH | PNPR_PATH_CLOSED));
@@ -211,10 +218,13 @@ pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed)
         k[n++] = key;
     }
     qsort(k, n, sizeof *k, cmp_dup);
-    for (size_t j = 1; j < n; j++) {
-        dup_key a = k[j - 1], b = k[j];
+    size_t first = 0; /* the sort puts the first of equals first */
+    for (size_t j = 1; j <= n; j++) {
+        dup_key a = k[first], b = k[j < n ? j : first];
         a.idx = b.idx = 0;
-        if (!cmp_dup(&a, &b)) gone[k[j].idx] = 1; /* the sort puts the first of equals first */
+        if (j < n && !cmp_dup(&a, &b)) { gone[k[j].idx] = 1; continue; }
+        composite_alpha(d->rgba + 4 * k[first].idx + 3, j - first);
+        first = j;
     }
     size_t removed = compact(d, gone);
     if (r_removed) *r_removed = removed;

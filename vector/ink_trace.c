@@ -7,11 +7,14 @@
  *    8-connected curves one pixel wide.
  * 3. Chains: from every end and junction (crossing numbers 1 and >= 3), along unvisited pixels
  *    (4-neighbours before diagonal ones) to the next end or junction; what is left are loops.
- *    Vertices at pixel centres; chains of fewer than 3 pixels are specks and dropped.
- * 4. Two passes of (1/4, 1/2, 1/4) smoothing (ends kept), then Douglas-Peucker to 0.5 px.
- * 5. Width: 2 d - 1 px for the chain's mean chessboard distance d to the nearest pixel without
- *    ink (a band of 2k - 1 pixels has d = k at its centre), at least the given width: where
- *    outlines run together into a wider band, the path is as wide. */
+ *    Vertices at pixel centres; a single pixel left (a speck, a small blob) is a dot of its
+ *    blob's area.
+ * 4. Centring: each vertex moves across the chain to the middle of the ink in a square as wide as
+ *    the band around it (a band of even width is thinned to one of its two middle rows); open
+ *    chains reach half a pixel past their end pixels (butt caps); then Douglas-Peucker to 0.5 px.
+ * 5. Width: the median over the chain of the ink in that square over the chain's length through
+ *    it, at least the given width: the path is as wide as the band it came from (wider where
+ *    outlines run together). */
 #include <pointnpr/drawing.h>
 #include "vector_internal.h"
 
@@ -19,7 +22,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { SMOOTH_PASSES = 2, MIN_PIXELS = 3 };
 #define SIMPLIFY_PX 0.5
 
 /* The 8 neighbours in the order P2..P9 of the paper (N, NE, E, SE, S, SW, W, NW), y down. */
@@ -27,6 +29,7 @@ static const int NX[8] = {0, 1, 1, 1, 0, -1, -1, -1}, NY[8] = {-1, -1, 0, 1, 1, 
 
 typedef struct ink_img {
     uint8_t *m;    /* 1 = ink (skeleton after thinning), 2 = visited */
+    uint8_t *ink;  /* the ink before thinning (1 = ink) */
     uint8_t *dist; /* chessboard distance of each ink pixel to the nearest pixel without ink */
     int w, h;
 } ink_img;
@@ -115,24 +118,6 @@ static int next_pixel(const ink_img *g, const uint8_t *junction, int x, int y, i
     return 0;
 }
 
-/* Smooths the interior vertices (closed: all) and simplifies (Douglas-Peucker) in place. */
-static void smooth(chain *c, int closed)
-{
-    size_t n = c->p.n;
-    if (n < 3) return;
-    float *t = malloc(2 * n * sizeof *t);
-    if (!t) return;
-    for (int pass = 0; pass < SMOOTH_PASSES; pass++) {
-        memcpy(t, c->p.xy, 2 * n * sizeof *t);
-        for (size_t i = 0; i < n; i++) {
-            if (!closed && (i == 0 || i == n - 1)) continue;
-            size_t a = i ? i - 1 : n - 1, b = i + 1 < n ? i + 1 : 0;
-            for (int k = 0; k < 2; k++) c->p.xy[2 * i + k] = 0.25f * t[2 * a + k] + 0.5f * t[2 * i + k] + 0.25f * t[2 * b + k];
-        }
-    }
-    free(t);
-}
-
 /* Douglas-Peucker to SIMPLIFY_PX (vector/simplify.c); out of memory keeps the chain as it is. */
 static void simplify(chain *c)
 {
@@ -140,21 +125,102 @@ static void simplify(chain *c)
     if (m) c->p.n = m;
 }
 
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+/* The unit direction of the chain at vertex i (from the vertices 2 before to 2 after it). */
+static void chain_tangent(const chain *c, size_t i, int closed, double t[2])
+{
+    size_t n = c->p.n, a, b;
+    if (closed) { a = (i + n - 2) % n; b = (i + 2) % n; }
+    else { a = i >= 2 ? i - 2 : 0; b = i + 2 < n ? i + 2 : n - 1; }
+    double dx = c->p.xy[2 * b] - c->p.xy[2 * a], dy = c->p.xy[2 * b + 1] - c->p.xy[2 * a + 1], l = hypot(dx, dy);
+    t[0] = l > 0 ? dx / l : 1;
+    t[1] = l > 0 ? dy / l : 0;
+}
+
+/* Moves each vertex (a pixel centre of the thinned curve) across the chain to the middle of the
+ * ink around it (the ink in a square as wide as the band, its offset along the chain's normal; a
+ * band of even width is thinned to one of its two middle rows), and returns the band's width: the
+ * median of the ink in each square over the chain's length through it. */
+static double centre_on_ink(const ink_img *g, chain *c, int closed)
+{
+    size_t n = c->p.n;
+    float *moved = malloc(2 * n * sizeof *moved), *wid = malloc(n * sizeof *wid);
+    if (!moved || !wid) { free(moved); free(wid); return 2.0 * c->dsum / (double)n - 1.0; }
+    for (size_t i = 0; i < n; i++) {
+        double t[2], cx = c->p.xy[2 * i], cy = c->p.xy[2 * i + 1], sum = 0;
+        chain_tangent(c, i, closed, t);
+        int x = (int)cx, y = (int)cy, r = g->dist[(size_t)y * (size_t)g->w + (size_t)x], cnt = 0;
+        if (r < 1) r = 1;
+        for (int qy = y - r; qy <= y + r; qy++)
+            for (int qx = x - r; qx <= x + r; qx++)
+                if (qx >= 0 && qy >= 0 && qx < g->w && qy < g->h && g->ink[(size_t)qy * (size_t)g->w + (size_t)qx]) {
+                    sum += -t[1] * (qx + 0.5 - cx) + t[0] * (qy + 0.5 - cy);
+                    cnt++;
+                }
+        double off = cnt ? sum / cnt : 0;
+        moved[2 * i] = (float)(cx - t[1] * off);
+        moved[2 * i + 1] = (float)(cy + t[0] * off);
+        wid[i] = (float)(cnt * fmax(fabs(t[0]), fabs(t[1])) / (2 * r + 1));
+    }
+    memcpy(c->p.xy, moved, 2 * n * sizeof *moved);
+    qsort(wid, n, sizeof *wid, cmp_float);
+    double width = wid[n / 2];
+    free(moved);
+    free(wid);
+    return width;
+}
+
+/* An open chain's ends run from pixel centres to the ends of the ink: half a pixel further (the
+ * paths have butt caps). */
+static void extend_ends(chain *c)
+{
+    size_t n = c->p.n;
+    for (int e = 0; e < 2; e++) {
+        float *p = c->p.xy + (e ? 2 * (n - 1) : 0), *q = c->p.xy + (e ? 2 * (n - 2) : 2);
+        double dx = p[0] - q[0], dy = p[1] - q[1], l = hypot(dx, dy);
+        if (l > 1e-6) { p[0] += (float)(0.5 * dx / l); p[1] += (float)(0.5 * dy / l); }
+    }
+}
+
 typedef struct trace_out {
+    const ink_img *g;
     pnpr_drawing *d;
     float width;
     const uint8_t *rgba;
     pnpr_drawing_layer layer;
 } trace_out;
 
+/* A single pixel left by thinning (a speck, or a small blob): a dot of the blob's ink area. */
+static pnpr_status emit_speck(const trace_out *o, const chain *c)
+{
+    const ink_img *g = o->g;
+    int x = (int)c->p.xy[0], y = (int)c->p.xy[1], r = g->dist[(size_t)y * (size_t)g->w + (size_t)x], cnt = 0;
+    double sx = 0, sy = 0;
+    for (int qy = y - r; qy <= y + r; qy++)
+        for (int qx = x - r; qx <= x + r; qx++)
+            if (qx >= 0 && qy >= 0 && qx < g->w && qy < g->h && g->ink[(size_t)qy * (size_t)g->w + (size_t)qx]) {
+                sx += qx + 0.5;
+                sy += qy + 0.5;
+                cnt++;
+            }
+    if (!cnt) return PNPR_OK;
+    float xy[2] = {(float)(sx / cnt), (float)(sy / cnt)};
+    return pnpr_drawing_add(o->d, xy, 1, (float)(2 * sqrt(cnt / 3.14159265358979)), o->rgba, o->layer, PNPR_PATH_DOT);
+}
+
 /* A chain as a path: as wide as the ink it came from (2 d - 1 for a mean distance d, where
  * outlines ran together), at least the given width. */
 static pnpr_status emit(const trace_out *o, chain *c, int closed, size_t pixels)
 {
-    if (pixels < MIN_PIXELS) return PNPR_OK;
-    double band = 2.0 * c->dsum / (double)c->p.n - 1.0;
+    if (pixels < 2) return emit_speck(o, c);
+    double band = centre_on_ink(o->g, c, closed);
     float width = band > o->width ? (float)band : o->width;
-    smooth(c, closed);
+    if (!closed) extend_ends(c);
     simplify(c);
     return pnpr_drawing_add(o->d, c->p.xy, c->p.n, width, o->rgba, o->layer, closed ? PNPR_PATH_CLOSED : 0);
 }
@@ -228,12 +294,13 @@ pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w,
     if (!d || !alpha || w <= 0 || h <= 0 || !rgba || (unsigned)layer >= PNPR_LAYER_COUNT_ || !(width >= 0))
         return PNPR_ERR_INVALID_ARGUMENT;
     size_t n = (size_t)w * (size_t)h;
-    ink_img g = {malloc(n), malloc(n), w, h};
+    ink_img g = {malloc(n), malloc(n), malloc(n), w, h};
     uint8_t *aux = malloc(n);
-    if (!g.m || !g.dist || !aux) { free(g.m); free(g.dist); free(aux); return PNPR_ERR_OUT_OF_MEMORY; }
+    if (!g.m || !g.ink || !g.dist || !aux) { free(g.m); free(g.ink); free(g.dist); free(aux); return PNPR_ERR_OUT_OF_MEMORY; }
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)
             g.m[(size_t)y * (size_t)w + (size_t)x] = alpha[(size_t)(bottom_up ? h - 1 - y : y) * (size_t)w + (size_t)x] >= threshold;
+    memcpy(g.ink, g.m, n);
     distances(&g);
     while (thin_step(&g, 0, aux) + thin_step(&g, 1, aux) > 0) {}
     for (int y = 0; y < h; y++) /* junctions */
@@ -241,9 +308,10 @@ pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w,
             size_t i = (size_t)y * (size_t)w + (size_t)x;
             aux[i] = g.m[i] && crossings(&g, x, y) >= 3;
         }
-    trace_out o = {d, width, rgba, layer};
+    trace_out o = {&g, d, width, rgba, layer};
     pnpr_status st = trace_chains(&g, aux, &o);
     free(g.m);
+    free(g.ink);
     free(g.dist);
     free(aux);
     return st;

@@ -66,9 +66,10 @@ PNPR_NODISCARD pnpr_status pnpr_drawing_add(pnpr_drawing *d, const float *xy, si
 PNPR_NODISCARD pnpr_status pnpr_drawing_extend(pnpr_drawing *d, float x, float y);
 
 /* Appends the centre lines of the ink in a w x h alpha mask (alpha >= threshold; rows top first,
- * or bottom first when bottom_up) as paths of `width` px in `rgba` on `layer`: the mask thinned to
- * one-pixel curves (Zhang-Suen), traced between ends and junctions (loops closed), smoothed and
- * simplified to 0.5 px; specks of fewer than 3 pixels are dropped (vector/ink_trace.c). */
+ * or bottom first when bottom_up) as paths in `rgba` on `layer`, each as wide as its band of ink
+ * (at least `width` px): the mask thinned to one-pixel curves (Zhang-Suen), traced between ends
+ * and junctions (loops closed), centred on the ink and simplified to 0.5 px; a single pixel left
+ * is a dot of its blob's area (vector/ink_trace.c). */
 PNPR_NODISCARD pnpr_status pnpr_drawing_trace_ink(pnpr_drawing *d, const uint8_t *alpha, int w, int h, int bottom_up, uint8_t threshold,
                                    float width, const uint8_t rgba[4], pnpr_drawing_layer layer);
 
@@ -97,8 +98,9 @@ PNPR_NODISCARD pnpr_status pnpr_drawing_merge_collinear(pnpr_drawing *d, pnpr_dr
 
 /* Removes repeated marks: paths of at most two vertices (strokes, hatches, dots) of the same
  * layer, kind, width and colour whose ends (in either order) round to the same points of a grid
- * of `tol` px; the first of them stays. Duplicate points in a scan draw the same stroke twice,
- * which a pen plotter would draw twice. r_removed (may be NULL): paths removed. */
+ * of `tol` px; the first of them stays, with the opacity of all of them drawn over each other
+ * (1 - (1 - a)^k: the ink a frame blends). Duplicate points in a scan draw the same stroke
+ * twice, which a pen plotter would draw twice. r_removed (may be NULL): paths removed. */
 PNPR_NODISCARD pnpr_status pnpr_drawing_dedupe(pnpr_drawing *d, float tol, size_t *r_removed);
 
 /* Removes the open paths shorter than min_px (a pen plotter draws a mark of a pen's width as a
