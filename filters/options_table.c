@@ -68,6 +68,15 @@ static const pnpr_option_desc split_table[] = {
     P("split-min", min_size, UINT, 32, 1, UNB, 0, 0, NULL, "smallest part a split may leave"),
 };
 
+#define TN(...) OPT("tone", pnpr_tone_options, __VA_ARGS__)
+static const pnpr_option_desc tone_table[] = {
+    TN("tone-ambient", ambient, FLOAT, 0.3, 0, 1, EXCL, 0, NULL, "key light: the shade of a surface facing away"),
+    TN("tone-colour-weight", colour_weight, FLOAT, 0.45, 0, 1, EXCL, 0, NULL,
+       "tone both: the colour's share (the light's: the rest)"),
+    TN("tone-contrast", contrast, FLOAT, 1, 0.01, 100, 0, 0, NULL, "tone curve: contrast around mid grey"),
+    TN("tone-gamma", gamma, FLOAT, 2.8, 0.05, 100, 0, 0, NULL, "tone curve: darkness^G, > 1 keeps mid tones light"),
+};
+
 #define H(...) OPT("hierarchy", pnpr_hierarchy_options, __VA_ARGS__)
 static const pnpr_option_desc hierarchy_table[] = {
     H("alpha", alpha, FLOAT, 0.3, 0, UNB, EXCL, 0, NULL, "size rule: small = size < alpha x mean initial size"),
@@ -137,6 +146,7 @@ TABLE_FUNCTIONS(rgbgrow, rgbgrow_table)
 TABLE_FUNCTIONS(components, components_table)
 TABLE_FUNCTIONS(hierarchy, hierarchy_table)
 TABLE_FUNCTIONS(split, split_table)
+TABLE_FUNCTIONS(tone, tone_table)
 TABLE_FUNCTIONS(outlier, outlier_table)
 TABLE_FUNCTIONS(brush, brush_table)
 TABLE_FUNCTIONS(sphere_tree, sphere_tree_table)
@@ -157,6 +167,7 @@ DEFAULTS_FUNCTION(rgbgrow, pnpr_rgbgrow_options, rgbgrow_table)
 DEFAULTS_FUNCTION(components, pnpr_components_options, components_table)
 DEFAULTS_FUNCTION(hierarchy, pnpr_hierarchy_options, hierarchy_table)
 DEFAULTS_FUNCTION(split, pnpr_split_options, split_table)
+DEFAULTS_FUNCTION(tone, pnpr_tone_options, tone_table)
 DEFAULTS_FUNCTION(outlier, pnpr_outlier_options, outlier_table)
 DEFAULTS_FUNCTION(brush, pnpr_brush_options, brush_table)
 DEFAULTS_FUNCTION(sphere_tree, pnpr_sphere_tree_options, sphere_tree_table)

@@ -1,4 +1,5 @@
 /* Tone: per point darkness from colour and a key light (include/pointnpr/tone.h). */
+#include <pointnpr/options.h>
 #include <pointnpr/tone.h>
 
 #include <math.h>
@@ -40,9 +41,9 @@ static int valid_options(const pnpr_tone_options *o)
     if ((unsigned)o->source >= PNPR_TONE_SOURCE_COUNT_) return 0;
     for (int a = 0; a < 3; a++)
         if (!isfinite(o->up[a]) || !isfinite(o->light[a])) return 0;
-    return isfinite(o->ambient) && o->ambient >= 0 && o->ambient <= 1 && isfinite(o->colour_weight) &&
-           o->colour_weight >= 0 && o->colour_weight <= 1 && isfinite(o->contrast) && o->contrast >= 0 &&
-           o->contrast <= 100 && isfinite(o->gamma) && o->gamma >= 0 && o->gamma <= 100;
+    size_t n;
+    const pnpr_option_desc *table = pnpr_tone_option_table(&n);
+    return pnpr_option_check(table, n, o, NULL) == PNPR_OK; /* the ranges: options.h */
 }
 
 static float lit_shade(const float *n, const double l[3], double ambient)
@@ -65,8 +66,10 @@ pnpr_status pnpr_tone(const uint8_t *rgb, const float *normals, size_t count,
     if (src == PNPR_TONE_BOTH && !(rgb && normals)) src = rgb ? PNPR_TONE_COLOR : PNPR_TONE_LIGHT;
     if (src == PNPR_TONE_COLOR && !rgb) src = normals ? PNPR_TONE_LIGHT : PNPR_TONE_SOURCE_COUNT_;
     if (src == PNPR_TONE_LIGHT && !normals) src = rgb ? PNPR_TONE_COLOR : PNPR_TONE_SOURCE_COUNT_;
-    double ambient = o.ambient > 0 ? o.ambient : 0.3, cw = o.colour_weight > 0 ? o.colour_weight : 0.45;
-    double contrast = o.contrast > 0 ? o.contrast : 1, gamma = o.gamma > 0 ? o.gamma : 2.8;
+    size_t nt;
+    const pnpr_option_desc *table = pnpr_tone_option_table(&nt);
+    pnpr_option_fill_defaults(table, nt, &o); /* the zeros: the table's defaults */
+    double ambient = o.ambient, cw = o.colour_weight, contrast = o.contrast, gamma = o.gamma;
     double l[3];
     pnpr_tone_light(&o, l);
     for (size_t i = 0; i < count; i++) {

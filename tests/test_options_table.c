@@ -388,6 +388,8 @@ static void check_cli(void)
     check_cli_options("segment", pnpr_split_option_table, split);
     static const char *const svg[] = {"stroke-width", "taper", "outline-width", "outline-jump", NULL};
     check_cli_options("lines", pnpr_svg_option_table, svg);
+    static const char *const tone[] = {"tone-gamma", "tone-contrast", NULL};
+    check_cli_options("render", pnpr_tone_option_table, tone);
     check_cli_options("info", pnpr_outlier_option_table, outliers);
     check_segment_usage();
     /* render and animate: the draw and upload options of the renderer's tables */
@@ -420,6 +422,7 @@ int main(void)
     pnpr_hierarchy_options h = pnpr_hierarchy_defaults();
     pnpr_outlier_options o = pnpr_outlier_defaults();
     pnpr_split_options sp = pnpr_split_defaults();
+    pnpr_tone_options tn = pnpr_tone_defaults();
     pnpr_draw_options dr = pnpr_draw_defaults();
     pnpr_upload_options up = pnpr_upload_defaults();
     pnpr_svg_options sv = {0};
@@ -435,6 +438,7 @@ int main(void)
         {"hierarchy", pnpr_hierarchy_option_table, sizeof h, &h},
         {"outlier", pnpr_outlier_option_table, sizeof o, &o},
         {"split", pnpr_split_option_table, sizeof sp, &sp},
+        {"tone", pnpr_tone_option_table, sizeof tn, &tn},
         {"draw", pnpr_draw_option_table, sizeof dr, &dr},
         {"upload", pnpr_upload_option_table, sizeof up, &up},
         {"svg", pnpr_svg_option_table, sizeof sv, &sv},

@@ -24,6 +24,7 @@
 #include "outliers.h"
 #include "render.h"
 #include "segment.h"
+#include "tone.h"
 
 #include <stddef.h>
 
@@ -72,6 +73,7 @@ const pnpr_option_desc *pnpr_rgbgrow_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_components_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_hierarchy_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_split_option_table(size_t *r_count);
+const pnpr_option_desc *pnpr_tone_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_outlier_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_brush_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_sphere_tree_option_table(size_t *r_count);
@@ -84,6 +86,7 @@ pnpr_rgbgrow_options pnpr_rgbgrow_defaults(void);
 pnpr_components_options pnpr_components_defaults(void);
 pnpr_hierarchy_options pnpr_hierarchy_defaults(void);
 pnpr_split_options pnpr_split_defaults(void);
+pnpr_tone_options pnpr_tone_defaults(void);
 pnpr_outlier_options pnpr_outlier_defaults(void);
 pnpr_brush_options pnpr_brush_defaults(void);
 pnpr_sphere_tree_options pnpr_sphere_tree_defaults(void);

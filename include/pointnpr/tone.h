@@ -39,10 +39,11 @@ typedef struct pnpr_tone_options {
     double up[3];        /* the scene's up (pnpr_scene_frame); zero = +z */
     double light[3];     /* direction towards the key light; zero = from above, tilted towards
                           * the scene's -y side and to the left (pnpr_tone_light) */
-    float ambient;       /* 0 = 0.3 */
-    float colour_weight; /* both: 0 = 0.45 */
-    float contrast;      /* 0 = 1 */
-    float gamma;         /* 0 = 2.8 */
+    /* zero = the default; defaults and ranges: pnpr_tone_option_table (options.h) */
+    float ambient;       /* the shade of a surface facing away from the light */
+    float colour_weight; /* both: the colour's share */
+    float contrast;
+    float gamma;
 } pnpr_tone_options;
 
 /* The effective light direction (unit) of the options. */

@@ -27,6 +27,7 @@ static const char *const brush_names[] = {"brush-k", "brush-eps", "brush-normal-
 static const char *const hier_names[] = {"hier-abstraction", "stroke-px", "stroke-radius", "stroke-scale", "stroke-stretch",
                                          "no-smooth", "node-colour", "node-direction", "noise-angle", "noise-colour",
                                          "silhouette-deg", "borders", "hier-layers", NULL};
+static const char *const tone_names[] = {"tone-gamma", "tone-contrast", NULL};
 static const char *const tree_names[] = {"hier-spacing", "hier-leaf-factor", "hier-k", "hier-features",
                                          "hier-max-variation", NULL};
 
@@ -91,9 +92,12 @@ void cli_render_usage(FILE *f, int width, int height)
     fprintf(f,
             "  --tone S             what sets how dark a point is drawn (hatch and stipple density,\n"
             "                       the shading of colourless clouds): auto | color | light (a key light\n"
-            "                       on the normals) | both (default auto: both when IN has colours)\n"
-            "  --tone-gamma G       tone curve: darkness^G, > 1 keeps mid tones light (default 1.8)\n"
-            "  --tone-contrast C    tone curve: contrast around mid grey (default 1)\n"
+            "                       on the normals) | both (default auto: both when IN has colours)\n");
+    size_t on;
+    const pnpr_option_desc *ot = pnpr_tone_option_table(&on);
+    cli_table_usage(f, ot, on, "tone-gamma", "G");
+    cli_table_usage(f, ot, on, "tone-contrast", "C");
+    fprintf(f,
             "  --light X,Y,Z        direction towards the key light (default: from above, front left)\n"
             "  --outline on|off     silhouettes and occluding contours (default: on for lines and cartoon,\n"
             "                       off for the others; sketchy reads well with them on)\n");
@@ -330,7 +334,6 @@ static int style_option(cli_render_opts *o, const char *cmd, const char *a, cons
 static int look_option(cli_render_opts *o, const char *cmd, const char *a, const char *v, int *ip)
 {
     int i = *ip;
-    double x;
     if (!v) return 0;
     if (0) {}
 
@@ -340,12 +343,6 @@ static int look_option(cli_render_opts *o, const char *cmd, const char *a, const
             while (t < 4 && strcmp(v, names[t])) t++;
             if (t == 4) { BAD("--tone wants auto, color, light or both, got '%s'\n", v); }
             o->tone.source = (pnpr_tone_source)t; i++;
-        } else if (v && !strcmp(a, "--tone-gamma")) {
-            if (!cli_parse_number(v, 0.05, 20, &x)) { BAD("--tone-gamma wants a number in [0.05, 20], got '%s'\n", v); }
-            o->tone.gamma = (float)x; i++;
-        } else if (v && !strcmp(a, "--tone-contrast")) {
-            if (!cli_parse_number(v, 0.01, 100, &x)) { BAD("--tone-contrast wants a number in [0.01, 100], got '%s'\n", v); }
-            o->tone.contrast = (float)x; i++;
         } else if (v && !strcmp(a, "--light")) {
             if (!cli_parse_list(v, 3, o->tone.light) || (o->tone.light[0] == 0 && o->tone.light[1] == 0 && o->tone.light[2] == 0)) {
                 BAD("--light wants a non-zero direction X,Y,Z, got '%s'\n", v);
@@ -379,6 +376,9 @@ static int table_option(cli_render_opts *o, const char *cmd, int argc, char **ar
     const pnpr_option_desc *ht = pnpr_hier_option_table(&hn), *tt = pnpr_sphere_tree_option_table(&tn);
     if (r == 0) r = cli_table_option(ht, hn, hier_names, &o->dopt.hierarchy, cmd, argc, argv, ip);
     if (r == 0) r = cli_table_option(tt, tn, tree_names, &o->topt, cmd, argc, argv, ip);
+    size_t on;
+    const pnpr_option_desc *ot = pnpr_tone_option_table(&on);
+    if (r == 0) r = cli_table_option(ot, on, tone_names, &o->tone, cmd, argc, argv, ip);
     if (r > 0 && !strcmp(argv[*ip - 1], "--queue-fade") && o->dopt.queue_fade == 0) o->dopt.queue_fade = -1.0f;
     return r;
 }

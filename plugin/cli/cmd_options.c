@@ -26,6 +26,8 @@ static const struct {
      pnpr_hierarchy_option_table},
     {"covariance split", "pnpr_split_options", "`segment --split`, the sphere tree of colourless clouds",
      pnpr_split_option_table},
+    {"tone", "pnpr_tone_options", "`render`, `animate` (`--tone-gamma`, `--tone-contrast`), the dithering of `features`, the MeshLab decorator",
+     pnpr_tone_option_table},
     {"brush preparation", "pnpr_brush_options", "`render --style brush`, the MeshLab decorator",
      pnpr_brush_option_table},
     {"sphere tree", "pnpr_sphere_tree_options", "`render --style hierarchy`, the MeshLab decorator",
