@@ -170,3 +170,36 @@ int cli_operand(const char *cmd, const char *a, const char **in, void (*usage)(F
     *in = a;
     return 0;
 }
+
+int cli_parse_sketch(void *member, const char *cmd, const char *v)
+{
+    static const pnpr_sketch_variant variants[3] = {PNPR_SKETCH_DIRECTIONAL, PNPR_SKETCH_NONDIRECTIONAL, PNPR_SKETCH_ALL};
+    if ((v[0] | 0x20) >= 'a' && (v[0] | 0x20) <= 'c' && !v[1]) {
+        *(pnpr_sketch_variant *)member = variants[(v[0] | 0x20) - 'a'];
+        return 1;
+    }
+    fprintf(stderr, "pointnpr %s: --sketch wants a, b or c, got '%s'\n", cmd, v);
+    return 0;
+}
+
+void cli_usage_more(FILE *f, const char *text)
+{
+    fprintf(f, "%22s", "");
+    wrap(f, text, 23, 90);
+}
+
+int cli_parse_style(void *member, const char *cmd, const char *v)
+{
+    pnpr_style s;
+    if (pnpr_style_from_name(v, &s) == PNPR_OK) { *(pnpr_style *)member = s; return 1; }
+    char names[160];
+    fprintf(stderr, "pointnpr %s: --style wants one of %s, got '%s'\n", cmd, pnpr_style_list(names, sizeof names, ", ", 0), v);
+    return 0;
+}
+
+int cli_parse_on_off(void *member, const char *cmd, const char *v)
+{
+    if (!strcasecmp(v, "on") || !strcasecmp(v, "off")) { *(int *)member = !strcasecmp(v, "on") ? 1 : -1; return 1; }
+    fprintf(stderr, "pointnpr %s: --outline wants on or off, got '%s'\n", cmd, v);
+    return 0;
+}

@@ -48,6 +48,8 @@ int cli_opts_parse(const cli_opt *t, size_t n, void *opts, const char *cmd, int 
 void cli_opts_usage(FILE *f, const cli_opt *t, size_t n);
 /* The entry called `name` ("--threads"), or NULL. */
 const cli_opt *cli_opts_find(const cli_opt *t, size_t n, const char *name);
+/* A continuation of a usage entry: text wrapped at 90 columns, indented under the help. */
+void cli_usage_more(FILE *f, const char *text);
 /* The index of v in choices (case-insensitive), or -1. */
 int cli_choice_index(const char *const *choices, const char *v);
 /* argv[i] = a, taken by no table: the input when it is the first operand (*in still NULL),
@@ -65,5 +67,22 @@ extern const cli_opt cli_common_opts[3];
 #define CLI_THREADS_OPT(type, member)                                                                               \
     {"--threads", NULL, CLI_INT, offsetof(type, member), 1, PNPR_THREADS_MAX, 0, 0, NULL, NULL, "N",               \
      "worker threads, one per core when not given"}
+
+/* The drawing's style, sketch variant and outline switch, shared by render, animate and explain:
+ * --style NAME (pnpr_style_from_name, any case) into a pnpr_style member; --sketch a|b|c into a
+ * pnpr_sketch_variant member (a directional, b non-directional, c all); --outline on|off into
+ * an int member (1 on, -1 off, 0 stays: the style's default). */
+int cli_parse_style(void *member, const char *cmd, const char *value);
+int cli_parse_on_off(void *member, const char *cmd, const char *value);
+int cli_parse_sketch(void *member, const char *cmd, const char *value);
+#define CLI_STYLE_OPT(type, member)                                                                                 \
+    {"--style", NULL, CLI_CUSTOM, offsetof(type, member), 0, 0, 0, 0, NULL, cli_parse_style, "S",                    \
+     "the drawing style (docs/rendering.md)"}
+#define CLI_SKETCH_OPT(type, member)                                                                                \
+    {"--sketch", NULL, CLI_CUSTOM, offsetof(type, member), 0, 0, 0, 0, NULL, cli_parse_sketch, "a|b|c",              \
+     "sketchy variant of the paper's figure 9: a (directional strokes), b (+ non-directional hatches), "            \
+     "c (+ dithering hatches; default)"}
+#define CLI_OUTLINE_OPT(type, member, help)                                                                         \
+    {"--outline", NULL, CLI_CUSTOM, offsetof(type, member), 0, 0, 0, 0, NULL, cli_parse_on_off, "on|off", help}
 
 #endif

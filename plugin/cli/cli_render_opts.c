@@ -5,6 +5,7 @@
  * renderer too (`animate --save-path` without -o needs only them); the steps that draw need it
  * (PNPR_HAVE_RENDER). */
 #include "cli_render.h"
+#include "cli_opts.h"
 
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
@@ -31,6 +32,131 @@ static const char *const tone_names[] = {"tone-gamma", "tone-contrast", NULL};
 static const char *const tree_names[] = {"hier-spacing", "hier-leaf-factor", "hier-k", "hier-features",
                                          "hier-max-variation", NULL};
 
+/* ---- the CLI's own render options (cli_opts.h): one entry each, parsed and described there ---- */
+
+static int parse_brush(void *member, const char *cmd, const char *v)
+{
+    uint32_t b;
+    char names[160];
+    if (pnpr_brush_preset_find(v, &b) == PNPR_OK) { *(int *)member = (int)b; return 1; }
+    fprintf(stderr, "pointnpr %s: --brush wants %s, got '%s'\n", cmd, pnpr_brush_preset_list(names, sizeof names, " | "), v);
+    return 0;
+}
+
+static int parse_tam(void *member, const char *cmd, const char *v)
+{
+    int k = pnpr_tam_find(v);
+    if (k >= 0) { *(int *)member = k; return 1; }
+    fprintf(stderr, "pointnpr %s: --tam wants %s, %s or %s, got '%s'\n", cmd, pnpr_tam_name(PNPR_TAM_PAINT),
+            pnpr_tam_name(PNPR_TAM_HATCH), pnpr_tam_name(PNPR_TAM_DOTS), v);
+    return 0;
+}
+
+static int parse_layering(void *opts, const char *cmd, const char *v)
+{
+    cli_render_opts *o = opts;
+    if (pnpr_layering_from_name(v, &o->layering) == PNPR_OK) { o->have_layering = 1; return 1; }
+    fprintf(stderr, "pointnpr %s: --layering wants inpainted, fragment or none, got '%s'\n", cmd, v);
+    return 0;
+}
+
+static int parse_effects_scale(void *opts, const char *cmd, const char *v)
+{
+    cli_render_opts *o = opts;
+    double x;
+    if (cli_parse_number(v, PNPR_EFFECTS_SCALE_MIN, 1, &x)) { o->fx_opts.scale = (float)x; o->have_fx_opts = 1; return 1; }
+    fprintf(stderr, "pointnpr %s: --effects-scale wants a number in %g..1, got '%s'\n", cmd, (double)PNPR_EFFECTS_SCALE_MIN, v);
+    return 0;
+}
+
+static int parse_budget(void *member, const char *cmd, const char *v)
+{
+    double x;
+    if (cli_parse_number(v, 1, 4e9, &x) && x == floor(x)) { *(size_t *)member = (size_t)x; return 1; }
+    fprintf(stderr, "pointnpr %s: --budget wants a positive integer, got '%s'\n", cmd, v);
+    return 0;
+}
+
+static int parse_seed(void *member, const char *cmd, const char *v)
+{
+    char *end;
+    errno = 0;
+    unsigned long long s = strtoull(v, &end, 10);
+    if (!errno && end != v && !*end && v[0] != '-') { *(uint64_t *)member = s; return 1; }
+    fprintf(stderr, "pointnpr %s: --seed wants a non-negative integer, got '%s'\n", cmd, v);
+    return 0;
+}
+
+static int parse_light(void *member, const char *cmd, const char *v)
+{
+    double *l = member;
+    if (cli_parse_list(v, 3, l) && (l[0] != 0 || l[1] != 0 || l[2] != 0)) return 1;
+    fprintf(stderr, "pointnpr %s: --light wants a non-zero direction X,Y,Z, got '%s'\n", cmd, v);
+    return 0;
+}
+
+static int parse_background(void *member, const char *cmd, const char *v)
+{
+    double *bg = member;
+    if (cli_parse_list(v, 3, bg) && bg[0] >= 0 && bg[0] <= 255 && bg[1] >= 0 && bg[1] <= 255 && bg[2] >= 0 && bg[2] <= 255)
+        return 1;
+    fprintf(stderr, "pointnpr %s: --background wants R,G,B in 0..255, got '%s'\n", cmd, v);
+    return 0;
+}
+
+static const char *const tone_sources[] = {"auto", "color", "light", "both", NULL}; /* pnpr_tone_source */
+
+#define R_OPT(name, kind, member, parse, metavar, help)                                                              \
+    {name, NULL, kind, offsetof(cli_render_opts, member), 0, 0, 0, 0, NULL, parse, metavar, help}
+static const cli_opt render_opts[] = {
+    CLI_STYLE_OPT(cli_render_opts, dopt.style),
+    R_OPT("--style-map", CLI_TEXT, style_map_path, NULL, "FILE",
+          "intermingled styles: FILE has lines 'LABEL STYLE' (a segment label of IN, PLY property segment or "
+          "label) and '* STYLE' (the default, else --style); '#' starts a comment"),
+    R_OPT("--effects", CLI_TEXT, effects_path, NULL, "FILE",
+          "segment-specific image-space effects (docs/effects.md): FILE gives segments (labels) effect chains "
+          "(toon, watercolour, oil, pencil, posterise, grade, edges, smooth) and presets; one layer each, "
+          "depth-inpainted and composited with a depth test"),
+    {"--layering", NULL, CLI_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_layering, "M",
+     "effects: inpainted (default) | fragment | none (paper figure 12)"},
+    {"--effects-scale", NULL, CLI_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_effects_scale, "S",
+     "effects: layers at S (1/16..1) of the size, grown to it: a quick draft of a pipeline (the decorator's "
+     "preview while moving)"},
+    R_OPT("--effects-serial", CLI_FLAG, fx_opts.serial, NULL, NULL,
+          "effects: filters on the GL thread, not overlapped with the next layer's rasterisation (the same "
+          "pixels; for measurements)"),
+    CLI_SKETCH_OPT(cli_render_opts, dopt.sketch_variant),
+    R_OPT("--budget", CLI_CUSTOM, dopt.budget, parse_budget, "N", "at most N points per frame (default: all)"),
+    R_OPT("--seed", CLI_CUSTOM, uopt.seed, parse_seed, "S", "continuous resolution queue seed (default 0)"),
+    {"--tone", NULL, CLI_CHOICE, offsetof(cli_render_opts, tone.source), 0, 0, 0, 0, tone_sources, NULL, NULL,
+     "what sets how dark a point is drawn (hatch and stipple density, the shading of colourless clouds): "
+     "a key light on the normals, the colours, or both (default auto: both when IN has colours)"},
+    R_OPT("--light", CLI_CUSTOM, tone.light, parse_light, "X,Y,Z",
+          "direction towards the key light (default: from above, front left)"),
+    CLI_OUTLINE_OPT(cli_render_opts, dopt.outline,
+                    "silhouettes and occluding contours (default: the style's, pnpr_style_outline_default; "
+                    "sketchy reads well with them on)"),
+    R_OPT("--brush", CLI_CUSTOM, dopt.brush_preset, parse_brush, "B", "brush: the brush preset (docs/brush.md)"),
+    R_OPT("--tam", CLI_CUSTOM, dopt.hierarchy.tam, parse_tam, "M", "hierarchy: the tonal art map (docs/hierarchy.md)"),
+    R_OPT("--importance", CLI_TEXT, importance_path, NULL, "FILE",
+          "hierarchy: a grey PNG stretched over the image: white keeps detail (every colour region, strokes "
+          "half the size), black abstracts"),
+    R_OPT("--background", CLI_CUSTOM, bg, parse_background, "R,G,B",
+          "background colour, 0..255 each (default 255,255,255)"),
+    R_OPT("--alpha", CLI_FLAG, alpha, NULL, NULL, "transparent background, PNG with alpha"),
+    {"--max-tile", NULL, CLI_INT, offsetof(cli_render_opts, max_tile), 16, 1e6, 0, 0, NULL, NULL, "PX",
+     "render in tiles of at most PX pixels (default: the GL limit; larger images are always tiled, progress "
+     "per tile on stderr)"},
+    R_OPT("--quiet", CLI_FLAG, quiet, NULL, NULL, "no progress on stderr"),
+};
+
+/* The usage line of render_opts' entry `name`. */
+static void opt_usage(FILE *f, const char *name)
+{
+    const cli_opt *o = cli_opts_find(render_opts, CLI_COUNT(render_opts), name);
+    if (o) cli_opts_usage(f, o, 1);
+}
+
 static void draw_usage(FILE *f, const char *name, const char *metavar)
 {
     size_t n;
@@ -47,25 +173,14 @@ void cli_render_usage(FILE *f, int width, int height)
     size_t un, bn;
     const pnpr_option_desc *ut = pnpr_upload_option_table(&un), *bt = pnpr_brush_option_table(&bn);
     char styles[160], brushes[160];
-    fprintf(f,
-            "  --style S            %s\n"
-            "                       (default %s)\n",
-            pnpr_style_list(styles, sizeof styles, " | ", 0), pnpr_style_name((pnpr_style)0));
-    fprintf(f,
-            "  --style-map FILE     intermingled styles: FILE has lines 'LABEL STYLE' (a segment label of\n"
-            "                       IN, PLY property segment or label) and '* STYLE' (the default, else\n"
-            "                       --style); '#' starts a comment\n"
-            "  --effects FILE       segment-specific image-space effects (docs/effects.md): FILE gives\n"
-            "                       segments (labels) effect chains (toon, watercolour, oil, pencil,\n"
-            "                       posterise, grade, edges, smooth) and presets; one layer each,\n"
-            "                       depth-inpainted and composited with a depth test\n"
-            "  --layering M         effects: inpainted (default) | fragment | none (paper figure 12)\n"
-            "  --effects-scale S    effects: layers at S (1/16..1) of the size, grown to it: a quick\n"
-            "                       draft of a pipeline (the decorator's preview while moving)\n"
-            "  --effects-serial     effects: filters on the GL thread, not overlapped with the next\n"
-            "                       layer's rasterisation (the same pixels; for measurements)\n"
-            "  --sketch V           sketchy variant of the paper's figure 9: a (directional strokes),\n"
-            "                       b (+ non-directional hatches), c (+ dithering hatches; default)\n");
+    char more[256];
+    opt_usage(f, "--style");
+    snprintf(more, sizeof more, "(%s; default %s)", pnpr_style_list(styles, sizeof styles, " | ", 0),
+             pnpr_style_name((pnpr_style)0));
+    cli_usage_more(f, more);
+    static const char *const first[] = {"--style-map", "--effects", "--layering", "--effects-scale",
+                                        "--effects-serial", "--sketch"};
+    for (size_t k = 0; k < sizeof first / sizeof first[0]; k++) opt_usage(f, first[k]);
     draw_usage(f, "stroke-texture", "T");
     fprintf(f,
             "  --size WxH           image size in pixels (default %dx%d)\n"
@@ -76,63 +191,57 @@ void cli_render_usage(FILE *f, int width, int height)
             "                       the up axis (default auto: the file's convention, else the ground\n"
             "                       plane, else z; with --eye/--target a vector, default 0,0,1)\n"
             "  --fov DEG            vertical field of view (default 45)\n"
-            "  --camera FILE        the camera from a file (eye/target/up/fov lines, world coordinates)\n"
-            "  --budget N           at most N points per frame (default: all)\n",
+            "  --camera FILE        the camera from a file (eye/target/up/fov lines, world coordinates)\n",
             width, height);
+    opt_usage(f, "--budget");
     draw_usage(f, "density", "D");
-    fprintf(f, "  --seed S             continuous resolution queue seed (default 0)\n");
+    opt_usage(f, "--seed");
     draw_usage(f, "point-scale", "F");
     draw_usage(f, "line-width", "PX");
     draw_usage(f, "line-min", "PX");
     draw_usage(f, "dot-size", "PX");
     draw_usage(f, "queue-fade", "F");
-    fprintf(f, "                       (0 = none: under a budget, marks pop in and out)\n");
+    cli_usage_more(f, "(0 = none: under a budget, marks pop in and out)");
     draw_usage(f, "levels", "N");
     draw_usage(f, "outline-scale", "F");
-    fprintf(f,
-            "  --tone S             what sets how dark a point is drawn (hatch and stipple density,\n"
-            "                       the shading of colourless clouds): auto | color | light (a key light\n"
-            "                       on the normals) | both (default auto: both when IN has colours)\n");
+    opt_usage(f, "--tone");
     size_t on;
     const pnpr_option_desc *ot = pnpr_tone_option_table(&on);
     cli_table_usage(f, ot, on, "tone-gamma", "G");
     cli_table_usage(f, ot, on, "tone-contrast", "C");
-    fprintf(f,
-            "  --light X,Y,Z        direction towards the key light (default: from above, front left)\n"
-            "  --outline on|off     silhouettes and occluding contours (default: on for lines and cartoon,\n"
-            "                       off for the others; sketchy reads well with them on)\n");
+    opt_usage(f, "--light");
+    opt_usage(f, "--outline");
     draw_usage(f, "outline-width", "PX");
     fprintf(f, "                       (the style's: lines %g, cartoon %g, sketchy %g)\n", (double)w_lines,
             (double)w_cartoon, (double)w_sketchy);
     draw_usage(f, "outline-jump", "F");
     draw_usage(f, "outline-hole", "F");
     cli_table_usage(f, ut, un, "paint-bins", "N");
-    fprintf(f, "  --brush B            brush: %s (default %s; docs/brush.md)\n", pnpr_brush_preset_list(brushes, sizeof brushes, " | "),
-            pnpr_brush_presets(NULL)[0].name);
+    opt_usage(f, "--brush");
+    snprintf(more, sizeof more, "(%s; default %s)", pnpr_brush_preset_list(brushes, sizeof brushes, " | "),
+             pnpr_brush_presets(NULL)[0].name);
+    cli_usage_more(f, more);
     draw_usage(f, "brush-scale", "F");
     draw_usage(f, "brush-jitter", "DEG");
     draw_usage(f, "brush-blur", "PX");
     cli_table_usage(f, bt, bn, "brush-k", "K");
     cli_table_usage(f, bt, bn, "brush-eps", "E");
     cli_table_usage(f, bt, bn, "brush-normal-radius", "F");
-    fprintf(f, "  --tam M              hierarchy: tonal art map %s | %s | %s (default %s; docs/hierarchy.md)\n",
-            pnpr_tam_name(PNPR_TAM_PAINT), pnpr_tam_name(PNPR_TAM_HATCH), pnpr_tam_name(PNPR_TAM_DOTS),
-            pnpr_tam_name(PNPR_TAM_PAINT));
+    opt_usage(f, "--tam");
+    snprintf(more, sizeof more, "(%s | %s | %s; default %s)", pnpr_tam_name(PNPR_TAM_PAINT),
+             pnpr_tam_name(PNPR_TAM_HATCH), pnpr_tam_name(PNPR_TAM_DOTS), pnpr_tam_name(PNPR_TAM_PAINT));
+    cli_usage_more(f, more);
     size_t hn, tn;
     const pnpr_option_desc *ht = pnpr_hier_option_table(&hn), *tt = pnpr_sphere_tree_option_table(&tn);
     static const char *const hier_meta[] = {"A", "PX", "R", "F", "F", "0|1", "0|1", "0|1", "DEG", "F", "DEG", "L", "N"};
     for (int k = 0; hier_names[k]; k++) cli_table_usage(f, ht, hn, hier_names[k], hier_meta[k]);
     static const char *const tree_meta[] = {"H", "F", "K", "F", "F"};
     for (int k = 0; tree_names[k]; k++) cli_table_usage(f, tt, tn, tree_names[k], tree_meta[k]);
-    fprintf(f, "  --importance FILE    hierarchy: a grey PNG stretched over the image: white keeps detail\n"
-               "                       (every colour region, strokes half the size), black abstracts\n");
+    opt_usage(f, "--importance");
     draw_usage(f, "faint", "F");
+    static const char *const last[] = {"--background", "--alpha", "--max-tile", "--quiet"};
+    for (size_t k = 0; k < sizeof last / sizeof last[0]; k++) opt_usage(f, last[k]);
     fprintf(f,
-            "  --background R,G,B   background colour, 0..255 each (default 255,255,255)\n"
-            "  --alpha              transparent background, PNG with alpha\n"
-            "  --max-tile PX        render in tiles of at most PX pixels (default: the GL limit;\n"
-            "                       larger images are always tiled, progress per tile on stderr)\n"
-            "  --quiet              no progress on stderr\n"
             "  What IN lacks is computed as `pointnpr explain IN --style S` shows: features for sketchy,\n"
             "  stipple, painterly and lines (+ the profile lines), normals for outlines and for shading\n"
             "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels,\n"
@@ -273,94 +382,6 @@ static int set_profile_lines(const char *cmd, const char *in, const pnpr_cloud *
 #endif
 
 
-#define BAD(...) do { fprintf(stderr, "pointnpr %s: ", cmd); fprintf(stderr, __VA_ARGS__); return -1; } while (0)
-
-/* Style, sizes and counts of the drawing. 1 parsed (*ip advanced), 0 not one of them, -1 bad. */
-static int style_option(cli_render_opts *o, const char *cmd, const char *a, const char *v, int *ip)
-{
-    int i = *ip;
-    double x;
-    if (!v) return 0;
-
-        if (0) {}
-        else if (!strcmp(a, "--style")) {
-            pnpr_style s;
-            char names[160];
-            if (pnpr_style_from_name(v, &s) != PNPR_OK) { BAD("--style wants one of %s, got '%s'\n", pnpr_style_list(names, sizeof names, ", ", 0), v); }
-            o->dopt.style = s; i++;
-        } else if (!strcmp(a, "--brush")) {
-            uint32_t b;
-            char names[160];
-            if (pnpr_brush_preset_find(v, &b) != PNPR_OK) { BAD("--brush wants %s, got '%s'\n", pnpr_brush_preset_list(names, sizeof names, " | "), v); }
-            o->dopt.brush_preset = (int)b; i++;
-        } else if (!strcmp(a, "--tam")) {
-            int k = pnpr_tam_find(v);
-            if (k < 0) { BAD("--tam wants %s, %s or %s, got '%s'\n", pnpr_tam_name(PNPR_TAM_PAINT), pnpr_tam_name(PNPR_TAM_HATCH), pnpr_tam_name(PNPR_TAM_DOTS), v); }
-            o->dopt.hierarchy.tam = k; i++;
-        } else if (!strcmp(a, "--importance")) {
-            o->importance_path = v; i++;
-        } else if (v && !strcmp(a, "--style-map")) {
-            o->style_map_path = v; i++;
-        } else if (v && !strcmp(a, "--effects")) {
-            o->effects_path = v; i++;
-        } else if (v && !strcmp(a, "--layering")) {
-            if (pnpr_layering_from_name(v, &o->layering) != PNPR_OK) { BAD("--layering wants inpainted, fragment or none, got '%s'\n", v); }
-            o->have_layering = 1; i++;
-        } else if (v && !strcmp(a, "--effects-scale")) {
-            if (!cli_parse_number(v, PNPR_EFFECTS_SCALE_MIN, 1, &x)) { BAD("--effects-scale wants a number in %g..1, got '%s'\n", (double)PNPR_EFFECTS_SCALE_MIN, v); }
-            o->fx_opts.scale = (float)x; o->have_fx_opts = 1; i++;
-        } else if (v && !strcmp(a, "--sketch")) {
-            if (!strcmp(v, "a")) o->dopt.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
-            else if (!strcmp(v, "b")) o->dopt.sketch_variant = PNPR_SKETCH_NONDIRECTIONAL;
-            else if (!strcmp(v, "c")) o->dopt.sketch_variant = PNPR_SKETCH_ALL;
-            else { BAD("--sketch wants a, b or c, got '%s'\n", v); }
-            i++;
-        } else if (v && !strcmp(a, "--budget")) {
-            if (!cli_parse_number(v, 1, 4e9, &x) || x != floor(x)) { BAD("--budget wants a positive integer, got '%s'\n", v); }
-            o->dopt.budget = (size_t)x; i++;
-        } else if (v && !strcmp(a, "--seed")) {
-            char *end;
-            errno = 0;
-            unsigned long long s = strtoull(v, &end, 10);
-            if (errno || end == v || *end || v[0] == '-') { BAD("--seed wants a non-negative integer, got '%s'\n", v); }
-            o->uopt.seed = s; i++;
-        } else return 0;
-    *ip = i;
-    return 1;
-}
-
-
-/* Tone, outlines, painterly bins, faint points, background. As style_option. */
-static int look_option(cli_render_opts *o, const char *cmd, const char *a, const char *v, int *ip)
-{
-    int i = *ip;
-    if (!v) return 0;
-    if (0) {}
-
-        else if (v && !strcmp(a, "--tone")) {
-            static const char *const names[] = {"auto", "color", "light", "both"};
-            int t = 0;
-            while (t < 4 && strcmp(v, names[t])) t++;
-            if (t == 4) { BAD("--tone wants auto, color, light or both, got '%s'\n", v); }
-            o->tone.source = (pnpr_tone_source)t; i++;
-        } else if (v && !strcmp(a, "--light")) {
-            if (!cli_parse_list(v, 3, o->tone.light) || (o->tone.light[0] == 0 && o->tone.light[1] == 0 && o->tone.light[2] == 0)) {
-                BAD("--light wants a non-zero direction X,Y,Z, got '%s'\n", v);
-            }
-            i++;
-        } else if (v && !strcmp(a, "--outline")) {
-            if (strcmp(v, "on") && strcmp(v, "off")) { BAD("--outline wants on or off, got '%s'\n", v); }
-            o->dopt.outline = !strcmp(v, "on") ? 1 : -1; i++;
-        } else if (v && !strcmp(a, "--background")) {
-            if (!cli_parse_list(v, 3, o->bg) || o->bg[0] < 0 || o->bg[0] > 255 || o->bg[1] < 0 || o->bg[1] > 255 || o->bg[2] < 0 || o->bg[2] > 255) {
-                BAD("--background wants R,G,B in 0..255, got '%s'\n", v);
-            }
-            i++;
-        } else return 0;
-    *ip = i;
-    return 1;
-}
-
 /* The options of the tables (draw_names, upload_names): values in the table's range. --queue-fade 0
  * means none (a negative queue_fade). As cli_table_option. */
 static int table_option(cli_render_opts *o, const char *cmd, int argc, char **argv, int *ip)
@@ -385,24 +406,12 @@ static int table_option(cli_render_opts *o, const char *cmd, int argc, char **ar
 
 int cli_render_option(cli_render_opts *o, const char *cmd, int argc, char **argv, int *ip)
 {
-    const char *a = argv[*ip], *v = *ip + 1 < argc ? argv[*ip + 1] : NULL;
-    double x;
     int r = cli_view_option(&o->view, cmd, argc, argv, ip);
     if (r == 0) r = cli_outlier_option(&o->outliers, cmd, argc, argv, ip);
     if (r == 0) r = cli_columns_option(&o->columns, cmd, argc, argv, ip);
     if (r == 0) r = table_option(o, cmd, argc, argv, ip);
-    if (r == 0) r = style_option(o, cmd, a, v, ip);
-    if (r == 0) r = look_option(o, cmd, a, v, ip);
-    if (r != 0) return r;
-    if (!strcmp(a, "--quiet")) o->quiet = 1;
-    else if (!strcmp(a, "--alpha")) o->alpha = 1;
-    else if (!strcmp(a, "--effects-serial")) o->fx_opts.serial = o->have_fx_opts = 1;
-    else if (v && !strcmp(a, "--max-tile")) {
-        if (!cli_parse_number(v, 16, 1e6, &x) || x != floor(x)) BAD("--max-tile wants an integer >= 16, got '%s'\n", v);
-        o->max_tile = (int)x;
-        (*ip)++;
-    } else return 0;
-    return 1;
+    if (r == 0) r = cli_opts_parse(render_opts, CLI_COUNT(render_opts), o, cmd, argc, argv, ip);
+    return r;
 }
 
 void cli_render_opts_init(cli_render_opts *o, int width, int height)
@@ -415,6 +424,7 @@ void cli_render_opts_init(cli_render_opts *o, int width, int height)
 int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
 {
     if (!cli_view_check(&o->view, cmd)) return 0;
+    if (o->fx_opts.serial) o->have_fx_opts = 1; /* --effects-serial */
     for (int c = 0; c < 3; c++) o->dopt.background[c] = (float)(o->bg[c] / 255.0);
     o->dopt.background[3] = o->alpha ? 0.0f : 1.0f;
     if (o->style_map_path && !read_style_map(cmd, o->style_map_path, &o->smap)) return 0;
