@@ -85,7 +85,8 @@ static int take_value(const cli_opt *o, void *member, const char *cmd, const cha
         return 1;
     case CLI_LIST: return cli_parse_list(v, o->count, (double *)member) ? 1 : refuse(o, cmd, v);
     case CLI_CUSTOM: return o->parse(member, cmd, v) ? 1 : -1;
-    case CLI_FLAG: break;
+    case CLI_FLAG:
+    case CLI_FLAG_CUSTOM: break;
     }
     return -1;
 }
@@ -96,6 +97,7 @@ int cli_opts_parse(const cli_opt *t, size_t n, void *opts, const char *cmd, int 
     if (!o) return 0;
     void *member = (char *)opts + o->offset;
     if (o->kind == CLI_FLAG) { *(int *)member = 1; return 1; }
+    if (o->kind == CLI_FLAG_CUSTOM) return o->parse(member, cmd, NULL) ? 1 : -1;
     if (*i + 1 >= argc) {
         fprintf(stderr, "pointnpr %s: %s needs a value (%s)\n", cmd, o->name, o->metavar ? o->metavar : "see --help");
         return -1;

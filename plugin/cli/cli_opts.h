@@ -18,7 +18,8 @@ typedef enum cli_kind {
     CLI_TEXT,     /* the value itself into a const char * member */
     CLI_CHOICE,   /* one of `choices` (case-insensitive) into an int member: its index */
     CLI_LIST,     /* `count` comma-separated finite numbers into a double array member */
-    CLI_CUSTOM    /* parse(member, cmd, value): 1 taken, 0 refused (after saying why) */
+    CLI_CUSTOM,   /* parse(member, cmd, value): 1 taken, 0 refused (after saying why) */
+    CLI_FLAG_CUSTOM /* no value: parse(member, cmd, NULL) as CLI_CUSTOM */
 } cli_kind;
 
 /* The value of max that means "no upper bound". */

@@ -5,6 +5,7 @@
  * the core library's, so that works in a build without the renderer too (PNPR_HAVE_RENDER). */
 #include "cli.h"
 #include "cli_render.h"
+#include "cli_opts.h"
 
 #include <stdio.h>
 
@@ -28,33 +29,6 @@ extern char **environ;
 /* At most this many frames (the five digits of frame-%05d.png). */
 #define FRAMES_MAX 100000
 
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: pointnpr animate IN -o OUT.mp4|DIR/ (--camera-path FILE | --orbit | --flyover) [options]\n"
-            "       pointnpr animate IN --save-path FILE (--camera-path FILE | --orbit | --flyover) [options]\n"
-            "  Renders the frames of a camera path as `pointnpr render` renders one picture, into\n"
-            "  DIR/frame-00000.png ... (for OUT.mp4: OUT.frames/), then OUT.mp4 with ffmpeg. Frames that\n"
-            "  are already complete are kept, so an interrupted run resumes (docs/export.md). Without\n"
-            "  -o, only the camera path is written (--save-path; also in a build without the renderer).\n"
-            "options:\n"
-            "  --camera-path FILE   keyframes: 'time T' lines, each followed by a camera file's lines\n"
-            "                       (eye, target, up, fov); 'loop' closes the path (docs/export.md)\n"
-            "  --orbit              circle the content about the up axis, from the default view (or the\n"
-            "                       --eye/--target/--camera view), the content in frame from every side\n"
-            "  --degrees DEG        orbit: the angle turned (default 360, negative: clockwise from above)\n"
-            "  --flyover            a straight pass over the content, looking ahead and down\n"
-            "  --duration S         seconds of a preset (default 10; a path file has its own times)\n"
-            "  --fps N              frames per second (default 25)\n"
-            "  --save-path FILE     write the camera path used (e.g. a preset) to FILE; `pointnpr render\n"
-            "                       --camera-path FILE --camera-at T` renders the frame at T alone\n"
-            "  --frames-dir DIR     where the frames go for a video (default OUT without .mp4 + .frames)\n"
-            "  --keep-frames        keep the frames after the video is made (default: removed)\n"
-            "  Frame k shows the path at (first key's time) + k / fps; an open path ends with its last\n"
-            "  key, a loop stops one frame before it (the first frame again).\n");
-    cli_render_usage(f, 1280, 720);
-}
-
 typedef struct anim_args {
     const char *in, *out, *path_file, *save_path, *frames_dir;
     int preset;            /* -1: none, else pnpr_camera_preset */
@@ -64,40 +38,63 @@ typedef struct anim_args {
     pnpr_camera_path path; /* the path file's (read before any work) or the preset's */
 } anim_args;
 
-static int number_option(const char *a, const char *v, const char *name, double lo, double hi, double *r)
+#define ANIM_FPS 25 /* --fps: the default */
+#define ANIM_STR(x) #x
+#define ANIM_XSTR(x) ANIM_STR(x)
+
+/* --orbit / --flyover: one preset (the member: the anim_args). */
+static int parse_preset(anim_args *r, int preset)
 {
-    if (strcmp(a, name)) return 0;
-    if (!cli_parse_number(v, lo, hi, r)) {
-        fprintf(stderr, "pointnpr animate: %s wants a number in [%g, %g], got '%s'\n", name, lo, hi, v);
-        return -1;
+    if (r->preset >= 0 && r->preset != preset) {
+        fprintf(stderr, "pointnpr animate: --orbit and --flyover are two camera paths; give one\n");
+        return 0;
     }
+    r->preset = preset;
     return 1;
 }
+static int parse_orbit(void *r, const char *cmd, const char *v) { (void)cmd; (void)v; return parse_preset(r, PNPR_PRESET_ORBIT); }
+static int parse_flyover(void *r, const char *cmd, const char *v) { (void)cmd; (void)v; return parse_preset(r, PNPR_PRESET_FLYOVER); }
 
-/* The options of animate alone; 1 parsed, 0 not one of them, -1 bad (message printed). */
-static int anim_option(anim_args *r, int argc, char **argv, int *i)
+#define A_OPT(name, kind, member, lo, hi, metavar, help)                                                            \
+    {name, NULL, kind, offsetof(anim_args, member), lo, hi, 0, 0, NULL, NULL, metavar, help}
+static const cli_opt anim_opts[] = {
+    A_OPT("--camera-path", CLI_TEXT, path_file, 0, 0, "FILE",
+          "keyframes: 'time T' lines, each followed by a camera file's lines (eye, target, up, fov); 'loop' "
+          "closes the path (docs/export.md)"),
+    {"--orbit", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_orbit, NULL,
+     "circle the content about the up axis, from the default view (or the --eye/--target/--camera view), "
+     "the content in frame from every side"},
+    A_OPT("--degrees", CLI_NUMBER, degrees, -36000, 36000, "DEG",
+          "orbit: the angle turned (default 360, negative: clockwise from above)"),
+    {"--flyover", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_flyover, NULL,
+     "a straight pass over the content, looking ahead and down"},
+    A_OPT("--duration", CLI_NUMBER, duration, 1e-3, 1e6, "S",
+          "seconds of a preset (default 10; a path file has its own times)"),
+    A_OPT("--fps", CLI_NUMBER, fps, 0.01, 1000, "N", "frames per second (default " ANIM_XSTR(ANIM_FPS) ")"),
+    A_OPT("--save-path", CLI_TEXT, save_path, 0, 0, "FILE",
+          "write the camera path used (e.g. a preset) to FILE; `pointnpr render --camera-path FILE --camera-at T` "
+          "renders the frame at T alone"),
+    A_OPT("--frames-dir", CLI_TEXT, frames_dir, 0, 0, "DIR",
+          "where the frames go for a video (default OUT without .mp4 + .frames)"),
+    A_OPT("--keep-frames", CLI_FLAG, keep_frames, 0, 0, NULL, "keep the frames after the video is made (default: removed)"),
+    {"--output", "-o", CLI_TEXT, offsetof(anim_args, out), 0, 0, 0, 0, NULL, NULL, "OUT", "the video or the frames' folder"},
+};
+
+static void usage(FILE *f)
 {
-    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
-    int preset = !strcmp(a, "--orbit") ? PNPR_PRESET_ORBIT : !strcmp(a, "--flyover") ? PNPR_PRESET_FLYOVER : -1;
-    if (preset >= 0 && r->preset >= 0 && r->preset != preset) {
-        fprintf(stderr, "pointnpr animate: --orbit and --flyover are two camera paths; give one\n");
-        return -1;
-    }
-    if (preset >= 0) { r->preset = preset; return 1; }
-    if (!strcmp(a, "--keep-frames")) { r->keep_frames = 1; return 1; }
-    if (!v) return 0;
-    int got = number_option(a, v, "--fps", 0.01, 1000, &r->fps);
-    if (!got) got = number_option(a, v, "--degrees", -36000, 36000, &r->degrees);
-    if (!got && (got = number_option(a, v, "--duration", 1e-3, 1e6, &r->duration)) > 0) r->have_duration = 1;
-    if (!got) {
-        const char **dst = !strcmp(a, "-o") || !strcmp(a, "--output") ? &r->out : !strcmp(a, "--camera-path") ? &r->path_file
-                         : !strcmp(a, "--save-path") ? &r->save_path : !strcmp(a, "--frames-dir") ? &r->frames_dir : NULL;
-        if (!dst) return 0;
-        *dst = v;
-        got = 1;
-    }
-    if (got > 0) (*i)++;
-    return got;
+    fprintf(f,
+            "usage: pointnpr animate IN -o OUT.mp4|DIR/ (--camera-path FILE | --orbit | --flyover) [options]\n"
+            "       pointnpr animate IN --save-path FILE (--camera-path FILE | --orbit | --flyover) [options]\n"
+            "  Renders the frames of a camera path as `pointnpr render` renders one picture, into\n"
+            "  DIR/frame-00000.png ... (for OUT.mp4: OUT.frames/), then OUT.mp4 with ffmpeg. Frames that\n"
+            "  are already complete are kept, so an interrupted run resumes (docs/export.md). Without\n"
+            "  -o, only the camera path is written (--save-path; also in a build without the renderer).\n"
+            "options:\n");
+    cli_opts_usage(f, anim_opts, CLI_COUNT(anim_opts));
+    fprintf(f,
+            "  Frame k shows the path at (first key's time) + k / fps; an open path ends with its last\n"
+            "  key, a loop stops one frame before it (the first frame again).\n");
+    cli_render_usage(f, 1280, 720);
 }
 
 /* Parses argv; returns -1 to go on, else the exit code (help, usage error). */
@@ -105,19 +102,15 @@ static int parse_args(int argc, char **argv, anim_args *r, cli_render_opts *o)
 {
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        int got = anim_option(r, argc, argv, &i);
+        int got = cli_opts_parse(anim_opts, CLI_COUNT(anim_opts), r, "animate", argc, argv, &i);
         if (got == 0) got = cli_render_option(o, "animate", argc, argv, &i);
         if (got < 0) return 2;
         if (got > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
-        if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "pointnpr animate: unknown option or missing value: %s\n", a);
-            usage(stderr);
-            return 2;
-        }
-        if (r->in) { fprintf(stderr, "pointnpr animate: more than one input given ('%s')\n", a); return 2; }
-        r->in = a;
+        if (cli_operand("animate", a, &r->in, usage)) return 2;
     }
+    r->have_duration = !isnan(r->duration);
+    if (!r->have_duration) r->duration = 0;
     if (!r->in || (!r->out && !r->save_path)) { usage(stderr); return 2; }
     return -1;
 }
@@ -444,7 +437,8 @@ int cli_animate(int argc, char **argv)
     anim_args r;
     memset(&r, 0, sizeof r);
     r.preset = -1;
-    r.fps = 25;
+    r.fps = ANIM_FPS;
+    r.duration = NAN; /* not given */
     cli_render_opts o;
     cli_render_opts_init(&o, 1280, 720);
     int rc = parse_args(argc, argv, &r, &o);

@@ -15,32 +15,13 @@ int cli_render(int argc, char **argv)
 #else
 
 #include "cli_render.h"
+#include "cli_opts.h"
 
 #include <pointnpr/camera_path.h>
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: pointnpr render IN -o OUT.png|OUT.svg|OUT.pdf [options]\n"
-            "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG, or draws the\n"
-            "  frame's strokes, dots, lines and outlines as vector paths (SVG, PDF; styles sketchy,\n"
-            "  stipple, lines, cartoon), or filters its segments in image space (--effects FILE, PNG).\n"
-            "options:\n"
-            "  --plot-order         vector: order the paths of each layer for a pen plotter (shorter\n"
-            "                       pen-up travel)\n"
-            "  --merge-hatches      vector: hatches on one line become one path\n"
-            "  --min-mark PX        vector: leave out strokes and lines shorter than PX (a pen plotter\n"
-            "                       draws them as dots; default 0: every mark)\n"
-            "  --save-camera FILE   write the camera used (e.g. the automatic one) to FILE, to edit\n"
-            "  --camera-path FILE --camera-at T\n"
-            "                       the camera of a camera path (pointnpr animate, docs/export.md) at\n"
-            "                       T seconds (default: the first key's time)\n");
-    cli_render_usage(f, 1024, 768);
-}
 
 typedef enum out_kind { OUT_PNG = 0, OUT_SVG, OUT_PDF } out_kind;
 
@@ -54,30 +35,33 @@ typedef struct render_args {
     pnpr_camera_path path; /* the --camera-path file, read before any work */
 } render_args;
 
-/* The options of render alone; 1 parsed, 0 not one of them, -1 bad (message printed). */
-static int render_option(render_args *r, int argc, char **argv, int *i)
+/* The options of render alone (cli_opts.h); --camera-at is NAN until given. */
+static const cli_opt render_own[] = {
+    {"--plot-order", NULL, CLI_FLAG, offsetof(render_args, plot_order), 0, 0, 0, 0, NULL, NULL, NULL,
+     "vector: order the paths of each layer for a pen plotter (shorter pen-up travel)"},
+    {"--merge-hatches", NULL, CLI_FLAG, offsetof(render_args, merge_hatches), 0, 0, 0, 0, NULL, NULL, NULL,
+     "vector: hatches on one line become one path"},
+    {"--min-mark", NULL, CLI_NUMBER, offsetof(render_args, min_mark), 0, 1e4, 0, 0, NULL, NULL, "PX",
+     "vector: leave out strokes and lines shorter than PX (a pen plotter draws them as dots; default 0: every mark)"},
+    {"--save-camera", NULL, CLI_TEXT, offsetof(render_args, save_camera), 0, 0, 0, 0, NULL, NULL, "FILE",
+     "write the camera used (e.g. the automatic one) to FILE, to edit"},
+    {"--camera-path", NULL, CLI_TEXT, offsetof(render_args, camera_path), 0, 0, 0, 0, NULL, NULL, "FILE",
+     "the camera of a camera path (pointnpr animate, docs/export.md) ..."},
+    {"--camera-at", NULL, CLI_NUMBER, offsetof(render_args, camera_at), -1e12, 1e12, 0, 0, NULL, NULL, "T",
+     "... at T seconds (default: the first key's time)"},
+    {"--output", "-o", CLI_TEXT, offsetof(render_args, out), 0, 0, 0, 0, NULL, NULL, "OUT", "the output file"},
+};
+
+static void usage(FILE *f)
 {
-    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
-    if (!strcmp(a, "--plot-order")) { r->plot_order = 1; return 1; }
-    if (!strcmp(a, "--merge-hatches")) { r->merge_hatches = 1; return 1; }
-    if (!v) return 0;
-    if (!strcmp(a, "--min-mark")) {
-        if (!cli_parse_number(v, 0, 1e4, &r->min_mark)) {
-            fprintf(stderr, "pointnpr render: --min-mark wants a length in pixels (0 to 10000), got '%s'\n", v);
-            return -1;
-        }
-    } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) r->out = v;
-    else if (!strcmp(a, "--save-camera")) r->save_camera = v;
-    else if (!strcmp(a, "--camera-path")) r->camera_path = v;
-    else if (!strcmp(a, "--camera-at")) {
-        if (!cli_parse_number(v, -1e12, 1e12, &r->camera_at)) {
-            fprintf(stderr, "pointnpr render: --camera-at wants a time in seconds, got '%s'\n", v);
-            return -1;
-        }
-        r->have_camera_at = 1;
-    } else return 0;
-    (*i)++;
-    return 1;
+    fprintf(f,
+            "usage: pointnpr render IN -o OUT.png|OUT.svg|OUT.pdf [options]\n"
+            "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG, or draws the\n"
+            "  frame's strokes, dots, lines and outlines as vector paths (SVG, PDF; styles sketchy,\n"
+            "  stipple, lines, cartoon), or filters its segments in image space (--effects FILE, PNG).\n"
+            "options:\n");
+    cli_opts_usage(f, render_own, CLI_COUNT(render_own));
+    cli_render_usage(f, 1024, 768);
 }
 
 /* Parses argv; returns -1 to go on, else the exit code (help, usage error). */
@@ -85,20 +69,15 @@ static int parse_args(int argc, char **argv, render_args *r, cli_render_opts *o)
 {
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        int got = render_option(r, argc, argv, &i);
+        int got = cli_opts_parse(render_own, CLI_COUNT(render_own), r, "render", argc, argv, &i);
         if (got == 0) got = cli_render_option(o, "render", argc, argv, &i);
         if (got < 0) return 2;
         if (got > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
-        if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "pointnpr render: unknown option or missing value: %s\n", a);
-            usage(stderr);
-            return 2;
-        }
-        if (r->in) { fprintf(stderr, "pointnpr render: more than one input given ('%s')\n", a); return 2; }
-        r->in = a;
+        if (cli_operand("render", a, &r->in, usage)) return 2;
     }
-    if (!r->in || !r->out) { usage(stderr); return 2; }
+    r->have_camera_at = !isnan(r->camera_at);
+    if (!cli_need_in_out("render", r->in, r->out, "OUT.png")) return 2;
     return -1;
 }
 
@@ -178,6 +157,7 @@ static int write_vector(cli_render_session *s, const cli_render_opts *o, const r
 int cli_render(int argc, char **argv)
 {
     render_args r = {0};
+    r.camera_at = NAN; /* not given */
     cli_render_opts o;
     cli_render_opts_init(&o, 1024, 768);
     int rc = parse_args(argc, argv, &r, &o);
