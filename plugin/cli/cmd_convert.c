@@ -4,6 +4,7 @@
  * Nothing is written unless every input was read; the output is written as every output is
  * (pointnpr/output.h: a temporary renamed over OUT when complete; "-" is standard output). */
 #include "cli.h"
+#include "cli_opts.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -14,6 +15,44 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* The command's options (cli_opts.h): the output once, one PLY encoding. */
+typedef struct convert_args {
+    cli_common c;
+    const char *out;
+    pnpr_ply_encoding encoding;
+    int encoding_set;
+} convert_args;
+
+static int parse_output(void *a, const char *cmd, const char *v)
+{
+    convert_args *ca = a;
+    if (ca->out) { fprintf(stderr, "pointnpr %s: more than one output given\n", cmd); return 0; }
+    ca->out = v;
+    return 1;
+}
+
+static int set_encoding(convert_args *ca, const char *cmd, pnpr_ply_encoding enc)
+{
+    if (ca->encoding_set && ca->encoding != enc) {
+        fprintf(stderr, "pointnpr %s: give only one of --ascii, --binary, --big-endian\n", cmd);
+        return 0;
+    }
+    ca->encoding = enc;
+    ca->encoding_set = 1;
+    return 1;
+}
+static int parse_ascii(void *a, const char *cmd, const char *v) { (void)v; return set_encoding(a, cmd, PNPR_PLY_ASCII); }
+static int parse_binary(void *a, const char *cmd, const char *v) { (void)v; return set_encoding(a, cmd, PNPR_PLY_BINARY_LE); }
+static int parse_big(void *a, const char *cmd, const char *v) { (void)v; return set_encoding(a, cmd, PNPR_PLY_BINARY_BE); }
+
+static const cli_opt convert_opts[] = {
+    {"--output", "-o", CLI_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_output, "OUT.ply",
+     "output file (required; OUT.pcd writes binary PCD, - standard output)"},
+    {"--binary", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_binary, NULL, "binary little endian PLY (default)"},
+    {"--ascii", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_ascii, NULL, "ascii PLY"},
+    {"--big-endian", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_big, NULL, "binary big endian PLY"},
+};
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -22,12 +61,9 @@ static void usage(FILE *f)
             "  directory stands for all such files in it but .csv and .txt, sorted by name), merges\n"
             "  them into one cloud and writes it as PLY\n"
             "  (binary PCD when OUT ends in .pcd). Nothing is written if any input cannot be read.\n"
-            "options:\n"
-            "  -o, --output OUT.ply  output file (required; OUT.pcd writes binary PCD, - standard output)\n"
-            "  --binary              binary little endian PLY (default)\n"
-            "  --ascii               ascii PLY\n"
-            "  --big-endian          binary big endian PLY\n"
-            "  --quiet               no progress on stderr\n");
+            "options:\n");
+    cli_opts_usage(f, convert_opts, CLI_COUNT(convert_opts));
+    cli_opts_usage(f, cli_common_opts + 1, 1); /* --quiet */
     cli_columns_usage(f);
 }
 
@@ -115,47 +151,30 @@ static int expand_dir(const char *dir, path_list *out)
 
 int cli_convert(int argc, char **argv)
 {
-    const char *out = NULL;
-    pnpr_write_options wo = {0};
-    int encoding_set = 0, quiet = 0;
+    convert_args A;
+    memset(&A, 0, sizeof A);
     const char *columns = NULL;
     path_list args = {0};
     int rc = 0;
     for (int i = 1; i < argc && rc == 0; i++) {
-        const char *a = argv[i];
-        pnpr_ply_encoding enc = PNPR_PLY_BINARY_LE;
-        int is_enc = 1;
-        if (!strcmp(a, "--ascii")) enc = PNPR_PLY_ASCII;
-        else if (!strcmp(a, "--binary")) enc = PNPR_PLY_BINARY_LE;
-        else if (!strcmp(a, "--big-endian")) enc = PNPR_PLY_BINARY_BE;
-        else is_enc = 0;
-        if (is_enc) {
-            if (encoding_set && wo.encoding != enc) {
-                fprintf(stderr, "pointnpr convert: give only one of --ascii, --binary, --big-endian\n");
-                rc = 2;
-            }
-            wo.encoding = enc;
-            encoding_set = 1;
-        } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout);
-            list_free(&args);
-            return 0;
-        } else if (!strcmp(a, "--quiet")) {
-            quiet = 1;
-        } else if (!strcmp(a, "--columns")) {
-            if (cli_columns_option(&columns, "convert", argc, argv, &i) < 0) rc = 2;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (i + 1 >= argc) { fprintf(stderr, "pointnpr convert: %s needs a file name\n", a); rc = 2; }
-            else if (out) { fprintf(stderr, "pointnpr convert: more than one output given\n"); rc = 2; }
-            else out = argv[++i];
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "pointnpr convert: unknown option: %s\n", a);
+        int r = cli_opts_parse(convert_opts, CLI_COUNT(convert_opts), &A, "convert", argc, argv, &i);
+        if (r == 0) r = cli_opts_parse(cli_common_opts + 1, 2, &A.c, "convert", argc, argv, &i); /* --quiet, --help */
+        if (r == 0) r = cli_columns_option(&columns, "convert", argc, argv, &i);
+        if (r < 0) rc = 2;
+        else if (A.c.help) { usage(stdout); list_free(&args); return 0; }
+        else if (r > 0) continue;
+        else if (argv[i][0] == '-' && argv[i][1]) {
+            fprintf(stderr, "pointnpr convert: unknown option or missing value: %s\n", argv[i]);
             rc = 2;
-        } else if (!list_push(&args, a)) {
+        } else if (!list_push(&args, argv[i])) {
             fprintf(stderr, "pointnpr convert: out of memory\n");
             rc = 1;
         }
     }
+    const char *out = A.out;
+    const int quiet = A.c.quiet;
+    pnpr_write_options wo = {0};
+    wo.encoding = A.encoding;
     if (rc == 0 && (args.count == 0 || !out)) {
         fprintf(stderr, "pointnpr convert: %s\n", args.count == 0 ? "no input given" : "no output given (-o OUT.ply)");
         rc = 2;

@@ -4,6 +4,7 @@
  *                         [--segment METHOD] [--features]
  * It prints the library's plan (pnpr_plan_make, plan.h): the one `render` and `lines` execute. */
 #include "cli.h"
+#include "cli_opts.h"
 
 #include <pointnpr/features.h>
 #include <pointnpr/plan.h>
@@ -39,47 +40,62 @@ static int plan_rows(const pnpr_plan *p, int have_in, int brush_asked, const cha
     return k;
 }
 
+/* What explain is asked about (cli_opts.h; --style, --sketch and --outline as render takes them). */
+typedef struct explain_args {
+    pnpr_style style;
+    pnpr_sketch_variant sketch;
+    int outline, lines, features, help;
+    const char *segment, *style_name;
+} explain_args;
+
+static int parse_style(void *a, const char *cmd, const char *v)
+{
+    explain_args *e = a;
+    if (!cli_parse_style(&e->style, cmd, v)) return 0;
+    e->style_name = v;
+    return 1;
+}
+
+static const cli_opt explain_opts[] = {
+    {"--style", NULL, CLI_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_style, "S", "the style to draw"},
+    CLI_SKETCH_OPT(explain_args, sketch),
+    CLI_OUTLINE_OPT(explain_args, outline, "outlines on or off (default: the style's)"),
+    {"--lines", NULL, CLI_FLAG, offsetof(explain_args, lines), 0, 0, 0, 0, NULL, NULL, NULL, "profile lines too"},
+    {"--segment", NULL, CLI_TEXT, offsetof(explain_args, segment), 0, 0, 0, 0, NULL, NULL, "METHOD", "segments too"},
+    {"--features", NULL, CLI_FLAG, offsetof(explain_args, features), 0, 0, 0, 0, NULL, NULL, NULL, "every feature"},
+    {"--help", "-h", CLI_FLAG, offsetof(explain_args, help), 0, 0, 0, 0, NULL, NULL, NULL, "this text"},
+};
+
+static void usage(FILE *f)
+{
+    char names[160];
+    fprintf(f, "usage: pointnpr explain [IN] [--style %s]\n", pnpr_style_list(names, sizeof names, "|", 0));
+    fprintf(f, "                        [--sketch a|b|c] [--outline on|off] [--lines] [--segment METHOD]\n"
+               "                        [--features]\n"
+               "  prints the analysis stages the requested outputs need, and why; with IN, which of\n"
+               "  them the file already carries (reused, not recomputed). `render` and `lines` follow\n"
+               "  this plan.\n");
+    cli_opts_usage(f, explain_opts, CLI_COUNT(explain_opts));
+}
+
 int cli_explain(int argc, char **argv)
 {
     pnpr_plan_request req = {0};
-    const char *in = NULL, *style = NULL, *segment_method = NULL;
+    const char *in = NULL;
+    explain_args e;
+    memset(&e, 0, sizeof e);
     for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            char names[160];
-            printf("usage: pointnpr explain [IN] [--style %s]\n", pnpr_style_list(names, sizeof names, "|", 0));
-            printf(
-                   "                        [--sketch a|b|c] [--outline on|off] [--lines] [--segment METHOD]\n"
-                   "                        [--features]\n"
-                   "  prints the analysis stages the requested outputs need, and why; with IN, which of\n"
-                   "  them the file already carries (reused, not recomputed). `render` and `lines` follow\n"
-                   "  this plan.\n");
-            return 0;
-        } else if (v && !strcmp(a, "--style")) {
-            pnpr_style s;
-            if (pnpr_style_from_name(v, &s) != PNPR_OK) {
-                char names[160];
-                fprintf(stderr, "pointnpr explain: unknown style '%s' (%s)\n", v, pnpr_style_list(names, sizeof names, ", ", 0));
-                return 2;
-            }
-            req.styles |= 1u << s;
-            style = v;
-            i++;
-        } else if (v && !strcmp(a, "--sketch")) {
-            if (strlen(v) != 1 || v[0] < 'a' || v[0] > 'c') { fprintf(stderr, "pointnpr explain: --sketch wants a, b or c, got '%s'\n", v); return 2; }
-            req.sketch_variant = v[0] == 'a' ? PNPR_SKETCH_DIRECTIONAL : v[0] == 'b' ? PNPR_SKETCH_NONDIRECTIONAL : PNPR_SKETCH_ALL;
-            i++;
-        } else if (v && !strcmp(a, "--outline")) {
-            if (strcmp(v, "on") && strcmp(v, "off")) { fprintf(stderr, "pointnpr explain: --outline wants on or off, got '%s'\n", v); return 2; }
-            req.outline = !strcmp(v, "on") ? 1 : -1;
-            i++;
-        } else if (v && !strcmp(a, "--segment")) { segment_method = v; i++; }
-        else if (!strcmp(a, "--lines")) req.lines = 1;
-        else if (!strcmp(a, "--features")) req.want |= PNPR_WANT_ALL;
-        else if (a[0] == '-' && a[1]) { fprintf(stderr, "pointnpr explain: unknown option or missing value: %s\n", a); return 2; }
-        else if (!in) in = a;
-        else { fprintf(stderr, "pointnpr explain: more than one input given ('%s')\n", a); return 2; }
+        int r = cli_opts_parse(explain_opts, CLI_COUNT(explain_opts), &e, "explain", argc, argv, &i);
+        if (r < 0) return 2;
+        if (e.help) { usage(stdout); return 0; }
+        if (r == 0 && cli_operand("explain", argv[i], &in, usage)) return 2;
     }
+    if (e.style_name) req.styles |= 1u << e.style;
+    req.sketch_variant = e.sketch;
+    req.outline = e.outline;
+    req.lines = e.lines;
+    if (e.features) req.want |= PNPR_WANT_ALL;
+    const char *style = e.style_name, *segment_method = e.segment;
     pnpr_cloud c = {0};
     if (in) {
         pnpr_error err = {0};
