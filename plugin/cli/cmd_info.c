@@ -1,6 +1,7 @@
 /* pointnpr info IN: what a point cloud file holds (format, count, origin, world bounding box,
  * optional arrays, extra properties, faces). */
 #include "cli.h"
+#include "cli_opts.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -141,19 +142,9 @@ int cli_info(int argc, char **argv)
         if (oo == 0) oo = cli_columns_option(&ro.columns, "info", argc, argv, &i);
         if (oo < 0) return 2;
         if (oo > 0) continue;
-        if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "pointnpr info: unknown option: %s\n", a);
-            usage(stderr);
-            return 2;
-        }
-        if (in) {
-            fprintf(stderr, "pointnpr info: more than one input given ('%s')\n", a);
-            usage(stderr);
-            return 2;
-        }
-        in = a;
+        if (cli_operand("info", a, &in, usage)) return 2;
     }
-    if (!in) { usage(stderr); return 2; }
+    if (!in) { fprintf(stderr, "pointnpr info: no input given\n"); usage(stderr); return 2; }
 
     pnpr_cloud c = {0};
     pnpr_error err = {0};
