@@ -46,4 +46,23 @@ if [ $has_render = 1 ]; then
   "$bin" lines "$dir/nan.ply" -o "$dir/n.obj" --svg "$dir/n.svg" --quiet 2> "$dir/e.txt"; rc=$?
   check '[ $rc -eq 1 ] && grep -q "nan.ply: svg: nothing to draw and no camera" "$dir/e.txt"' "a camera error names the file (rc $rc)"
 fi
+# the CLI's option table: one message form for every command's out-of-range value and missing
+# value, the range as the table holds it
+for cmd in features segment; do
+  "$bin" $cmd "$dir/cube.ply" -o "$dir/t.ply" --threads 0 2> "$dir/e.txt"; rc=$?
+  check '[ $rc -eq 2 ] && grep -q "pointnpr $cmd: --threads wants an integer in 1\.\.[0-9]*, got .0." "$dir/e.txt"' \
+        "$cmd --threads 0: the table's message (rc $rc)"
+  "$bin" $cmd "$dir/cube.ply" -o "$dir/t.ply" --threads 2> "$dir/e.txt"; rc=$?
+  check '[ $rc -eq 2 ] && grep -q "pointnpr $cmd: --threads needs a value (N)" "$dir/e.txt"' "$cmd --threads without a value says so (rc $rc)"
+done
+"$bin" segment "$dir/cube.ply" -o "$dir/t.ply" --method Components --quiet 2> "$dir/e.txt"; rc=$?
+check '[ $rc -eq 0 ]' "segment --method Components: names in any case (rc $rc)"
+"$bin" segment "$dir/cube.ply" -o "$dir/t.ply" --method nosuch 2> "$dir/e.txt"; rc=$?
+check '[ $rc -eq 2 ] && grep -q "wants jseg, components, rgbgrow or labels, got .nosuch." "$dir/e.txt"' "segment --method nosuch lists the choices (rc $rc)"
+"$bin" explain --sketch B --outline On --style SKETCHY > "$dir/o.txt" 2> "$dir/e.txt"; rc=$?
+check '[ $rc -eq 0 ] && grep -q "plan for --style SKETCHY" "$dir/o.txt"' "explain: style, sketch and outline in any case (rc $rc)"
+"$bin" render "$dir/cube.ply" 2> "$dir/e.txt"; rc=$?
+check '[ $rc -eq 2 ] && grep -q "no output given" "$dir/e.txt"' "render without -o says so (rc $rc)"
+"$bin" info 2> "$dir/e.txt"; rc=$?
+check '[ $rc -eq 2 ] && grep -q "no input given" "$dir/e.txt"' "info without an input says so (rc $rc)"
 exit $fail
