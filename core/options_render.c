@@ -74,6 +74,18 @@ static const pnpr_option_desc svg_table[] = {
       "a contour is a depth jump over this many extents"),
 };
 
+#define PR(...) OPT("camera preset", pnpr_camera_preset_options, __VA_ARGS__)
+static const pnpr_option_desc preset_table[] = {
+    PR("duration", duration, DOUBLE, 10, 1e-3, 1e6, 0, 0, NULL, "seconds of a preset (a path file has its own times)"),
+    PR("degrees", degrees, DOUBLE, 360, -36000, 36000, 0, 0, NULL, "orbit: the angle turned (negative: clockwise from above)"),
+};
+
+const pnpr_option_desc *pnpr_camera_preset_option_table(size_t *r_count)
+{
+    if (r_count) *r_count = COUNT(preset_table);
+    return preset_table;
+}
+
 const pnpr_option_desc *pnpr_svg_option_table(size_t *r_count)
 {
     if (r_count) *r_count = COUNT(svg_table);

@@ -390,6 +390,8 @@ static void check_cli(void)
     check_cli_options("lines", pnpr_svg_option_table, svg);
     static const char *const tone[] = {"tone-gamma", "tone-contrast", NULL};
     check_cli_options("render", pnpr_tone_option_table, tone);
+    static const char *const preset[] = {"duration", "degrees", NULL};
+    check_cli_options("animate", pnpr_camera_preset_option_table, preset);
     check_cli_options("info", pnpr_outlier_option_table, outliers);
     check_segment_usage();
     /* render and animate: the draw and upload options of the renderer's tables */
@@ -429,6 +431,10 @@ int main(void)
     size_t nsv;
     const pnpr_option_desc *svt = pnpr_svg_option_table(&nsv);
     pnpr_option_set_defaults(svt, nsv, &sv);
+    pnpr_camera_preset_options pr = {0, 0};
+    size_t npr;
+    const pnpr_option_desc *prt = pnpr_camera_preset_option_table(&npr);
+    pnpr_option_set_defaults(prt, npr, &pr);
     const table_case cases[] = {
         {"features", pnpr_features_option_table, sizeof f, &f},
         {"lines", pnpr_lines_option_table, sizeof l, &l},
@@ -442,6 +448,7 @@ int main(void)
         {"draw", pnpr_draw_option_table, sizeof dr, &dr},
         {"upload", pnpr_upload_option_table, sizeof up, &up},
         {"svg", pnpr_svg_option_table, sizeof sv, &sv},
+        {"camera preset", pnpr_camera_preset_option_table, sizeof pr, &pr},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         check_table(&cases[i]);

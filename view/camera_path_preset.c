@@ -3,6 +3,8 @@
 #include "camera_path_internal.h"
 #include "../core/vec3.h"
 
+#include <pointnpr/options.h>
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -80,12 +82,17 @@ pnpr_status pnpr_camera_path_preset(pnpr_camera_preset preset, const pnpr_camera
 {
     if (!start || !r_path) return PNPR_ERR_INVALID_ARGUMENT;
     memset(r_path, 0, sizeof *r_path);
-    double duration = opts && opts->duration != 0 ? opts->duration : 10, degrees = opts && opts->degrees != 0 ? opts->degrees : 360;
+    pnpr_camera_preset_options o = {0, 0};
+    if (opts) o = *opts;
+    size_t nt;
+    const pnpr_option_desc *table = pnpr_camera_preset_option_table(&nt);
+    pnpr_status cst = pnpr_option_check(table, nt, &o, err); /* the ranges: options.h */
+    if (cst != PNPR_OK) return cst;
+    pnpr_option_fill_defaults(table, nt, &o);
+    double duration = o.duration, degrees = o.degrees;
     double u[3] = {up ? up[0] : start->up[0], up ? up[1] : start->up[1], up ? up[2] : start->up[2]}, h[3];
     double fov = start->fov_y_deg > 0 ? start->fov_y_deg : 45;
     if ((unsigned)preset >= PNPR_PRESET_COUNT_) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "unknown camera preset %d", (int)preset);
-    if (!(duration > 0) || !isfinite(duration) || !isfinite(degrees) || fabs(degrees) > 36000)
-        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "camera preset: duration %g must be positive, degrees %g within +-36000", duration, degrees);
     if (!(pnpr_normalize3(u) > 0) || !isfinite(u[0] + u[1] + u[2]))
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "camera preset: the up axis is zero or not finite");
     split_view(start, u, h);

@@ -85,7 +85,7 @@ PNPR_NODISCARD pnpr_status pnpr_camera_path_write(const char *filename, const pn
 /* Presets around a start camera (usually pnpr_camera_default's, which frames the content). */
 typedef enum pnpr_camera_preset {
     PNPR_PRESET_ORBIT = 0, /* the eye circles `up` through the target at the start camera's
-                            * distance and height: `degrees` (0 = 360) over the duration, a
+                            * distance and height: `degrees` over the duration, a
                             * loop for a full turn; keys every 2 degrees or less */
     PNPR_PRESET_FLYOVER,   /* a straight pass over the target: the eye moves along the start
                             * view's horizontal direction from the start eye to 2.2 radii on
@@ -95,8 +95,9 @@ typedef enum pnpr_camera_preset {
 } pnpr_camera_preset;
 
 typedef struct pnpr_camera_preset_options {
-    double duration;  /* seconds; 0 = 10 */
-    double degrees;   /* orbit: the angle turned (either sign; 0 = 360) */
+    /* zero = the default; defaults and ranges: pnpr_camera_preset_option_table (options.h) */
+    double duration;  /* seconds */
+    double degrees;   /* orbit: the angle turned (either sign) */
 } pnpr_camera_preset_options;
 
 /* The preset's path starting at `start` (its eye, target and fov) around the unit axis `up`

@@ -17,6 +17,7 @@
 #define POINTNPR_OPTIONS_H
 
 #include "brush.h"
+#include "camera_path.h"
 #include "hierarchy.h"
 #include "core.h"
 #include "features.h"
@@ -102,6 +103,8 @@ const pnpr_option_desc *pnpr_draw_option_table(size_t *r_count);
 const pnpr_option_desc *pnpr_upload_option_table(size_t *r_count);
 /* The SVG drawing of profile lines (pnpr_svg_options, camera.h; `lines --svg`). */
 const pnpr_option_desc *pnpr_svg_option_table(size_t *r_count);
+/* The camera path presets (pnpr_camera_preset_options, camera_path.h; `animate --orbit/--flyover`). */
+const pnpr_option_desc *pnpr_camera_preset_option_table(size_t *r_count);
 pnpr_draw_options pnpr_draw_defaults(void);
 pnpr_upload_options pnpr_upload_defaults(void);
 /* Checks every tabled member of o against its entry (pnpr_option_check), mask_scale against the

@@ -32,7 +32,8 @@ extern char **environ;
 typedef struct anim_args {
     const char *in, *out, *path_file, *save_path, *frames_dir;
     int preset;            /* -1: none, else pnpr_camera_preset */
-    double degrees, duration, fps;
+    pnpr_camera_preset_options po; /* --duration, --degrees (the library's table) */
+    double fps;
     int have_duration, keep_frames, video;
     char dir[PNPR_OUTPUT_PATH_MAX];
     pnpr_camera_path path; /* the path file's (read before any work) or the preset's */
@@ -64,12 +65,8 @@ static const cli_opt anim_opts[] = {
     {"--orbit", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_orbit, NULL,
      "circle the content about the up axis, from the default view (or the --eye/--target/--camera view), "
      "the content in frame from every side"},
-    A_OPT("--degrees", CLI_NUMBER, degrees, -36000, 36000, "DEG",
-          "orbit: the angle turned (default 360, negative: clockwise from above)"),
     {"--flyover", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_flyover, NULL,
      "a straight pass over the content, looking ahead and down"},
-    A_OPT("--duration", CLI_NUMBER, duration, 1e-3, 1e6, "S",
-          "seconds of a preset (default 10; a path file has its own times)"),
     A_OPT("--fps", CLI_NUMBER, fps, 0.01, 1000, "N", "frames per second (default " ANIM_XSTR(ANIM_FPS) ")"),
     A_OPT("--save-path", CLI_TEXT, save_path, 0, 0, "FILE",
           "write the camera path used (e.g. a preset) to FILE; `pointnpr render --camera-path FILE --camera-at T` "
@@ -90,7 +87,13 @@ static void usage(FILE *f)
             "  are already complete are kept, so an interrupted run resumes (docs/export.md). Without\n"
             "  -o, only the camera path is written (--save-path; also in a build without the renderer).\n"
             "options:\n");
-    cli_opts_usage(f, anim_opts, CLI_COUNT(anim_opts));
+    size_t pn;
+    const pnpr_option_desc *pt = pnpr_camera_preset_option_table(&pn);
+    cli_opts_usage(f, anim_opts, 2); /* --camera-path, --orbit */
+    cli_table_usage(f, pt, pn, "degrees", "DEG");
+    cli_opts_usage(f, anim_opts + 2, 1); /* --flyover */
+    cli_table_usage(f, pt, pn, "duration", "S");
+    cli_opts_usage(f, anim_opts + 3, CLI_COUNT(anim_opts) - 3);
     fprintf(f,
             "  Frame k shows the path at (first key's time) + k / fps; an open path ends with its last\n"
             "  key, a loop stops one frame before it (the first frame again).\n");
@@ -102,15 +105,18 @@ static int parse_args(int argc, char **argv, anim_args *r, cli_render_opts *o)
 {
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        int got = cli_opts_parse(anim_opts, CLI_COUNT(anim_opts), r, "animate", argc, argv, &i);
+        size_t pn;
+        const pnpr_option_desc *pt = pnpr_camera_preset_option_table(&pn);
+        static const char *const preset_names[] = {"duration", "degrees", NULL};
+        int got = cli_table_option(pt, pn, preset_names, &r->po, "animate", argc, argv, &i);
+        if (got == 0) got = cli_opts_parse(anim_opts, CLI_COUNT(anim_opts), r, "animate", argc, argv, &i);
         if (got == 0) got = cli_render_option(o, "animate", argc, argv, &i);
         if (got < 0) return 2;
         if (got > 0) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
         if (cli_operand("animate", a, &r->in, usage)) return 2;
     }
-    r->have_duration = !isnan(r->duration);
-    if (!r->have_duration) r->duration = 0;
+    r->have_duration = r->po.duration != 0;
     if (!r->in || (!r->out && !r->save_path)) { usage(stderr); return 2; }
     return -1;
 }
@@ -133,7 +139,7 @@ static int check_args(anim_args *r, cli_render_opts *o)
         fprintf(stderr, "pointnpr animate: --camera-path FILE has its own times and cameras (no --duration, --eye, --camera)\n");
         return 2;
     }
-    if (r->degrees != 0 && r->preset != PNPR_PRESET_ORBIT) { fprintf(stderr, "pointnpr animate: --degrees is for --orbit\n"); return 2; }
+    if (r->po.degrees != 0 && r->preset != PNPR_PRESET_ORBIT) { fprintf(stderr, "pointnpr animate: --degrees is for --orbit\n"); return 2; }
     if (!cli_render_opts_finish(o, "animate")) return 2;
     pnpr_error err = {0};
     pnpr_status st = r->path_file ? pnpr_camera_path_read(r->path_file, &r->path, &err) : PNPR_OK;
@@ -167,8 +173,7 @@ static int make_path(anim_args *r, const cli_render_opts *o, const pnpr_cloud *c
             fprintf(stderr, "pointnpr animate: %s: no camera to start the preset from (no finite point?)\n", r->in);
             return 0;
         }
-        pnpr_camera_preset_options po = {r->have_duration ? r->duration : 0, r->degrees};
-        st = pnpr_camera_path_preset((pnpr_camera_preset)r->preset, &start, up, &po, &r->path, &err);
+        st = pnpr_camera_path_preset((pnpr_camera_preset)r->preset, &start, up, &r->po, &r->path, &err);
     }
     if (st == PNPR_OK && r->save_path) st = pnpr_camera_path_write(r->save_path, &r->path, &err);
     if (st != PNPR_OK) cli_report_error("animate", st, &err);
@@ -438,7 +443,6 @@ int cli_animate(int argc, char **argv)
     memset(&r, 0, sizeof r);
     r.preset = -1;
     r.fps = ANIM_FPS;
-    r.duration = NAN; /* not given */
     cli_render_opts o;
     cli_render_opts_init(&o, 1280, 720);
     int rc = parse_args(argc, argv, &r, &o);

@@ -36,6 +36,7 @@ static const struct {
     {"draw", "pnpr_draw_options", "`render`, `animate`, the MeshLab decorator (per frame)", pnpr_draw_option_table},
     {"upload", "pnpr_upload_options", "`render`, `animate`, the MeshLab decorator (per cloud)", pnpr_upload_option_table},
     {"svg", "pnpr_svg_options", "`lines --svg`", pnpr_svg_option_table},
+    {"camera preset", "pnpr_camera_preset_options", "`animate --orbit/--flyover`", pnpr_camera_preset_option_table},
 };
 
 static void print_table(FILE *f, int markdown, size_t t)
