@@ -1045,8 +1045,13 @@ decorate_styles)
   conf_has DrawStyle 'enum_val6=\\"brush\\"'
   conf_has DrawStyle 'enum_val7=\\"hierarchy\\"'
   conf_has TonalArtMap 'enum_val1=\\"hatch\\"'
-  conf_has Abstraction ' value=\\"0.01\\"'
-  conf_has StrokeSize ' value=\\"8\\"'
+  # the dialog's defaults are the library's tables, as `pointnpr options` prints them
+  table_default() { "$CLI" options --markdown | awk -F' [|] ' -v o="\`--$1\`" '$1 == "| " o {print $3}'; }
+  for pair in Abstraction:hier-abstraction StrokeSize:stroke-px BrushScale:brush-scale LineWidth:line-width; do
+    d=$(table_default "${pair#*:}")
+    [[ -n "$d" ]] || fail "pointnpr options lacks --${pair#*:}"
+    conf_has "${pair%%:*}" ' value=\\"'"$d"'\\"'
+  done
   conf_has Brush 'enum_val0=\\"bristle\\"'
   conf_has Brush 'enum_val2=\\"round\\"'
   conf_has DrawStyle ' value=\\"1\\"'
