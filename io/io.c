@@ -1,8 +1,14 @@
 /* File-level I/O: picks the format (explicit option, extension, then magic bytes) and hands
  * over to the format readers/writers. PLY and PCD are written. */
 #include <pointnpr/io.h>
+#include <pointnpr/output.h>
+
+#include "../core/internal.h"
+#include "io_util.h"
 
 #include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -189,4 +195,34 @@ pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud, const pnp
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
                               "%s: cannot tell the output format from the name (use a .ply or .pcd extension)", path);
     }
+}
+
+pnpr_status pnpr_io_fail(pnpr_error *err, pnpr_status st, long line, long long offset, const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err->message, sizeof err->message, fmt, ap);
+        va_end(ap);
+        err->line = line;
+        err->offset = offset;
+    }
+    return st;
+}
+
+pnpr_status pnpr_io_write_path(const char *path, const pnpr_cloud *cloud, const pnpr_write_options *opts,
+                               pnpr_error *err, const char *what, pnpr_io_stream_writer stream)
+{
+    if (!path || !path[0] || !cloud)
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "%s: NULL/empty path or NULL cloud", what);
+    pnpr_output *o = malloc(sizeof *o);
+    if (!o) return pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: out of memory", path);
+    pnpr_status st = pnpr_output_open(o, path, err);
+    if (st == PNPR_OK) {
+        st = stream(pnpr_output_sink, o, cloud, opts, err);
+        if (st != PNPR_OK && st != PNPR_ERR_IO) pnpr_error_prefix_path(err, path);
+        st = pnpr_output_close(o, st, err);
+    }
+    free(o);
+    return st;
 }

@@ -37,6 +37,7 @@
  * before any point is read), and every size computation is overflow-checked. */
 #include "../core/internal.h"
 #include "file_bytes.h"
+#include "io_util.h"
 #include <pointnpr/io.h>
 
 #include <math.h>
@@ -126,25 +127,6 @@ typedef struct las_header {
     double scale[3], offset[3];
 } las_header;
 
-static pnpr_status las_fail(pnpr_error *err, pnpr_status st, long long offset, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-
-static pnpr_status las_fail(pnpr_error *err, pnpr_status st, long long offset, const char *fmt, ...)
-{
-    if (err) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err->message, sizeof err->message, fmt, ap);
-        va_end(ap);
-        err->offset = offset;
-        err->line = 0;
-    }
-    return st;
-}
-
 static pnpr_status las_parse_header(const unsigned char *d, size_t size, las_header *h, pnpr_error *err)
 {
     if (size < 4 || memcmp(d, "LASF", 4) != 0) {
@@ -156,48 +138,48 @@ static pnpr_status las_parse_header(const unsigned char *d, size_t size, las_hea
             else k += (size_t)snprintf(sig + k, sizeof sig - k, "\\x%02x", c);
         }
         sig[k] = '\0';
-        return las_fail(err, PNPR_ERR_FORMAT, 0, "not a LAS file: signature is \"%s\", expected \"LASF\"", sig);
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, 0, "not a LAS file: signature is \"%s\", expected \"LASF\"", sig);
     }
     if (size < LAS_HEADER_MIN_12)
-        return las_fail(err, PNPR_ERR_TRUNCATED, (long long)size,
+        return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)size,
                         "LAS header needs %u bytes, file has %zu", LAS_HEADER_MIN_12, size);
     h->major = d[24];
     h->minor = d[25];
     if (h->major != 1 || h->minor > 4)
-        return las_fail(err, PNPR_ERR_UNSUPPORTED, 24, "LAS version %u.%u is not supported (1.0-1.4 are)",
+        return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, 0, 24, "LAS version %u.%u is not supported (1.0-1.4 are)",
                         h->major, h->minor);
     h->header_size = rd_u16(d + 94);
     unsigned need = h->minor >= 4 ? LAS_HEADER_MIN_14 : h->minor == 3 ? LAS_HEADER_MIN_13 : LAS_HEADER_MIN_12;
     if (h->header_size < need)
-        return las_fail(err, PNPR_ERR_FORMAT, 94, "LAS %u.%u header size %u is too small (at least %u bytes)",
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, 94, "LAS %u.%u header size %u is too small (at least %u bytes)",
                         h->major, h->minor, h->header_size, need);
     if (size < h->header_size)
-        return las_fail(err, PNPR_ERR_TRUNCATED, (long long)size,
+        return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)size,
                         "LAS header needs %u bytes, file has %zu", h->header_size, size);
     h->data_offset = rd_u32(d + 96);
     if (h->data_offset < h->header_size)
-        return las_fail(err, PNPR_ERR_FORMAT, 96, "point data offset %lu lies inside the %u-byte header",
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, 96, "point data offset %lu lies inside the %u-byte header",
                         (unsigned long)h->data_offset, h->header_size);
     if (h->data_offset > size)
-        return las_fail(err, PNPR_ERR_TRUNCATED, 96,
+        return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, 96,
                         "point data offset %lu is beyond the end of the file (%zu bytes)",
                         (unsigned long)h->data_offset, size);
     unsigned fmt_byte = d[104];
     if (fmt_byte & 0xC0u)
-        return las_fail(err, PNPR_ERR_UNSUPPORTED, 104,
+        return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, 0, 104,
                         "LAZ compressed LAS is not supported (point data format byte %u)", fmt_byte);
     h->format = fmt_byte & 0x3Fu;
     unsigned base = las_format_size(h->format);
     if (base == 0) {
         if (h->format == 4 || h->format == 5 || h->format == 9 || h->format == 10)
-            return las_fail(err, PNPR_ERR_UNSUPPORTED, 104,
+            return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, 0, 104,
                             "LAS point data format %u (with waveform packets) is not supported", h->format);
-        return las_fail(err, PNPR_ERR_UNSUPPORTED, 104,
+        return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, 0, 104,
                         "unknown LAS point data format %u (formats 0-3 and 6-8 are supported)", h->format);
     }
     h->record_length = rd_u16(d + 105);
     if (h->record_length < base)
-        return las_fail(err, PNPR_ERR_FORMAT, 105,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, 105,
                         "point record length %u is smaller than the %u bytes of point data format %u",
                         h->record_length, base, h->format);
     uint32_t legacy = rd_u32(d + 107);
@@ -207,7 +189,7 @@ static pnpr_status las_parse_header(const unsigned char *d, size_t size, las_hea
         if (legacy == 0)
             h->count = count64;
         else if (count64 != 0 && count64 != legacy)
-            return las_fail(err, PNPR_ERR_FORMAT, 247,
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, 247,
                             "legacy point count %lu disagrees with the 64-bit point count %llu",
                             (unsigned long)legacy, (unsigned long long)count64);
     }
@@ -216,29 +198,29 @@ static pnpr_status las_parse_header(const unsigned char *d, size_t size, las_hea
         h->scale[a] = rd_f64(d + 131 + 8 * a);
         h->offset[a] = rd_f64(d + 155 + 8 * a);
         if (!isfinite(h->scale[a]) || h->scale[a] == 0.0)
-            return las_fail(err, PNPR_ERR_FORMAT, 131 + 8 * a, "%c scale factor %g is not a finite non-zero number",
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, 131 + 8 * a, "%c scale factor %g is not a finite non-zero number",
                             axis[a], h->scale[a]);
         if (!isfinite(h->offset[a]))
-            return las_fail(err, PNPR_ERR_FORMAT, 155 + 8 * a, "%c offset %g is not finite", axis[a], h->offset[a]);
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, 155 + 8 * a, "%c offset %g is not finite", axis[a], h->offset[a]);
     }
     /* The points must all be present: offset + count * record_length <= size (no overflow). */
     uint64_t avail = (uint64_t)(size - h->data_offset);
     if (h->count > avail / h->record_length) {
         uint64_t first_missing = avail / h->record_length;
         if (h->count > (UINT64_MAX - h->data_offset) / h->record_length)
-            return las_fail(err, PNPR_ERR_TRUNCATED, (long long)(h->data_offset + first_missing * h->record_length),
+            return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)(h->data_offset + first_missing * h->record_length),
                             "header announces %llu points of %u bytes, more than any file can hold; "
                             "file has %zu bytes, point %llu is the first missing",
                             (unsigned long long)h->count, h->record_length, size,
                             (unsigned long long)first_missing);
         uint64_t needed = h->data_offset + h->count * h->record_length;
-        return las_fail(err, PNPR_ERR_TRUNCATED, (long long)(h->data_offset + first_missing * h->record_length),
+        return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)(h->data_offset + first_missing * h->record_length),
                         "truncated point data: needs %llu bytes, has %zu; point %llu of %llu is the first missing",
                         (unsigned long long)needed, size, (unsigned long long)first_missing,
                         (unsigned long long)h->count);
     }
     if (h->count > SIZE_MAX / (3 * sizeof(double)))
-        return las_fail(err, PNPR_ERR_OUT_OF_MEMORY, 107, "%llu points do not fit in memory",
+        return pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, 107, "%llu points do not fit in memory",
                         (unsigned long long)h->count);
     return PNPR_OK;
 }
@@ -262,7 +244,7 @@ static pnpr_status las_read_points(const unsigned char *d, const las_header *h, 
     if (st == PNPR_OK) st = pnpr_cloud_add_property(cloud, PNPR_PROP_INTENSITY, PNPR_TYPE_UINT16, &intensity);
     if (st == PNPR_OK) st = pnpr_cloud_add_property(cloud, PNPR_PROP_CLASSIFICATION, PNPR_TYPE_UINT8, &klass);
     if (st != PNPR_OK)
-        return las_fail(err, st, -1, "cannot allocate %zu points", n);
+        return pnpr_io_fail(err, st, 0, -1, "cannot allocate %zu points", n);
     /* add_property may have moved the array: look both up again */
     intensity = pnpr_cloud_find_property(cloud, PNPR_PROP_INTENSITY);
     klass = pnpr_cloud_find_property(cloud, PNPR_PROP_CLASSIFICATION);
@@ -273,11 +255,11 @@ static pnpr_status las_read_points(const unsigned char *d, const las_header *h, 
     unsigned rgb_low_bits = 0; /* OR of all low bytes: 0 when every value is a multiple of 256 */
 
     if (pnpr_progress_report(progress, "read las", 0.0))
-        return las_fail(err, PNPR_ERR_CANCELLED, -1, "cancelled");
+        return pnpr_io_fail(err, PNPR_ERR_CANCELLED, 0, -1, "cancelled");
     const unsigned char *rec = d + h->data_offset;
     for (size_t i = 0; i < n; i++, rec += h->record_length) {
         if (i && i % LAS_PROGRESS_STEP == 0 && pnpr_progress_report(progress, "read las", (double)i / (double)n))
-            return las_fail(err, PNPR_ERR_CANCELLED, -1, "cancelled");
+            return pnpr_io_fail(err, PNPR_ERR_CANCELLED, 0, -1, "cancelled");
         for (int a = 0; a < 3; a++) {
             /* two statements: C allows fusing into an fma only within one expression (clang's
              * default; GCC in ISO mode never fuses), so the result is the rounded X*scale, then
@@ -307,9 +289,9 @@ static pnpr_status las_read_points(const unsigned char *d, const las_header *h, 
     cloud->src_coord_type = PNPR_TYPE_FLOAT64;
     cloud->up_hint = 3; /* LAS (ASPRS): projected coordinates, z is elevation */
     if ((st = pnpr_cloud_set_world(cloud, cloud->src_xyz)) != PNPR_OK)
-        return las_fail(err, st, -1, "cannot set world coordinates");
+        return pnpr_io_fail(err, st, 0, -1, "cannot set world coordinates");
     if (pnpr_progress_report(progress, "read las", 1.0))
-        return las_fail(err, PNPR_ERR_CANCELLED, -1, "cancelled");
+        return pnpr_io_fail(err, PNPR_ERR_CANCELLED, 0, -1, "cancelled");
     return PNPR_OK;
 }
 
@@ -318,7 +300,7 @@ pnpr_status pnpr_read_las_memory(const void *data, size_t size, const pnpr_read_
 {
     if (err) { err->message[0] = '\0'; err->offset = -1; err->line = 0; }
     if (!cloud || (!data && size))
-        return las_fail(err, PNPR_ERR_INVALID_ARGUMENT, -1, "pnpr_read_las_memory: NULL argument");
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "pnpr_read_las_memory: NULL argument");
     pnpr_cloud_free(cloud);
     if (!data) data = "";
     las_header h;
@@ -333,6 +315,6 @@ pnpr_status pnpr_read_las_file(const char *path, const pnpr_read_options *opts, 
                                pnpr_error *err)
 {
     if (!path || !cloud)
-        return las_fail(err, PNPR_ERR_INVALID_ARGUMENT, -1, "pnpr_read_las_file: NULL argument");
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "pnpr_read_las_file: NULL argument");
     return pnpr_file_bytes_read(path, pnpr_read_las_memory, opts, cloud, err);
 }

@@ -79,6 +79,7 @@
 #include "../core/internal.h"
 #include <pointnpr/output.h>
 #include "file_bytes.h"
+#include "io_util.h"
 #include "out_buf.h"
 #include "text_token.h"
 
@@ -105,33 +106,11 @@ pnpr_status pnpr_write_pcd_file(const char *path, const pnpr_cloud *cloud,
 #define PCD_TOKEN_MAX 256        /* longest ascii number */
 #define PCD_SHOW 64              /* longest name quoted in a message */
 
-#if defined(__GNUC__)
-#define PCD_PRINTF(a, b) __attribute__((format(printf, a, b)))
-#else
-#define PCD_PRINTF(a, b)
-#endif
 
 /* ------------------------------------------------------------------------------------------ */
 /* Small helpers                                                                               */
 
-static pnpr_status PCD_PRINTF(5, 6)
-pcd_fail(pnpr_error *err, pnpr_status st, long line, long long offset, const char *fmt, ...)
-{
-    if (err) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err->message, sizeof err->message, fmt, ap);
-        va_end(ap);
-        err->line = line;
-        err->offset = offset;
-    }
-    return st;
-}
 
-static uint64_t mul_sat(uint64_t a, uint64_t b)
-{
-    return a && b > UINT64_MAX / a ? UINT64_MAX : a * b;
-}
 
 static uint64_t rd_le(const unsigned char *p, unsigned size)
 {
@@ -246,9 +225,9 @@ typedef struct pcd_header {
 static pnpr_status hdr_list_check(const pcd_header *h, int kw, size_t nt, long line, pnpr_error *err)
 {
     if (!h->line[KW_FIELDS])
-        return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: %s comes before FIELDS", line, kw_names[kw]);
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: %s comes before FIELDS", line, kw_names[kw]);
     if (nt != h->nfields)
-        return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: %s has %zu entries, FIELDS (line %ld) has %zu",
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: %s has %zu entries, FIELDS (line %ld) has %zu",
                         line, kw_names[kw], nt, h->line[KW_FIELDS], h->nfields);
     return PNPR_OK;
 }
@@ -258,18 +237,18 @@ static pnpr_status hdr_entry(pcd_field *f, int kw, pcd_tok t, long line, pnpr_er
     uint64_t v = 0;
     if (kw == KW_SIZE) {
         if (!parse_u64(t, &v) || (v != 1 && v != 2 && v != 4 && v != 8))
-            return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: SIZE '%.*s' of field '%.*s' is not 1, 2, 4 or 8",
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: SIZE '%.*s' of field '%.*s' is not 1, 2, 4 or 8",
                             line, show(t), t.s, show(f->name), f->name.s);
         f->size = (unsigned)v;
     } else if (kw == KW_TYPE) {
         if (t.n != 1 || (t.s[0] != 'I' && t.s[0] != 'U' && t.s[0] != 'F'))
-            return pcd_fail(err, PNPR_ERR_FORMAT, line, -1,
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1,
                             "line %ld: TYPE '%.*s' of field '%.*s' is unknown (expected I, U or F)",
                             line, show(t), t.s, show(f->name), f->name.s);
         f->type = t.s[0];
     } else {
         if (!parse_u64(t, &v) || v < 1 || v > PCD_MAX_VALUES)
-            return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: COUNT '%.*s' of field '%.*s' is not between 1 and %u",
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: COUNT '%.*s' of field '%.*s' is not between 1 and %u",
                             line, show(t), t.s, show(f->name), f->name.s, PCD_MAX_VALUES);
         f->count = (uint32_t)v;
     }
@@ -288,10 +267,10 @@ static pnpr_status hdr_fields(pcd_header *h, const char *q, const char *le, long
 {
     size_t nt = pnpr_token_count(q, le);
     if (nt == 0 || nt > PCD_MAX_FIELDS)
-        return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: FIELDS names %zu fields (expected 1 to %d)", line, nt,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: FIELDS names %zu fields (expected 1 to %d)", line, nt,
                         PCD_MAX_FIELDS);
     h->fields = calloc(nt, sizeof *h->fields);
-    if (!h->fields) return pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, line, -1, "line %ld: out of memory", line);
+    if (!h->fields) return pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, line, -1, "line %ld: out of memory", line);
     h->nfields = nt;
     for (size_t i = 0; i < nt; i++) {
         pnpr_token_next(&q, le, &h->fields[i].name);
@@ -306,7 +285,7 @@ static pnpr_status hdr_number(pcd_header *h, int kw, const char *q, const char *
 {
     pcd_tok t = {"", 0};
     if (pnpr_token_count(q, le) != 1 || !pnpr_token_next(&q, le, &t) || !parse_u64(t, &h->num[kw]))
-        return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: %s wants one non-negative integer, found '%.*s'", line,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: %s wants one non-negative integer, found '%.*s'", line,
                         kw_names[kw], show(t), t.s);
     return PNPR_OK;
 }
@@ -316,12 +295,12 @@ static pnpr_status hdr_viewpoint(pcd_header *h, const char *q, const char *le, l
     pcd_tok t;
     size_t nt = pnpr_token_count(q, le);
     if (nt != 7)
-        return pcd_fail(err, PNPR_ERR_FORMAT, line, -1,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1,
                         "line %ld: VIEWPOINT wants 7 numbers (tx ty tz qw qx qy qz), found %zu",
                         line, nt);
     for (int k = 0; k < 7 && pnpr_token_next(&q, le, &t); k++)
         if (!parse_double(t, &h->vp[k]) || !isfinite(h->vp[k]))
-            return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: VIEWPOINT value %d '%.*s' is not a finite number",
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: VIEWPOINT value %d '%.*s' is not a finite number",
                             line, k + 1, show(t), t.s);
     return PNPR_OK;
 }
@@ -334,14 +313,14 @@ static pnpr_status hdr_word(pcd_header *h, int kw, const char *q, const char *le
         h->data = !one ? DATA_NONE : pnpr_token_is(t, "ascii") ? DATA_ASCII : pnpr_token_is(t, "binary") ? DATA_BINARY
                   : pnpr_token_is(t, "binary_compressed") ? DATA_COMPRESSED : DATA_NONE;
         if (h->data == DATA_NONE)
-            return pcd_fail(err, PNPR_ERR_FORMAT, line, -1,
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1,
                             "line %ld: unknown DATA '%.*s' (expected ascii, binary or binary_compressed)", line, show(t), t.s);
         return PNPR_OK;
     }
     static const char *const versions[] = {"0.7", ".7", "0.6", ".6", "0.5", ".5"};
     for (size_t i = 0; one && i < sizeof versions / sizeof versions[0]; i++)
         if (pnpr_token_is(t, versions[i])) return PNPR_OK;
-    return pcd_fail(err, PNPR_ERR_UNSUPPORTED, line, -1,
+    return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, line, -1,
                     "line %ld: PCD version '%.*s' is not supported (0.5, 0.6 and 0.7 are)",
                     line, show(t), t.s);
 }
@@ -358,11 +337,11 @@ static pnpr_status hdr_line(pcd_header *h, pcd_tok kwt, const char *q, const cha
 {
     int kw = keyword_of(kwt);
     if (kw < 0)
-        return pcd_fail(err, PNPR_ERR_FORMAT, line, -1,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1,
                         "line %ld: unknown header keyword '%.*s' (expected VERSION, FIELDS, SIZE, TYPE, COUNT, WIDTH, "
                         "HEIGHT, VIEWPOINT, POINTS or DATA)", line, show(kwt), kwt.s);
     if (h->line[kw])
-        return pcd_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: second %s line (the first is line %ld)", line,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "line %ld: second %s line (the first is line %ld)", line,
                         kw_names[kw], h->line[kw]);
     h->line[kw] = line;
     switch (kw) {
@@ -387,7 +366,7 @@ static pnpr_status parse_lines(const char *d, size_t size, pcd_header *h, pnpr_e
         if (!pnpr_token_next(&q, le, &kw) || kw.s[0] == '#') continue;
         for (const char *c = ls; c < le; c++)
             if (((unsigned char)*c < 0x20 && !pnpr_is_blank(*c)) || (unsigned char)*c == 0x7f)
-                return pcd_fail(err, PNPR_ERR_FORMAT, line, (long long)(c - d),
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)(c - d),
                                 "line %ld: invalid character 0x%02x in the header", line, (unsigned char)*c);
         pnpr_status st = hdr_line(h, kw, q, le, line, err);
         if (st != PNPR_OK) return st;
@@ -397,7 +376,7 @@ static pnpr_status parse_lines(const char *d, size_t size, pcd_header *h, pnpr_e
             return PNPR_OK;
         }
     }
-    return pcd_fail(err, size ? PNPR_ERR_FORMAT : PNPR_ERR_TRUNCATED, line, (long long)size,
+    return pnpr_io_fail(err, size ? PNPR_ERR_FORMAT : PNPR_ERR_TRUNCATED, line, (long long)size,
                     "line %ld: the header ends without a DATA line", line);
 }
 
@@ -411,14 +390,14 @@ static pnpr_status check_types(const pcd_header *h, pnpr_error *err)
         const pcd_field *f = &h->fields[i];
         if (f->type == 'F' && f->size < 4) {
             long line = h->line[KW_TYPE] ? h->line[KW_TYPE] : h->line[KW_SIZE];
-            return pcd_fail(err, PNPR_ERR_UNSUPPORTED, line, -1,
+            return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, line, -1,
                             "line %ld: field '%.*s' is a %u-byte float (F needs SIZE 4 or 8)", line, show(f->name),
                             f->name.s, f->size);
         }
         values += f->count;
     }
     if (values > PCD_MAX_VALUES)
-        return pcd_fail(err, PNPR_ERR_FORMAT, h->line[KW_COUNT], -1,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, h->line[KW_COUNT], -1,
                         "line %ld: COUNT adds up to %zu values per point, more than %u",
                         h->line[KW_COUNT], values, PCD_MAX_VALUES);
     return PNPR_OK;
@@ -440,7 +419,7 @@ static pnpr_status check_names(const pcd_header *h, pnpr_error *err)
         if (pnpr_token_is(f->name, "_")) continue;
         for (size_t j = 0; j < i; j++)
             if (pnpr_token_eq(f->name, h->fields[j].name))
-                return pcd_fail(err, PNPR_ERR_FORMAT, h->line[KW_FIELDS], -1, "line %ld: field '%.*s' appears twice",
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, h->line[KW_FIELDS], -1, "line %ld: field '%.*s' appears twice",
                                 h->line[KW_FIELDS], show(f->name), f->name.s);
     }
     return PNPR_OK;
@@ -455,12 +434,12 @@ static pnpr_status assign_roles(pcd_header *h, pnpr_error *err)
         f->role = role_of_name(f->name);
         if (f->role != ROLE_PAD && f->role != ROLE_EXTRA && f->count == 1) seen[f->role] = 1;
         if (f->role >= ROLE_X && f->role <= ROLE_Z && f->count != 1)
-            return pcd_fail(err, PNPR_ERR_FORMAT, h->line[KW_COUNT], -1,
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, h->line[KW_COUNT], -1,
                             "line %ld: field '%.*s' has COUNT %lu (coordinates need 1)",
                             h->line[KW_COUNT], show(f->name), f->name.s, (unsigned long)f->count);
     }
     if (!seen[ROLE_X] || !seen[ROLE_Y] || !seen[ROLE_Z])
-        return pcd_fail(err, PNPR_ERR_FORMAT, h->line[KW_FIELDS], -1, "line %ld: FIELDS has no %s field", h->line[KW_FIELDS],
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, h->line[KW_FIELDS], -1, "line %ld: FIELDS has no %s field", h->line[KW_FIELDS],
                         !seen[ROLE_X] ? "x" : !seen[ROLE_Y] ? "y" : "z");
     h->has_normal = seen[ROLE_NX] && seen[ROLE_NY] && seen[ROLE_NZ];
     for (size_t i = 0; i < h->nfields; i++) {
@@ -476,7 +455,7 @@ static pnpr_status assign_roles(pcd_header *h, pnpr_error *err)
         if (f->role == ROLE_EXTRA) { f->prop = h->nprops; h->nprops += f->count; }
     }
     if (h->nprops > PCD_MAX_PROPS)
-        return pcd_fail(err, PNPR_ERR_UNSUPPORTED, h->line[KW_FIELDS], -1,
+        return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, h->line[KW_FIELDS], -1,
                         "line %ld: %zu extra values per point, at most %d are kept",
                         h->line[KW_FIELDS], h->nprops, PCD_MAX_PROPS);
     return PNPR_OK;
@@ -486,21 +465,21 @@ static pnpr_status assign_roles(pcd_header *h, pnpr_error *err)
 static pnpr_status point_count(pcd_header *h, uint64_t *r_n, pnpr_error *err)
 {
     const long lp = h->line[KW_POINTS], lw = h->line[KW_WIDTH], lh = h->line[KW_HEIGHT];
-    const uint64_t wh = mul_sat(h->num[KW_WIDTH], lh ? h->num[KW_HEIGHT] : 1);
+    const uint64_t wh = pnpr_mul_sat(h->num[KW_WIDTH], lh ? h->num[KW_HEIGHT] : 1);
     if (lp) {
         if (lw && lh && wh != h->num[KW_POINTS])
-            return pcd_fail(err, PNPR_ERR_FORMAT, lp, -1, "line %ld: POINTS %llu but WIDTH x HEIGHT = %llu x %llu", lp,
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, lp, -1, "line %ld: POINTS %llu but WIDTH x HEIGHT = %llu x %llu", lp,
                             (unsigned long long)h->num[KW_POINTS], (unsigned long long)h->num[KW_WIDTH],
                             (unsigned long long)h->num[KW_HEIGHT]);
         *r_n = h->num[KW_POINTS];
         return PNPR_OK;
     }
     if (!lw)
-        return pcd_fail(err, PNPR_ERR_FORMAT, h->line[KW_DATA], -1,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, h->line[KW_DATA], -1,
                         "line %ld: no POINTS or WIDTH line before DATA: the point count is unknown",
                         h->line[KW_DATA]);
     if (wh == UINT64_MAX)
-        return pcd_fail(err, PNPR_ERR_FORMAT, lw, -1, "line %ld: WIDTH x HEIGHT overflows", lw);
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, lw, -1, "line %ld: WIDTH x HEIGHT overflows", lw);
     *r_n = wh;
     return PNPR_OK;
 }
@@ -527,34 +506,34 @@ static pnpr_status check_body(pcd_header *h, const unsigned char *d, size_t size
 {
     const size_t avail = size - h->body;
     const long long at = (long long)h->body;
-    if (h->data == DATA_BINARY && mul_sat(n, h->step) > avail) {
+    if (h->data == DATA_BINARY && pnpr_mul_sat(n, h->step) > avail) {
         const uint64_t first = avail / h->step;
-        return pcd_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)(h->body + first * h->step),
+        return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)(h->body + first * h->step),
                         "byte %llu: the data ends inside point %llu of %llu (%zu bytes per point, %zu bytes after the header)",
                         (unsigned long long)(h->body + first * h->step), (unsigned long long)first, (unsigned long long)n,
                         h->step, avail);
     }
-    if (h->data == DATA_ASCII && mul_sat(n, h->values) > avail / 2 + 1)
-        return pcd_fail(err, PNPR_ERR_TRUNCATED, h->body_line, at,
+    if (h->data == DATA_ASCII && pnpr_mul_sat(n, h->values) > avail / 2 + 1)
+        return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, h->body_line, at,
                         "line %ld: %llu points of %zu values need more text than the %zu bytes after the header",
                         h->body_line, (unsigned long long)n, h->values, avail);
     if (h->data != DATA_COMPRESSED) return PNPR_OK;
     if (avail < 8)
-        return pcd_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)size,
+        return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)size,
                         "byte %zu: the data ends inside the 8-byte size header of binary_compressed",
                         size);
     h->csize = (uint32_t)rd_le(d + h->body, 4);
     h->usize = (uint32_t)rd_le(d + h->body + 4, 4);
     if (h->csize > avail - 8)
-        return pcd_fail(err, PNPR_ERR_TRUNCATED, 0, at, "byte %lld: compressed size %lu, but only %zu bytes follow", at,
+        return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, at, "byte %lld: compressed size %lu, but only %zu bytes follow", at,
                         (unsigned long)h->csize, avail - 8);
-    if (mul_sat(n, h->packed) != h->usize)
-        return pcd_fail(err, PNPR_ERR_FORMAT, 0, at + 4,
+    if (pnpr_mul_sat(n, h->packed) != h->usize)
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, at + 4,
                         "byte %lld: uncompressed size %lu, but %llu points of %zu bytes need %llu",
                         at + 4, (unsigned long)h->usize, (unsigned long long)n, h->packed,
-                        (unsigned long long)mul_sat(n, h->packed));
+                        (unsigned long long)pnpr_mul_sat(n, h->packed));
     if (h->usize > (uint64_t)h->csize * PCD_LZF_RATIO)
-        return pcd_fail(err, PNPR_ERR_FORMAT, 0, at,
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, at,
                         "byte %lld: %lu compressed bytes cannot expand to %lu (LZF expands at most %ux)",
                         at, (unsigned long)h->csize, (unsigned long)h->usize, PCD_LZF_RATIO);
     return PNPR_OK;
@@ -565,7 +544,7 @@ static pnpr_status parse_header(const unsigned char *d, size_t size, pcd_header 
     uint64_t n = 0;
     pnpr_status st = parse_lines((const char *)d, size, h, err);
     if (st == PNPR_OK && !h->line[KW_FIELDS])
-        st = pcd_fail(err, PNPR_ERR_FORMAT, h->line[KW_DATA], -1, "line %ld: no FIELDS line before DATA", h->line[KW_DATA]);
+        st = pnpr_io_fail(err, PNPR_ERR_FORMAT, h->line[KW_DATA], -1, "line %ld: no FIELDS line before DATA", h->line[KW_DATA]);
     if (st == PNPR_OK) st = check_types(h, err);
     if (st == PNPR_OK) st = check_names(h, err);
     if (st == PNPR_OK) st = assign_roles(h, err);
@@ -574,7 +553,7 @@ static pnpr_status parse_header(const unsigned char *d, size_t size, pcd_header 
     layout(h); /* step, packed, values (n is still 0: array offsets are set again below) */
     if ((st = check_body(h, d, size, n, err)) != PNPR_OK) return st;
     if (n > SIZE_MAX / (3 * sizeof(double)))
-        return pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, h->line[KW_POINTS], -1, "%llu points do not fit in memory",
+        return pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, h->line[KW_POINTS], -1, "%llu points do not fit in memory",
                         (unsigned long long)n);
     h->n = (size_t)n;
     h->step = h->packed = h->values = 0;
@@ -652,7 +631,7 @@ static void store(const pcd_reader *r, const pcd_field *f, uint32_t k, size_t i,
 
 static pnpr_status cancelled(const pcd_reader *r, size_t i)
 {
-    return pcd_fail(r->err, PNPR_ERR_CANCELLED, 0, -1, "read pcd: cancelled at point %zu of %zu", i, r->h->n);
+    return pnpr_io_fail(r->err, PNPR_ERR_CANCELLED, 0, -1, "read pcd: cancelled at point %zu of %zu", i, r->h->n);
 }
 
 /* Binary records (soa = 0) or binary_compressed arrays (soa = 1) starting at base. */
@@ -717,17 +696,17 @@ static pnpr_status read_compressed(const pcd_reader *r)
     const pcd_header *h = r->h;
     const size_t start = h->body + 8;
     unsigned char *buf = malloc(h->usize ? h->usize : 1);
-    if (!buf) return pcd_fail(r->err, PNPR_ERR_OUT_OF_MEMORY, 0, -1,
+    if (!buf) return pnpr_io_fail(r->err, PNPR_ERR_OUT_OF_MEMORY, 0, -1,
                               "read pcd: cannot allocate %lu bytes", (unsigned long)h->usize);
     size_t bad = 0;
     const char *why;
     size_t got = lzf_expand(r->data + start, h->csize, buf, h->usize, &bad, &why);
     pnpr_status st = PNPR_OK;
     if (why)
-        st = pcd_fail(r->err, PNPR_ERR_FORMAT, 0, (long long)(start + bad),
+        st = pnpr_io_fail(r->err, PNPR_ERR_FORMAT, 0, (long long)(start + bad),
                       "byte %zu: corrupt LZF data: %s", start + bad, why);
     else if (got != h->usize)
-        st = pcd_fail(r->err, PNPR_ERR_FORMAT, 0, (long long)(start + h->csize),
+        st = pnpr_io_fail(r->err, PNPR_ERR_FORMAT, 0, (long long)(start + h->csize),
                       "byte %zu: LZF data ends after %zu of the %lu announced bytes", start + h->csize, got,
                       (unsigned long)h->usize);
     if (st == PNPR_OK) st = store_points(r, buf, 1);
@@ -791,7 +770,7 @@ static pnpr_status ascii_point(const pcd_reader *r, size_t i, const char *ls, co
     const size_t found = pnpr_token_count(ls, le);
     pcd_tok t;
     if (found != h->values)
-        return pcd_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(ls - (const char *)r->data),
+        return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(ls - (const char *)r->data),
                         "line %ld: point %zu has %zu values, the header announces %zu", line, i, found, h->values);
     for (size_t j = 0; j < h->nfields; j++) {
         const pcd_field *f = &h->fields[j];
@@ -799,7 +778,7 @@ static pnpr_status ascii_point(const pcd_reader *r, size_t i, const char *ls, co
             unsigned char raw[8];
             int ok = parse_value(t, f, raw);
             if (ok <= 0)
-                return pcd_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(t.s - (const char *)r->data),
+                return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(t.s - (const char *)r->data),
                                 "line %ld: point %zu, field '%.*s': '%.*s' is %s type %c%u", line, i, show(f->name),
                                 f->name.s, show(t), t.s, ok < 0 ? "out of range for" : "not a number of", f->type, f->size);
             store(r, f, k, i, raw);
@@ -814,7 +793,7 @@ static pnpr_status read_ascii(const pcd_reader *r)
     long line = r->h->body_line;
     for (size_t i = 0; i < r->h->n; line++) {
         if (p >= end)
-            return pcd_fail(r->err, PNPR_ERR_TRUNCATED, line, (long long)r->size,
+            return pnpr_io_fail(r->err, PNPR_ERR_TRUNCATED, line, (long long)r->size,
                             "line %ld: the data ends after %zu of %zu points",
                             line, i, r->h->n);
         const char *nl = memchr(p, '\n', (size_t)(end - p)), *le = nl ? nl : end, *ls = p, *q = p;
@@ -853,11 +832,11 @@ static pnpr_status add_props(const pcd_header *h, pnpr_cloud *c, pnpr_error *err
             if (f->count == 1) snprintf(name, sizeof name, "%.*s", cut, f->name.s);
             else snprintf(name, sizeof name, "%.*s_%lu", cut > 50 ? 50 : cut, f->name.s, (unsigned long)k);
             if (pnpr_cloud_find_property(c, name))
-                return pcd_fail(err, PNPR_ERR_FORMAT, h->line[KW_FIELDS], -1,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, h->line[KW_FIELDS], -1,
                                 "line %ld: field '%.*s' gives the property name '%s' twice", h->line[KW_FIELDS], show(f->name),
                                 f->name.s, name);
             pnpr_status st = pnpr_cloud_add_property(c, name, prop_type(f), NULL);
-            if (st != PNPR_OK) return pcd_fail(err, st, 0, -1, "read pcd: cannot allocate property '%s'", name);
+            if (st != PNPR_OK) return pnpr_io_fail(err, st, 0, -1, "read pcd: cannot allocate property '%s'", name);
         }
     }
     return PNPR_OK;
@@ -870,7 +849,7 @@ static pnpr_status prepare_cloud(const pcd_header *h, pnpr_cloud *c, pnpr_error 
     if (st == PNPR_OK && h->has_rgb) st = pnpr_cloud_alloc_rgb(c);
     if (st == PNPR_OK && h->has_label) st = pnpr_cloud_alloc_labels(c);
     if (st == PNPR_OK && h->double_xyz) st = pnpr_cloud_alloc_src_xyz(c);
-    if (st != PNPR_OK) return pcd_fail(err, st, 0, -1, "read pcd: cannot allocate %zu points", h->n);
+    if (st != PNPR_OK) return pnpr_io_fail(err, st, 0, -1, "read pcd: cannot allocate %zu points", h->n);
     return add_props(h, c, err);
 }
 
@@ -883,7 +862,7 @@ static pnpr_status finish_cloud(const pcd_header *h, pnpr_cloud *c, pnpr_error *
     c->src_coord_type = h->double_xyz ? PNPR_TYPE_FLOAT64 : PNPR_TYPE_FLOAT32;
     if (!h->double_xyz) return PNPR_OK;
     pnpr_status st = pnpr_cloud_set_world(c, c->src_xyz);
-    return st == PNPR_OK ? st : pcd_fail(err, st, 0, -1, "read pcd: cannot set the coordinates");
+    return st == PNPR_OK ? st : pnpr_io_fail(err, st, 0, -1, "read pcd: cannot set the coordinates");
 }
 
 pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_options *opts, pnpr_cloud *cloud,
@@ -891,7 +870,7 @@ pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_
 {
     if (err) { err->message[0] = '\0'; err->line = 0; err->offset = -1; }
     if (!cloud || (!data && size))
-        return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read pcd: NULL cloud or data");
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read pcd: NULL cloud or data");
     pnpr_cloud_free(cloud);
     pcd_header h;
     pnpr_cloud c;
@@ -916,7 +895,7 @@ pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_
 
 pnpr_status pnpr_read_pcd_file(const char *path, const pnpr_read_options *opts, pnpr_cloud *cloud, pnpr_error *err)
 {
-    if (!path || !cloud) return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read pcd: NULL path or cloud");
+    if (!path || !cloud) return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read pcd: NULL path or cloud");
     return pnpr_file_bytes_read(path, pnpr_read_pcd_memory, opts, cloud, err);
 }
 
@@ -1015,14 +994,14 @@ static pnpr_status check_prop(const pnpr_cloud *c, const pcd_plan *pl, size_t k,
 {
     const pnpr_property *p = &c->props[k];
     if (!memchr(p->name, '\0', sizeof p->name) || !pcd_name_ok(p->name))
-        return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                         "write pcd: extra property %zu has an empty name, \"_\" or a name with blanks", k);
     if (pnpr_type_size(p->type) == 0 || (c->count && !p->data))
-        return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                         "write pcd: extra property '%s' has no type or data", p->name);
     for (size_t j = 0; j < pl->ncols; j++)
         if (!strcmp(p->name, pl->cols[j].name))
-            return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+            return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                             "write pcd: extra property '%s' clashes with another field",
                             p->name);
     return PNPR_OK;
@@ -1031,12 +1010,12 @@ static pnpr_status check_prop(const pnpr_cloud *c, const pcd_plan *pl, size_t k,
 static pnpr_status plan_columns(const pnpr_cloud *c, const pnpr_write_options *opts, pcd_plan *pl, pnpr_error *err)
 {
     pl->cols = malloc((8 + c->prop_count) * sizeof *pl->cols);
-    if (!pl->cols) return pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "write pcd: out of memory");
+    if (!pl->cols) return pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "write pcd: out of memory");
     pl->use_double = coords_need_double(c, opts);
     standard_cols(c, pl);
     const int no_rgb = c->rgb && !has_kind(pl, COL_RGB), no_label = c->label && !has_kind(pl, COL_LABEL);
     if (no_rgb || no_label)
-        return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write pcd: extra properties take every name for the %s",
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write pcd: extra properties take every name for the %s",
                         no_rgb ? "colours (rgb, rgba)" : "labels (label, segment)");
     for (size_t k = 0; k < c->prop_count; k++) {
         pnpr_status st = check_prop(c, pl, k, err);
@@ -1124,24 +1103,24 @@ pnpr_status pnpr_write_pcd_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
     const pnpr_progress *progress = opts ? &opts->progress : NULL;
     if (err) { err->message[0] = '\0'; err->line = 0; err->offset = -1; }
     if (!fn || !cloud || (cloud->count && !cloud->xyz) || (cloud->prop_count && !cloud->props))
-        return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write pcd: NULL sink, cloud, coordinates or properties");
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write pcd: NULL sink, cloud, coordinates or properties");
     pcd_plan pl = {NULL, 0, 0};
     pcd_out o = {fn, user, NULL, 0, 0, 0};
     pnpr_status st = plan_columns(cloud, opts, &pl, err);
     if (st == PNPR_OK && !(o.buf = malloc(PNPR_OUT_BUF)))
-        st = pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "write pcd: out of memory");
+        st = pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "write pcd: out of memory");
     if (st == PNPR_OK) out_header(&o, cloud, &pl);
     for (size_t i = 0; st == PNPR_OK && i < cloud->count && !o.failed; i++) {
         if (i % PCD_CHUNK == 0 && pnpr_progress_report(progress, "write pcd", (double)i / (double)cloud->count))
-            st = pcd_fail(err, PNPR_ERR_CANCELLED, 0, -1, "write pcd: cancelled at point %zu of %zu", i, cloud->count);
+            st = pnpr_io_fail(err, PNPR_ERR_CANCELLED, 0, -1, "write pcd: cancelled at point %zu of %zu", i, cloud->count);
         else out_point(&o, cloud, &pl, i);
     }
     if (st == PNPR_OK) pnpr_out_flush(&o);
     if (st == PNPR_OK && o.failed)
-        st = pcd_fail(err, PNPR_ERR_IO, 0, (long long)o.written,
+        st = pnpr_io_fail(err, PNPR_ERR_IO, 0, (long long)o.written,
                       "write pcd: the output sink failed after %llu bytes", o.written);
     if (st == PNPR_OK && pnpr_progress_report(progress, "write pcd", 1.0))
-        st = pcd_fail(err, PNPR_ERR_CANCELLED, 0, -1, "write pcd: cancelled");
+        st = pnpr_io_fail(err, PNPR_ERR_CANCELLED, 0, -1, "write pcd: cancelled");
     free(o.buf);
     free(pl.cols);
     return st;
@@ -1149,16 +1128,5 @@ pnpr_status pnpr_write_pcd_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
 
 pnpr_status pnpr_write_pcd_file(const char *path, const pnpr_cloud *cloud, const pnpr_write_options *opts, pnpr_error *err)
 {
-    if (!path || !path[0] || !cloud)
-        return pcd_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write pcd: NULL/empty path or NULL cloud");
-    pnpr_output *o = malloc(sizeof *o);
-    if (!o) return pcd_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: out of memory", path);
-    pnpr_status st = pnpr_output_open(o, path, err);
-    if (st == PNPR_OK) {
-        st = pnpr_write_pcd_stream(pnpr_output_sink, o, cloud, opts, err);
-        if (st != PNPR_OK && st != PNPR_ERR_IO) pnpr_error_prefix_path(err, path);
-        st = pnpr_output_close(o, st, err);
-    }
-    free(o);
-    return st;
+    return pnpr_io_write_path(path, cloud, opts, err, "write pcd", pnpr_write_pcd_stream);
 }

@@ -73,6 +73,7 @@
 #include "../core/internal.h"
 #include <pointnpr/output.h>
 #include "file_bytes.h"
+#include "io_util.h"
 #include "out_buf.h"
 #include "text_token.h"
 #include <pointnpr/io.h>
@@ -96,44 +97,11 @@ pnpr_status pnpr_write_ply_file(const char *path, const pnpr_cloud *cloud,
 /* ------------------------------------------------------------------------------------------ */
 /* Small helpers                                                                               */
 
-#if defined(__GNUC__)
-#define PLY_PRINTF(a, b) __attribute__((format(printf, a, b)))
-#else
-#define PLY_PRINTF(a, b)
-#endif
 
 #define PLY_MAX_PROPS 4096        /* properties per element */
 #define PLY_MAX_ELEMS 65536       /* elements per header */
 #define PLY_NAME_SHOW 64          /* longest name quoted in a message */
 #define PLY_TOKEN_MAX 256         /* longest ascii number token */
-
-/* Sets err with a formatted message and the given line / byte offset (-1 = none). */
-static pnpr_status PLY_PRINTF(5, 6)
-fail_at(pnpr_error *err, pnpr_status st, long line, long long offset, const char *fmt, ...)
-{
-    if (err) {
-        char msg[sizeof err->message];
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(msg, sizeof msg, fmt, ap);
-        va_end(ap);
-        pnpr_error_set(err, st, "%s", msg);
-        err->line = line;
-        err->offset = offset;
-    }
-    return st;
-}
-
-/* a * b and a + b saturating at UINT64_MAX (used for size checks against the bytes present). */
-static uint64_t mul_sat(uint64_t a, uint64_t b)
-{
-    if (a && b > UINT64_MAX / a) return UINT64_MAX;
-    return a * b;
-}
-static uint64_t add_sat(uint64_t a, uint64_t b)
-{
-    return a > UINT64_MAX - b ? UINT64_MAX : a + b;
-}
 
 static int host_is_little(void)
 {
@@ -284,7 +252,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
     int have_end = 0, seen_vertex = 0, seen_face = 0;
 
     if (size < 3 || memcmp(data, "ply", 3) != 0 || (size > 3 && data[3] != '\n' && !pnpr_is_blank(data[3])))
-        return fail_at(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic");
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic");
 
     while (pos < size && !have_end) {
         const char *ls = data + pos;
@@ -299,7 +267,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
         nt = tokenize(ls, le, tok, 8);
         if (line == 1) {
             if (nt != 1 || !pnpr_token_is(tok[0], "ply"))
-                return fail_at(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic");
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic");
             continue;
         }
         if (nt == 0) continue; /* blank line */
@@ -307,47 +275,47 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
         for (const char *c = ls; c < le; c++) {
             unsigned char u = (unsigned char)*c;
             if ((u < 0x20 && !pnpr_is_blank(*c)) || u == 0x7f)
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)(c - data),
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)(c - data),
                                "line %ld: invalid character 0x%02x in header", line, u);
         }
         if (pnpr_token_is(tok[0], "format")) {
             if (h->encoding)
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: second 'format' line", line);
             if (nt != 3)
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'", line);
             if (pnpr_token_is(tok[1], "ascii")) h->encoding = PLY_ENC_ASCII;
             else if (pnpr_token_is(tok[1], "binary_little_endian")) h->encoding = PLY_ENC_LE;
             else if (pnpr_token_is(tok[1], "binary_big_endian")) h->encoding = PLY_ENC_BE;
             else
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: unknown format '%.*s' (expected ascii, binary_little_endian or binary_big_endian)",
                                line, show_len(tok[1]), tok[1].s);
             if (!pnpr_token_is(tok[2], "1.0") && !pnpr_token_is(tok[2], "1"))
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: unsupported PLY version '%.*s' (expected 1.0)", line,
                                show_len(tok[2]), tok[2].s);
         } else if (pnpr_token_is(tok[0], "element")) {
             ply_elem *e;
             if (nt != 3)
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: expected 'element <name> <count>'", line);
             uint64_t count;
             if (!parse_count(tok[2], &count))
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: element '%.*s' has a negative/invalid count '%.*s'", line,
                                show_len(tok[1]), tok[1].s, show_len(tok[2]), tok[2].s);
             if ((pnpr_token_is(tok[1], "vertex") && seen_vertex++) || (pnpr_token_is(tok[1], "face") && seen_face++))
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: second '%.*s' element", line, show_len(tok[1]), tok[1].s);
             if (h->nelems >= PLY_MAX_ELEMS)
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: more than %d elements in the header", line, PLY_MAX_ELEMS);
             if (h->nelems == h->cap) {
                 size_t cap = h->cap ? 2 * h->cap : 4;
                 ply_elem *grown = realloc(h->elems, cap * sizeof *grown);
-                if (!grown) return fail_at(err, PNPR_ERR_OUT_OF_MEMORY, line, -1, "out of memory");
+                if (!grown) return pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, line, -1, "out of memory");
                 h->elems = grown;
                 h->cap = cap;
             }
@@ -362,43 +330,43 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
             memset(&p, 0, sizeof p);
             p.line = line;
             if (!e)
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: 'property' before any 'element'", line);
             if (nt >= 2 && pnpr_token_is(tok[1], "list")) {
                 if (nt != 5)
-                    return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                    return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                    "line %ld: expected 'property list <count type> <item type> <name>'", line);
                 p.count_type = type_from_name(tok[2]);
                 p.type = type_from_name(tok[3]);
                 p.name = tok[4];
                 if (!p.count_type)
-                    return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                    return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                    "line %ld: unknown property type '%.*s'", line, show_len(tok[2]), tok[2].s);
                 if (!p.type)
-                    return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                    return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                    "line %ld: unknown property type '%.*s'", line, show_len(tok[3]), tok[3].s);
                 if (!type_is_int(p.count_type))
-                    return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                    return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                    "line %ld: list count type must be an integer type, found '%.*s'", line,
                                    show_len(tok[2]), tok[2].s);
             } else {
                 if (nt != 3)
-                    return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                    return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                    "line %ld: expected 'property <type> <name>'", line);
                 p.type = type_from_name(tok[1]);
                 p.name = tok[2];
                 if (!p.type)
-                    return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                    return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                    "line %ld: unknown property type '%.*s'", line, show_len(tok[1]), tok[1].s);
             }
             if (e->nprops >= PLY_MAX_PROPS)
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: more than %d properties in element '%.*s'", line, PLY_MAX_PROPS,
                                show_len(e->name), e->name.s);
             if (e->nprops == e->cap) {
                 size_t cap = e->cap ? 2 * e->cap : 8;
                 ply_prop *grown = realloc(e->props, cap * sizeof *grown);
-                if (!grown) return fail_at(err, PNPR_ERR_OUT_OF_MEMORY, line, -1, "out of memory");
+                if (!grown) return pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, line, -1, "out of memory");
                 e->props = grown;
                 e->cap = cap;
             }
@@ -412,18 +380,18 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
             e->props[e->nprops++] = p;
         } else if (pnpr_token_is(tok[0], "end_header")) {
             if (nt != 1)
-                return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                                "line %ld: unexpected text after 'end_header'", line);
             have_end = 1;
         } else {
-            return fail_at(err, PNPR_ERR_FORMAT, line, (long long)line_off,
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)line_off,
                            "line %ld: unknown header keyword '%.*s'", line, show_len(tok[0]), tok[0].s);
         }
     }
     if (!have_end)
-        return fail_at(err, PNPR_ERR_FORMAT, line, (long long)size, "header: no 'end_header' line");
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, (long long)size, "header: no 'end_header' line");
     if (!h->encoding)
-        return fail_at(err, PNPR_ERR_FORMAT, line, -1, "header: no 'format' line");
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, line, -1, "header: no 'format' line");
     h->body = pos;
     h->body_line = line + 1;
     for (size_t i = 0; i < h->nelems; i++) {
@@ -431,7 +399,7 @@ static pnpr_status parse_header(const char *data, size_t size, ply_header *h, pn
         if (pnpr_token_is(h->elems[i].name, "face")) h->face = &h->elems[i];
     }
     if (!h->vertex)
-        return fail_at(err, PNPR_ERR_FORMAT, 0, -1, "header: no 'vertex' element");
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 0, -1, "header: no 'vertex' element");
     return PNPR_OK;
 }
 
@@ -456,14 +424,14 @@ static pnpr_status assign_roles(ply_header *h, int *double_xyz, pnpr_error *err)
         ply_prop *p = &v->props[i];
         if (p->count_type) {
             if (pnpr_token_is(p->name, "x") || pnpr_token_is(p->name, "y") || pnpr_token_is(p->name, "z"))
-                return fail_at(err, PNPR_ERR_FORMAT, p->line, -1,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, p->line, -1,
                                "line %ld: vertex property '%.*s' must be a scalar, not a list", p->line,
                                show_len(p->name), p->name.s);
             continue;
         }
         for (size_t j = 0; j < i; j++)
             if (!v->props[j].count_type && pnpr_token_eq(v->props[j].name, p->name))
-                return fail_at(err, PNPR_ERR_FORMAT, p->line, -1,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, p->line, -1,
                                "line %ld: duplicate vertex property '%.*s'", p->line, show_len(p->name), p->name.s);
         p->role = ROLE_EXTRA;
     }
@@ -471,7 +439,7 @@ static pnpr_status assign_roles(ply_header *h, int *double_xyz, pnpr_error *err)
     for (int a = 0; a < 3; a++) {
         ply_prop *p = find_scalar(v, axes[a]);
         if (!p)
-            return fail_at(err, PNPR_ERR_FORMAT, v->line, -1,
+            return pnpr_io_fail(err, PNPR_ERR_FORMAT, v->line, -1,
                            "line %ld: vertex element has no '%s' property (x, y and z are required)", v->line,
                            axes[a]);
         p->role = ROLE_X + a;
@@ -516,7 +484,7 @@ static int elem_is_read(const ply_elem *e)
 
 static pnpr_status ascii_short(pnpr_error *err, const ply_elem *e, size_t size, size_t avail, uint64_t need)
 {
-    return fail_at(err, PNPR_ERR_TRUNCATED, e->line, (long long)size,
+    return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, e->line, (long long)size,
                    "line %ld: element '%.*s' announces %llu items, but the ascii body has only %zu bytes "
                    "(at least %llu needed)",
                    e->line, show_len(e->name), e->name.s, (unsigned long long)e->count, avail,
@@ -539,13 +507,13 @@ static pnpr_status check_ascii_size(const ply_header *h, size_t size, int probe,
     for (size_t i = 0; i < h->nelems; i++) {
         const ply_elem *e = &h->elems[i];
         if (!e->nprops) continue; /* items without values take no text */
-        lines = add_sat(lines, mul_sat(e->count, 2));
+        lines = pnpr_add_sat(lines, pnpr_mul_sat(e->count, 2));
         if (lines > (uint64_t)avail + 1) return ascii_short(err, e, size, avail, lines);
     }
     for (size_t i = 0; i < h->nelems; i++) {
         const ply_elem *e = &h->elems[i];
         if (!e->nprops) continue;
-        bytes = add_sat(bytes, mul_sat(e->count, elem_is_read(e) ? mul_sat(e->nprops, 2) : 2));
+        bytes = pnpr_add_sat(bytes, pnpr_mul_sat(e->count, elem_is_read(e) ? pnpr_mul_sat(e->nprops, 2) : 2));
         if (bytes <= (uint64_t)avail + 1) continue;
         if (probe && avail <= PLY_ASCII_PROBE) {
             *r_dry = 1;
@@ -567,22 +535,22 @@ static pnpr_status check_body_size(const ply_header *h, size_t size, int probe, 
     uint64_t total = 0;
     int any_list = 0;
     for (size_t i = 0; i < h->nelems; i++) {
-        total = add_sat(total, mul_sat(h->elems[i].count, h->elems[i].min_size));
+        total = pnpr_add_sat(total, pnpr_mul_sat(h->elems[i].count, h->elems[i].min_size));
         any_list |= h->elems[i].has_list;
     }
     for (size_t i = 0; i < h->nelems; i++) {
         const ply_elem *e = &h->elems[i];
-        uint64_t need = mul_sat(e->count, e->min_size);
-        if (add_sat(cum, need) > avail) {
+        uint64_t need = pnpr_mul_sat(e->count, e->min_size);
+        if (pnpr_add_sat(cum, need) > avail) {
             if (!e->has_list && e->min_size) {
                 uint64_t idx = (avail - cum) / e->min_size;
-                return fail_at(err, PNPR_ERR_TRUNCATED, 0, (long long)size,
+                return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)size,
                                "byte %zu: file ends inside %.*s %llu of %llu (binary body needs %s%llu bytes, %zu present)",
                                size, show_len(e->name), e->name.s, (unsigned long long)idx,
                                (unsigned long long)e->count, any_list ? "at least " : "",
                                (unsigned long long)total, avail);
             }
-            return fail_at(err, PNPR_ERR_TRUNCATED, 0, (long long)size,
+            return pnpr_io_fail(err, PNPR_ERR_TRUNCATED, 0, (long long)size,
                            "byte %zu: file ends inside element '%.*s' (%llu items; binary body needs at least %llu bytes, %zu present)",
                            size, show_len(e->name), e->name.s, (unsigned long long)e->count,
                            (unsigned long long)total, avail);
@@ -756,17 +724,17 @@ static int push_index(ply_reader *r, uint32_t v)
 
 static pnpr_status cancelled(ply_reader *r, size_t i, size_t count)
 {
-    return fail_at(r->err, PNPR_ERR_CANCELLED, 0, -1, "read ply: cancelled at vertex %zu of %zu", i, count);
+    return pnpr_io_fail(r->err, PNPR_ERR_CANCELLED, 0, -1, "read ply: cancelled at vertex %zu of %zu", i, count);
 }
 
 /* Element without lists: records of fixed size; the vertex element is decoded in a tight loop. */
 static pnpr_status binary_fixed(ply_reader *r, const ply_elem *e, size_t *pos)
 {
     const size_t rs = e->min_size, avail = r->size - *pos;
-    const uint64_t need = mul_sat(e->count, rs);
+    const uint64_t need = pnpr_mul_sat(e->count, rs);
     if (need > avail) {
         size_t idx = (size_t)(avail / (rs ? rs : 1));
-        return fail_at(r->err, PNPR_ERR_TRUNCATED, 0, (long long)r->size,
+        return pnpr_io_fail(r->err, PNPR_ERR_TRUNCATED, 0, (long long)r->size,
                        "byte %zu: file ends inside %.*s %zu of %llu (binary body needs %llu bytes from byte %zu, %zu present)",
                        r->size, show_len(e->name), e->name.s, idx, (unsigned long long)e->count,
                        (unsigned long long)need, *pos, avail);
@@ -835,13 +803,13 @@ static pnpr_status binary_lists(ply_reader *r, const ply_elem *e, size_t *pos)
             if (r->size - p0 < csz) goto truncated;
             load_value(r->data + p0, p->count_type, r->swap, &cv, &cf);
             if (cv < 0)
-                return fail_at(r->err, PNPR_ERR_FORMAT, 0, (long long)p0,
+                return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, 0, (long long)p0,
                                "byte %zu: %.*s %zu: negative list count %.0f for property '%.*s'", p0,
                                show_len(e->name), e->name.s, i, cv, show_len(p->name), p->name.s);
             p0 += csz;
-            const uint64_t items = (uint64_t)cv, bytes = mul_sat(items, sz);
+            const uint64_t items = (uint64_t)cv, bytes = pnpr_mul_sat(items, sz);
             if (bytes > r->size - p0)
-                return fail_at(r->err, PNPR_ERR_TRUNCATED, 0, (long long)p0,
+                return pnpr_io_fail(r->err, PNPR_ERR_TRUNCATED, 0, (long long)p0,
                                "byte %zu: file ends inside %.*s %zu of %zu (list '%.*s' of %llu items needs %llu bytes, %zu present)",
                                p0, show_len(e->name), e->name.s, i, n, show_len(p->name), p->name.s,
                                (unsigned long long)items, (unsigned long long)bytes, r->size - p0);
@@ -851,11 +819,11 @@ static pnpr_status binary_lists(ply_reader *r, const ply_elem *e, size_t *pos)
                     float f;
                     load_value(r->data + p0 + j * sz, p->type, r->swap, &v, &f);
                     if (!(v >= 0 && v < (double)vcount && v == floor(v)))
-                        return fail_at(r->err, PNPR_ERR_FORMAT, 0, (long long)(p0 + j * sz),
+                        return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, 0, (long long)(p0 + j * sz),
                                        "byte %llu: face %zu: vertex index %.17g out of range (vertex count %llu)",
                                        (unsigned long long)(p0 + j * sz), i, v, (unsigned long long)vcount);
                     if (!push_index(r, (uint32_t)v))
-                        return fail_at(r->err, PNPR_ERR_OUT_OF_MEMORY, 0, (long long)p0,
+                        return pnpr_io_fail(r->err, PNPR_ERR_OUT_OF_MEMORY, 0, (long long)p0,
                                        "face %zu: out of memory (or more than 2^32-1 face indices)", i);
                 }
                 face_done = 1;
@@ -868,7 +836,7 @@ static pnpr_status binary_lists(ply_reader *r, const ply_elem *e, size_t *pos)
     *pos = p0;
     return PNPR_OK;
 truncated:
-    return fail_at(r->err, PNPR_ERR_TRUNCATED, 0, (long long)r->size,
+    return pnpr_io_fail(r->err, PNPR_ERR_TRUNCATED, 0, (long long)r->size,
                    "byte %zu: file ends inside %.*s %zu of %zu (element starts at byte %zu)", r->size,
                    show_len(e->name), e->name.s, cur, n, *pos);
 }
@@ -1051,7 +1019,7 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
         int open = 0; /* lists ahead: the expected count is a minimum */
         ply_str tok;
         if (!line)
-            return fail_at(r->err, PNPR_ERR_TRUNCATED, cur->line, (long long)r->size,
+            return pnpr_io_fail(r->err, PNPR_ERR_TRUNCATED, cur->line, (long long)r->size,
                            "line %ld: file ends inside %.*s %zu of %zu", cur->line, show_len(e->name), e->name.s,
                            i, n);
         if (!keep) continue;
@@ -1074,7 +1042,7 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
                 if (lo < 0) lo = 0;
                 rc = parse_int(tok, lo, hi, &cnt);
                 if (rc <= 0)
-                    return fail_at(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
+                    return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
                                    "%.*s %zu (line %ld): invalid list count '%.*s' for property '%.*s'",
                                    show_len(e->name), e->name.s, i, line, show_len(tok), tok.s,
                                    show_len(p->name), p->name.s);
@@ -1090,15 +1058,15 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
                         double iv;
                         int irc = parse_int(tok, 0, 4294967295.0, &iv);
                         if (irc == 0 || irc == -2)
-                            return fail_at(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
+                            return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
                                            "face %zu (line %ld): invalid vertex index '%.*s'", i, line,
                                            show_len(tok), tok.s);
                         if (irc < 0 || (uint64_t)iv >= vcount)
-                            return fail_at(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
+                            return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
                                            "face %zu (line %ld): vertex index %.*s out of range (vertex count %llu)",
                                            i, line, show_len(tok), tok.s, (unsigned long long)vcount);
                         if (!push_index(r, (uint32_t)iv))
-                            return fail_at(r->err, PNPR_ERR_OUT_OF_MEMORY, line, -1,
+                            return pnpr_io_fail(r->err, PNPR_ERR_OUT_OF_MEMORY, line, -1,
                                            "face %zu (line %ld): out of memory", i, line);
                     }
                 }
@@ -1117,7 +1085,7 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
                 rc = parse_int(tok, lo, hi, &v);
                 if (rc == 0 || rc == -2) goto bad_number;
                 if (rc < 0)
-                    return fail_at(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
+                    return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
                                    "%.*s %zu (line %ld): value '%.*s' out of range for %s property '%.*s'",
                                    show_len(e->name), e->name.s, i, line, show_len(tok), tok.s,
                                    pnpr_type_ply_name(p->type), show_len(p->name), p->name.s);
@@ -1125,14 +1093,14 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
             store_vertex(r, p, i, v, f);
             continue;
         bad_number:
-            return fail_at(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
+            return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(tok.s - base),
                            "%.*s %zu (line %ld): expected %s for %s property '%.*s', found '%.*s'",
                            show_len(e->name), e->name.s, i, line, type_is_int(p->type) ? "an integer" : "a number",
                            pnpr_type_ply_name(p->type), show_len(p->name), p->name.s, show_len(tok), tok.s);
         }
         if (pnpr_token_next(&q, le, &tok)) {
             found += 1 + pnpr_token_count(q, le);
-            return fail_at(r->err, PNPR_ERR_FORMAT, line, (long long)(ls - base),
+            return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(ls - base),
                            "%.*s %zu (line %ld): expected %zu values, found %zu", show_len(e->name), e->name.s, i,
                            line, expected, found);
         }
@@ -1140,7 +1108,7 @@ static pnpr_status ascii_element(ply_reader *r, const ply_elem *e, ply_cursor *c
         if (is_vertex && tick(r, &t, i + 1, n)) return cancelled(r, i + 1, n);
         continue;
     too_few:
-        return fail_at(r->err, PNPR_ERR_FORMAT, line, (long long)(ls - base),
+        return pnpr_io_fail(r->err, PNPR_ERR_FORMAT, line, (long long)(ls - base),
                        "%.*s %zu (line %ld): expected %s%zu values, found %zu", show_len(e->name), e->name.s, i,
                        line, open ? "at least " : "", expected, found);
     }
@@ -1181,7 +1149,7 @@ static pnpr_status prepare_cloud(ply_reader *r, ply_header *h, pnpr_error *err)
             memcpy(name, p->name.s, len);
             name[len] = '\0';
             if (pnpr_cloud_find_property(c, name))
-                return fail_at(err, PNPR_ERR_FORMAT, p->line, -1,
+                return pnpr_io_fail(err, PNPR_ERR_FORMAT, p->line, -1,
                                "line %ld: property name '%.*s' clashes with another one once cut to %zu characters",
                                p->line, show_len(p->name), p->name.s, sizeof name - 1);
             st = pnpr_cloud_add_property(c, name, p->type, NULL);
@@ -1202,7 +1170,7 @@ static pnpr_status prepare_cloud(ply_reader *r, ply_header *h, pnpr_error *err)
             }
     }
     if (st != PNPR_OK)
-        return fail_at(err, st, 0, -1, "read ply: cannot allocate %llu vertices (%s)",
+        return pnpr_io_fail(err, st, 0, -1, "read ply: cannot allocate %llu vertices (%s)",
                        (unsigned long long)v->count, pnpr_status_string(st));
     for (size_t k = 0, e = 0; k < v->nprops; k++)
         if (v->props[k].role == ROLE_EXTRA) v->props[k].dst = c->props[e++].data;
@@ -1219,10 +1187,10 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
 
     if (err) { err->message[0] = '\0'; err->line = 0; err->offset = -1; }
     if (!cloud || (!data && size))
-        return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read ply: NULL cloud or data");
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read ply: NULL cloud or data");
     pnpr_cloud_free(cloud);
     if (size == 0)
-        return fail_at(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic (empty input)");
+        return pnpr_io_fail(err, PNPR_ERR_FORMAT, 1, 0, "line 1: expected 'ply' magic (empty input)");
 
     memset(&h, 0, sizeof h);
     memset(&c, 0, sizeof c);
@@ -1249,7 +1217,7 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
         if (r.double_xyz) {
             c.src_coord_type = PNPR_TYPE_FLOAT64;
             st = pnpr_cloud_set_world(&c, c.src_xyz);
-            if (st != PNPR_OK) fail_at(err, st, 0, -1, "read ply: cannot set coordinates");
+            if (st != PNPR_OK) pnpr_io_fail(err, st, 0, -1, "read ply: cannot set coordinates");
         } else {
             c.src_coord_type = PNPR_TYPE_FLOAT32;
         }
@@ -1260,7 +1228,7 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
     }
     if (st == PNPR_OK && c.faces.count && !c.faces.index) {
         c.faces.index = malloc(sizeof(uint32_t)); /* all faces empty: keep a valid pointer */
-        if (!c.faces.index) st = fail_at(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "read ply: out of memory");
+        if (!c.faces.index) st = pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "read ply: out of memory");
     }
     header_free(&h);
     if (st != PNPR_OK) {
@@ -1275,7 +1243,7 @@ pnpr_status pnpr_read_ply_file(const char *path, const pnpr_read_options *opts, 
                                pnpr_error *err)
 {
     if (!path || !cloud)
-        return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read ply: NULL path or cloud");
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read ply: NULL path or cloud");
     return pnpr_file_bytes_read(path, pnpr_read_ply_memory, opts, cloud, err);
 }
 
@@ -1541,11 +1509,11 @@ pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
 
     if (err) { err->message[0] = '\0'; err->line = 0; err->offset = -1; }
     if (!fn || !cloud || (cloud->count && !cloud->xyz))
-        return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: NULL sink, cloud or coordinates");
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: NULL sink, cloud or coordinates");
     if (enc != PNPR_PLY_BINARY_LE && enc != PNPR_PLY_ASCII && enc != PNPR_PLY_BINARY_BE)
-        return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: unknown encoding %d", (int)enc);
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: unknown encoding %d", (int)enc);
     if (cloud->prop_count && !cloud->props)
-        return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: prop_count without props");
+        return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: prop_count without props");
 
     /* Names: the standard ones move aside for extra properties of the same name. */
     if (cloud->rgb) {
@@ -1554,41 +1522,41 @@ pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
                                   name_used(cloud, colour_names[colour_set][2])))
             colour_set++;
         if (colour_set == 3)
-            return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+            return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                            "write ply: extra properties use every colour name (red, diffuse_red, r ...)");
     }
     if (cloud->label && name_used(cloud, PNPR_PROP_SEGMENT)) {
         label_name = PNPR_PROP_LABEL;
         if (name_used(cloud, PNPR_PROP_LABEL))
-            return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+            return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                            "write ply: extra properties 'segment' and 'label' leave no name for the labels");
     }
     for (size_t k = 0; k < cloud->prop_count; k++) {
         const pnpr_property *p = &cloud->props[k];
         const char *nm = p->name;
         if (memchr(p->name, '\0', sizeof p->name) == NULL || !valid_name(nm))
-            return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+            return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                            "write ply: extra property %zu has an empty name or one with blanks/control characters", k);
         if (pnpr_type_size(p->type) == 0 || (cloud->count && !p->data))
-            return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: extra property '%s' has no type or data", nm);
+            return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: extra property '%s' has no type or data", nm);
         int clash = !strcmp(nm, "x") || !strcmp(nm, "y") || !strcmp(nm, "z") ||
                     (cloud->normal && (!strcmp(nm, "nx") || !strcmp(nm, "ny") || !strcmp(nm, "nz")));
         for (size_t j = 0; j < k; j++) clash |= !strcmp(nm, cloud->props[j].name);
         if (clash)
-            return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+            return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                            "write ply: extra property '%s' clashes with another property of the same name", nm);
     }
     if (cloud->faces.count) {
         const pnpr_faces *fc = &cloud->faces;
         if (!fc->offset || (!fc->index && fc->offset[fc->count]))
-            return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: faces without offset/index arrays");
+            return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: faces without offset/index arrays");
         for (size_t f = 0; f < fc->count; f++) {
             if (fc->offset[f + 1] < fc->offset[f])
-                return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: face %zu has a decreasing offset", f);
+                return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: face %zu has a decreasing offset", f);
             if (fc->offset[f + 1] - fc->offset[f] > 255) wide_faces = 1;
             for (uint32_t j = fc->offset[f]; j < fc->offset[f + 1]; j++)
                 if (fc->index[j] >= cloud->count)
-                    return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+                    return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                                    "write ply: face %zu references vertex %u but the cloud has %zu points", f,
                                    (unsigned)fc->index[j], cloud->count);
         }
@@ -1613,7 +1581,7 @@ pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
         o.dp = lc && lc->decimal_point && lc->decimal_point[0] ? lc->decimal_point[0] : '.';
     }
     o.b.buf = malloc(PNPR_OUT_BUF);
-    if (!o.b.buf) return fail_at(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "write ply: out of memory");
+    if (!o.b.buf) return pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "write ply: out of memory");
 
     /* Header */
     {
@@ -1709,7 +1677,7 @@ pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
                 left = step;
                 if (pnpr_progress_report(progress, "write ply", (double)(i + 1) / (double)n)) {
                     free(o.b.buf);
-                    return fail_at(err, PNPR_ERR_CANCELLED, 0, -1, "write ply: cancelled at vertex %zu of %zu",
+                    return pnpr_io_fail(err, PNPR_ERR_CANCELLED, 0, -1, "write ply: cancelled at vertex %zu of %zu",
                                    i + 1, n);
                 }
             }
@@ -1732,26 +1700,15 @@ pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud
     pnpr_out_flush(&o.b);
     free(o.b.buf);
     if (o.b.failed)
-        return fail_at(err, PNPR_ERR_IO, 0, (long long)o.b.written, "write ply: the output sink failed after %llu bytes",
+        return pnpr_io_fail(err, PNPR_ERR_IO, 0, (long long)o.b.written, "write ply: the output sink failed after %llu bytes",
                        o.b.written);
     if (pnpr_progress_report(progress, "write ply", 1.0))
-        return fail_at(err, PNPR_ERR_CANCELLED, 0, -1, "write ply: cancelled");
+        return pnpr_io_fail(err, PNPR_ERR_CANCELLED, 0, -1, "write ply: cancelled");
     return PNPR_OK;
 }
 
 pnpr_status pnpr_write_ply_file(const char *path, const pnpr_cloud *cloud,
                                 const pnpr_write_options *opts, pnpr_error *err)
 {
-    if (!path || !path[0] || !cloud)
-        return fail_at(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "write ply: NULL/empty path or NULL cloud");
-    pnpr_output *o = malloc(sizeof *o);
-    if (!o) return fail_at(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "%s: out of memory", path);
-    pnpr_status st = pnpr_output_open(o, path, err);
-    if (st == PNPR_OK) {
-        st = pnpr_write_ply_stream(pnpr_output_sink, o, cloud, opts, err);
-        if (st != PNPR_OK && st != PNPR_ERR_IO) pnpr_error_prefix_path(err, path);
-        st = pnpr_output_close(o, st, err);
-    }
-    free(o);
-    return st;
+    return pnpr_io_write_path(path, cloud, opts, err, "write ply", pnpr_write_ply_stream);
 }

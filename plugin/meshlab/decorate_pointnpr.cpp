@@ -221,20 +221,24 @@ DecoratePointnprPlugin::DecoratePointnprPlugin()
     }
 }
 
+/* Frees one context's state: the renderer properly when its context is current (else its GL
+ * objects went, or go, with the context; only the CPU side is freed). */
+static void freeState(DecorateContextState *s, void *ctx)
+{
+    if (s->renderer && pnpr_meshlab::currentGLContext() == ctx) pnpr_renderer_destroy(s->renderer);
+    pnpr_cloud_free(&s->cloud);
+    pnpr_sphere_tree_free(&s->tree);
+    pnpr_lines_free(&s->lines);
+    pnpr_effect_pipeline_free(&s->fx);
+    delete s->settle;
+    delete s;
+}
+
 DecoratePointnprPlugin::~DecoratePointnprPlugin()
 {
     /* Renderers whose context is current are destroyed properly; the others' GL objects went
      * (or go) with their context, only the CPU side is freed. */
-    for (auto it = states_.begin(); it != states_.end(); ++it) {
-        DecorateContextState *s = it.value();
-        if (s->renderer && pnpr_meshlab::currentGLContext() == it.key()) pnpr_renderer_destroy(s->renderer);
-        pnpr_cloud_free(&s->cloud);
-        pnpr_sphere_tree_free(&s->tree);
-        pnpr_lines_free(&s->lines);
-        pnpr_effect_pipeline_free(&s->fx);
-        delete s->settle;
-        delete s;
-    }
+    for (auto it = states_.begin(); it != states_.end(); ++it) freeState(it.value(), it.key());
     states_.clear();
 }
 
@@ -450,14 +454,7 @@ void DecoratePointnprPlugin::endDecorate(QAction *, MeshDocument &, const RichPa
 void DecoratePointnprPlugin::dropState(void *ctx)
 {
     DecorateContextState *s = states_.take(ctx);
-    if (!s) return;
-    if (s->renderer && pnpr_meshlab::currentGLContext() == ctx) pnpr_renderer_destroy(s->renderer);
-    pnpr_cloud_free(&s->cloud);
-    pnpr_sphere_tree_free(&s->tree);
-    pnpr_lines_free(&s->lines);
-    pnpr_effect_pipeline_free(&s->fx);
-    delete s->settle;
-    delete s;
+    if (s) freeState(s, ctx);
 }
 
 void DecoratePointnprPlugin::decorateDoc(QAction *, MeshDocument &md, const RichParameterList *par,
