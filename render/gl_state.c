@@ -200,3 +200,9 @@ GLuint pnpr_gl_link_program(const char *vs, const char *fs, const char *name, pn
     }
     return p;
 }
+
+void pnpr_gl_find_uniforms(GLuint prog, const pnpr_gl_uniform *table, size_t count, void *locations)
+{
+    for (size_t i = 0; i < count; i++)
+        *(GLint *)((char *)locations + table[i].offset) = glGetUniformLocation(prog, table[i].name);
+}

@@ -47,5 +47,9 @@ void pnpr_gl_state_neutral(void);
 void pnpr_shader_prelude(char *buf, size_t cap);
 
 GLuint pnpr_gl_link_program(const char *vs, const char *fs, const char *name, pnpr_error *err);
+/* A uniform of a program and where its location goes: a GLint member of a struct of locations. */
+typedef struct pnpr_gl_uniform { const char *name; size_t offset; } pnpr_gl_uniform;
+/* Looks up every uniform of the table in prog into the struct at locations (-1: not used). */
+void pnpr_gl_find_uniforms(GLuint prog, const pnpr_gl_uniform *table, size_t count, void *locations);
 
 #endif

@@ -86,75 +86,50 @@ static int link_programs(pnpr_renderer *r, pnpr_error *err)
     return r->prog_paint != 0;
 }
 
-static void find_splat_uniforms(pnpr_renderer *r)
-{
-    GLuint p = r->prog_splat;
-    r->us.view = glGetUniformLocation(p, "u_view");
-    r->us.proj = glGetUniformLocation(p, "u_proj");
-    r->us.ppu = glGetUniformLocation(p, "u_pixels_per_unit");
-    r->us.radius_scale = glGetUniformLocation(p, "u_radius_scale");
-    r->us.depth_push = glGetUniformLocation(p, "u_depth_push");
-    r->us.max_size = glGetUniformLocation(p, "u_max_size");
-    r->us.fade = glGetUniformLocation(p, "u_fade");
-    r->us.fade_color = glGetUniformLocation(p, "u_fade_color");
-    r->us.fixed_size = glGetUniformLocation(p, "u_fixed_size");
-    r->us.levels = glGetUniformLocation(p, "u_levels");
-    r->us.ortho = glGetUniformLocation(p, "u_ortho");
-    r->us.thin = glGetUniformLocation(p, "u_thin");
-    r->us.queue_end = glGetUniformLocation(p, "u_queue_end");
-    r->us.queue_fade = glGetUniformLocation(p, "u_queue_fade");
-    r->us_filter = glGetUniformLocation(p, "u_style_filter");
-}
-
-static void find_stroke_uniforms(pnpr_renderer *r)
-{
-    GLuint p = r->prog_stroke;
-    r->ut.view = glGetUniformLocation(p, "u_view");
-    r->ut.proj = glGetUniformLocation(p, "u_proj");
-    r->ut.viewport = glGetUniformLocation(p, "u_viewport");
-    r->ut.ppu = glGetUniformLocation(p, "u_pixels_per_unit");
-    r->ut.length = glGetUniformLocation(p, "u_length");
-    r->ut.width = glGetUniformLocation(p, "u_width");
-    r->ut.radius_scale = glGetUniformLocation(p, "u_radius_scale");
-    r->ut.mode = glGetUniformLocation(p, "u_mode");
-    r->ut.strokes = glGetUniformLocation(p, "u_strokes");
-    r->ut.layer = glGetUniformLocation(p, "u_layer");
-    r->ut.ink = glGetUniformLocation(p, "u_ink");
-    r->ut.ink_from_points = glGetUniformLocation(p, "u_ink_from_points");
-    r->ut.thin = glGetUniformLocation(p, "u_thin");
-    r->ut.queue_end = glGetUniformLocation(p, "u_queue_end");
-    r->ut.queue_fade = glGetUniformLocation(p, "u_queue_fade");
-    r->ut.tone_radius = glGetUniformLocation(p, "u_tone_radius");
-    r->ut_filter = glGetUniformLocation(p, "u_style_filter");
-}
+#define U(S, m, name) {name, offsetof(S, m)}
+static const pnpr_gl_uniform splat_table[] = {
+    U(splat_uniforms, view, "u_view"), U(splat_uniforms, proj, "u_proj"), U(splat_uniforms, ppu, "u_pixels_per_unit"),
+    U(splat_uniforms, radius_scale, "u_radius_scale"), U(splat_uniforms, depth_push, "u_depth_push"),
+    U(splat_uniforms, max_size, "u_max_size"), U(splat_uniforms, fade, "u_fade"), U(splat_uniforms, fade_color, "u_fade_color"),
+    U(splat_uniforms, fixed_size, "u_fixed_size"), U(splat_uniforms, levels, "u_levels"), U(splat_uniforms, ortho, "u_ortho"),
+    U(splat_uniforms, thin, "u_thin"), U(splat_uniforms, queue_end, "u_queue_end"),
+    U(splat_uniforms, queue_fade, "u_queue_fade"),
+};
+static const pnpr_gl_uniform stroke_table[] = {
+    U(stroke_uniforms, view, "u_view"), U(stroke_uniforms, proj, "u_proj"), U(stroke_uniforms, viewport, "u_viewport"),
+    U(stroke_uniforms, ppu, "u_pixels_per_unit"), U(stroke_uniforms, length, "u_length"), U(stroke_uniforms, width, "u_width"),
+    U(stroke_uniforms, radius_scale, "u_radius_scale"), U(stroke_uniforms, mode, "u_mode"),
+    U(stroke_uniforms, strokes, "u_strokes"), U(stroke_uniforms, layer, "u_layer"), U(stroke_uniforms, ink, "u_ink"),
+    U(stroke_uniforms, ink_from_points, "u_ink_from_points"), U(stroke_uniforms, thin, "u_thin"),
+    U(stroke_uniforms, queue_end, "u_queue_end"), U(stroke_uniforms, queue_fade, "u_queue_fade"),
+    U(stroke_uniforms, tone_radius, "u_tone_radius"),
+};
+static const pnpr_gl_uniform paint_table[] = {
+    U(paint_uniforms, view, "u_view"), U(paint_uniforms, proj, "u_proj"), U(paint_uniforms, ppu, "u_pixels_per_unit"),
+    U(paint_uniforms, radius_scale, "u_radius_scale"), U(paint_uniforms, max_size, "u_max_size"),
+    U(paint_uniforms, style_filter, "u_style_filter"), U(paint_uniforms, brush, "u_brush"),
+};
+static const pnpr_gl_uniform line_table[] = {
+    U(line_uniforms, view, "u_view"), U(line_uniforms, proj, "u_proj"), U(line_uniforms, viewport, "u_viewport"),
+    U(line_uniforms, width, "u_width"), U(line_uniforms, near_plane, "u_near"), U(line_uniforms, ink, "u_ink"),
+    U(line_uniforms, pull, "u_pull"), U(line_uniforms, ortho, "u_ortho"), U(line_uniforms, ppu, "u_pixels_per_unit"),
+    U(line_uniforms, min_px, "u_min_px"),
+};
+#undef U
+#define FIND(prog, table, locations) pnpr_gl_find_uniforms(prog, table, sizeof table / sizeof table[0], locations)
 
 /* The paint, line and composite programs' uniforms, then the splat and stroke programs'; no
  * style filter unless a style map is drawn (uniforms are program state). */
 static void find_uniforms(pnpr_renderer *r)
 {
-    GLuint p = r->prog_paint;
-    r->up.view = glGetUniformLocation(p, "u_view");
-    r->up.proj = glGetUniformLocation(p, "u_proj");
-    r->up.ppu = glGetUniformLocation(p, "u_pixels_per_unit");
-    r->up.radius_scale = glGetUniformLocation(p, "u_radius_scale");
-    r->up.max_size = glGetUniformLocation(p, "u_max_size");
-    r->up.style_filter = glGetUniformLocation(p, "u_style_filter");
-    r->up.brush = glGetUniformLocation(p, "u_brush");
-    p = r->prog_line;
-    r->ul.view = glGetUniformLocation(p, "u_view");
-    r->ul.proj = glGetUniformLocation(p, "u_proj");
-    r->ul.viewport = glGetUniformLocation(p, "u_viewport");
-    r->ul.width = glGetUniformLocation(p, "u_width");
-    r->ul.near_plane = glGetUniformLocation(p, "u_near");
-    r->ul.ink = glGetUniformLocation(p, "u_ink");
-    r->ul.pull = glGetUniformLocation(p, "u_pull");
-    r->ul.ortho = glGetUniformLocation(p, "u_ortho");
-    r->ul.ppu = glGetUniformLocation(p, "u_pixels_per_unit");
-    r->ul.min_px = glGetUniformLocation(p, "u_min_px");
+    FIND(r->prog_paint, paint_table, &r->up);
+    FIND(r->prog_line, line_table, &r->ul);
     r->uc_frame = glGetUniformLocation(r->prog_composite, "u_frame");
     r->uc_origin = glGetUniformLocation(r->prog_composite, "u_origin");
-    find_splat_uniforms(r);
-    find_stroke_uniforms(r);
+    FIND(r->prog_splat, splat_table, &r->us);
+    r->us_filter = glGetUniformLocation(r->prog_splat, "u_style_filter");
+    FIND(r->prog_stroke, stroke_table, &r->ut);
+    r->ut_filter = glGetUniformLocation(r->prog_stroke, "u_style_filter");
     glUseProgram(r->prog_splat);
     glUniform1i(r->us_filter, -1);
     glUseProgram(r->prog_stroke);
