@@ -43,6 +43,7 @@ enum { READ_CHUNK = 65536 }; /* vertices read back at a time */
 #define OUTLINE_MIN_WIDTH 1.0f /* px: traced outlines are as wide as the frame's bands, at least this */
 
 enum { MIP_LEVELS = 8 }; /* a 128 x 32 texture: levels 0 (128 x 32) to 7 (1 x 1) */
+enum { DRAWN_N = 128 };  /* samples along a profile for its drawn extent */
 
 /* A texture's alpha averaged over one axis, with its mipmap chain (levels concatenated). */
 typedef struct mip_profile { float t[2 * STROKE_TEX_W + MIP_LEVELS]; int n; } mip_profile;
@@ -54,6 +55,8 @@ typedef struct vec_ctx {
     int w, h;
     mip_profile prof_u[STROKE_LAYERS], prof_v[STROKE_LAYERS]; /* texture_profiles */
     float prof_mean[STROKE_LAYERS];
+    double *drawn;               /* [2 L + axis][level][DRAWN_N]: each profile's levels sampled as GL reads
+                                  * them, once (drawn_extent interpolates between two per stroke) */
     pnpr_drawing *out;
     uint8_t ink[4];
     float queue_end, queue_fade; /* the group being read: its prefix and fade-in (as the shaders) */
@@ -121,39 +124,51 @@ static void mip_build(mip_profile *m)
     }
 }
 
-/* GL_LINEAR_MIPMAP_LINEAR with GL_CLAMP_TO_EDGE at coordinate t in [0, 1], level of detail lod. */
-static double mip_sample(const mip_profile *m, double lod, double t)
+/* Level l of a profile read with GL_LINEAR and GL_CLAMP_TO_EDGE at the DRAWN_N sample centres. */
+static void level_samples(const mip_profile *m, int l, double *r)
 {
-    lod = fmin(fmax(lod, 0), MIP_LEVELS - 1);
-    int l0 = (int)floor(lod), l1 = l0 + 1 < MIP_LEVELS ? l0 + 1 : l0;
-    double v[2];
-    for (int k = 0; k < 2; k++) {
-        int n;
-        const float *p = mip_level(m, k ? l1 : l0, &n);
-        double x = t * n - 0.5, f = x - floor(x);
+    int n;
+    const float *p = mip_level(m, l, &n);
+    for (int i = 0; i < DRAWN_N; i++) {
+        double t = (i + 0.5) / DRAWN_N, x = t * n - 0.5, f = x - floor(x);
         int i0 = (int)floor(x), i1 = i0 + 1;
         i0 = i0 < 0 ? 0 : i0 >= n ? n - 1 : i0;
         i1 = i1 < 0 ? 0 : i1 >= n ? n - 1 : i1;
-        v[k] = (1 - f) * p[i0] + f * p[i1];
+        r[i] = (1 - f) * p[i0] + f * p[i1];
     }
-    return v[0] + (lod - l0) * (v[1] - v[0]);
 }
 
-/* A profile as the frame shows it at level of detail lod: the extent where it reaches half its
- * peak, as a fraction of its length, and its mean. */
-static void drawn_extent(const mip_profile *m, double lod, double *r_frac, double *r_mean)
+/* Every profile's levels sampled (c->drawn). */
+static pnpr_status drawn_levels(vec_ctx *c)
 {
-    enum { N = 128 };
-    double d[N], peak = 0, mean = 0;
-    int lo = N, hi = -1;
-    for (int i = 0; i < N; i++) {
-        d[i] = mip_sample(m, lod, (i + 0.5) / N);
+    c->drawn = malloc((size_t)2 * STROKE_LAYERS * MIP_LEVELS * DRAWN_N * sizeof *c->drawn);
+    if (!c->drawn) return PNPR_ERR_OUT_OF_MEMORY;
+    for (int L = 0; L < STROKE_LAYERS; L++)
+        for (int l = 0; l < MIP_LEVELS; l++) {
+            level_samples(&c->prof_u[L], l, c->drawn + ((size_t)(2 * L) * MIP_LEVELS + l) * DRAWN_N);
+            level_samples(&c->prof_v[L], l, c->drawn + ((size_t)(2 * L + 1) * MIP_LEVELS + l) * DRAWN_N);
+        }
+    return PNPR_OK;
+}
+
+/* A profile as the frame shows it at level of detail lod (GL_LINEAR_MIPMAP_LINEAR between its
+ * sampled levels, [MIP_LEVELS][DRAWN_N]): the extent where it reaches half its peak, as a
+ * fraction of its length, and its mean. */
+static void drawn_extent(const double *levels, double lod, double *r_frac, double *r_mean)
+{
+    lod = fmin(fmax(lod, 0), MIP_LEVELS - 1);
+    int l0 = (int)floor(lod), l1 = l0 + 1 < MIP_LEVELS ? l0 + 1 : l0;
+    const double *v0 = levels + (size_t)l0 * DRAWN_N, *v1 = levels + (size_t)l1 * DRAWN_N;
+    double d[DRAWN_N], peak = 0, mean = 0;
+    int lo = DRAWN_N, hi = -1;
+    for (int i = 0; i < DRAWN_N; i++) {
+        d[i] = v0[i] + (lod - l0) * (v1[i] - v0[i]);
         peak = fmax(peak, d[i]);
-        mean += d[i] / N;
+        mean += d[i] / DRAWN_N;
     }
-    for (int i = 0; i < N; i++)
+    for (int i = 0; i < DRAWN_N; i++)
         if (peak > 0 && d[i] >= 0.5 * peak) { lo = i < lo ? i : lo; hi = i; }
-    *r_frac = hi >= lo ? (double)(hi - lo + 1) / N : 0;
+    *r_frac = hi >= lo ? (double)(hi - lo + 1) / DRAWN_N : 0;
     *r_mean = mean;
 }
 
@@ -166,8 +181,8 @@ static void stroke_shape(const vec_ctx *c, int L, double half_len, double half_w
     double su = STROKE_TEX_W / (2 * half_len), sv = STROKE_TEX_H / (2 * half_wid);
     double rx = hypot(su * axis[0], sv * axis[1]), ry = hypot(su * axis[1], sv * axis[0]);
     double lod = log2(fmax(fmax(rx, ry), 1e-9)), mu, mv;
-    drawn_extent(&c->prof_u[L], lod, r_fl, &mu);
-    drawn_extent(&c->prof_v[L], lod, r_fw, &mv);
+    drawn_extent(c->drawn + (size_t)(2 * L) * MIP_LEVELS * DRAWN_N, lod, r_fl, &mu);
+    drawn_extent(c->drawn + (size_t)(2 * L + 1) * MIP_LEVELS * DRAWN_N, lod, r_fw, &mv);
     double area = *r_fl * *r_fw;
     *r_alpha = area > 0 ? mu * mv / area / fmax(c->prof_mean[L], 1e-9) : 0; /* the ink as drawn */
 }
@@ -614,13 +629,16 @@ static pnpr_status drawing_from_frame(vec_ctx *c, pnpr_error *err)
     if (st != PNPR_OK) { free(depth); return pnpr_error_set(err, st, "vector: depth: no frame to read"); }
     c->depth = depth;
     texture_profiles(c);
+    st = drawn_levels(c);
     /* bottom to top as the frame draws them: strokes or dots, lines, outlines */
-    st = point_marks(c);
+    if (st == PNPR_OK) st = point_marks(c);
     if (st == PNPR_OK) st = line_marks(c);
     if (st != PNPR_OK) pnpr_error_set(err, st, "vector: %dx%d drawing: out of memory", c->w, c->h);
     if (st == PNPR_OK) st = outline_marks(c, err);
     free(depth);
     c->depth = NULL;
+    free(c->drawn);
+    c->drawn = NULL;
     return st;
 }
 
