@@ -69,6 +69,11 @@ extern const cli_opt cli_common_opts[3];
     {"--threads", NULL, CLI_INT, offsetof(type, member), 1, PNPR_THREADS_MAX, 0, 0, NULL, NULL, "N",               \
      "worker threads, one per core when not given"}
 
+/* --ascii: the point-cloud writers' ascii PLY (features, segment). */
+#define CLI_ASCII_OPT(type, member)                                                                                 \
+    {"--ascii", NULL, CLI_FLAG, offsetof(type, member), 0, 0, 0, 0, NULL, NULL, NULL,                                \
+     "write ascii PLY (default binary little endian)"}
+
 /* The drawing's style, sketch variant and outline switch, shared by render, animate and explain:
  * --style NAME (pnpr_style_from_name, any case) into a pnpr_style member; --sketch a|b|c into a
  * pnpr_sketch_variant member (a directional, b non-directional, c all); --outline on|off into

@@ -44,8 +44,7 @@ static const cli_opt features_opts[] = {
     {"--recompute-normals", NULL, CLI_FLAG, offsetof(features_args, fo.recompute_normals), 0, 0, 0, 0, NULL, NULL,
      NULL, "recompute normals even when the input has them"},
     CLI_THREADS_OPT(features_args, fo.threads),
-    {"--ascii", NULL, CLI_FLAG, offsetof(features_args, ascii), 0, 0, 0, 0, NULL, NULL, NULL,
-     "write ascii PLY (default binary little endian)"},
+    CLI_ASCII_OPT(features_args, ascii),
 };
 
 static void usage(FILE *f)

@@ -27,10 +27,8 @@ typedef struct lines_args {
     cli_common c;
     const char *svg, *in; /* in: the input, for messages */
     int show_hidden, no_corners;
-    int outline; /* -1 not given, else the index in on_off */
-    pnpr_svg_options so;
+    pnpr_svg_options so; /* so.outline: --outline (1 on, -1 off, 0 the default: on) */
 } lines_args;
-static const char *const on_off[] = {"on", "off", NULL};
 static const cli_opt lines_opts[] = {
     {"--no-corners", NULL, CLI_FLAG, offsetof(lines_args, no_corners), 0, 0, 0, 0, NULL, NULL, NULL,
      "do not join line ends at corners and across gaps"},
@@ -38,8 +36,8 @@ static const cli_opt lines_opts[] = {
      "also draw the lines as SVG through a camera, hidden parts removed by a depth test against IN's points"},
     {"--show-hidden", NULL, CLI_FLAG, offsetof(lines_args, show_hidden), 0, 0, 0, 0, NULL, NULL, NULL,
      "keep hidden parts in the SVG (and draw no outlines)"},
-    {"--outline", NULL, CLI_CHOICE, offsetof(lines_args, outline), 0, 0, 0, 0, on_off, NULL, NULL,
-     "the SVG gets IN's silhouettes and occluding contours as paths (default on; docs/lines.md)"},
+    CLI_OUTLINE_OPT(lines_args, so.outline,
+                    "the SVG gets IN's silhouettes and occluding contours as paths (default on; docs/lines.md)"),
 };
 
 static void usage(FILE *f)
@@ -99,7 +97,6 @@ static int write_svg(const lines_args *sa, const cli_view *view, const pnpr_poly
     so.width = view->width;
     so.height = view->height;
     so.occluders = sa->show_hidden ? NULL : cloud;
-    so.outline = sa->outline < 0 ? 0 : sa->outline == 0 ? 1 : -1;
     pnpr_camera cam;
     pnpr_error err = {0};
     const pnpr_camera *camp = cli_view_camera(view, cloud, &cam);
@@ -144,7 +141,6 @@ int cli_lines(int argc, char **argv)
     const char *columns = NULL;
     lines_args A;
     memset(&A, 0, sizeof A);
-    A.outline = -1;
     cli_view view;
     cli_view_init(&view, 1024, 768);
     size_t n, fn, sn;
@@ -186,7 +182,7 @@ int cli_lines(int argc, char **argv)
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("lines", st, &err); return 1; }
     if (cli_outliers_apply(&outliers, "lines", in, &cloud, quiet, NULL)) { pnpr_cloud_free(&cloud); return 1; }
-    if (!run_plan(in, &cloud, &fo, sa->svg && !sa->show_hidden && sa->outline >= 0, quiet)) {
+    if (!run_plan(in, &cloud, &fo, sa->svg && !sa->show_hidden && sa->so.outline >= 0, quiet)) {
         pnpr_cloud_free(&cloud);
         return 1;
     }

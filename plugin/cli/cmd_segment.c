@@ -111,7 +111,7 @@ static const cli_opt segment_opts[] = {
     {"--property", NULL, CLI_TEXT, offsetof(segment_args, property), 0, 0, 0, 0, NULL, NULL, "NAME",
      "labels: the property to read (default 'segment')"},
     CLI_THREADS_OPT(segment_args, threads),
-    {"--ascii", NULL, CLI_FLAG, offsetof(segment_args, ascii), 0, 0, 0, 0, NULL, NULL, NULL, "write ascii PLY"},
+    CLI_ASCII_OPT(segment_args, ascii),
 };
 
 static void usage(FILE *f)
