@@ -26,6 +26,11 @@ int pnpr_text_line(const char *text, size_t size, size_t *pos, char *buf, size_t
 const char *pnpr_join_names(char *buf, size_t cap, const char *sep, const char *const *names, size_t count,
                             uint32_t skip);
 
+/* qsort comparator of floats, ascending (core/median.c). */
+int pnpr_cmp_float(const void *a, const void *b);
+/* The median of v[0..n), n > 0: v is sorted in place and v[n / 2] returned. */
+float pnpr_median_float(float *v, size_t n);
+
 /* Monotonic clock in seconds. */
 double pnpr_now(void);
 

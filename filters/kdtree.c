@@ -458,12 +458,6 @@ pnpr_status pnpr_knn_all(const pnpr_kdtree *tree, const float *query_xyz, size_t
     return pnpr_parallel_for(query_count, 4096, opts->threads, knn_range, &j, &opts->progress, "knn");
 }
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : (x > y ? 1 : 0);
-}
-
 float pnpr_kdtree_median_spacing(const pnpr_kdtree *t, size_t max_samples)
 {
     if (!t || t->count < 2) return 0;
@@ -479,10 +473,7 @@ float pnpr_kdtree_median_spacing(const pnpr_kdtree *t, size_t max_samples)
             if (d2[r] > 0) { d[ns++] = sqrtf(d2[r]); break; }
     }
     float h = 0;
-    if (ns) {
-        qsort(d, ns, sizeof *d, cmp_float);
-        h = d[ns / 2];
-    }
+    if (ns) h = pnpr_median_float(d, ns);
     free(d);
     return h;
 }

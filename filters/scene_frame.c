@@ -7,6 +7,7 @@
  * the horizontal principal axes; elevation from the flatness, azimuth from the scanner side or
  * the legacy front, turned so that the wide axis runs across the screen. All sums in double
  * around the robust centre. */
+#include "../core/internal.h"
 #include <pointnpr/features.h>
 #include <pointnpr/view.h>
 
@@ -80,12 +81,6 @@ static float *take_sample(const pnpr_cloud *cloud, size_t max, uint64_t seed, si
     return s;
 }
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
 /* From the core [v[ilo], v[ihi]] of sorted values, walk outwards while consecutive values are
  * closer than `gap`. */
 static void extend_tails(const float *v, size_t m, size_t ilo, size_t ihi, double gap, float *r_lo, float *r_hi)
@@ -104,7 +99,7 @@ static void robust_bounds(const float *s, size_t m, float *sorted, float r_lo[3]
     for (int a = 0; a < 3; a++) {
         float *v = sorted + (size_t)a * m;
         for (size_t i = 0; i < m; i++) v[i] = s[3 * i + a];
-        qsort(v, m, sizeof *v, cmp_float);
+        qsort(v, m, sizeof *v, pnpr_cmp_float);
         double e = (double)v[ihi] - (double)v[ilo];
         if (e > core) core = e;
     }

@@ -23,12 +23,6 @@
 #define NN_SAMPLE 10000
 
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : x > y;
-}
-
 float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, size_t count)
 {
     size_t step = count / NN_SAMPLE + 1, m = 0;
@@ -43,7 +37,7 @@ float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, siz
             if (dist2[r] > 0) { d[m++] = sqrtf(dist2[r]); break; }
     }
     float med = 0;
-    if (m) { qsort(d, m, sizeof *d, cmp_float); med = d[m / 2]; }
+    if (m) med = pnpr_median_float(d, m);
     free(d);
     return med;
 }

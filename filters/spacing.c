@@ -1,17 +1,13 @@
 /* The local point spacing (pnpr_point_spacing, knn.h): the distance from each point to its k-th
  * nearest other point, clamped to a band around the median. The renderer's disk radii and the
  * SVG outlines' surface buffer both take their disks from it, so the two draw the same surface. */
+#include "../core/internal.h"
+
 #include <pointnpr/knn.h>
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : x > y;
-}
 
 /* Clamps r[0..n) to [PNPR_SPACING_CLAMP_LO, PNPR_SPACING_CLAMP_HI] x their median; a median of 0
  * (mostly duplicates) is replaced by the largest value, else 1. */
@@ -20,8 +16,7 @@ static pnpr_status clamp_to_median(float *r, size_t n)
     float *sorted = malloc(n * sizeof *sorted);
     if (!sorted) return PNPR_ERR_OUT_OF_MEMORY;
     memcpy(sorted, r, n * sizeof *sorted);
-    qsort(sorted, n, sizeof *sorted, cmp_float);
-    float med = sorted[n / 2];
+    float med = pnpr_median_float(sorted, n);
     if (!(med > 0)) med = sorted[n - 1] > 0 ? sorted[n - 1] : 1;
     free(sorted);
     for (size_t i = 0; i < n; i++) {

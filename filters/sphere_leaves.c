@@ -167,19 +167,13 @@ static void pca_range(void *ctx, size_t begin, size_t end)
     for (size_t l = begin; l < end; l++) leaf_pca(j->nodes, l, j->knn + l * j->k, j->k);
 }
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
 /* The curvature above which a leaf is a feature leaf (the top `fraction`). */
 static float feature_bound(const pnpr_sphere_node *nodes, size_t leaves, float fraction)
 {
     float *c = malloc((leaves ? leaves : 1) * sizeof *c);
     if (!c) return 0.0f;
     for (size_t l = 0; l < leaves; l++) c[l] = nodes[l].curvature;
-    qsort(c, leaves, sizeof *c, cmp_float);
+    qsort(c, leaves, sizeof *c, pnpr_cmp_float);
     size_t at = (size_t)((1.0 - (double)fraction) * (double)leaves);
     float b = leaves ? c[at < leaves ? at : leaves - 1] : 0.0f;
     free(c);

@@ -3,6 +3,7 @@
  * section 5.3), profile lines (pnpr_renderer_set_lines) and the style bytes of a style map. */
 #include "renderer_internal.h"
 #include "gl_state.h"
+#include "../core/internal.h"
 #include "../core/vec3.h"
 
 #include <pointnpr/brush.h>
@@ -49,19 +50,6 @@ typedef struct upload_ctx {
     uint8_t *zeros;               /* the initial style bytes */
     pnpr_brush_vertex *bverts;    /* brush: the brush attributes in queue order (NULL: no brush data) */
 } upload_ctx;
-
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : x > y;
-}
-
-/* The median of v[0..n) (n > 0), sorting v. */
-static float median_float(float *v, size_t n)
-{
-    qsort(v, n, sizeof *v, cmp_float);
-    return v[n / 2];
-}
 
 typedef struct label_index { uint32_t label, j; } label_index;
 
@@ -362,7 +350,7 @@ static pnpr_status brush_data(upload_ctx *u)
         size[j] = isfinite(s) && s > 0 ? (float)s : 0.0f;
         if (size[j] > 0) sorted[m++] = size[j];
     }
-    float cap = m ? PNPR_BRUSH_SIZE_CAP * median_float(sorted, m) : 0;
+    float cap = m ? PNPR_BRUSH_SIZE_CAP * pnpr_median_float(sorted, m) : 0;
     for (size_t q = 0; st == PNPR_OK && q < n; q++) {
         uint32_t j = u->order[q];
         u->bverts[q] = (pnpr_brush_vertex){size[j] < cap ? size[j] : cap, stretch[j], (float)layers[j]};

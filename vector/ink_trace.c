@@ -17,6 +17,7 @@
  *    outlines run together). */
 #include <pointnpr/drawing.h>
 #include "vector_internal.h"
+#include "../core/internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -125,12 +126,6 @@ static void simplify(chain *c)
     if (m) c->p.n = m;
 }
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
 /* The unit direction of the chain at vertex i (from the vertices 2 before to 2 after it). */
 static void chain_tangent(const chain *c, size_t i, int closed, double t[2])
 {
@@ -168,8 +163,7 @@ static double centre_on_ink(const ink_img *g, chain *c, int closed)
         wid[i] = (float)(cnt * fmax(fabs(t[0]), fabs(t[1])) / (2 * r + 1));
     }
     memcpy(c->p.xy, moved, 2 * n * sizeof *moved);
-    qsort(wid, n, sizeof *wid, cmp_float);
-    double width = wid[n / 2];
+    double width = pnpr_median_float(wid, n);
     free(moved);
     free(wid);
     return width;
