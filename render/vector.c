@@ -6,8 +6,9 @@
  *   splat.vert; the formulas are repeated below in double);
  * - the visibility mask's depth buffer is read back, and a mark is kept where its fragments pass
  *   GL's depth test (LEQUAL against the mask, at the point's depth): a stroke is sampled every
- *   pixel along its axis and split into its visible runs, a dot is kept when half the pixels
- *   under it pass; hidden marks are absent from the file;
+ *   pixel along its axis and across its width and split into its visible runs, each along the
+ *   centre of its visible samples and as wide as they are (add_visible_band); a profile line is
+ *   sampled along its centre line (add_visible); hidden marks are absent from the file;
  * - a stroke's vector shape is its texture as the frame shows it at that size (the mipmap level GL
  *   picks from the texels a pixel spans, bilinear and between levels): the extent along and
  *   across where its averaged profiles reach half their peak, drawn at the opacity that carries
@@ -230,6 +231,99 @@ static pnpr_status add_visible(vec_ctx *c, const double a[2], const double b[2],
     return PNPR_OK;
 }
 
+/* A visible run of a stroke band (add_visible_band): its vertices (window px, GL y up), the
+ * share of the width its samples cover, summed, and its last sample. */
+enum { BAND_ACROSS_MAX = 16, BAND_RUN_MAX = 32 };
+typedef struct band_run {
+    float xy[2 * BAND_RUN_MAX];
+    int nv, samples;
+    double share, last[2], last_off;
+} band_run;
+
+static void band_vertex(band_run *run, double x, double y)
+{
+    run->xy[2 * run->nv] = (float)x;
+    run->xy[2 * run->nv + 1] = (float)y;
+    run->nv++;
+}
+
+/* Adds the run as a path (y flipped to the drawing's y down) as wide as its mean share of
+ * `width`, and empties it. */
+static pnpr_status band_flush(vec_ctx *c, band_run *run, float width, const uint8_t rgba[4], pnpr_drawing_layer layer)
+{
+    for (int v = 0; v < run->nv; v++) run->xy[2 * v + 1] = (float)c->h - run->xy[2 * v + 1];
+    pnpr_status st = pnpr_drawing_add(c->out, run->xy, (size_t)run->nv, (float)(width * run->share / run->samples), rgba,
+                                      layer, 0);
+    run->nv = run->samples = 0;
+    run->share = 0;
+    return st;
+}
+
+/* Ends a run at its last sample (a single sample: half a step either way, `step` px along u). */
+static pnpr_status band_end(vec_ctx *c, band_run *run, const double u[2], double step, float width, const uint8_t rgba[4],
+                            pnpr_drawing_layer layer)
+{
+    if (run->samples == 0) return PNPR_OK;
+    if (run->samples == 1) {
+        run->xy[0] -= (float)(u[0] * 0.5 * step);
+        run->xy[1] -= (float)(u[1] * 0.5 * step);
+        band_vertex(run, run->last[0] + u[0] * 0.5 * step, run->last[1] + u[1] * 0.5 * step);
+    } else if (run->xy[2 * run->nv - 2] != (float)run->last[0] || run->xy[2 * run->nv - 1] != (float)run->last[1]) {
+        band_vertex(run, run->last[0], run->last[1]);
+    }
+    return band_flush(c, run, width, rgba, layer);
+}
+
+/* The visible part of a stroke a -> b (window px, GL y up), `width` px wide, at window depth z.
+ * The raster tests each fragment of the quad, so a stroke along an occluding edge keeps its
+ * visible side: the band is sampled every pixel along and every pixel across; each visible run
+ * is one path through the centres of its visible samples, as wide as their mean share of the
+ * width (a stroke that is all visible: the one segment a -> b at its width). */
+static pnpr_status add_visible_band(vec_ctx *c, const double a[2], const double b[2], double z, float width,
+                                    const uint8_t rgba[4], pnpr_drawing_layer layer)
+{
+    double len = hypot(b[0] - a[0], b[1] - a[1]);
+    double u[2] = {len > 0 ? (b[0] - a[0]) / len : 1, len > 0 ? (b[1] - a[1]) / len : 0};
+    int n = (int)ceil(len) + 1, m = (int)ceil(width);
+    n = n > 1 << 16 ? 1 << 16 : n;
+    m = m < 1 ? 1 : m > BAND_ACROSS_MAX ? BAND_ACROSS_MAX : m;
+    band_run run;
+    memset(&run, 0, sizeof run);
+    pnpr_status st = PNPR_OK;
+    for (int i = 0; i <= n && st == PNPR_OK; i++) {
+        double t = (double)i / n, x = a[0] + t * (b[0] - a[0]), y = a[1] + t * (b[1] - a[1]), off = 0;
+        int k = 0;
+        for (int j = 0; j < m; j++) {
+            double o = ((j + 0.5) / m - 0.5) * width;
+            if (passes(c, x - u[1] * o, y + u[0] * o, z)) { off += o; k++; }
+        }
+        if (k == 0) { st = band_end(c, &run, u, len / n, width, rgba, layer); continue; }
+        off /= k;
+        double p[2] = {x - u[1] * off, y + u[0] * off};
+        if (run.samples > 0 && off != run.last_off) { /* the visible side moves: a jog */
+            if (run.nv >= BAND_RUN_MAX - 2) { /* a long jagged run goes on in a new path */
+                band_vertex(&run, run.last[0], run.last[1]);
+                double share = run.share / run.samples;
+                st = band_flush(c, &run, width, rgba, layer);
+                run.samples = 1;
+                run.share = share;
+            }
+            if (run.nv == 0 || run.xy[2 * run.nv - 2] != (float)run.last[0] || run.xy[2 * run.nv - 1] != (float)run.last[1])
+                band_vertex(&run, run.last[0], run.last[1]);
+            band_vertex(&run, p[0], p[1]);
+        } else if (run.samples == 0) {
+            band_vertex(&run, p[0], p[1]);
+        }
+        run.samples++;
+        run.share += (double)k / m;
+        run.last[0] = p[0];
+        run.last[1] = p[1];
+        run.last_off = off;
+    }
+    if (st == PNPR_OK) st = band_end(c, &run, u, len / n, width, rgba, layer);
+    return st;
+}
+
 /* The hash of stroke.vert / splat.vert on an instance or vertex id, in [0, 1). */
 static double id_hash(uint32_t id)
 {
@@ -313,7 +407,7 @@ static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instan
     double hl = half_len * fl;
     if (!rgba[3] || !(hl > 0)) return PNPR_OK;
     double a[2] = {centre[0] - axis[0] * hl, centre[1] - axis[1] * hl}, b[2] = {centre[0] + axis[0] * hl, centre[1] + axis[1] * hl};
-    return add_visible(c, a, b, z, z, (float)(2 * half_wid * fw), rgba, layer);
+    return add_visible_band(c, a, b, z, (float)(2 * half_wid * fw), rgba, layer);
 }
 
 /* The ink of a mark's visible pixels: its coverage summed, first and second moments (window

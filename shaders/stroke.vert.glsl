@@ -32,6 +32,7 @@ uniform float u_queue_fade;       // > 0: its last u_queue_fade instances fade i
 out vec2 v_uv;
 out vec4 v_color;
 out float v_fade;
+out vec4 v_px;                    // the fragment along and across the stroke in px; its half extents
 
 void main()
 {
@@ -39,6 +40,7 @@ void main()
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         v_color = vec4(0.0);
         v_uv = vec2(0.0);
+        v_px = vec4(0.0);
         v_fade = 0.0;
         return;
     }
@@ -86,14 +88,19 @@ void main()
             gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
             v_color = vec4(0.0);
             v_uv = vec2(0.0);
+            v_px = vec4(0.0);
             v_fade = 0.0;
             return;
         }
     }
+    // the quad one pixel larger all round: stroke.frag weighs each fragment by the share of its
+    // pixel the stroke covers (area coverage, as a vector renderer draws it)
     vec2 side = vec2(-axis.y, axis.x);
-    vec2 off_px = axis * (q.x * half_len) + side * (q.y * half_wid);
+    vec2 ext = vec2(half_len + 1.0, half_wid + 1.0);
+    vec2 off_px = axis * (q.x * ext.x) + side * (q.y * ext.y);
     gl_Position = clip + vec4(off_px * 2.0 / u_viewport * clip.w, 0.0, 0.0);
-    v_uv = q * 0.5 + 0.5;
+    v_uv = q * ext / vec2(half_len, half_wid) * 0.5 + 0.5;
+    v_px = vec4(q * ext, half_len, half_wid);
     v_color = a_color;
     v_fade = u_queue_fade > 0.0 ? clamp((u_queue_end - float(gl_InstanceID)) / u_queue_fade, 0.0, 1.0) : 1.0;
 }

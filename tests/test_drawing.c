@@ -207,7 +207,8 @@ static void check_drop_short(void)
     pnpr_drawing_free(&d);
 }
 
-/* The SVG: one Inkscape layer per non-empty class, dots as circles; bad paths refused. */
+/* The SVG: one Inkscape layer per non-empty class, dots as circles; paths of one colour in one
+ * group, a path of another width saying its own; bad paths refused. */
 static void check_svg(void)
 {
     pnpr_drawing d = {0};
@@ -216,10 +217,12 @@ static void check_svg(void)
     const float p[4] = {1, 2, 30, 20}, dot[2] = {10, 10}, bad[2] = {NAN, 1};
     CHECK_STATUS(pnpr_drawing_add(&d, p, 2, 2, INK, PNPR_LAYER_STROKES, 0), PNPR_OK);
     CHECK_STATUS(pnpr_drawing_add(&d, dot, 1, 2.5f, INK, PNPR_LAYER_DOTS, PNPR_PATH_DOT), PNPR_OK);
+    const float q[4] = {5, 6, 7, 8};
+    CHECK_STATUS(pnpr_drawing_add(&d, q, 2, 1.5f, INK, PNPR_LAYER_STROKES, 0), PNPR_OK);
     CHECK_STATUS(pnpr_drawing_add(&d, bad, 1, 1, INK, PNPR_LAYER_DOTS, 0), PNPR_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(pnpr_drawing_add(&d, p, 0, 1, INK, PNPR_LAYER_DOTS, 0), PNPR_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(pnpr_drawing_add(&d, p, 2, 1, INK, PNPR_LAYER_COUNT_, 0), PNPR_ERR_INVALID_ARGUMENT);
-    CHECK(d.count == 2);
+    CHECK(d.count == 3);
     char path[512];
     snprintf(path, sizeof path, "%s/drawing.svg", PNPR_TEST_SCRATCH);
     pnpr_error err = {0};
@@ -231,6 +234,10 @@ static void check_svg(void)
     CHECK(n > 0 && strstr(text, "inkscape:label=\"strokes\"") && strstr(text, "inkscape:label=\"dots\"") &&
           !strstr(text, "inkscape:label=\"hatches\"") && strstr(text, "<circle cx=\"10.00\" cy=\"10.00\" r=\"1.25\"/>") &&
           strstr(text, "M1.00 2.00L30.00 20.00") && strstr(text, "width=\"50px\" height=\"40px\""));
+    /* the two strokes: one group at the first's width, the second's own */
+    const char *g = strstr(text, "stroke-width=\"2.00\">\n<path d=\"M1.00 2.00L30.00 20.00\"/>\n"
+                                 "<path stroke-width=\"1.50\" d=\"M5.00 6.00L7.00 8.00\"/>\n</g>");
+    CHECK_MSG(g != NULL, "strokes of one colour and two widths:\n%s", text);
     d.width = 0;
     CHECK_STATUS(pnpr_drawing_write_svg(&d, path, &err), PNPR_ERR_INVALID_ARGUMENT);
     pnpr_drawing_free(&d);

@@ -14,7 +14,9 @@ static void colour_attr(FILE *f, const char *what, const uint8_t *c)
     if (c[3] != 255) fprintf(f, " %s-opacity=\"%.3f\"", what, c[3] / 255.0);
 }
 
-/* Opens a group for a run of paths of one colour, width and kind. */
+/* Opens a group for a run of paths of one colour and kind, at the width of its first path (a
+ * path of another width says its own: stroke widths vary more often than colours, e.g. the
+ * visible sides of partly hidden strokes, and a group costs four times the attribute). */
 static void open_run(FILE *f, const pnpr_drawing *d, size_t i)
 {
     const uint8_t *c = d->rgba + 4 * i;
@@ -31,7 +33,8 @@ static void open_run(FILE *f, const pnpr_drawing *d, size_t i)
 
 static int same_run(const pnpr_drawing *d, size_t a, size_t b)
 {
-    return !memcmp(d->rgba + 4 * a, d->rgba + 4 * b, 4) && d->stroke_width[a] == d->stroke_width[b] &&
+    int dot = (d->flags[a] & PNPR_PATH_DOT) != 0;
+    return !memcmp(d->rgba + 4 * a, d->rgba + 4 * b, 4) && (!dot || d->stroke_width[a] == d->stroke_width[b]) &&
            ((d->flags[a] ^ d->flags[b]) & PNPR_PATH_DOT) == 0;
 }
 
@@ -58,15 +61,20 @@ static size_t write_fill(FILE *f, const pnpr_drawing *d, size_t i)
     return j;
 }
 
-static void write_path(FILE *f, const pnpr_drawing *d, size_t i)
+/* Path i in the group opened at path g. */
+static void write_path(FILE *f, const pnpr_drawing *d, size_t i, size_t g)
 {
-    size_t a = d->offset[i], b = d->offset[i + 1];
+    size_t a = d->offset[i];
     if (d->flags[i] & PNPR_PATH_DOT) {
         fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", d->xy[2 * a], d->xy[2 * a + 1], 0.5 * d->stroke_width[i]);
         return;
     }
-    (void)b;
-    fputs("<path d=\"", f);
+    fputs("<path", f);
+    char w[32], wg[32];
+    snprintf(w, sizeof w, "%.2f", d->stroke_width[i]);
+    snprintf(wg, sizeof wg, "%.2f", d->stroke_width[g]);
+    if (strcmp(w, wg)) fprintf(f, " stroke-width=\"%s\"", w);
+    fputs(" d=\"", f);
     write_d(f, d, i);
     fputs("\"/>\n", f);
 }
@@ -85,7 +93,7 @@ static int print_svg(FILE *f, const void *ctx)
         fputs("/>\n", f);
     }
     for (int L = 0; L < PNPR_LAYER_COUNT_; L++) {
-        size_t prev = SIZE_MAX;
+        size_t prev = SIZE_MAX, group = 0;
         for (size_t i = 0; i < d->count; i++) {
             if (d->layer[i] != L || (d->flags[i] & PNPR_PATH_SUBPATH)) continue;
             if (prev == SIZE_MAX)
@@ -101,8 +109,9 @@ static int print_svg(FILE *f, const void *ctx)
             if (prev == SIZE_MAX || (d->flags[prev] & PNPR_PATH_FILL) || !same_run(d, prev, i)) {
                 if (prev != SIZE_MAX && !(d->flags[prev] & PNPR_PATH_FILL)) fputs("</g>\n", f);
                 open_run(f, d, i);
+                group = i;
             }
-            write_path(f, d, i);
+            write_path(f, d, i, group);
             prev = i;
         }
         if (prev != SIZE_MAX) fputs((d->flags[prev] & PNPR_PATH_FILL) ? "</g>\n" : "</g>\n</g>\n", f);

@@ -50,14 +50,21 @@ static void put_plane(pnpr_cloud *c, size_t *k, double x0, double y0, double z, 
 static int is_red(const uint8_t *p) { return p[0] > 150 && p[1] < 90 && p[2] < 90; }
 static int is_dark(const uint8_t *p) { return p[0] < 128 && p[1] < 128 && p[2] < 128; }
 static int is_white(const uint8_t *p) { return p[0] >= 250 && p[1] >= 250 && p[2] >= 250; }
+/* pencil: a grey clearly darker than the paper (antialiased strokes ink many pixels in part) */
+static int is_pencil(const uint8_t *p)
+{
+    int lo = p[0] < p[1] ? (p[0] < p[2] ? p[0] : p[2]) : (p[1] < p[2] ? p[1] : p[2]);
+    int hi = p[0] > p[1] ? (p[0] > p[2] ? p[0] : p[2]) : (p[1] > p[2] ? p[1] : p[2]);
+    return hi < 200 && hi - lo < 40;
+}
 
 typedef struct box { int x0, y0, x1, y1; } box;
-typedef struct tally { size_t n, red, dark, white; } tally;
+typedef struct tally { size_t n, red, dark, pencil, white; } tally;
 
 /* Pixels in `in` and outside `out` (each may be empty: x1 < x0). */
 static tally count(const uint8_t *px, box in, box out)
 {
-    tally t = {0, 0, 0, 0};
+    tally t = {0, 0, 0, 0, 0};
     for (int y = in.y0; y <= in.y1; y++)
         for (int x = in.x0; x <= in.x1; x++) {
             if (x < 0 || y < 0 || x >= W || y >= H) continue;
@@ -66,6 +73,7 @@ static tally count(const uint8_t *px, box in, box out)
             t.n++;
             t.red += is_red(p);
             t.dark += is_dark(p);
+            t.pencil += is_pencil(p);
             t.white += is_white(p);
         }
     return t;
@@ -196,17 +204,18 @@ int main(void)
     box half0 = screen_box(&fc, 0.05, 0.05, 0.8, 1.45, 0, 0), half1 = screen_box(&fc, 1.2, 0.05, 1.95, 1.45, 0, 0);
     tally t0 = count(px, half0, aroundA), t1 = count(px, half1, aroundB);
     tally ta = count(px, inA, none), tb = count(px, inB, none);
-    printf("half 0 (points): %zu px, red %zu, dark %zu; half 1 (sketchy): %zu px, red %zu, dark %zu, white %zu\n",
-           t0.n, t0.red, t0.dark, t1.n, t1.red, t1.dark, t1.white);
+    printf("half 0 (points): %zu px, red %zu, dark %zu; half 1 (sketchy): %zu px, red %zu, dark %zu, pencil %zu, white %zu\n",
+           t0.n, t0.red, t0.dark, t1.n, t1.red, t1.dark, t1.pencil, t1.white);
     printf("A (sketchy over red points): %zu px, red %zu, dark %zu, white %zu; B (points over sketchy): %zu px, red %zu, dark %zu\n",
            ta.n, ta.red, ta.dark, ta.white, tb.n, tb.red, tb.dark);
     CHECK(t0.n > 1500 && t1.n > 1500 && ta.n > 600 && tb.n > 600);
     /* points signature: the plane's red everywhere, no ink */
     CHECK(t0.red >= t0.n * 99 / 100);
     CHECK(t0.dark == 0);
-    /* sketchy signature: no red, dark strokes, mostly paper */
+    /* sketchy signature: no red, pencil strokes (measured 887 of 2320 px; 24 of them darker than
+     * 128, where strokes drawn without antialiasing had 93), mostly paper */
     CHECK(t1.red == 0);
-    CHECK(t1.dark > t1.n / 50);
+    CHECK(t1.pencil > t1.n / 10 && t1.dark > 0);
     CHECK(t1.white > t1.n / 5);
     /* occlusion with one mask: A hides the red points behind it, B the strokes behind it */
     CHECK(ta.red == 0);

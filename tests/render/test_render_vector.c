@@ -3,7 +3,7 @@
  *    it under an opaque front plane without features: with nothing in front, one path per stroke
  *    the frame drew; with the occluder, no path reaches into the occluded half and the count lies
  *    between the strokes whose centre is visible and those whose half length reaches past the
- *    occluder's edge.
+ *    occluder's edge. Strokes along the occluder's edge keep the side the frame draws (check_band).
  * 2. The SVG rasterised by rsvg-convert against the PNG of the same view and size: at most 2% of
  *    the pixels differ in ink / no ink (ink: grey below 160 on white) for sketchy (with and
  *    without outlines), stipple, lines (profile lines alone and with outlines); cartoon (colour
@@ -31,9 +31,10 @@
 
 enum { W = 320, H = 240, GRID = 60 };
 
-/* The back plane z = 0 (GRID x GRID points over [0,1]^2, directional along x) and, when `occluder`,
- * a front plane at z = 0.3 over x in [0, 0.5] without features (class none). */
-static void planes(pnpr_cloud *c, int occluder)
+/* The back plane z = 0 (GRID x GRID points over [0,1]^2, directional along x, or along y when
+ * `along_y`) and, when `occluder`, a front plane at z = 0.3 over x in [0, 0.5] without features
+ * (class none). */
+static void planes_along(pnpr_cloud *c, int occluder, int along_y)
 {
     size_t nb = GRID * GRID, nf = occluder ? (GRID / 2 + 6) * GRID : 0;
     CHECK_STATUS(pnpr_cloud_alloc(c, nb + nf), PNPR_OK);
@@ -43,7 +44,7 @@ static void planes(pnpr_cloud *c, int occluder)
     CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_Y, PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
     CHECK_STATUS(pnpr_cloud_add_property(c, PNPR_PROP_FEATURE_DIR_Z, PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
     pnpr_property *cls = pnpr_cloud_find_property(c, PNPR_PROP_FEATURE_CLASS);
-    pnpr_property *dx = pnpr_cloud_find_property(c, PNPR_PROP_FEATURE_DIR_X);
+    pnpr_property *dx = pnpr_cloud_find_property(c, along_y ? PNPR_PROP_FEATURE_DIR_Y : PNPR_PROP_FEATURE_DIR_X);
     if (!cls || !dx) return;
     size_t k = 0;
     for (int j = 0; j < GRID; j++)
@@ -60,6 +61,8 @@ static void planes(pnpr_cloud *c, int occluder)
             c->xyz[3 * k + 2] = 0.3f;
         }
 }
+
+static void planes(pnpr_cloud *c, int occluder) { planes_along(c, occluder, 0); }
 
 /* Strokes of the back plane, from above: the known answer of the occluder. */
 static void check_occlusion(pnpr_renderer *r)
@@ -107,6 +110,52 @@ static void check_occlusion(pnpr_renderer *r)
         pnpr_drawing_free(&d);
         pnpr_cloud_free(&c);
     }
+}
+
+/* Strokes along the occluder's edge, 6 px wide: the raster tests each of their pixels, so a stroke
+ * whose centre line is hidden but whose side is not shows that side. The drawing keeps it as a
+ * narrower path on the visible side: no vector ink left of the frame's leftmost ink (half a pixel
+ * of slack), paths narrower than the stroke, and the leftmost ink of both within a pixel. (Tested
+ * along the centre line only, a stroke was kept whole or dropped: its ink reached 3 px into the
+ * hidden side, or the side the frame draws was missing.) */
+static void check_band(pnpr_renderer *r)
+{
+    pnpr_camera cam = {{0.5, 0.5, 3}, {0.5, 0.5, 0}, {0, 1, 0}, 40, 0, 0};
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.style = PNPR_STYLE_SKETCHY;
+    o.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
+    o.outline = -1;
+    o.stroke_width = 6;
+    pnpr_error err = {0};
+    pnpr_drawing d = {0};
+    pnpr_cloud c = {0};
+    planes_along(&c, 1, 1);
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, &err), PNPR_OK);
+    static uint8_t px[W * H * 4];
+    CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px, NULL, &err), PNPR_OK);
+    CHECK_STATUS(pnpr_renderer_drawing(r, &cam, &o, W, H, &d, &err), PNPR_OK);
+    int raster_left = W;
+    for (int y = H / 4; y < 3 * H / 4; y++)
+        for (int x = 0; x < W; x++)
+            if (px[4 * ((size_t)y * W + x) + 3] > 25 && x < raster_left) raster_left = x;
+    double full = 0, vector_left = INFINITY;
+    for (size_t i = 0; i < d.count; i++) full = fmax(full, d.stroke_width[i]);
+    size_t partial = 0;
+    for (size_t i = 0; i < d.count; i++) {
+        partial += d.stroke_width[i] < 0.9 * full;
+        for (size_t v = d.offset[i]; v < d.offset[i + 1]; v++) {
+            double y = d.xy[2 * v + 1];
+            if (y >= H / 4 && y < 3 * H / 4) vector_left = fmin(vector_left, d.xy[2 * v] - 0.5 * d.stroke_width[i]);
+        }
+    }
+    printf("strokes along the occluder's edge: %zu paths, %zu narrower than the stroke (%.2f px); leftmost ink: "
+           "frame x %d, drawing x %.2f\n", d.count, partial, full, raster_left, vector_left);
+    CHECK(d.count > 0 && partial >= GRID);
+    CHECK_MSG(vector_left >= raster_left - 0.5 && vector_left <= raster_left + 1.0,
+              "the drawing's ink starts at x %.2f, the frame's at %d", vector_left, raster_left);
+    pnpr_drawing_free(&d);
+    pnpr_cloud_free(&c);
 }
 
 /* Degenerate and far input: an empty cloud draws nothing (and no error); the occluded planes at a
@@ -276,6 +325,7 @@ int main(void)
     pnpr_renderer *r = NULL;
     CHECK_STATUS(pnpr_renderer_create(NULL, &r, &err), PNPR_OK);
     if (r) check_occlusion(r);
+    if (r) check_band(r);
     if (r) check_degenerate(r);
     pnpr_quality_scene scene;
     pnpr_quality_scene_init(&scene, PNPR_QUALITY_PRESET_SPARSE);
