@@ -516,9 +516,10 @@ static void clear_frame(pnpr_renderer *r, const pnpr_frame_ctx *f)
 
 static void record_frame(pnpr_frame_record *rec, const pnpr_frame_ctx *f)
 {
-    int pass = rec->outline_pass;
+    int pass = rec->outline_pass, only = rec->pass_only;
     memset(rec, 0, sizeof *rec);
     rec->outline_pass = pass;
+    rec->pass_only = only;
     rec->o = f->o;
     rec->o.style_map = NULL;
     rec->o.style_map_count = 0;
@@ -533,6 +534,7 @@ static void record_frame(pnpr_frame_record *rec, const pnpr_frame_ctx *f)
     rec->outline = f->outline;
     rec->outline_width = f->outline_width;
     rec->mapped = f->mapped;
+    memcpy(rec->used, f->used, sizeof rec->used);
 }
 
 /* The outlines from the mask's surface info (edges.c); `pass` (PNPR_OUTLINES_*): as drawn, their
@@ -616,6 +618,7 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
     if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     clear_frame(r, &f);
     if (rec) record_frame(rec, &f);
+    if (rec) f.pass_only = rec->pass_only;
     size_t strokes = 0;
     if (!f.mapped) strokes = pnpr_renderer_draw_single(r, &f);
     else if (f.n_draw > 0) strokes = pnpr_renderer_draw_mapped(r, &f);

@@ -134,6 +134,8 @@ enum {
  * its strokes, dots and lines can be computed again on the CPU (vector.c). */
 typedef struct pnpr_frame_record {
     int outline_pass;           /* in: PNPR_OUTLINES_* (zero: as drawn) */
+    int pass_only;              /* in: a style map's frame draws pass 2 of style pass_only - 1 only
+                                 * (its mask is every style's); zero: every style */
     pnpr_draw_options o;        /* options with the style map resolved (o.style_map stays NULL) */
     pnpr_frame_camera fc;
     int width, height;
@@ -142,7 +144,9 @@ typedef struct pnpr_frame_record {
     float point_scale, lod, ink[4];
     int outline;                /* the frame drew outlines (the info attachment holds the mask's surface) */
     float outline_width;
-    int mapped;                 /* several styles (a style map): not recorded further */
+    int mapped;                 /* several styles (a style map) */
+    size_t used[PNPR_STYLE_COUNT_]; /* style map: the vertices of each style (the per-vertex styles:
+                                     * pnpr_renderer.vstyle) */
 } pnpr_frame_record;
 
 /* Draws one offscreen frame of width x height (within the GL limit) like pnpr_renderer_draw and
@@ -225,6 +229,7 @@ typedef struct pnpr_frame_ctx {
     float outline_width;
     int mapped;                      /* several styles (a style map): pnpr_renderer_draw_mapped */
     size_t used[PNPR_STYLE_COUNT_];  /* style map: the vertices of each style */
+    int pass_only;                   /* style map: pass 2 of this style + 1 only (pnpr_frame_record) */
 } pnpr_frame_ctx;
 
 /* The passes (renderer_passes.c). Which of the frame's attachments the fragment outputs reach:

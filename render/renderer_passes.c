@@ -463,11 +463,12 @@ static void draw_mapped_mask(pnpr_renderer *r, const pnpr_frame_ctx *f)
 /* A frame with several styles (a style map): the shared mask (draw_mapped_mask), then pass 2,
  * each style over its own points (a vertex-shader filter on the style byte), in the order points
  * (opaque, depth writes), cartoon fills, painterly (sky stencil = its style), stipple, sketchy,
- * lines (stencil = the lines style: the lines show over those segments only). */
+ * lines (stencil = the lines style: the lines show over those segments only). With f->pass_only,
+ * pass 2 of that style alone (vector drawings, vector.c). */
 size_t pnpr_renderer_draw_mapped(pnpr_renderer *r, const pnpr_frame_ctx *f)
 {
-    const size_t *used = f->used;
-    size_t strokes = 0;
+    size_t used[PNPR_STYLE_COUNT_], strokes = 0;
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++) used[s] = f->pass_only && s != f->pass_only - 1 ? 0 : f->used[s];
     draw_mapped_mask(r, f);
     if (used[PNPR_STYLE_POINTS]) { /* opaque splats, depth writes (the nearest wins) */
         glUniform1i(r->us_filter, PNPR_STYLE_POINTS);

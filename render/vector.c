@@ -36,6 +36,7 @@
 #include <pointnpr/drawing.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -61,6 +62,8 @@ typedef struct vec_ctx {
     pnpr_drawing *out;
     uint8_t ink[4];
     float queue_end, queue_fade; /* the group being read: its prefix and fade-in (as the shaders) */
+    int style_filter;            /* >= 0: a style map's frame; marks of the vertices of this style only */
+    const uint8_t *stencil;      /* a style map's frame with lines: the mask's stencil (style + 1) */
 } vec_ctx;
 
 /* The queue's fade-in of the k-th point of the group being read (stroke.vert, splat.vert). */
@@ -204,6 +207,14 @@ static int passes(const vec_ctx *c, double x, double y, double z)
     return z <= (double)c->depth[(size_t)iy * (size_t)c->w + (size_t)ix] + 1.0 / (1 << 23);
 }
 
+/* A profile line's fragment: the depth test, and under a style map the stencil test of the lines'
+ * pass (the lines show over the points of the lines style only). */
+static int line_passes(const vec_ctx *c, double x, double y, double z)
+{
+    if (!passes(c, x, y, z)) return 0;
+    return !c->stencil || c->stencil[(size_t)floor(y) * (size_t)c->w + (size_t)floor(x)] == PNPR_STYLE_LINES + 1;
+}
+
 /* Adds the visible runs of the segment a -> b (window pixels, GL y up) at window depths za -> zb,
  * sampled every pixel, as paths (y flipped to the drawing's y down). */
 static pnpr_status add_visible(vec_ctx *c, const double a[2], const double b[2], double za, double zb, float width,
@@ -215,7 +226,7 @@ static pnpr_status add_visible(vec_ctx *c, const double a[2], const double b[2],
     int run = -1;
     for (int i = 0; i <= n; i++) {
         double t = n > 0 ? (double)i / n : 0;
-        int vis = i < n + 1 && passes(c, a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), za + t * (zb - za));
+        int vis = i < n + 1 && line_passes(c, a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), za + t * (zb - za));
         if (vis && run < 0) run = i;
         if ((!vis || i == n) && run >= 0) {
             int last = vis ? i : i - 1;
@@ -506,6 +517,7 @@ static pnpr_status group_marks(vec_ctx *c, int g, int kind, pnpr_vertex *buf)
         glGetBufferSubData(GL_ARRAY_BUFFER, (GLintptr)((first + k0) * sizeof *buf), (GLsizeiptr)(m * sizeof *buf), buf);
         for (size_t k = 0; k < m && st == PNPR_OK; k++) {
             uint32_t id = (uint32_t)(k0 + k);
+            if (c->style_filter >= 0 && c->r->vstyle[first + k0 + k] != (uint8_t)c->style_filter) continue;
             if (kind == 0) { /* sketchy */
                 int dir = g == GROUP_DIRECTIONAL;
                 st = stroke_mark(c, buf + k, id, dir ? 0 : 1, g == GROUP_DITHER, dir ? length : 0.5f * length,
@@ -519,20 +531,25 @@ static pnpr_status group_marks(vec_ctx *c, int g, int kind, pnpr_vertex *buf)
     return st;
 }
 
-/* The sketchy strokes or stipple dots of the frame. */
+/* The sketchy strokes and stipple dots of the frame (under a style map, each of its points' style),
+ * in the frame's order: stipple, then sketchy; within a style directional, non-directional, tone. */
 static pnpr_status point_marks(vec_ctx *c)
 {
     const pnpr_frame_record *rec = c->rec;
-    int sketchy = rec->o.style == PNPR_STYLE_SKETCHY;
-    if (!sketchy && rec->o.style != PNPR_STYLE_STIPPLE) return PNPR_OK;
-    int want[3] = {1, !sketchy || rec->o.sketch_variant != PNPR_SKETCH_DIRECTIONAL,
-                   !sketchy || rec->o.sketch_variant == PNPR_SKETCH_ALL};
+    const pnpr_style kinds[2] = {PNPR_STYLE_STIPPLE, PNPR_STYLE_SKETCHY};
     pnpr_vertex *buf = malloc(READ_CHUNK * sizeof *buf);
     if (!buf) return PNPR_ERR_OUT_OF_MEMORY;
     pnpr_status st = PNPR_OK;
-    /* the frame's drawing order: directional, non-directional, tone */
-    for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER && st == PNPR_OK; g++)
-        if (want[g] && rec->gdraw[g] && c->r->has_features) st = group_marks(c, g, sketchy ? 0 : 1, buf);
+    for (int k = 0; k < 2 && st == PNPR_OK; k++) {
+        int sketchy = kinds[k] == PNPR_STYLE_SKETCHY;
+        if (rec->mapped ? !rec->used[kinds[k]] : rec->o.style != kinds[k]) continue;
+        int want[3] = {1, !sketchy || rec->o.sketch_variant != PNPR_SKETCH_DIRECTIONAL,
+                       !sketchy || rec->o.sketch_variant == PNPR_SKETCH_ALL};
+        c->style_filter = rec->mapped ? (int)kinds[k] : -1;
+        for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER && st == PNPR_OK; g++)
+            if (want[g] && rec->gdraw[g] && c->r->has_features) st = group_marks(c, g, sketchy ? 0 : 1, buf);
+    }
+    c->style_filter = -1;
     free(buf);
     return st;
 }
@@ -617,7 +634,8 @@ static void line_caps(pnpr_drawing *d, size_t from)
 static pnpr_status line_marks(vec_ctx *c)
 {
     const pnpr_renderer *r = c->r;
-    if (c->rec->o.style != PNPR_STYLE_LINES || r->line_segments == 0) return PNPR_OK;
+    int lines = c->rec->mapped ? c->rec->used[PNPR_STYLE_LINES] > 0 : c->rec->o.style == PNPR_STYLE_LINES;
+    if (!lines || r->line_segments == 0) return PNPR_OK;
     const pnpr_frame_camera *fc = &c->rec->fc;
     double d[3] = {r->line_origin[0] - r->origin[0], r->line_origin[1] - r->origin[1], r->line_origin[2] - r->origin[2]};
     float lview[16];
@@ -667,15 +685,20 @@ static pnpr_status outline_marks(vec_ctx *c, pnpr_error *err)
 
 /* Cartoon: its flat colour areas, from the frame drawn with an outline pass of no ink (it still
  * paints the mask disks' overhang beyond the silhouettes in the background, as in the PNG), its
- * colour attachment read back and traced into filled areas (pnpr_drawing_trace_regions). */
+ * colour attachment read back and traced into filled areas (pnpr_drawing_trace_regions). Under a
+ * style map, the frame's pass 2 draws the cartoon points alone over the one mask of every style
+ * (their outline disks' ink where they are in front, as in the PNG); nothing when no point is
+ * cartoon. */
 static pnpr_status fill_marks(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts, int w, int h,
                               pnpr_drawing *out, pnpr_error *err)
 {
     pnpr_frame_record rec;
     memset(&rec, 0, sizeof rec);
     rec.outline_pass = PNPR_OUTLINES_NO_INK;
+    rec.pass_only = PNPR_STYLE_CARTOON + 1; /* under a style map: the cartoon points' colours alone */
     pnpr_status st = pnpr_renderer_draw_recorded(r, camera, opts, w, h, &rec, err);
     if (st != PNPR_OK) return st;
+    if (rec.mapped ? !rec.used[PNPR_STYLE_CARTOON] : rec.o.style != PNPR_STYLE_CARTOON) return PNPR_OK;
     uint8_t *rgba = malloc((size_t)w * (size_t)h * 4);
     if (!rgba) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: colour areas of a %dx%d frame: out of memory", w, h);
     st = pnpr_renderer_read_raw(r, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
@@ -698,18 +721,50 @@ static pnpr_status fill_marks(pnpr_renderer *r, const pnpr_camera *camera, const
     return st;
 }
 
+static int vector_style(pnpr_style s)
+{
+    return s == PNPR_STYLE_SKETCHY || s == PNPR_STYLE_STIPPLE || s == PNPR_STYLE_LINES || s == PNPR_STYLE_CARTOON;
+}
+
+static pnpr_status refuse_style(pnpr_error *err, const char *which, pnpr_style s)
+{
+    return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
+                          "vector: %sstyle '%s' fills areas; vector drawings are made of the strokes of sketchy, "
+                          "stipple, lines and the colour areas and outlines of cartoon",
+                          which, pnpr_style_name(s));
+}
+
 pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *err)
 {
     pnpr_style s = opts ? opts->style : PNPR_STYLE_POINTS;
-    if (opts && opts->style_map_count > 0)
-        return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "vector: style maps are not drawn as vectors yet (use one style)");
+    size_t n = opts && opts->style_map ? opts->style_map_count : 0;
+    int lines = s == PNPR_STYLE_LINES;
+    for (size_t i = 0; i < n; i++) {
+        pnpr_style si = opts->style_map[i].style;
+        lines |= si == PNPR_STYLE_LINES;
+        if (vector_style(si)) continue;
+        char which[64];
+        snprintf(which, sizeof which, "style map entry %zu (label %u): ", i + 1, (unsigned)opts->style_map[i].label);
+        return refuse_style(err, which, si);
+    }
     if (opts && (opts->layer_label_count > 0 || opts->layer_exclude))
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "vector: segment layers (image-space effects) are pixels, not vectors");
-    if (s != PNPR_STYLE_SKETCHY && s != PNPR_STYLE_STIPPLE && s != PNPR_STYLE_LINES && s != PNPR_STYLE_CARTOON)
+    /* under a map the default style matters only where a label is not in it: checked when drawn */
+    if (n == 0 && !vector_style(s)) return refuse_style(err, "", s);
+    if (lines && opts->faint > 0)
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
-                              "vector: style '%s' fills areas; vector drawings are made of the strokes of sketchy, "
-                              "stipple, lines and the colour areas and outlines of cartoon",
-                              pnpr_style_name(s));
+                              "vector: faint %g draws the cloud under the lines as areas; a vector drawing has the "
+                              "lines alone (faint 0)", (double)opts->faint);
+    return PNPR_OK;
+}
+
+/* The styles the frame drew (a style map's resolved): each must be one a drawing is made of. */
+static pnpr_status check_drawn(const pnpr_frame_record *rec, pnpr_error *err)
+{
+    if (!rec->mapped) return vector_style(rec->o.style) ? PNPR_OK : refuse_style(err, "the points' ", rec->o.style);
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
+        if (rec->used[s] && !vector_style((pnpr_style)s))
+            return refuse_style(err, "the style map's default (the labels it does not list), ", (pnpr_style)s);
     return PNPR_OK;
 }
 
@@ -722,6 +777,20 @@ static pnpr_status drawing_from_frame(vec_ctx *c, pnpr_error *err)
     st = pnpr_renderer_read_raw(c->r, GL_DEPTH_COMPONENT, GL_FLOAT, depth);
     if (st != PNPR_OK) { free(depth); return pnpr_error_set(err, st, "vector: depth: no frame to read"); }
     c->depth = depth;
+    uint8_t *stencil = NULL;
+    if (c->rec->mapped && c->rec->used[PNPR_STYLE_LINES]) {
+        if (!(stencil = malloc((size_t)c->w * (size_t)c->h))) {
+            free(depth);
+            return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "vector: stencil of a %dx%d frame: out of memory", c->w, c->h);
+        }
+        if ((st = pnpr_renderer_read_raw(c->r, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil)) != PNPR_OK) {
+            free(stencil);
+            free(depth);
+            c->depth = NULL;
+            return pnpr_error_set(err, st, "vector: stencil: no frame to read");
+        }
+        c->stencil = stencil;
+    }
     texture_profiles(c);
     st = drawn_levels(c);
     /* bottom to top as the frame draws them: strokes or dots, lines, outlines */
@@ -731,6 +800,8 @@ static pnpr_status drawing_from_frame(vec_ctx *c, pnpr_error *err)
     if (st == PNPR_OK) st = outline_marks(c, err);
     free(depth);
     c->depth = NULL;
+    free(stencil);
+    c->stencil = NULL;
     free(c->drawn);
     c->drawn = NULL;
     return st;
@@ -746,7 +817,7 @@ pnpr_status pnpr_renderer_drawing(pnpr_renderer *r, const pnpr_camera *camera, c
     if (width <= 0 || height <= 0 || width > r->max_size || height > r->max_size)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "vector: drawing size %dx%d is not within 1..%d (this GL's frame limit)",
                               width, height, (int)r->max_size);
-    if (opts->style == PNPR_STYLE_CARTOON) {
+    if (opts->style == PNPR_STYLE_CARTOON || opts->style_map_count > 0) {
         st = fill_marks(r, camera, opts, width, height, r_drawing, err);
         if (st != PNPR_OK) { pnpr_drawing_free(r_drawing); return st; }
     }
@@ -754,6 +825,7 @@ pnpr_status pnpr_renderer_drawing(pnpr_renderer *r, const pnpr_camera *camera, c
     memset(&rec, 0, sizeof rec);
     rec.outline_pass = PNPR_OUTLINES_INK_ONLY;
     st = pnpr_renderer_draw_recorded(r, camera, opts, width, height, &rec, err);
+    if (st == PNPR_OK) st = check_drawn(&rec, err);
     if (st != PNPR_OK) { pnpr_drawing_free(r_drawing); return st; }
     r_drawing->width = width;
     r_drawing->height = height;
@@ -765,6 +837,7 @@ pnpr_status pnpr_renderer_drawing(pnpr_renderer *r, const pnpr_camera *camera, c
     c.w = width;
     c.h = height;
     c.out = r_drawing;
+    c.style_filter = -1;
     for (int k = 0; k < 4; k++) c.ink[k] = unit_byte(rec.ink[k]);
     pnpr_gl_state saved;
     pnpr_gl_state_save(&saved);

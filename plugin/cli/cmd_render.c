@@ -144,7 +144,7 @@ static int write_vector(cli_render_session *s, const cli_render_opts *o, const r
             if (n) fprintf(stderr, "%s %zu, ", pnpr_drawing_layer_name((pnpr_drawing_layer)L), n);
         }
         fprintf(stderr, "%.0f px of ink), style %s, %dx%d", pnpr_drawing_ink_length(&d, PNPR_LAYER_COUNT_),
-                pnpr_style_name(o->dopt.style), o->view.width, o->view.height);
+                o->smap.count ? "map" : pnpr_style_name(o->dopt.style), o->view.width, o->view.height);
         if (r->merge_hatches) fprintf(stderr, ", %zu hatches merged", merged + m);
         if (r->min_mark > 0) fprintf(stderr, ", %zu marks under %g px left out", dropped, r->min_mark);
         if (r->plot_order) fprintf(stderr, ", pen-up travel %.0f -> %.0f px", travel, pnpr_drawing_travel(&d));

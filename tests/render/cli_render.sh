@@ -41,13 +41,13 @@ check 'grep -q "points drawn" "$dir/log.txt"' "summary on stderr"
 
 # sketchy on a cloud without features: computed on the fly
 "$bin" render "$dir/cube.ply" -o "$dir/sketchy.png" --style sketchy --sketch b --size 160x120 --alpha 2> "$dir/log2.txt"
-check '[ $? -eq 0 ]' "sketchy render exits 0 ($(cat "$dir/log2.txt"))"
+rc=$?; check '[ $rc -eq 0 ]' "sketchy render exits 0 ($(cat "$dir/log2.txt"))"
 check 'grep -q "computing features" "$dir/log2.txt"' "features computed for sketchy"
 check '[ "$(png_type "$dir/sketchy.png")" -eq 6 ]' "PNG is RGBA with --alpha"
 
 # lines on a cloud without features: features and profile lines computed on the fly
 "$bin" render "$dir/cube.ply" -o "$dir/lines.png" --style lines --line-width 3 --faint 0.3 --size 160x120 2> "$dir/log3.txt"
-check '[ $? -eq 0 ]' "lines render exits 0 ($(cat "$dir/log3.txt"))"
+rc=$?; check '[ $rc -eq 0 ]' "lines render exits 0 ($(cat "$dir/log3.txt"))"
 check 'grep -q "profile lines" "$dir/log3.txt" && grep -q "style lines" "$dir/log3.txt"' "profile lines computed for lines"
 
 "$bin" render "$dir/cube.ply" -o "$dir/stipple.png" --style stipple --dot-size 2 --size 160x120 --quiet
@@ -175,10 +175,10 @@ check '[ $? -eq 0 ] && [ "$(png_w "$dir/light.png")" -eq 120 ]' "tone and outlin
 # vector drawings (docs/export.md): SVG with named layers, PDF with the drawing's page size,
 # plotter order and merged hatches reported; fill styles and PNG-only options refused up front
 "$bin" render "$dir/cube.ply" -o "$dir/sketch.svg" --style sketchy --size 200x150 --plot-order --merge-hatches 2> "$dir/svg.log"
-check '[ $? -eq 0 ] && grep -q "<svg" "$dir/sketch.svg" && grep -q "inkscape:label=\"strokes\"" "$dir/sketch.svg"' "sketchy SVG with a strokes layer ($(cat "$dir/svg.log"))"
+rc=$?; check '[ $rc -eq 0 ] && grep -q "<svg" "$dir/sketch.svg" && grep -q "inkscape:label=\"strokes\"" "$dir/sketch.svg"' "sketchy SVG with a strokes layer ($(cat "$dir/svg.log"))"
 check 'grep -q "pen-up travel" "$dir/svg.log" && grep -q "hatches merged" "$dir/svg.log"' "plotter order and merging reported"
 "$bin" render "$dir/cube.ply" -o "$dir/plot.svg" --style sketchy --size 200x150 --min-mark 1000 2> "$dir/mm.log"
-check '[ $? -eq 0 ] && grep -q "under 1000 px left out" "$dir/mm.log" && ! grep -q "<path d=" "$dir/plot.svg"' "--min-mark 1000 leaves no stroke"
+check '[ $? -eq 0 ] && grep -q "under 1000 px left out" "$dir/mm.log" && ! grep -q "<path" "$dir/plot.svg"' "--min-mark 1000 leaves no stroke"
 check 'grep -q "width=\"200px\" height=\"150px\"" "$dir/sketch.svg"' "SVG is 200x150 px"
 "$bin" render "$dir/cube.ply" -o "$dir/dots.pdf" --style stipple --size 200x150 --quiet
 check '[ $? -eq 0 ] && [ "$(head -c 5 "$dir/dots.pdf")" = "%PDF-" ]' "stipple PDF written"
@@ -187,6 +187,15 @@ if command -v pdfinfo > /dev/null; then
 fi
 "$bin" render "$dir/cube.ply" -o "$dir/fill.svg" --style points --quiet 2> "$dir/fill.log"
 check '[ $? -eq 2 ] && grep -q "fills areas" "$dir/fill.log" && [ ! -e "$dir/fill.svg" ]' "points as SVG refused before any work"
+# a style map as vectors: its styles must draw strokes or areas of colour; the default (sketchy)
+# draws the labels the map leaves out
+printf '0 stipple\n' > "$dir/map-vec.txt"
+"$bin" render "$dir/cube_seg.ply" -o "$dir/map.svg" --size 200x150 --style-map "$dir/map-vec.txt" --style sketchy 2> "$dir/map-vec.log"
+check '[ $? -eq 0 ] && grep -q "inkscape:label=\"dots\"" "$dir/map.svg" && grep -q "inkscape:label=\"strokes\"" "$dir/map.svg" && grep -q "style map" "$dir/map-vec.log"' "a style map as SVG: dots and strokes"
+"$bin" render "$dir/cube_seg.ply" -o "$dir/map-fill.svg" --size 200x150 --style-map "$dir/map.txt" --quiet 2> "$dir/map-fill.log"
+check '[ $? -eq 2 ] && grep -q "entry 1 (label 0): style .points. fills areas" "$dir/map-fill.log" && [ ! -e "$dir/map-fill.svg" ]' "a style map with points as SVG refused before any work"
+"$bin" render "$dir/cube.ply" -o "$dir/faint.svg" --style lines --faint 0.3 --quiet 2> "$dir/faint.log"
+check '[ $? -eq 2 ] && grep -q "faint" "$dir/faint.log" && [ ! -e "$dir/faint.svg" ]' "lines --faint as SVG refused"
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --plot-order --quiet 2> "$dir/po.log"
 check '[ $? -eq 2 ] && grep -q "vector output" "$dir/po.log"' "--plot-order with a PNG refused"
 exit $fail
