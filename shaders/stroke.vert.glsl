@@ -93,10 +93,10 @@ void main()
             return;
         }
     }
-    // the quad one pixel larger all round: stroke.frag weighs each fragment by the share of its
+    // the quad half a pixel larger all round: stroke.frag weighs each fragment by the share of its
     // pixel the stroke covers (area coverage, as a vector renderer draws it)
     vec2 side = vec2(-axis.y, axis.x);
-    vec2 ext = vec2(half_len + 1.0, half_wid + 1.0);
+    vec2 ext = vec2(half_len + 0.5, half_wid + 0.5); // pixels whose centre is further are not covered
     vec2 off_px = axis * (q.x * ext.x) + side * (q.y * ext.y);
     gl_Position = clip + vec4(off_px * 2.0 / u_viewport * clip.w, 0.0, 0.0);
     v_uv = q * ext / vec2(half_len, half_wid) * 0.5 + 0.5;
