@@ -278,7 +278,9 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style '%s' needs the feature properties feature_class and feature_dir_x/y/z (pnpr_compute_features)",
                               pnpr_style_name(o->style));
-    if (o->style == PNPR_STYLE_PAINTERLY && r->count > 0 && !r->paint_bins)
+    /* painterly without its data: left out at upload (prepare_frame says so when a frame needs
+     * it), or no feature_degree */
+    if (o->style == PNPR_STYLE_PAINTERLY && r->count > 0 && !r->paint_bins && !r->paint_skipped)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'painterly' needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)");
     if (o->style == PNPR_STYLE_BRUSH && r->count > 0 && !r->brush.ready)
@@ -307,7 +309,7 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style map entry %zu (label %u): unknown style %d",
                                   i, (unsigned)o->style_map[i].label, (int)s);
         if (r->count == 0) continue;
-        if (s == PNPR_STYLE_PAINTERLY && !r->paint_bins)
+        if (s == PNPR_STYLE_PAINTERLY && !r->paint_bins && !r->paint_skipped)
             return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                                   "renderer: style map: label %u is 'painterly', which needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)",
                                   (unsigned)o->style_map[i].label);
@@ -461,7 +463,11 @@ static pnpr_status prepare_frame(const pnpr_renderer *r, const pnpr_camera *came
     *r_vstyle = NULL;
     pnpr_status st = pnpr_renderer_check_options(r, opts, &f->o, err);
     if (st == PNPR_OK) st = resolve_map(r, f, r_vstyle, err);
-    if (st != PNPR_OK) return st;
+    int painterly = f->mapped ? f->used[PNPR_STYLE_PAINTERLY] > 0 : f->o.style == PNPR_STYLE_PAINTERLY;
+    if (st == PNPR_OK && painterly && r->paint_skipped && r->count > 0)
+        st = pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: a painterly frame of a cloud uploaded without "
+                            "its painterly data (pnpr_upload_options.skip_painterly)");
+    if (st != PNPR_OK) { free(*r_vstyle); *r_vstyle = NULL; return st; }
     const pnpr_draw_options *o = &f->o;
     f->point_scale = o->point_scale;
     f->mask_scale = pnpr_draw_mask_scale(o, o->style);

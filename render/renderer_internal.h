@@ -69,6 +69,7 @@ struct pnpr_renderer {
      * queue), and one blended colour per point and pass (level-major) */
     GLuint paint_vbo, paint_col_vbo, vao_paint, brush_tex;
     size_t paint_bins;                       /* 0: no painterly data (no feature degree) */
+    int paint_skipped;                       /* ... or left out (pnpr_upload_options.skip_painterly) */
     size_t paint_start[PAINT_MAX_BINS + 2];
     splat_uniforms us;
     line_uniforms ul;

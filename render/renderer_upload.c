@@ -46,6 +46,7 @@ typedef struct upload_ctx {
     pnpr_vertex *pverts;     /* the vertices in painterly order */
     size_t pstarts[PAINT_MAX_BINS + 2];
     int paint;               /* painterly data built */
+    int paint_skipped;       /* the cloud has them, pnpr_upload_options.skip_painterly left them out */
     uint32_t *vlabel, *paint_src; /* style maps: labels in queue order; painterly -> queue index */
     uint8_t *zeros;               /* the initial style bytes */
     pnpr_brush_vertex *bverts;    /* brush: the brush attributes in queue order (NULL: no brush data) */
@@ -231,6 +232,8 @@ static pnpr_status upload_check(const pnpr_cloud *cloud, const pnpr_upload_optio
     u->pd[2] = pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DIR_Z);
     u->features = !u->o.ignore_features && u->pc && u->pd[0] && u->pd[1] && u->pd[2];
     u->pdeg = u->features ? pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_DEGREE) : NULL;
+    u->paint_skipped = u->pdeg && u->o.skip_painterly;
+    if (u->paint_skipped) u->pdeg = NULL; /* the degree serves the painterly data alone */
     if (u->o.painterly_bins > PAINT_MAX_BINS)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: painterly_bins %u is more than %d",
                               (unsigned)u->o.painterly_bins, PAINT_MAX_BINS);
@@ -412,6 +415,7 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
     const pnpr_cloud *cloud = u->cloud;
     size_t n = u->n;
     r->paint_bins = u->paint ? u->nbins : 0;
+    r->paint_skipped = u->paint_skipped;
     if (u->paint) for (size_t b = 0; b <= u->nbins + 1; b++) r->paint_start[b] = u->pstarts[b];
     free(r->vlabel); free(r->paint_src); free(r->vstyle); free(r->ulabels);
     r->ulabels = NULL; r->ulabel_count = 0;

@@ -68,6 +68,10 @@ typedef struct pnpr_upload_options {
     uint32_t painterly_bins; /* painterly: feature-degree bins = passes (0 = the default, at most
                               * PNPR_PAINTERLY_BINS_MAX); the
                               * painterly data are built when the cloud has feature_degree */
+    int skip_painterly;      /* 1: no painterly data, even for a cloud with feature_degree: no
+                              * 12-neighbour lists, colour passes or painterly buffers (less time
+                              * and memory when no frame will be painterly; a painterly frame is
+                              * then refused). 0: built when the cloud has feature_degree */
     pnpr_tone_options tone;  /* clouds without colours are drawn in greys shaded by this tone's
                               * key light on their normals (tone.h; the source is always the
                               * light, the curve is not applied): grey = 240 - 170 * darkness */

@@ -491,6 +491,7 @@ int cli_render_start(cli_render_session *s, cli_render_opts *o, const char *cmd,
 {
     if (tone_up) memcpy(o->tone.up, tone_up, sizeof o->tone.up);
     o->uopt.tone = o->tone;
+    o->uopt.skip_painterly = !o->uses[PNPR_STYLE_PAINTERLY]; /* only what the frames need */
     if (!run_plan(cmd, in, &s->cloud, &s->tree, o, o->quiet, s->prog)) return 0;
     pnpr_error err = {0};
     pnpr_status st = pnpr_gl_context_create(&s->ctx, &err);

@@ -176,9 +176,27 @@ static void test_painterly(pnpr_renderer *r)
     fprintf(stderr, "painterly tiled vs one frame: mean abs diff %.4f, %.3f %% within 2 levels\n",
             sum / (4.0 * W * H), 100.0 * (double)close / (W * H));
     CHECK(sum / (4.0 * W * H) < 1.0 && close > (size_t)W * H * 995 / 1000);
-    /* one bin: one pass of the smallest brush; 17 bins: INVALID_ARGUMENT */
     pnpr_upload_options uo;
     memset(&uo, 0, sizeof uo);
+    /* skip_painterly: the frames of the other styles are those of a full upload byte for byte
+     * (mask, paint: scratch); a painterly frame is refused, naming the option */
+    const pnpr_style others[4] = {PNPR_STYLE_SKETCHY, PNPR_STYLE_STIPPLE, PNPR_STYLE_CARTOON, PNPR_STYLE_POINTS};
+    for (int k = 0; k < 4; k++) {
+        pnpr_draw_options other = o;
+        other.style = others[k];
+        uo.skip_painterly = 0;
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, &uo, NULL), PNPR_OK);
+        CHECK_STATUS(render(r, &cam, &other, mask, NULL), PNPR_OK);
+        uo.skip_painterly = 1;
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, &uo, NULL), PNPR_OK);
+        CHECK_STATUS(render(r, &cam, &other, paint, NULL), PNPR_OK);
+        CHECK_MSG(!memcmp(mask, paint, (size_t)W * H * 4), "%s: skip_painterly changed the frame", pnpr_style_name(others[k]));
+    }
+    pnpr_error skip_err = {0};
+    CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, &skip_err), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(skip_err.message, "skip_painterly") != NULL);
+    uo.skip_painterly = 0;
+    /* one bin: one pass of the smallest brush; 17 bins: INVALID_ARGUMENT */
     uo.painterly_bins = 1;
     CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, &uo, NULL), PNPR_OK);
     CHECK_STATUS(render(r, &cam, &o, nosky, NULL), PNPR_OK);
