@@ -1,6 +1,7 @@
 /* Scaling of the profile-line stage: N directional points on random straight features (segments
  * of 100 points, spacing 0.01, 5% position noise, in a cube growing with N so the density stays
- * the same), N = 10k .. 1M. Prints a markdown table: graph, spanning forest and fit times. */
+ * the same), N = 10k .. 1M. Prints a markdown table: graph, spanning forest and fit times.
+ *   bench_lines [MAX_N [THREADS]]   (THREADS 0 or none: all cores) */
 #include "../tests/testutil.h"
 #include <pointnpr/lines.h>
 
@@ -19,6 +20,8 @@ static double now(void)
 int main(int argc, char **argv)
 {
     size_t max_n = argc > 1 ? (size_t)atol(argv[1]) : 1000000;
+    pnpr_lines_options lo = {0};
+    lo.threads = argc > 2 ? atoi(argv[2]) : 0; /* 0: all cores */
     const size_t sizes[] = {10000, 30000, 100000, 300000, 1000000};
     printf("| directional points | graph edges | forest edges | polylines | graph s | spanning forest s | fit s | total s |\n");
     printf("|---|---|---|---|---|---|---|---|\n");
@@ -44,7 +47,7 @@ int main(int argc, char **argv)
         pnpr_polylines lines;
         pnpr_lines_stats st;
         double t0 = now();
-        pnpr_status r = pnpr_profile_lines_points(p, d, n, origin, NULL, &lines, &st);
+        pnpr_status r = pnpr_profile_lines_points(p, d, n, origin, &lo, &lines, &st);
         double t = now() - t0;
         if (r != PNPR_OK) { fprintf(stderr, "bench_lines: %s\n", pnpr_status_string(r)); return 1; }
         printf("| %zu | %zu | %zu | %zu | %.3f | %.3f | %.3f | %.3f |\n", n, st.graph_edges, st.forest_edges, st.chains,

@@ -37,10 +37,13 @@
 #include "kdtree_internal.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define RADIUS_CAP PNPR_LINES_NEIGHBOURS_MAX
+#define GRAPH_SLOTS 9     /* a node and its 8 nearest: at most 9 edges each (8 unless nodes coincide) */
+#define LINES_CHUNK 4096  /* points or nodes per parallel chunk */
 
 int pnpr_lines_buf_push(pnpr_lines_buf *b, const double p[3])
 {
@@ -188,28 +191,38 @@ static void lines_parameters(lines_ctx *c, double h)
     c->tol_sample = length_or_auto(table, n, "sample-tol", o.sample_tol, h);
 }
 
-/* 1. shift across the feature direction towards the neighbours' mean (c->npos: scratch). */
+/* Points [begin, end) of one shift into c->npos (each reads the tree and c->pos only). */
+static void shift_range(void *ctx, size_t begin, size_t end)
+{
+    lines_ctx *c = ctx;
+    uint32_t nb[RADIUS_CAP];
+    const float *pos = c->pos;
+    for (size_t i = begin; i < end; i++) {
+        const float *p = pos + 3 * i, *d = c->dir + 3 * i;
+        size_t got = pnpr_kdtree_radius_first(c->tree, p, (float)(2 * c->h), nb, RADIUS_CAP);
+        double mean[3] = {0, 0, 0};
+        for (size_t r = 0; r < got; r++)
+            for (int a = 0; a < 3; a++) mean[a] += pos[3 * (size_t)nb[r] + a];
+        double mv[3];
+        for (int a = 0; a < 3; a++) mv[a] = got ? mean[a] / (double)got - p[a] : 0.0;
+        double along = mv[0] * d[0] + mv[1] * d[1] + mv[2] * d[2];
+        for (int a = 0; a < 3; a++) c->npos[3 * i + a] = (float)(p[a] + 0.5 * (mv[a] - along * d[a]));
+    }
+}
+
+/* 1. shift across the feature direction towards the neighbours' mean (c->npos: scratch), the
+ * points in parallel (each independent of the others within an iteration). */
 static pnpr_status lines_shift(lines_ctx *c)
 {
-    uint32_t nb[RADIUS_CAP];
     const size_t n = c->n;
     float *pos = c->pos;
     for (int it = 0; it < c->shifts; it++) {
-        for (size_t i = 0; i < n; i++) {
-            const float *p = pos + 3 * i, *d = c->dir + 3 * i;
-            size_t got = pnpr_kdtree_radius_first(c->tree, p, (float)(2 * c->h), nb, RADIUS_CAP);
-            double mean[3] = {0, 0, 0};
-            for (size_t r = 0; r < got; r++)
-                for (int a = 0; a < 3; a++) mean[a] += pos[3 * (size_t)nb[r] + a];
-            double mv[3];
-            for (int a = 0; a < 3; a++) mv[a] = got ? mean[a] / (double)got - p[a] : 0.0;
-            double along = mv[0] * d[0] + mv[1] * d[1] + mv[2] * d[2];
-            for (int a = 0; a < 3; a++) c->npos[3 * i + a] = (float)(p[a] + 0.5 * (mv[a] - along * d[a]));
-        }
+        pnpr_status st = pnpr_parallel_for(n, LINES_CHUNK, c->opts->threads, shift_range, c, NULL, NULL);
+        if (st != PNPR_OK) return st;
         memcpy(pos, c->npos, n * 3 * sizeof *pos);
         pnpr_kdtree_free(c->tree);
         c->tree = NULL;
-        pnpr_status st = pnpr_kdtree_build(pos, n, 0, &c->tree);
+        st = pnpr_kdtree_build_threads(pos, n, 0, c->opts->threads, &c->tree);
         if (st != PNPR_OK) return st;
         if (pnpr_progress_report(&c->opts->progress, "lines: shift", (it + 1.0) / (c->shifts + 1.0)))
             return PNPR_ERR_CANCELLED;
@@ -256,21 +269,21 @@ static pnpr_status lines_merge(lines_ctx *c)
     c->stats->merged_nodes = n_nodes;
     pnpr_kdtree_free(c->tree);
     c->tree = NULL;
-    return pnpr_kdtree_build(c->npos, n_nodes, 0, &c->tree);
+    return pnpr_kdtree_build_threads(c->npos, n_nodes, 0, c->opts->threads, &c->tree);
 }
 
-/* 3. graph edges: each node to its 8 nearest within R, weighed by length and direction. */
-static pnpr_status lines_graph(lines_ctx *c)
+/* The graph edges of nodes [begin, end): node a's in c->edges[a * GRAPH_SLOTS ...], their
+ * count in c->deg[a] (scratch here: the forest's degrees come later). */
+static void graph_range(void *ctx, size_t begin, size_t end)
 {
-    size_t cap_edges = c->n_nodes * 8;
-    c->edges = malloc((cap_edges ? cap_edges : 1) * sizeof *c->edges);
-    if (!c->edges) return PNPR_ERR_OUT_OF_MEMORY;
+    lines_ctx *c = ctx;
     const float *npos = c->npos, *ndir = c->ndir;
-    for (size_t a = 0; a < c->n_nodes; a++) {
-        uint32_t idx[9];
-        float d2[9];
-        size_t got = pnpr_kdtree_knn(c->tree, npos + 3 * a, 9, idx, d2);
+    for (size_t a = begin; a < end; a++) {
+        uint32_t idx[GRAPH_SLOTS];
+        float d2[GRAPH_SLOTS];
+        size_t got = pnpr_kdtree_knn(c->tree, npos + 3 * a, GRAPH_SLOTS, idx, d2), m = 0;
         const float *pa = npos + 3 * a, *da = ndir + 3 * a;
+        edge *out = c->edges + a * GRAPH_SLOTS;
         for (size_t r = 0; r < got; r++) {
             uint32_t b = idx[r];
             if (b == a || d2[r] > c->R * c->R) continue;
@@ -283,9 +296,29 @@ static pnpr_status lines_graph(lines_ctx *c)
             if (ca < 0.5 && cb < 0.5) continue;
             edge ed = {(float)(len * (1 + c->beta * (1 - 0.5 * (ca + cb)))), (uint32_t)(a < b ? a : b),
                        (uint32_t)(a < b ? b : a)};
-            c->edges[c->n_edges++] = ed;
+            out[m++] = ed;
         }
+        c->deg[a] = (uint32_t)m;
     }
+}
+
+/* 3. graph edges: each node to its 8 nearest within R, weighed by length and direction; the nodes
+ * in parallel, each into slots of its own, then packed in node order (the same edges in the same
+ * order whatever the threads). */
+static pnpr_status lines_graph(lines_ctx *c)
+{
+    size_t nn = c->n_nodes;
+    c->edges = malloc((nn ? nn * GRAPH_SLOTS : 1) * sizeof *c->edges);
+    c->deg = malloc((nn ? nn : 1) * sizeof *c->deg);
+    if (!c->edges || !c->deg) return PNPR_ERR_OUT_OF_MEMORY;
+    pnpr_status st = pnpr_parallel_for(nn, LINES_CHUNK, c->opts->threads, graph_range, c, NULL, NULL);
+    if (st != PNPR_OK) return st;
+    size_t m = 0;
+    for (size_t a = 0; a < nn; a++)
+        for (uint32_t r = 0; r < c->deg[a]; r++) c->edges[m++] = c->edges[a * GRAPH_SLOTS + r];
+    c->n_edges = m;
+    free(c->deg);
+    c->deg = NULL;
     return PNPR_OK;
 }
 
@@ -550,17 +583,20 @@ static void add_polyline_length(const double *p, size_t n, int closed, double *a
     *acc = len;
 }
 
-/* 8. a B-spline per chain (with its corner extensions) -> the polylines of r_lines. */
-static pnpr_status lines_fit(lines_ctx *c, pnpr_polylines *r_lines)
+/* The fitted polyline of each chain (fit_range), joined in chain order by lines_fit. */
+typedef struct fit_job {
+    lines_ctx *c;
+    pnpr_lines_buf *out;       /* one per chain */
+    _Atomic int failed;        /* an allocation failed */
+} fit_job;
+
+/* Chains [begin, end): each one's nodes (and corner extensions) fitted into job->out[ci]. */
+static void fit_range(void *ctx, size_t begin, size_t end)
 {
-    size_t cap_l = c->n_chains + 1;
-    r_lines->offset = malloc((cap_l + 1) * sizeof *r_lines->offset);
-    r_lines->closed = malloc(cap_l);
-    if (!r_lines->offset || !r_lines->closed) return PNPR_ERR_OUT_OF_MEMORY;
-    r_lines->offset[0] = 0;
-    pnpr_lines_buf q = {NULL, 0, 0, 1}, out = {NULL, 0, 0, 1};
-    pnpr_status st = PNPR_OK;
-    for (size_t ci = 0; ci < c->n_chains && st == PNPR_OK; ci++) {
+    fit_job *job = ctx;
+    const lines_ctx *c = job->c;
+    pnpr_lines_buf q = {NULL, 0, 0, 1};
+    for (size_t ci = begin; ci < end; ci++) {
         const chain *ch = &c->chains[ci];
         if (ch->count < 2) continue;
         q.n = 0;
@@ -571,24 +607,41 @@ static pnpr_status lines_fit(lines_ctx *c, pnpr_polylines *r_lines)
             pnpr_lines_buf_push(&q, dp);
         }
         if (ch->has_ext[1]) pnpr_lines_buf_push(&q, ch->ext[1]);
-        size_t before = out.n;
-        if (!q.ok || !pnpr_lines_fit_chain(q.p, q.n, ch->closed, c->h, c->tol_sample, &out)) {
-            st = PNPR_ERR_OUT_OF_MEMORY;
-            break;
-        }
-        if (out.n - before < 2) { out.n = before; continue; }
-        add_polyline_length(out.p + 3 * before, out.n - before, ch->closed, &c->stats->total_length);
-        r_lines->closed[r_lines->count] = (uint8_t)ch->closed;
-        r_lines->offset[++r_lines->count] = out.n;
+        if (!q.ok || !pnpr_lines_fit_chain(q.p, q.n, ch->closed, c->h, c->tol_sample, &job->out[ci])) job->failed = 1;
     }
     free(q.p);
-    c->stats->chains = r_lines->count;
+}
+
+/* 8. a B-spline per chain (with its corner extensions; lines_spline.c), the chains in parallel;
+ * the polylines in chain order. */
+static pnpr_status lines_fit(lines_ctx *c, pnpr_polylines *r_lines)
+{
+    size_t nc = c->n_chains, total = 0;
+    r_lines->offset = malloc((nc + 2) * sizeof *r_lines->offset);
+    r_lines->closed = malloc(nc + 1);
+    fit_job job = {c, calloc(nc ? nc : 1, sizeof(pnpr_lines_buf)), 0};
+    pnpr_status st = r_lines->offset && r_lines->closed && job.out ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t ci = 0; ci < nc && job.out; ci++) job.out[ci].ok = 1;
+    if (st == PNPR_OK) st = pnpr_parallel_for(nc, 64, c->opts->threads, fit_range, &job, NULL, NULL);
+    if (st == PNPR_OK && job.failed) st = PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t ci = 0; st == PNPR_OK && ci < nc; ci++) total += job.out[ci].n >= 2 ? job.out[ci].n : 0;
+    if (st == PNPR_OK && !(r_lines->xyz = malloc((total ? total : 1) * 3 * sizeof *r_lines->xyz))) st = PNPR_ERR_OUT_OF_MEMORY;
     if (st == PNPR_OK) {
-        r_lines->xyz = malloc((out.n ? out.n : 1) * 3 * sizeof *r_lines->xyz);
-        if (!r_lines->xyz) st = PNPR_ERR_OUT_OF_MEMORY;
-        for (size_t i = 0; st == PNPR_OK && i < 3 * out.n; i++) r_lines->xyz[i] = (float)out.p[i];
+        size_t at = 0;
+        r_lines->offset[0] = 0;
+        for (size_t ci = 0; ci < nc; ci++) {
+            const pnpr_lines_buf *o = &job.out[ci];
+            if (o->n < 2) continue;
+            for (size_t i = 0; i < 3 * o->n; i++) r_lines->xyz[3 * at + i] = (float)o->p[i];
+            add_polyline_length(o->p, o->n, c->chains[ci].closed, &c->stats->total_length);
+            at += o->n;
+            r_lines->closed[r_lines->count] = (uint8_t)c->chains[ci].closed;
+            r_lines->offset[++r_lines->count] = at;
+        }
     }
-    free(out.p);
+    c->stats->chains = r_lines->count;
+    for (size_t ci = 0; job.out && ci < nc; ci++) free(job.out[ci].p);
+    free(job.out);
     return st;
 }
 
@@ -639,7 +692,7 @@ pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, 
     c.opts = opts;
     c.stats = r_stats;
     pnpr_status st = lines_collect(&c, xyz_in, dir_in, m);
-    if (st == PNPR_OK && c.n >= 2) st = pnpr_kdtree_build(c.pos, c.n, 0, &c.tree);
+    if (st == PNPR_OK && c.n >= 2) st = pnpr_kdtree_build_threads(c.pos, c.n, 0, opts->threads, &c.tree);
     double h = 0;
     if (st == PNPR_OK && c.n >= 2) h = opts->spacing > 0 ? opts->spacing : pnpr_kdtree_median_spacing(c.tree, 0);
     if (st == PNPR_OK && h > 0) { /* else fewer than 2 points, or all coincide: no line */

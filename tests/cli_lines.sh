@@ -51,6 +51,12 @@ check '[ $rc -eq 2 ]' "--taper 2 is a usage error (got $rc)"
 check '[ $rc -eq 2 ]' "--eye without --target is a usage error (got $rc)"
 "$bin" lines "$dir/missing.ply" -o "$dir/y.obj" 2> "$dir/err.txt"; rc=$?
 check '[ $rc -eq 1 ] && grep -q missing.ply "$dir/err.txt" && [ ! -e "$dir/y.obj" ]' "missing input: exit 1, named, no output"
+# --threads: the same lines with one thread and with three
+"$bin" lines "$dir/cube.ply" -o "$dir/t1.obj" --threads 1 --quiet; rc1=$?
+"$bin" lines "$dir/cube.ply" -o "$dir/t3.obj" --threads 3 --quiet; rc3=$?
+check '[ $rc1 -eq 0 ] && [ $rc3 -eq 0 ] && [ "$(grep -c "^l " "$dir/t1.obj")" -gt 0 ] && cmp -s "$dir/t1.obj" "$dir/t3.obj"' "--threads 1 and 3 write the same lines"
+"$bin" lines "$dir/cube.ply" -o "$dir/t0.obj" --threads 0 > /dev/null 2>&1; rc=$?
+check '[ $rc -eq 2 ] && [ ! -e "$dir/t0.obj" ]' "--threads 0 refused (usage)"
 set -e
 
 if [ $fail -ne 0 ]; then echo "cli_lines: FAILED" >&2; exit 1; fi

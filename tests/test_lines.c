@@ -339,8 +339,40 @@ static void test_writers(void)
     pnpr_lines_free(&l);
 }
 
+/* The shift and graph stages run in parallel: 1, 2 and 7 threads give the same polylines, vertex
+ * for vertex (the noisy cube: shifts, merges and a graph of thousands of nodes). */
+static void test_threads_same_lines(void)
+{
+    const double h = 0.02;
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_test_cube(&c, 1.0, h, 0.2 * h, NULL, 11), PNPR_OK);
+    CHECK_STATUS(pnpr_compute_features(&c, NULL, NULL), PNPR_OK);
+    pnpr_polylines l[3] = {{0}, {0}, {0}};
+    pnpr_lines_stats s[3];
+    const int threads[3] = {1, 2, 7};
+    for (int k = 0; k < 3; k++) {
+        pnpr_lines_options o;
+        memset(&o, 0, sizeof o);
+        o.threads = threads[k];
+        CHECK_STATUS(pnpr_profile_lines(&c, &o, &l[k], &s[k]), PNPR_OK);
+    }
+    printf("threads 1 / 2 / 7: %zu / %zu / %zu polylines, %zu graph edges\n", l[0].count, l[1].count, l[2].count,
+           s[0].graph_edges);
+    CHECK(l[0].count >= 12 && s[0].graph_edges > 1000);
+    for (int k = 1; k < 3; k++) {
+        CHECK(l[k].count == l[0].count && s[k].graph_edges == s[0].graph_edges && s[k].forest_edges == s[0].forest_edges);
+        if (l[k].count != l[0].count) continue;
+        CHECK(!memcmp(l[k].offset, l[0].offset, (l[0].count + 1) * sizeof *l[0].offset));
+        CHECK(!memcmp(l[k].closed, l[0].closed, l[0].count));
+        CHECK(!memcmp(l[k].xyz, l[0].xyz, 3 * l[0].offset[l[0].count] * sizeof *l[0].xyz));
+    }
+    for (int k = 0; k < 3; k++) pnpr_lines_free(&l[k]);
+    pnpr_cloud_free(&c);
+}
+
 int main(void)
 {
+    test_threads_same_lines();
     test_cube();
     test_cylinder();
     test_plane_and_degenerate();

@@ -26,7 +26,7 @@ static const char *const svg_metavars[] = {"PX", "F", "PX", "F"};
 typedef struct lines_args {
     cli_common c;
     const char *svg, *in; /* in: the input, for messages */
-    int show_hidden, no_corners;
+    int show_hidden, no_corners, threads;
     pnpr_svg_options so; /* so.outline: --outline (1 on, -1 off, 0 the default: on) */
 } lines_args;
 static const cli_opt lines_opts[] = {
@@ -38,6 +38,7 @@ static const cli_opt lines_opts[] = {
      "keep hidden parts in the SVG (and draw no outlines)"},
     CLI_OUTLINE_OPT(lines_args, so.outline,
                     "the SVG gets IN's silhouettes and occluding contours as paths (default on; docs/lines.md)"),
+    CLI_THREADS_OPT(lines_args, threads),
 };
 
 static void usage(FILE *f)
@@ -62,7 +63,7 @@ static void usage(FILE *f)
     size_t sn;
     const pnpr_option_desc *st = pnpr_svg_option_table(&sn);
     for (size_t i = 0; svg_names[i]; i++) cli_table_usage(f, st, sn, svg_names[i], svg_metavars[i]);
-    cli_opts_usage(f, lines_opts + 2, 2); /* --show-hidden, --outline */
+    cli_opts_usage(f, lines_opts + 2, 3); /* --show-hidden, --outline, --threads */
     cli_opts_usage(f, cli_common_opts + 1, 1); /* --quiet */
     fprintf(f, "feature options, used when features are computed:\n");
     for (size_t i = 0; feature_names[i]; i++) cli_table_usage(f, ftable, fn, feature_names[i], feature_metavars[i]);
@@ -162,6 +163,7 @@ int cli_lines(int argc, char **argv)
     const char *out = A.c.out;
     const int quiet = A.c.quiet;
     lo.no_corners = A.no_corners;
+    lo.threads = fo.threads = A.threads;
     lines_args *sa = &A;
     if (!cli_need_in_out("lines", in, out ? out : sa->svg, "OUT.obj (or --svg OUT.svg)")) return 2;
     if (!cli_view_check(&view, "lines")) return 2;
