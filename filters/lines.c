@@ -324,9 +324,58 @@ static pnpr_status lines_graph(lines_ctx *c)
 
 /* 4. minimum spanning forest (Kruskal; duplicates of an edge are skipped by union-find): the
  * forest's edges become the prefix of c->edges. */
+/* Parts of an edge array sorted on their own (sort_edges). */
+typedef struct sort_job { edge *e; size_t n, parts; } sort_job;
+
+static void sort_parts(void *ctx, size_t begin, size_t end)
+{
+    const sort_job *j = ctx;
+    for (size_t p = begin; p < end; p++) {
+        size_t lo = j->n * p / j->parts, hi = j->n * (p + 1) / j->parts;
+        qsort(j->e + lo, hi - lo, sizeof *j->e, cmp_edge);
+    }
+}
+
+/* Merges the sorted runs src[lo, mid) and src[mid, hi) into dst[lo, hi). */
+static void merge_runs(const edge *src, edge *dst, size_t lo, size_t mid, size_t hi)
+{
+    size_t a = lo, b = mid, o = lo;
+    while (a < mid && b < hi) dst[o++] = cmp_edge(src + b, src + a) < 0 ? src[b++] : src[a++];
+    while (a < mid) dst[o++] = src[a++];
+    while (b < hi) dst[o++] = src[b++];
+}
+
+/* The edges sorted by cmp_edge: up to 8 parts (a power of two, one per thread) sorted in
+ * parallel, then merged pairwise. cmp_edge is a total order, so the result is that of one qsort
+ * whatever the threads. */
+static pnpr_status sort_edges(edge *e, size_t n, int threads)
+{
+    int t = threads > 0 ? threads : pnpr_default_threads();
+    size_t parts = 1;
+    while (parts < 8 && parts * 2 <= (size_t)t && n / (parts * 2) >= 4096) parts *= 2;
+    edge *tmp = parts > 1 ? malloc(n * sizeof *tmp) : NULL;
+    if (!tmp) { qsort(e, n, sizeof *e, cmp_edge); return PNPR_OK; } /* one part, or no memory for two */
+    sort_job job = {e, n, parts};
+    pnpr_status st = pnpr_parallel_for(parts, 1, t, sort_parts, &job, NULL, NULL);
+    edge *src = e, *dst = tmp;
+    for (size_t w = 1; st == PNPR_OK && w < parts; w *= 2) {
+        for (size_t p = 0; p < parts; p += 2 * w) {
+            size_t mid = p + w < parts ? p + w : parts, end = p + 2 * w < parts ? p + 2 * w : parts;
+            merge_runs(src, dst, n * p / parts, n * mid / parts, n * end / parts);
+        }
+        edge *x = src;
+        src = dst;
+        dst = x;
+    }
+    if (st == PNPR_OK && src != e) memcpy(e, src, n * sizeof *e);
+    free(tmp);
+    return st;
+}
+
 static pnpr_status lines_forest(lines_ctx *c)
 {
-    qsort(c->edges, c->n_edges, sizeof *c->edges, cmp_edge);
+    pnpr_status st = sort_edges(c->edges, c->n_edges, c->opts->threads);
+    if (st != PNPR_OK) return st;
     c->stats->graph_edges = c->n_edges;
     uint32_t *parent = malloc((c->n_nodes ? c->n_nodes : 1) * sizeof *parent);
     if (!parent) return PNPR_ERR_OUT_OF_MEMORY;
@@ -534,6 +583,55 @@ static void cluster_votes(lines_ctx *c, double *votes, const uint32_t *vpair, si
     }
 }
 
+static int cmp_u32(const void *x, const void *y)
+{
+    uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+    return a < b ? -1 : a > b;
+}
+
+/* The votes of the pairs of chain ends (ep: k ends, position and tangent), at most cap of them.
+ * Only ends within 12h of each other can vote (end_pair_vote's first test): each end's partners
+ * come from a kd-tree over the ends (a radius a little larger, so that float rounding loses
+ * none), those after it in ascending order, so the votes are those of the loop over all k^2 / 2
+ * pairs in the same order, in O(k log k). */
+static pnpr_status end_pairs(lines_ctx *c, const double *ep, size_t k, size_t cap, double *votes, uint32_t *vpair,
+                             size_t *r_nv)
+{
+    size_t nv = 0, nb_cap = 64;
+    float *ef = malloc((k ? k : 1) * 3 * sizeof *ef);
+    uint32_t *nb = malloc(nb_cap * sizeof *nb);
+    pnpr_kdtree *tree = NULL;
+    pnpr_status st = ef && nb ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; st == PNPR_OK && i < k; i++)
+        for (int a = 0; a < 3; a++) ef[3 * i + a] = (float)ep[6 * i + a];
+    if (st == PNPR_OK) st = pnpr_kdtree_build(ef, k, 0, &tree);
+    const float radius = (float)(12 * c->h * (1 + 1e-3));
+    for (size_t i = 0; st == PNPR_OK && i < k && nv < cap; i++) {
+        size_t got = pnpr_kdtree_radius(tree, ef + 3 * i, radius, nb, nb_cap);
+        if (got > nb_cap) {
+            uint32_t *more = realloc(nb, got * sizeof *nb);
+            if (!more) { st = PNPR_ERR_OUT_OF_MEMORY; break; }
+            nb = more;
+            nb_cap = got;
+            got = pnpr_kdtree_radius(tree, ef + 3 * i, radius, nb, nb_cap);
+        }
+        qsort(nb, got, sizeof *nb, cmp_u32);
+        for (size_t r = 0; r < got && nv < cap; r++) {
+            size_t j = nb[r];
+            if (j <= i || !end_pair_vote(ep + 6 * i, ep + 6 * j, c->h, votes + 4 * nv)) continue;
+            votes[4 * nv + 3] = -1;
+            vpair[2 * nv] = (uint32_t)i;
+            vpair[2 * nv + 1] = (uint32_t)j;
+            nv++;
+        }
+    }
+    pnpr_kdtree_free(tree);
+    free(ef);
+    free(nb);
+    *r_nv = nv;
+    return st;
+}
+
 /* 7. corners: chain ends whose tangents meet. */
 static pnpr_status lines_corners(lines_ctx *c)
 {
@@ -554,14 +652,7 @@ static pnpr_status lines_corners(lines_ctx *c)
             end_tangent(c->npos, c->chain_nodes + ch->first, ch->count, end, c->h, ep + 6 * k, ep + 6 * k + 3);
             eref[k++] = (uint32_t)(2 * ci + (size_t)end);
         }
-    for (size_t i = 0; st == PNPR_OK && i < k; i++)
-        for (size_t j = i + 1; j < k && nv < ne * 8; j++) {
-            if (!end_pair_vote(ep + 6 * i, ep + 6 * j, c->h, votes + 4 * nv)) continue;
-            votes[4 * nv + 3] = -1;
-            vpair[2 * nv] = (uint32_t)i;
-            vpair[2 * nv + 1] = (uint32_t)j;
-            nv++;
-        }
+    if (st == PNPR_OK) st = end_pairs(c, ep, k, ne * 8, votes, vpair, &nv);
     if (st == PNPR_OK) cluster_votes(c, votes, vpair, nv, eref);
     free(ep); free(eref); free(votes); free(vpair);
     return st;

@@ -339,8 +339,9 @@ static void test_writers(void)
     pnpr_lines_free(&l);
 }
 
-/* The shift and graph stages run in parallel: 1, 2 and 7 threads give the same polylines, vertex
- * for vertex (the noisy cube: shifts, merges and a graph of thousands of nodes). */
+/* The shift, graph, edge sort and fit stages run in parallel: 1, 2 and 7 threads give the same
+ * polylines, vertex for vertex (the noisy cube; random segments with a graph large enough for the
+ * sort's parts). */
 static void test_threads_same_lines(void)
 {
     const double h = 0.02;
@@ -368,6 +369,41 @@ static void test_threads_same_lines(void)
     }
     for (int k = 0; k < 3; k++) pnpr_lines_free(&l[k]);
     pnpr_cloud_free(&c);
+    /* 30 000 points on 300 random noisy segments (as bench_lines): enough graph edges (about
+     * 69 000) for the edge sort to split into 2 and 4 parts */
+    enum { N = 30000 };
+    float *p = malloc(N * 3 * sizeof *p), *d = malloc(N * 3 * sizeof *d);
+    if (!p || !d) { free(p); free(d); CHECK(0); return; }
+    pnpr_test_rng rng = {7};
+    for (size_t s0 = 0; s0 < N; s0 += 100) {
+        double o[3], dir[3], len = 0;
+        for (int a = 0; a < 3; a++) { o[a] = 15 * pnpr_test_uniform(&rng); dir[a] = pnpr_test_normal(&rng); len += dir[a] * dir[a]; }
+        len = sqrt(len);
+        for (size_t i = s0; i < s0 + 100; i++)
+            for (int a = 0; a < 3; a++) {
+                p[3 * i + a] = (float)(o[a] + (double)(i - s0) * 0.01 * dir[a] / len + 0.0005 * pnpr_test_normal(&rng));
+                d[3 * i + a] = (float)(dir[a] / len);
+            }
+    }
+    const double origin[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++) {
+        pnpr_lines_options o;
+        memset(&o, 0, sizeof o);
+        o.threads = threads[k];
+        CHECK_STATUS(pnpr_profile_lines_points(p, d, N, origin, &o, &l[k], &s[k]), PNPR_OK);
+    }
+    printf("random segments, threads 1 / 2 / 7: %zu / %zu / %zu polylines, %zu graph edges, %zu corners\n", l[0].count,
+           l[1].count, l[2].count, s[0].graph_edges, s[0].corners);
+    CHECK(l[0].count >= 200 && s[0].graph_edges > 4 * 4096);
+    for (int k = 1; k < 3; k++) {
+        CHECK(l[k].count == l[0].count && s[k].forest_edges == s[0].forest_edges && s[k].corners == s[0].corners);
+        if (l[k].count != l[0].count) continue;
+        CHECK(!memcmp(l[k].offset, l[0].offset, (l[0].count + 1) * sizeof *l[0].offset));
+        CHECK(!memcmp(l[k].xyz, l[0].xyz, 3 * l[0].offset[l[0].count] * sizeof *l[0].xyz));
+    }
+    for (int k = 0; k < 3; k++) pnpr_lines_free(&l[k]);
+    free(p);
+    free(d);
 }
 
 int main(void)
