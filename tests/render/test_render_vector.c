@@ -64,15 +64,26 @@ static void planes_along(pnpr_cloud *c, int occluder, int along_y)
 
 static void planes(pnpr_cloud *c, int occluder) { planes_along(c, occluder, 0); }
 
-/* Strokes of the back plane, from above: the known answer of the occluder. */
-static void check_occlusion(pnpr_renderer *r)
+/* The planes seen from above (the back plane fills the middle of the frame). */
+static const pnpr_camera ABOVE = {{0.5, 0.5, 3}, {0.5, 0.5, 0}, {0, 1, 0}, 40, 0, 0};
+
+/* Sketchy's directional strokes alone, no outlines (stroke width 0: the default). */
+static pnpr_draw_options strokes_only(float stroke_width)
 {
-    pnpr_camera cam = {{0.5, 0.5, 3}, {0.5, 0.5, 0}, {0, 1, 0}, 40, 0, 0};
     pnpr_draw_options o;
     memset(&o, 0, sizeof o);
     o.style = PNPR_STYLE_SKETCHY;
     o.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
     o.outline = -1;
+    o.stroke_width = stroke_width;
+    return o;
+}
+
+/* Strokes of the back plane, from above: the known answer of the occluder. */
+static void check_occlusion(pnpr_renderer *r)
+{
+    pnpr_camera cam = ABOVE;
+    pnpr_draw_options o = strokes_only(0);
     pnpr_error err = {0};
     pnpr_drawing d = {0};
     for (int occ = 0; occ < 2; occ++) {
@@ -120,13 +131,8 @@ static void check_occlusion(pnpr_renderer *r)
  * hidden side, or the side the frame draws was missing.) */
 static void check_band(pnpr_renderer *r)
 {
-    pnpr_camera cam = {{0.5, 0.5, 3}, {0.5, 0.5, 0}, {0, 1, 0}, 40, 0, 0};
-    pnpr_draw_options o;
-    memset(&o, 0, sizeof o);
-    o.style = PNPR_STYLE_SKETCHY;
-    o.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
-    o.outline = -1;
-    o.stroke_width = 6;
+    pnpr_camera cam = ABOVE;
+    pnpr_draw_options o = strokes_only(6);
     pnpr_error err = {0};
     pnpr_drawing d = {0};
     pnpr_cloud c = {0};
@@ -182,7 +188,7 @@ static void check_degenerate(pnpr_renderer *r)
     for (int k = 0; k < 2; k++) {
         pnpr_cloud c = {0};
         planes(&c, 1);
-        pnpr_camera cam = {{0.5, 0.5, 3}, {0.5, 0.5, 0}, {0, 1, 0}, 40, 0, 0};
+        pnpr_camera cam = ABOVE;
         for (int a = 0; a < 3 && k; a++) {
             c.origin[a] = far[a];
             cam.eye[a] += far[a];
@@ -315,7 +321,7 @@ static int layer_x_range(const pnpr_drawing *d, pnpr_drawing_layer L, double *lo
  * the issue's 2%. A map with a style that fills areas is refused before drawing. */
 static void check_map(pnpr_renderer *r)
 {
-    pnpr_camera cam = {{0.5, 0.5, 3}, {0.5, 0.5, 0}, {0, 1, 0}, 40, 0, 0};
+    pnpr_camera cam = ABOVE;
     pnpr_cloud c = {0};
     planes(&c, 0);
     CHECK_STATUS(pnpr_cloud_alloc_labels(&c), PNPR_OK);
