@@ -29,7 +29,10 @@
  * - marks repeated by duplicate points (ends within a quarter pixel) are drawn once, with the
  *   opacity of all of them blended (pnpr_drawing_dedupe);
  * - cartoon's colour areas: a frame drawn without outlines, its colours read back and traced
- *   along the pixel borders into filled areas (pnpr_drawing_trace_regions). */
+ *   along the pixel borders into filled areas (pnpr_drawing_trace_regions);
+ * - style maps of these styles: each vertex's marks in its own style (the style bytes the frame
+ *   uploaded), the lines where the mask's stencil holds the lines style, and the colour areas of
+ *   a second frame that draws cartoon's pass alone over the shared mask. */
 #include "renderer_internal.h"
 #include "gl_state.h"
 
