@@ -28,6 +28,8 @@ const char *pnpr_join_names(char *buf, size_t cap, const char *sep, const char *
 
 /* qsort comparator of floats, ascending (core/median.c). */
 int pnpr_cmp_float(const void *a, const void *b);
+/* qsort comparator of uint32_t (indices, labels), ascending (core/median.c). */
+int pnpr_cmp_u32(const void *a, const void *b);
 /* The median of v[0..n), n > 0: v is sorted in place and v[n / 2] returned. */
 float pnpr_median_float(float *v, size_t n);
 

@@ -322,8 +322,6 @@ static pnpr_status lines_graph(lines_ctx *c)
     return PNPR_OK;
 }
 
-/* 4. minimum spanning forest (Kruskal; duplicates of an edge are skipped by union-find): the
- * forest's edges become the prefix of c->edges. */
 /* Parts of an edge array sorted on their own (sort_edges). */
 typedef struct sort_job { edge *e; size_t n, parts; } sort_job;
 
@@ -372,6 +370,8 @@ static pnpr_status sort_edges(edge *e, size_t n, int threads)
     return st;
 }
 
+/* 4. minimum spanning forest (Kruskal; duplicates of an edge are skipped by union-find): the
+ * forest's edges become the prefix of c->edges. */
 static pnpr_status lines_forest(lines_ctx *c)
 {
     pnpr_status st = sort_edges(c->edges, c->n_edges, c->opts->threads);
@@ -583,12 +583,6 @@ static void cluster_votes(lines_ctx *c, double *votes, const uint32_t *vpair, si
     }
 }
 
-static int cmp_u32(const void *x, const void *y)
-{
-    uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
-    return a < b ? -1 : a > b;
-}
-
 /* The votes of the pairs of chain ends (ep: k ends, position and tangent), at most cap of them.
  * Only ends within 12h of each other can vote (end_pair_vote's first test): each end's partners
  * come from a kd-tree over the ends (a radius a little larger, so that float rounding loses
@@ -615,7 +609,7 @@ static pnpr_status end_pairs(lines_ctx *c, const double *ep, size_t k, size_t ca
             nb_cap = got;
             got = pnpr_kdtree_radius(tree, ef + 3 * i, radius, nb, nb_cap);
         }
-        qsort(nb, got, sizeof *nb, cmp_u32);
+        qsort(nb, got, sizeof *nb, pnpr_cmp_u32);
         for (size_t r = 0; r < got && nv < cap; r++) {
             size_t j = nb[r];
             if (j <= i || !end_pair_vote(ep + 6 * i, ep + 6 * j, c->h, votes + 4 * nv)) continue;

@@ -39,6 +39,8 @@
 #include <pointnpr/options.h>
 #include <pointnpr/knn.h>
 
+#include "../core/internal.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -193,12 +195,6 @@ static int cmp_u64(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-static int cmp_u32(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return x < y ? -1 : x > y;
-}
-
 static pnpr_status rag_build(rag *g, const uint8_t *rgb, size_t count, const pnpr_region_graph *graph,
                              const uint32_t *labels, uint32_t S)
 {
@@ -287,7 +283,7 @@ static void clean_list(rag *g, uint32_t a)
         if (r != a) va->v[u++] = r;
     }
     va->n = u;
-    qsort(va->v, va->n, sizeof *va->v, cmp_u32);
+    qsort(va->v, va->n, sizeof *va->v, pnpr_cmp_u32);
     u = 0;
     for (uint32_t q = 0; q < va->n; q++) if (!u || va->v[q] != va->v[u - 1]) va->v[u++] = va->v[q];
     va->n = u;

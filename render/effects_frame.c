@@ -22,12 +22,6 @@ typedef struct fx_layer {
     size_t count;
 } fx_layer;
 
-static int cmp_u32(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return x < y ? -1 : x > y;
-}
-
 typedef struct node_label { size_t node; uint32_t label; } node_label;
 static int cmp_node_label(const void *a, const void *b)
 {
@@ -44,7 +38,7 @@ static pnpr_status distinct_labels(pnpr_renderer *r)
     uint32_t *v = malloc(r->count * sizeof *v);
     if (!v) return PNPR_ERR_OUT_OF_MEMORY;
     memcpy(v, r->vlabel, r->count * sizeof *v);
-    qsort(v, r->count, sizeof *v, cmp_u32);
+    qsort(v, r->count, sizeof *v, pnpr_cmp_u32);
     size_t n = 0;
     for (size_t i = 0; i < r->count; i++)
         if (i == 0 || v[i] != v[n - 1]) v[n++] = v[i];

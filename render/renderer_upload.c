@@ -537,12 +537,6 @@ int pnpr_draw_has_layer(const pnpr_draw_options *o)
     return o->layer_label_count > 0 || o->layer_exclude;
 }
 
-static int cmp_u32(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return x < y ? -1 : x > y;
-}
-
 static int sorted_has(const uint32_t *v, size_t n, uint32_t x)
 {
     size_t lo = 0, hi = n;
@@ -562,7 +556,7 @@ static pnpr_status hide_outside_layer(const pnpr_renderer *r, const pnpr_draw_op
     uint32_t *keys = malloc((m ? m : 1) * sizeof *keys);
     if (!keys) return PNPR_ERR_OUT_OF_MEMORY;
     if (m) memcpy(keys, o->layer_labels, m * sizeof *keys);
-    qsort(keys, m, sizeof *keys, cmp_u32);
+    qsort(keys, m, sizeof *keys, pnpr_cmp_u32);
     for (size_t q = 0; q < r->count; q++) {
         int listed = r->vlabel && sorted_has(keys, m, r->vlabel[q]);
         if (listed != !o->layer_exclude) {

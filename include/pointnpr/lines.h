@@ -38,8 +38,8 @@ typedef struct pnpr_lines_options {
     float min_length;       /* spurs and isolated chains shorter than this are dropped */
     float sample_tol;       /* max chord deviation of the output polylines */
     int no_corners;         /* 1 = do not join chain ends at corners */
-    int threads;            /* worker threads of the shift and graph stages; 0 = all cores. The
-                             * result does not depend on it */
+    int threads;            /* worker threads of the shift, graph, edge sort and fit stages; 0 = all
+                             * cores. The result does not depend on it */
     pnpr_progress progress;
 } pnpr_lines_options;
 
