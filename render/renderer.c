@@ -257,6 +257,17 @@ void pnpr_renderer_destroy(pnpr_renderer *r)
 
 static int finite4(const float *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]) && isfinite(v[3]); }
 
+/* Painterly without its data: left out at upload (pnpr_upload_options.skip_painterly), or the
+ * cloud has no feature_degree. `what`: the style or map entry, as the message names it. */
+static pnpr_status painterly_missing(const pnpr_renderer *r, const char *what, pnpr_error *err)
+{
+    if (r->paint_skipped)
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: %s: the cloud was uploaded without its "
+                              "painterly data (pnpr_upload_options.skip_painterly)", what);
+    return pnpr_error_set(err, PNPR_ERR_NOT_FOUND, "renderer: %s needs the feature properties feature_degree, "
+                          "feature_class and feature_dir_x/y/z (pnpr_compute_features)", what);
+}
+
 pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_options *opts, pnpr_draw_options *o,
                                         pnpr_error *err)
 {
@@ -278,11 +289,8 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style '%s' needs the feature properties feature_class and feature_dir_x/y/z (pnpr_compute_features)",
                               pnpr_style_name(o->style));
-    /* painterly without its data: left out at upload (prepare_frame says so when a frame needs
-     * it), or no feature_degree */
-    if (o->style == PNPR_STYLE_PAINTERLY && r->count > 0 && !r->paint_bins && !r->paint_skipped)
-        return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
-                              "renderer: style 'painterly' needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)");
+    if (o->style == PNPR_STYLE_PAINTERLY && r->count > 0 && !r->paint_bins)
+        return painterly_missing(r, "style 'painterly'", err);
     if (o->style == PNPR_STYLE_BRUSH && r->count > 0 && !r->brush.ready)
         return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                               "renderer: style 'brush' needs the properties brush_size and brush_cluster (pnpr_brush_prepare)");
@@ -309,10 +317,11 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style map entry %zu (label %u): unknown style %d",
                                   i, (unsigned)o->style_map[i].label, (int)s);
         if (r->count == 0) continue;
-        if (s == PNPR_STYLE_PAINTERLY && !r->paint_bins && !r->paint_skipped)
-            return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
-                                  "renderer: style map: label %u is 'painterly', which needs the feature properties feature_degree, feature_class and feature_dir_x/y/z (pnpr_compute_features)",
-                                  (unsigned)o->style_map[i].label);
+        if (s == PNPR_STYLE_PAINTERLY && !r->paint_bins) {
+            char which[64];
+            snprintf(which, sizeof which, "style map: label %u is 'painterly', which", (unsigned)o->style_map[i].label);
+            return painterly_missing(r, which, err);
+        }
         if (s == PNPR_STYLE_HIERARCHY && !r->hier.tree)
             return pnpr_error_set(err, PNPR_ERR_NOT_FOUND,
                                   "renderer: style map: label %u is 'hierarchy', which needs a sphere tree (pnpr_renderer_set_hierarchy)",
@@ -463,11 +472,7 @@ static pnpr_status prepare_frame(const pnpr_renderer *r, const pnpr_camera *came
     *r_vstyle = NULL;
     pnpr_status st = pnpr_renderer_check_options(r, opts, &f->o, err);
     if (st == PNPR_OK) st = resolve_map(r, f, r_vstyle, err);
-    int painterly = f->mapped ? f->used[PNPR_STYLE_PAINTERLY] > 0 : f->o.style == PNPR_STYLE_PAINTERLY;
-    if (st == PNPR_OK && painterly && r->paint_skipped && r->count > 0)
-        st = pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: a painterly frame of a cloud uploaded without "
-                            "its painterly data (pnpr_upload_options.skip_painterly)");
-    if (st != PNPR_OK) { free(*r_vstyle); *r_vstyle = NULL; return st; }
+    if (st != PNPR_OK) return st;
     const pnpr_draw_options *o = &f->o;
     f->point_scale = o->point_scale;
     f->mask_scale = pnpr_draw_mask_scale(o, o->style);
