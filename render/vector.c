@@ -261,6 +261,12 @@ static void band_vertex(band_run *run, double x, double y)
     run->nv++;
 }
 
+/* Whether the run's last vertex is its last sample. */
+static int band_at_last(const band_run *run)
+{
+    return run->nv > 0 && run->xy[2 * run->nv - 2] == (float)run->last[0] && run->xy[2 * run->nv - 1] == (float)run->last[1];
+}
+
 /* Adds the run as a path (y flipped to the drawing's y down) as wide as its mean share of
  * `width`, and empties it. */
 static pnpr_status band_flush(vec_ctx *c, band_run *run, float width, const uint8_t rgba[4], pnpr_drawing_layer layer)
@@ -282,7 +288,7 @@ static pnpr_status band_end(vec_ctx *c, band_run *run, const double u[2], double
         run->xy[0] -= (float)(u[0] * 0.5 * step);
         run->xy[1] -= (float)(u[1] * 0.5 * step);
         band_vertex(run, run->last[0] + u[0] * 0.5 * step, run->last[1] + u[1] * 0.5 * step);
-    } else if (run->xy[2 * run->nv - 2] != (float)run->last[0] || run->xy[2 * run->nv - 1] != (float)run->last[1]) {
+    } else if (!band_at_last(run)) {
         band_vertex(run, run->last[0], run->last[1]);
     }
     return band_flush(c, run, width, rgba, layer);
@@ -322,8 +328,7 @@ static pnpr_status add_visible_band(vec_ctx *c, const double a[2], const double 
                 run.samples = 1;
                 run.share = share;
             }
-            if (run.nv == 0 || run.xy[2 * run.nv - 2] != (float)run.last[0] || run.xy[2 * run.nv - 1] != (float)run.last[1])
-                band_vertex(&run, run.last[0], run.last[1]);
+            if (!band_at_last(&run)) band_vertex(&run, run.last[0], run.last[1]);
             band_vertex(&run, p[0], p[1]);
         } else if (run.samples == 0) {
             band_vertex(&run, p[0], p[1]);
@@ -737,14 +742,21 @@ static pnpr_status refuse_style(pnpr_error *err, const char *which, pnpr_style s
                           which, pnpr_style_name(s));
 }
 
+/* Whether a frame of opts may draw style s: its style (under a map the default of the labels not
+ * listed) or a map entry's. */
+static int may_draw(const pnpr_draw_options *opts, pnpr_style s)
+{
+    for (size_t i = 0; opts->style_map && i < opts->style_map_count; i++)
+        if (opts->style_map[i].style == s) return 1;
+    return opts->style == s;
+}
+
 pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *err)
 {
     pnpr_style s = opts ? opts->style : PNPR_STYLE_POINTS;
     size_t n = opts && opts->style_map ? opts->style_map_count : 0;
-    int lines = s == PNPR_STYLE_LINES;
     for (size_t i = 0; i < n; i++) {
         pnpr_style si = opts->style_map[i].style;
-        lines |= si == PNPR_STYLE_LINES;
         if (vector_style(si)) continue;
         char which[64];
         snprintf(which, sizeof which, "style map entry %zu (label %u): ", i + 1, (unsigned)opts->style_map[i].label);
@@ -754,7 +766,7 @@ pnpr_status pnpr_drawing_supported(const pnpr_draw_options *opts, pnpr_error *er
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "vector: segment layers (image-space effects) are pixels, not vectors");
     /* under a map the default style matters only where a label is not in it: checked when drawn */
     if (n == 0 && !vector_style(s)) return refuse_style(err, "", s);
-    if (lines && opts->faint > 0)
+    if (may_draw(opts, PNPR_STYLE_LINES) && opts->faint > 0)
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
                               "vector: faint %g draws the cloud under the lines as areas; a vector drawing has the "
                               "lines alone (faint 0)", (double)opts->faint);
@@ -820,7 +832,7 @@ pnpr_status pnpr_renderer_drawing(pnpr_renderer *r, const pnpr_camera *camera, c
     if (width <= 0 || height <= 0 || width > r->max_size || height > r->max_size)
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "vector: drawing size %dx%d is not within 1..%d (this GL's frame limit)",
                               width, height, (int)r->max_size);
-    if (opts->style == PNPR_STYLE_CARTOON || opts->style_map_count > 0) {
+    if (may_draw(opts, PNPR_STYLE_CARTOON)) { /* a frame of its own: only when it may be drawn */
         st = fill_marks(r, camera, opts, width, height, r_drawing, err);
         if (st != PNPR_OK) { pnpr_drawing_free(r_drawing); return st; }
     }
