@@ -10,8 +10,9 @@
  *    areas alone and with outlines): at most 2% of the pixels differ by more than 64 in a
  *    channel; on the generated house scene of `bench quality`.
  * 3. The PDF (cairo) opens in pdfinfo with the page size of the drawing (0.75 pt a px).
- * 4. Degenerate and far input: an empty cloud draws no path; the occluded planes 5e6 m from the
- *    origin give the paths of the planes at the origin within 0.05 px.
+ * 4. Degenerate and far input: an empty cloud draws no path (one style or a style map); the
+ *    occluded planes 5e6 m from the origin give the paths of the planes at the origin within
+ *    0.05 px.
  * 5. Merging collinear hatches keeps the ink length; plotter order shortens the pen-up travel and
  *    keeps every path. Unsupported styles fail with a message.
  * Exits 77 (skipped) without headless GL. */
@@ -183,6 +184,15 @@ static void check_degenerate(pnpr_renderer *r)
         CHECK_MSG(d[0].count == 0, "%zu paths of an empty cloud", d[0].count);
         pnpr_drawing_free(&d[0]);
     }
+    /* and under a style map of every vector style: no path either */
+    const pnpr_style_map_entry map[3] = {{0, PNPR_STYLE_STIPPLE}, {1, PNPR_STYLE_LINES}, {2, PNPR_STYLE_CARTOON}};
+    o.style_map = map;
+    o.style_map_count = 3;
+    CHECK_STATUS(pnpr_renderer_drawing(r, NULL, &o, W, H, &d[0], &err), PNPR_OK);
+    CHECK_MSG(d[0].count == 0, "%zu paths of an empty cloud under a style map", d[0].count);
+    pnpr_drawing_free(&d[0]);
+    o.style_map = NULL;
+    o.style_map_count = 0;
     o.style = PNPR_STYLE_SKETCHY;
     const double far[3] = {5123456.789, 4012345.678, 250.125};
     for (int k = 0; k < 2; k++) {
