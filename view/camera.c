@@ -324,11 +324,16 @@ double pnpr_box_coverage(const pnpr_frame_camera *fc, const float bmin[3], const
         if (y < y0) y0 = y;
         if (y > y1) y1 = y;
     }
+    /* whole pixels: a box seen as a point or a line (one point, duplicates, a flat cloud edge-on)
+     * still covers the pixels it falls on; one wholly outside the view covers none */
+    x0 = floor(x0);
+    y0 = floor(y0);
+    x1 = floor(x1) + 1;
+    y1 = floor(y1) + 1;
     if (x0 < 0) x0 = 0;
     if (y0 < 0) y0 = 0;
     if (x1 > width) x1 = width;
     if (y1 > height) y1 = height;
     if (!(x1 > x0) || !(y1 > y0)) return 0;
-    double a = (x1 - x0) * (y1 - y0);
-    return a < 1 ? 1 : a;
+    return (x1 - x0) * (y1 - y0);
 }

@@ -109,7 +109,9 @@ typedef struct pnpr_draw_options {
     float background[4];   /* clear colour of the frame (zero = transparent black) */
     size_t budget;         /* at most this many points per frame (0 = no limit) */
     float density;         /* at most density * (screen pixels covered by the cloud's projected
-                            * bounding box) points per frame (0 = no limit) */
+                            * bounding box) points per frame: the screen-space budget that keeps
+                            * a dense view from drowning in ink (0 = the default of the option
+                            * table, "density"; negative = no limit: every point) */
     float point_scale;     /* multiplies the disk radii */
     float mask_scale;      /* visibility-mask disks = point_scale * mask_scale * radius (cartoon:
                             * the enlarged outline disks, with its own default) */

@@ -19,6 +19,7 @@ typedef struct cli_render_opts {
     uint8_t *importance;          /* read by cli_render_opts_finish (dopt.hierarchy points at it) */
     double bg[3];                 /* 0..255 */
     int alpha, quiet, max_tile;
+    int budget_all;               /* --budget all: every point (no --density either) */
     cli_outliers outliers;
     const char *columns;          /* --columns (text point clouds) */
     cli_view view;

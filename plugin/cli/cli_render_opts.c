@@ -69,11 +69,14 @@ static int parse_effects_scale(void *opts, const char *cmd, const char *v)
     return 0;
 }
 
-static int parse_budget(void *member, const char *cmd, const char *v)
+/* --budget N | all: "all" lifts the screen-space budget too (--density), checked in finish */
+static int parse_budget(void *opts, const char *cmd, const char *v)
 {
+    cli_render_opts *o = opts;
     double x;
-    if (cli_parse_number(v, 1, 4e9, &x) && x == floor(x)) { *(size_t *)member = (size_t)x; return 1; }
-    fprintf(stderr, "pointnpr %s: --budget wants a positive integer, got '%s'\n", cmd, v);
+    if (!strcmp(v, "all")) { o->dopt.budget = 0; o->budget_all = 1; return 1; }
+    if (cli_parse_number(v, 1, 4e9, &x) && x == floor(x)) { o->dopt.budget = (size_t)x; o->budget_all = 0; return 1; }
+    fprintf(stderr, "pointnpr %s: --budget wants a positive integer or 'all', got '%s'\n", cmd, v);
     return 0;
 }
 
@@ -126,7 +129,9 @@ static const cli_opt render_opts[] = {
           "effects: filters on the GL thread, not overlapped with the next layer's rasterisation (the same "
           "pixels; for measurements)"),
     CLI_SKETCH_OPT(cli_render_opts, dopt.sketch_variant),
-    R_OPT("--budget", CLI_CUSTOM, dopt.budget, parse_budget, "N", "at most N points per frame (default: all)"),
+    {"--budget", NULL, CLI_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_budget, "N|all",
+     "at most N points per frame (default: no count, the screen-space budget --density only); all: every "
+     "point, however dense the view"},
     R_OPT("--seed", CLI_CUSTOM, uopt.seed, parse_seed, "S", "continuous resolution queue seed (default 0)"),
     {"--tone", NULL, CLI_CHOICE, offsetof(cli_render_opts, tone.source), 0, 0, 0, 0, tone_sources, NULL, NULL,
      "what sets how dark a point is drawn (hatch and stipple density, the shading of colourless clouds): "
@@ -195,6 +200,7 @@ void cli_render_usage(FILE *f, int width, int height)
             width, height);
     opt_usage(f, "--budget");
     draw_usage(f, "density", "D");
+    cli_usage_more(f, "(negative: no limit, as --budget all)");
     opt_usage(f, "--seed");
     draw_usage(f, "point-scale", "F");
     draw_usage(f, "line-width", "PX");
@@ -425,6 +431,11 @@ int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
 {
     if (!cli_view_check(&o->view, cmd)) return 0;
     if (o->fx_opts.serial) o->have_fx_opts = 1; /* --effects-serial */
+    if (o->budget_all && o->dopt.density != 0) {
+        fprintf(stderr, "pointnpr %s: --budget all draws every point and --density limits them; give one\n", cmd);
+        return 0;
+    }
+    if (o->budget_all) o->dopt.density = -1; /* no screen-space budget (render.h) */
     for (int c = 0; c < 3; c++) o->dopt.background[c] = (float)(o->bg[c] / 255.0);
     o->dopt.background[3] = o->alpha ? 0.0f : 1.0f;
     if (o->style_map_path && !read_style_map(cmd, o->style_map_path, &o->smap)) return 0;

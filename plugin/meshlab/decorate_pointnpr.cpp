@@ -65,6 +65,7 @@ const char *const kStyle = "PointNPR::DrawStyle";
 const char *const kVariant = "PointNPR::SketchVariant";
 const char *const kBudget = "PointNPR::PointBudget";
 const char *const kMotionBudget = "PointNPR::MotionBudget";
+const char *const kDensity = "PointNPR::ScreenDensity";
 const char *const kPaper = "PointNPR::PaperColor";
 const char *const kLineWidth = "PointNPR::LineWidth";
 const char *const kBrush = "PointNPR::Brush";
@@ -191,6 +192,7 @@ struct DecorateContextState {
     QString lastError;            /* the last message logged (not repeated every frame) */
     double lastMV[16] = {0}, lastP[16] = {0};
     bool haveLast = false;
+    size_t lastDrawn = 0;         /* points of the last on-screen frame at rest (tiles draw as many) */
     QPointer<QWidget> widget;     /* the GL widget, for the repaint after camera motion */
     QTimer *settle = nullptr;     /* full-budget repaint after motion stops */
     int frames = 0;
@@ -373,7 +375,12 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                                    "dark); 0 = library default"));
         if (!par.hasParameter(kBudget))
             par.addParam(RichInt(kBudget, 0, "Point budget", "at most this many points per frame (continuous "
-                                 "resolution queue prefix); 0 = all"));
+                                 "resolution queue prefix); 0 = no count (the screen density still limits them)"));
+        if (!par.hasParameter(kDensity))
+            par.addParam(RichFloat(kDensity, static_cast<float>(drawOption("density")->def), "Screen density",
+                                   QString("%1, %2; negative = every point, however dense the view")
+                                       .arg(drawOption("density")->help)
+                                       .arg(drawRange("density"))));
         if (!par.hasParameter(kMotionBudget))
             par.addParam(RichInt(kMotionBudget, 200000, "Point budget while moving",
                                  "budget of frames drawn while the camera changes (a full frame follows 0.3 s "
@@ -476,6 +483,7 @@ struct Params {
     pnpr_style style = PNPR_STYLE_SKETCHY;
     pnpr_sketch_variant variant = PNPR_SKETCH_ALL;
     int budget = 0, motionBudget = 200000;
+    float density = 0;        /* 0 = the library's default (pnpr_draw_option_table), < 0 = none */
     QColor paper = QColor(255, 255, 255);
     float lineWidth = 0;      /* 0 = the library's default (pnpr_draw_option_table) */
     int brush = 0;            /* pnpr_brush_presets index */
@@ -505,6 +513,7 @@ Params readParams(const RichParameterList *par)
         }
         if (par->hasParameter(kBudget)) p.budget = std::max(0, par->getInt(kBudget));
         if (par->hasParameter(kMotionBudget)) p.motionBudget = std::max(0, par->getInt(kMotionBudget));
+        if (par->hasParameter(kDensity)) p.density = par->getFloat(kDensity);
         if (par->hasParameter(kPaper)) p.paper = par->getColor(kPaper);
         if (par->hasParameter(kLineWidth)) p.lineWidth = par->getFloat(kLineWidth);
         if (par->hasParameter(kBrush)) p.brush = std::max(0, std::min(PNPR_BRUSH_PRESET_COUNT - 1, par->getEnum(kBrush)));
@@ -533,6 +542,7 @@ Params readParams(const RichParameterList *par)
     }
     if (!(p.effectsPreview >= PNPR_EFFECTS_SCALE_MIN && p.effectsPreview <= 1)) p.effectsPreview = 0.5f;
     if (!pnpr_option_in_range(drawOption("line-width"), p.lineWidth)) p.lineWidth = 0; /* the default */
+    if (!(p.density < 0) && !pnpr_option_in_range(drawOption("density"), p.density)) p.density = 0; /* NaN too */
     if (!pnpr_option_in_range(drawOption("brush-scale"), p.brushScale)) p.brushScale = 0;
     /* abstraction: a negative value is "none" (NEGATIVE_OFF); out of range otherwise: the default */
     if (p.abstraction > 0 && !pnpr_option_in_range(hierOption("hier-abstraction"), p.abstraction)) p.abstraction = 0;
@@ -1098,7 +1108,13 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     glGetDoublev(GL_PROJECTION_MATRIX, P);
     glGetIntegerv(GL_VIEWPORT, vp);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
-    bool moving = s->haveLast && (std::memcmp(mv, s->lastMV, sizeof mv) != 0 || std::memcmp(P, s->lastP, sizeof P) != 0);
+    /* MeshLab's tiled "Save snapshot" draws its tiles with off-centre frusta (a symmetric frustum
+     * has P[8] = P[9] = 0, a symmetric orthographic box P[12] = P[13] = 0). A tile is not camera
+     * motion, and it draws the point count of the frame on screen: the screen-space budget of a
+     * tile's own coverage would differ from tile to tile and leave seams. */
+    bool tile = P[15] == 0 ? (P[8] != 0 || P[9] != 0) : (P[12] != 0 || P[13] != 0);
+    bool moving = !tile && s->haveLast &&
+                  (std::memcmp(mv, s->lastMV, sizeof mv) != 0 || std::memcmp(P, s->lastP, sizeof P) != 0);
     std::memcpy(s->lastMV, mv, sizeof mv);
     std::memcpy(s->lastP, P, sizeof P);
     s->haveLast = true;
@@ -1120,8 +1136,13 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     o.background[2] = (float)prm.paper.blueF();
     o.background[3] = 1;
     o.budget = (size_t)prm.budget;
+    o.density = prm.density;
     if (moving && prm.motionBudget > 0 && (prm.budget == 0 || prm.motionBudget < prm.budget))
         o.budget = (size_t)prm.motionBudget;
+    if (tile && s->lastDrawn > 0 && !(prm.density < 0)) {
+        o.budget = s->lastDrawn;
+        o.density = -1;
+    }
     o.line_width = prm.lineWidth;
     o.brush_preset = prm.brush;
     o.brush_scale = prm.brushScale;
@@ -1166,6 +1187,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         report(QString("draw (%1) failed: %2").arg(fxOn ? "effects" : pnpr_style_name(prm.style)).arg(status(st, err)), true);
         return;
     }
+    if (!tile && !moving && !fxOn) s->lastDrawn = stats.points_drawn;
     if (fxOn) report(QString("effects frame: %1 layers of %2x%3%4").arg(es.layers).arg(es.layer_width).arg(es.layer_height)
                          .arg(moving ? " (preview while moving)" : ""), false);
     if (moving && s->settle) s->settle->start(300); /* a full-budget frame once the camera rests */

@@ -64,10 +64,23 @@ for k in 1 2; do
 done
 check 'cmp -s "$dir/cam1.png" "$dir/cam2.png"' "same input and seed give identical PNGs"
 
+# the screen-space budget: by default at most 2 points per covered pixel (a 24x18 frame: at most
+# 864 of the cube's points), --budget all draws every point, --density -1 too
+"$bin" render "$dir/cube.ply" -o "$dir/small.png" --size 24x18 2> "$dir/small.txt"
+rc=$?; drawn=$(sed -n 's/.*: \([0-9]*\) of \([0-9]*\) points drawn.*/\1 \2/p' "$dir/small.txt")
+check '[ $rc -eq 0 ] && [ "${drawn% *}" -le 864 ] && [ "${drawn% *}" -lt "${drawn#* }" ]' "default density: $drawn drawn"
+for all in "--budget all" "--density -1"; do
+  "$bin" render "$dir/cube.ply" -o "$dir/small.png" --size 24x18 $all 2> "$dir/small.txt"
+  rc=$?; drawn=$(sed -n 's/.*: \([0-9]*\) of \([0-9]*\) points drawn.*/\1 \2/p' "$dir/small.txt")
+  check '[ $rc -eq 0 ] && [ "${drawn% *}" = "${drawn#* }" ]' "$all: every point drawn ($drawn)"
+done
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --budget all --density 0.5 2> "$dir/err.txt"
+rc=$?; check '[ $rc -eq 2 ] && grep -q "give one" "$dir/err.txt"' "--budget all with --density exits 2 (got $rc)"
+
 # usage errors: 2
 for args in "" "$dir/cube.ply" "$dir/cube.ply -o $dir/x.png --style oil" "$dir/cube.ply -o $dir/x.png --size 0x10" \
             "$dir/cube.ply -o $dir/x.png --eye 1,2,3" "$dir/cube.ply -o $dir/x.png --background 300,0,0" \
-            "$dir/cube.ply -o $dir/x.png --budget -5" "$dir/cube.ply -o $dir/x.png --sketch d" "$dir/cube.ply -o $dir/x.png --bogus" \
+            "$dir/cube.ply -o $dir/x.png --budget -5" "$dir/cube.ply -o $dir/x.png --budget al" "$dir/cube.ply -o $dir/x.png --sketch d" "$dir/cube.ply -o $dir/x.png --bogus" \
             "$dir/cube.ply -o $dir/x.png --style lines --faint 2" "$dir/cube.ply -o $dir/x.png --line-width 0" \
             "$dir/cube.ply -o $dir/x.png --style stipple --dot-size -1" \
             "$dir/cube.ply -o $dir/x.png --style cartoon --levels 1" "$dir/cube.ply -o $dir/x.png --outline-scale 0.5"; do

@@ -94,6 +94,7 @@ static void check_fade(pnpr_renderer *r, const pnpr_camera_path *path, uint8_t *
             o.style = styles[s];
             o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
             o.queue_fade = fade ? 0 : -1; /* 0: the default fade; -1: none */
+            o.density = -1;               /* the budget alone sets the prefix */
             for (int k = 0; k < FRAMES; k++) {
                 o.budget = (size_t)(10000 * (1 + 0.02 * k));
                 CHECK_STATUS(pnpr_renderer_snapshot(r, &start, &o, W, H, NULL, px[k & 1], NULL, NULL), PNPR_OK);
@@ -109,6 +110,7 @@ static void check_fade(pnpr_renderer *r, const pnpr_camera_path *path, uint8_t *
     pnpr_draw_options o;
     memset(&o, 0, sizeof o);
     o.style = PNPR_STYLE_SKETCHY;
+    o.density = -1;
     CHECK_STATUS(pnpr_renderer_snapshot(r, &start, &o, W, H, NULL, px[0], NULL, NULL), PNPR_OK);
     o.queue_fade = -1;
     CHECK_STATUS(pnpr_renderer_snapshot(r, &start, &o, W, H, NULL, px[1], NULL, NULL), PNPR_OK);

@@ -514,12 +514,19 @@ static void test_bad_input(pnpr_renderer *r)
     CHECK_STATUS(pnpr_cloud_alloc(&one, 5), PNPR_OK); /* five points at the origin */
     CHECK_STATUS(pnpr_renderer_set_cloud(r, &one, NULL, NULL), PNPR_OK);
     o.style = PNPR_STYLE_POINTS;
+    /* the box is a point: it covers its one pixel, so the default screen density (2 per covered
+     * pixel) draws 2 of the 5; every point without the limit */
+    CHECK_STATUS(render(r, NULL, &o, px, &st), PNPR_OK);
+    CHECK_MSG(st.coverage_px == 1 && st.points_drawn == 2, "duplicates: %g px covered, %zu drawn", st.coverage_px,
+              st.points_drawn);
+    o.density = -1;
     CHECK_STATUS(render(r, NULL, &o, px, &st), PNPR_OK);
     CHECK(st.points_drawn == 5);
+    o.density = 0;
     one.count = 1;
     CHECK_STATUS(pnpr_renderer_set_cloud(r, &one, NULL, NULL), PNPR_OK);
     CHECK_STATUS(render(r, NULL, &o, px, &st), PNPR_OK);
-    CHECK(st.points_drawn == 1);
+    CHECK(st.coverage_px == 1 && st.points_drawn == 1);
     one.count = 5;
     pnpr_cloud_free(&one);
     /* a cloud with points but no coordinates */
