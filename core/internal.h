@@ -30,7 +30,11 @@ const char *pnpr_join_names(char *buf, size_t cap, const char *sep, const char *
 int pnpr_cmp_float(const void *a, const void *b);
 /* qsort comparator of uint32_t (indices, labels), ascending (core/median.c). */
 int pnpr_cmp_u32(const void *a, const void *b);
-/* The median of v[0..n), n > 0: v is sorted in place and v[n / 2] returned. */
+/* The k-th smallest of v[0..n) (k < n): v is reordered so that v[k] holds it, no larger value
+ * before it and no smaller after it (the rest unsorted); expected O(n). */
+float pnpr_select_float(float *v, size_t n, size_t k);
+double pnpr_select_double(double *v, size_t n, size_t k);
+/* The median of v[0..n), n > 0: v[n / 2] of the sorted order (v is reordered, pnpr_select_float). */
 float pnpr_median_float(float *v, size_t n);
 
 /* Monotonic clock in seconds. */

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../core/internal.h"
 #include "../core/vec3.h"
 
 /* World coordinates from an array or from a cloud. */
@@ -23,12 +24,6 @@ static int get_world(const source *s, size_t i, double w[3])
     if (s->world) memcpy(w, s->world + 3 * i, 3 * sizeof *w);
     else pnpr_cloud_world(s->cloud, i, w);
     return pnpr_finite3d(w);
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 static double distance(const double c[3], const double w[3])
@@ -70,15 +65,13 @@ static pnpr_status robust_frame(const source *s, double factor, pnpr_outlier_inf
         for (int a = 0; a < 3; a++) {
             double *axis = v + (size_t)a * cap;
             for (size_t i = 0; i < m; i++) dist[i] = axis[i]; /* keep the sample's rows intact */
-            qsort(dist, m, sizeof *dist, cmp_double);
-            info->centre[a] = dist[m / 2];
+            info->centre[a] = pnpr_select_double(dist, m, m / 2);
         }
         for (size_t i = 0; i < m; i++) {
             double w[3] = {v[i], v[cap + i], v[2 * cap + i]};
             dist[i] = distance(info->centre, w);
         }
-        qsort(dist, m, sizeof *dist, cmp_double);
-        info->extent = dist[(size_t)floor(PNPR_OUTLIER_QUANTILE * (double)(m - 1))];
+        info->extent = pnpr_select_double(dist, m, (size_t)floor(PNPR_OUTLIER_QUANTILE * (double)(m - 1)));
     }
     info->limit = info->extent > 0 ? factor * info->extent : INFINITY;
     free(v);

@@ -17,7 +17,11 @@ static pnpr_status clamp_to_median(float *r, size_t n)
     if (!sorted) return PNPR_ERR_OUT_OF_MEMORY;
     memcpy(sorted, r, n * sizeof *sorted);
     float med = pnpr_median_float(sorted, n);
-    if (!(med > 0)) med = sorted[n - 1] > 0 ? sorted[n - 1] : 1;
+    if (!(med > 0)) { /* the largest, from the upper half the selection left */
+        float top = 0;
+        for (size_t i = n / 2; i < n; i++) top = sorted[i] > top ? sorted[i] : top;
+        med = top > 0 ? top : 1;
+    }
     free(sorted);
     for (size_t i = 0; i < n; i++) {
         if (r[i] > PNPR_SPACING_CLAMP_HI * med) r[i] = PNPR_SPACING_CLAMP_HI * med;

@@ -2,7 +2,9 @@
 #include "testutil.h"
 
 #include <pointnpr/style.h>
+#include "../core/internal.h"
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void test_status_strings(void)
@@ -104,8 +106,47 @@ static void test_style_map(void)
     CHECK_MSG(!strcmp(err.message, "l.txt:1: line longer than 1022 characters") && err.line == 1, "got '%s'", err.message);
 }
 
+/* pnpr_select_float / _double (core/median.c) against qsort: every k of small arrays with many
+ * duplicates, the partition property, sorted / reversed / constant 1M arrays (a quadratic
+ * selection would run for minutes there), NaN present (terminates, the finite k-th unaffected when
+ * the NaNs are not in play is not promised: only that it returns) */
+static void test_select(void)
+{
+    pnpr_test_rng rng = {11};
+    enum { SMALL = 37 };
+    float a[SMALL], b[SMALL], sorted[SMALL];
+    for (int round = 0; round < 50; round++) {
+        size_t n = 1 + (size_t)(pnpr_test_uniform(&rng) * SMALL);
+        for (size_t i = 0; i < n; i++) sorted[i] = a[i] = (float)(int)(pnpr_test_uniform(&rng) * (round % 5 + 1));
+        qsort(sorted, n, sizeof *sorted, pnpr_cmp_float);
+        for (size_t k = 0; k < n; k++) {
+            memcpy(b, a, n * sizeof *a);
+            float v = pnpr_select_float(b, n, k);
+            CHECK_MSG(v == sorted[k] && b[k] == v, "round %d: the %zu-th of %zu is %g, not %g", round, k, n, v, sorted[k]);
+            int split = 1;
+            for (size_t i = 0; i < n; i++) split &= i < k ? b[i] <= v : b[i] >= v;
+            CHECK_MSG(split, "round %d: %zu-th of %zu: not partitioned", round, k, n);
+        }
+        CHECK(pnpr_median_float(a, n) == sorted[n / 2]);
+    }
+    enum { BIG = 1000000 };
+    double *d = malloc(BIG * sizeof *d);
+    CHECK(d != NULL);
+    for (int kind = 0; d && kind < 3; kind++) {
+        for (size_t i = 0; i < BIG; i++) d[i] = kind == 0 ? (double)i : kind == 1 ? (double)(BIG - i) : 2.5;
+        double want = kind == 0 ? BIG / 2 : kind == 1 ? BIG / 2 + 1 : 2.5; /* 0..BIG-1, 1..BIG, constant */
+        CHECK_MSG(pnpr_select_double(d, BIG, BIG / 2) == want, "kind %d: median %g, want %g", kind, d[BIG / 2], want);
+    }
+    free(d);
+    float withnan[5] = {3, NAN, 1, NAN, 2};
+    (void)pnpr_select_float(withnan, 5, 2); /* returns */
+    float one = 4;
+    CHECK(pnpr_select_float(&one, 1, 0) == 4);
+}
+
 int main(void)
 {
+    test_select();
     test_status_strings();
     test_zero_cloud_is_valid();
     test_properties();
