@@ -104,6 +104,8 @@ typedef struct feat_run {
     int need_dither, need_classify, need_degree, need_oriented, keep_normals;
     float *out[5];               /* degree, confidence, dir x, y, z (cloud properties) */
     uint8_t *cls;                /* feature_class (cloud property) */
+    float *spacing;              /* point_spacing (cloud property) or NULL */
+    uint32_t spacing_k;          /* its neighbour: the renderer's default spacing_k */
     float *normals;              /* the cloud's, or own_normals */
     float *own_normals, *fit, *xyz;
     pnpr_kdtree *tree;
@@ -114,6 +116,13 @@ typedef struct feat_run {
 
 static const char *const feat_names[5] = {PNPR_PROP_FEATURE_DEGREE, PNPR_PROP_FEATURE_CONFIDENCE, PNPR_PROP_FEATURE_DIR_X, PNPR_PROP_FEATURE_DIR_Y,
                                           PNPR_PROP_FEATURE_DIR_Z};
+
+/* An older point_spacing removed (stale after this run); none there is fine. */
+static void drop_spacing(pnpr_cloud *cloud)
+{
+    pnpr_status st = pnpr_cloud_remove_property(cloud, PNPR_PROP_POINT_SPACING);
+    (void)st; /* PNPR_ERR_NOT_FOUND: there was none */
+}
 
 /* The stages the wanted outputs need (docs/features.md, "Computing only what is needed"), and
  * the output properties, allocated first: a cloud that cannot hold them fails before the work. */
@@ -132,8 +141,16 @@ static pnpr_status features_outputs(feat_run *f)
         if ((st = pnpr_cloud_add_property(cloud, feat_names[i], PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK) return st;
     if (f->need_classify && (st = pnpr_cloud_add_property(cloud, PNPR_PROP_FEATURE_CLASS, PNPR_TYPE_UINT8, NULL)) != PNPR_OK)
         return st;
+    /* the renderer's disk radii come from these neighbour lists when they reach its spacing
+     * neighbour (an older point_spacing would be stale: replaced, or removed below) */
+    f->spacing_k = pnpr_upload_defaults().spacing_k;
+    if (f->opts->k > f->spacing_k &&
+        (st = pnpr_cloud_add_property(cloud, PNPR_PROP_POINT_SPACING, PNPR_TYPE_FLOAT32, NULL)) != PNPR_OK)
+        return st;
     for (int i = 0; i < nout; i++) f->out[i] = pnpr_cloud_find_property(cloud, feat_names[i])->data; /* after all adds */
     f->cls = f->need_classify ? pnpr_cloud_find_property(cloud, PNPR_PROP_FEATURE_CLASS)->data : NULL;
+    if (f->opts->k > f->spacing_k) f->spacing = pnpr_cloud_find_property(cloud, PNPR_PROP_POINT_SPACING)->data;
+    else drop_spacing(cloud);
     /* input normals are kept unless asked otherwise, or unless most of them are missing (zero or
      * non-finite: a layer that carries a normal field without data) */
     f->keep_normals = cloud->normal && !f->opts->recompute_normals;
@@ -171,6 +188,7 @@ static pnpr_status features_tree_order(feat_run *f)
     st = pnpr_kdtree_detach(f->tree, &f->xyz, &f->tree_index);
     f->tree = NULL;
     if (st != PNPR_OK) return st;
+    if (f->spacing) pnpr_spacing_from_lists(f->xyz, m, f->knn, k, f->spacing_k, f->spacing);
 
     /* full permutation: tree positions first, then the invalid points in input order */
     f->perm = malloc(n * sizeof *f->perm);
@@ -287,6 +305,7 @@ static pnpr_status features_finish(feat_run *f, pnpr_status st)
         permute(cloud->rgb, 3, n, f->perm, 1, f->scratch);
         permute(cloud->normal, 3 * sizeof(float), n, f->perm, 1, f->scratch);
         for (int i = 0; i < 5; i++) permute(f->out[i], sizeof(float), n, f->perm, 1, f->scratch);
+        permute(f->spacing, sizeof(float), n, f->perm, 1, f->scratch);
         permute(f->cls, 1, n, f->perm, 1, f->scratch);
     }
     pnpr_kdtree_free(f->tree);
@@ -338,6 +357,10 @@ pnpr_status pnpr_compute_features(pnpr_cloud *cloud, const pnpr_features_options
     f.k = opts->k;
     if (f.k > valid) f.k = valid;
     r_stats->k_used = (uint32_t)f.k;
+    if (f.spacing && f.k <= f.spacing_k) { /* too few points for the lists to reach it */
+        drop_spacing(cloud);
+        f.spacing = NULL;
+    }
     if (valid < 3 || f.k < 3) {
         /* too few points for any plane: defined empty result */
         if (f.normals && !f.keep_normals) memset(f.normals, 0, 3 * f.n * sizeof(float));

@@ -9,10 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Clamps r[0..n) to [PNPR_SPACING_CLAMP_LO, PNPR_SPACING_CLAMP_HI] x their median; a median of 0
- * (mostly duplicates) is replaced by the largest value, else 1. */
-static pnpr_status clamp_to_median(float *r, size_t n)
+pnpr_status pnpr_spacing_clamp(float *r, size_t n)
 {
+    if (n == 0) return PNPR_OK;
     float *sorted = malloc(n * sizeof *sorted);
     if (!sorted) return PNPR_ERR_OUT_OF_MEMORY;
     memcpy(sorted, r, n * sizeof *sorted);
@@ -28,6 +27,24 @@ static pnpr_status clamp_to_median(float *r, size_t n)
         if (!(r[i] >= PNPR_SPACING_CLAMP_LO * med)) r[i] = PNPR_SPACING_CLAMP_LO * med;
     }
     return PNPR_OK;
+}
+
+void pnpr_spacing_from_lists(const float *xyz, size_t n, const uint32_t *idx, size_t kk, uint32_t k, float *r_spacing)
+{
+    size_t kr = (size_t)k + 1 < kk ? (size_t)k + 1 : kk;
+    for (size_t i = 0; i < n; i++) { /* the farthest of the first kr listed */
+        const float *q = xyz + 3 * i;
+        float best = 0;
+        for (size_t j = 0; j < kr; j++) {
+            uint32_t nb = idx[i * kk + j];
+            if (nb == PNPR_INDEX_NONE || nb >= n) continue;
+            const float *x = xyz + 3 * (size_t)nb;
+            float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2]; /* as knn_rec (kdtree.c) */
+            float d = dx * dx + dy * dy + dz * dz;
+            if (d > best) best = d;
+        }
+        r_spacing[i] = sqrtf(best);
+    }
 }
 
 pnpr_status pnpr_point_spacing(const float *xyz, size_t n, uint32_t k, int threads, float *r_spacing,
@@ -49,12 +66,8 @@ pnpr_status pnpr_point_spacing(const float *xyz, size_t n, uint32_t k, int threa
     memset(&ko, 0, sizeof ko);
     ko.threads = threads;
     st = idx && d2 ? pnpr_knn_self(tree, n, kk, &ko, idx, d2) : PNPR_ERR_OUT_OF_MEMORY;
-    for (size_t i = 0; st == PNPR_OK && i < n; i++) { /* the farthest of the first kr found */
-        r_spacing[i] = 0;
-        for (size_t j = kr; j-- > 0;)
-            if (idx[i * kk + j] != PNPR_INDEX_NONE && isfinite(d2[i * kk + j])) { r_spacing[i] = sqrtf(d2[i * kk + j]); break; }
-    }
-    if (st == PNPR_OK) st = clamp_to_median(r_spacing, n);
+    if (st == PNPR_OK) pnpr_spacing_from_lists(xyz, n, idx, kk, (uint32_t)(kr - 1), r_spacing);
+    if (st == PNPR_OK) st = pnpr_spacing_clamp(r_spacing, n);
     if (st == PNPR_OK && lists && want > 0) { /* hand the lists over */
         lists->idx = idx; lists->d2 = d2; lists->k = kk;
         idx = NULL;

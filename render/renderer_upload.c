@@ -270,13 +270,31 @@ static pnpr_status upload_finite(upload_ctx *u)
     return PNPR_OK;
 }
 
+/* The unclamped disk radii from the feature stage's point_spacing (props.h), when it holds this
+ * upload's spacing neighbour and a usable value (finite, >= 0) for every point: 1; else 0 and the
+ * upload runs its own kNN. The values are those the kNN would give (pnpr_spacing_from_lists), as
+ * long as the points are those the features saw. */
+static int stored_spacing(upload_ctx *u)
+{
+    const pnpr_property *p = pnpr_cloud_find_property(u->cloud, PNPR_PROP_POINT_SPACING);
+    if (!p || !p->data || u->k != pnpr_upload_defaults().spacing_k) return 0;
+    for (size_t j = 0; j < u->n; j++) {
+        double v = pnpr_type_get(p->type, p->data, u->src[j]);
+        if (!(v >= 0 && v <= FLT_MAX)) return 0;
+        u->radius[j] = (float)v;
+    }
+    return 1;
+}
+
 /* The disk radii (and painterly's neighbour lists), the queue order, the greys of a colourless
  * cloud and the segments' mean colours. */
 static pnpr_status upload_order(upload_ctx *u)
 {
     size_t n = u->n;
     pnpr_status st = PNPR_OK;
-    if (n > 0) {
+    if (n > 1 && !u->pdeg && stored_spacing(u)) { /* painterly needs the neighbour lists anyway */
+        if ((st = pnpr_spacing_clamp(u->radius, n)) != PNPR_OK) return st;
+    } else if (n > 0) {
         int paint = u->pdeg != NULL;
         pnpr_spacing_lists lists = {paint ? PAINT_K : 0, NULL, NULL, 0};
         st = pnpr_point_spacing(u->xyz, n, u->k, u->o.threads, u->radius, &lists);

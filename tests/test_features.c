@@ -2,6 +2,7 @@
  * boundaries, dithering density, georeferenced offsets, degenerate clouds. */
 #include "testutil.h"
 #include <pointnpr/features.h>
+#include <pointnpr/knn.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -436,8 +437,50 @@ static void test_wanted_outputs(void)
     pnpr_cloud_free(&full);
 }
 
+/* point_spacing (props.h): written from the feature stage's own neighbour lists, it equals the
+ * upload's spacing routine (pnpr_point_spacing, its own kd-tree and kNN) once clamped, bit for
+ * bit, on a noisy cube with duplicated points and NaN points; NaN points get 0; a run whose
+ * lists do not reach the 4th neighbour (k 4) removes an older one instead of leaving it stale. */
+static void test_point_spacing(void)
+{
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_test_cube(&c, 1.0, 0.04, 0.004, NULL, 5), PNPR_OK);
+    for (size_t i = 0; i + 1 < c.count; i += 97) memcpy(c.xyz + 3 * (i + 1), c.xyz + 3 * i, 3 * sizeof(float));
+    c.xyz[3 * 10] = NAN;
+    c.xyz[3 * 500 + 2] = INFINITY;
+    float *ref = malloc(c.count * sizeof *ref), *got = malloc(c.count * sizeof *got);
+    CHECK(ref && got);
+    CHECK_STATUS(pnpr_compute_features(&c, NULL, NULL), PNPR_OK);
+    const float *sp = prop_f(&c, PNPR_PROP_POINT_SPACING);
+    CHECK(sp != NULL);
+    if (sp && ref && got) {
+        CHECK(sp[10] == 0 && sp[500] == 0);
+        size_t m = 0; /* the finite points, as the upload takes them */
+        float *xyz = malloc(3 * c.count * sizeof *xyz);
+        for (size_t i = 0; xyz && i < c.count; i++)
+            if (isfinite(c.xyz[3 * i]) && isfinite(c.xyz[3 * i + 1]) && isfinite(c.xyz[3 * i + 2])) {
+                memcpy(xyz + 3 * m, c.xyz + 3 * i, 3 * sizeof(float));
+                got[m++] = sp[i];
+            }
+        CHECK_STATUS(pnpr_point_spacing(xyz, m, 4, 0, ref, NULL), PNPR_OK);
+        CHECK_STATUS(pnpr_spacing_clamp(got, m), PNPR_OK);
+        size_t diff = 0;
+        for (size_t i = 0; i < m; i++) diff += got[i] != ref[i];
+        CHECK_MSG(m == c.count - 2 && diff == 0, "%zu of %zu clamped spacings differ from pnpr_point_spacing", diff, m);
+        free(xyz);
+    }
+    pnpr_features_options o = {0};
+    o.k = 4;
+    CHECK_STATUS(pnpr_compute_features(&c, &o, NULL), PNPR_OK);
+    CHECK_MSG(pnpr_cloud_find_property(&c, PNPR_PROP_POINT_SPACING) == NULL, "k 4 left a stale point_spacing");
+    free(ref);
+    free(got);
+    pnpr_cloud_free(&c);
+}
+
 int main(void)
 {
+    test_point_spacing();
     test_wanted_outputs();
     test_eigen();
     test_sphere_and_offset();

@@ -92,6 +92,16 @@ typedef struct pnpr_spacing_lists {
  * surface buffer are this spacing times the mask scale. lists may be NULL. */
 PNPR_NODISCARD pnpr_status pnpr_point_spacing(const float *xyz, size_t n, uint32_t k, int threads, float *r_spacing,
                                               pnpr_spacing_lists *lists);
+/* The unclamped part of pnpr_point_spacing from neighbour lists already at hand (idx: n rows of kk
+ * entries, nearest first, each point itself included, PNPR_INDEX_NONE padding, as pnpr_knn_self
+ * gives them in input or tree order alike): r_spacing[i] = the distance from point i to the
+ * farthest listed of its first min(k + 1, kk) entries, computed as the kd-tree computes it, so
+ * that any exact lists with kk > k give the same floats; 0 for a row with no other point. The
+ * feature stage stores it (PNPR_PROP_POINT_SPACING) and the upload then skips its own kNN. */
+void pnpr_spacing_from_lists(const float *xyz, size_t n, const uint32_t *idx, size_t kk, uint32_t k, float *r_spacing);
+/* The clamp of pnpr_point_spacing, in place: to [PNPR_SPACING_CLAMP_LO, PNPR_SPACING_CLAMP_HI] x
+ * the median of r[0..n) (a median of 0: the largest, else 1; NaN: the low clamp). */
+PNPR_NODISCARD pnpr_status pnpr_spacing_clamp(float *r, size_t n);
 
 #ifdef __cplusplus
 }

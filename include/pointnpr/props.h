@@ -8,6 +8,10 @@
  *                                        directional, dithering point
  *   PNPR_PROP_FEATURE_CONFIDENCE  float  0..1, how well neighbouring feature points fit a line
  *   PNPR_PROP_FEATURE_DIR_X/Y/Z   float  the feature's direction (directional points)
+ *   PNPR_PROP_POINT_SPACING       float  the distance to the 4th nearest other point (the renderer's
+ *                                        default spacing_k), unclamped: the feature stage writes it
+ *                                        from its neighbour lists so that the upload needs no kNN
+ *                                        of its own (pnpr_spacing_from_lists, knn.h); 0 = none
  *   PNPR_PROP_BRUSH_SIZE          float  stroke-based splatting: the splat size r + eps (brush.h)
  *   PNPR_PROP_BRUSH_CLUSTER       uint   stroke-based splatting: the colour cluster (brush.h)
  *   PNPR_PROP_INTENSITY           ushort LAS intensity (text clouds: as read)
@@ -29,6 +33,7 @@
 #define PNPR_PROP_FEATURE_DIR_Y "feature_dir_y"
 #define PNPR_PROP_FEATURE_DIR_Z "feature_dir_z"
 #define PNPR_PROP_FEATURE_DIR "feature_dir"
+#define PNPR_PROP_POINT_SPACING "point_spacing"
 
 #define PNPR_PROP_BRUSH_SIZE "brush_size"
 #define PNPR_PROP_BRUSH_CLUSTER "brush_cluster"

@@ -244,6 +244,59 @@ static void test_determinism(pnpr_cloud *cube)
     free(b);
 }
 
+/* ---- the disk radii from the feature stage's point_spacing ---------------------------------- */
+/* The upload takes the radii from point_spacing (props.h) instead of its own kNN: the frames are
+ * byte-identical with and without the property; a property of one constant value for every point
+ * is used (every disk that radius: another frame), one with a NaN in it is not (the upload's own
+ * kNN: the same frame as without). Sketchy and points (whose disks show their radii); painterly's
+ * data left out (skip_painterly), as the CLI does for these styles: painterly needs the kNN's
+ * neighbour lists anyway. */
+static void test_stored_spacing(pnpr_cloud *cube)
+{
+    uint8_t *ref = malloc(W * H * 4), *px = malloc(W * H * 4);
+    pnpr_property *sp = pnpr_cloud_find_property(cube, PNPR_PROP_POINT_SPACING);
+    CHECK(sp != NULL && sp->type == PNPR_TYPE_FLOAT32);
+    float *saved = sp ? malloc(cube->count * sizeof *saved) : NULL;
+    static const double dir[3] = {1, -2, 1.5};
+    pnpr_camera cam;
+    CHECK_STATUS(pnpr_camera_fit(cube, dir, 40, (float)W / H, &cam), PNPR_OK);
+    pnpr_renderer *r = NULL;
+    CHECK_STATUS(pnpr_renderer_create(NULL, &r, NULL), PNPR_OK);
+    pnpr_upload_options uo;
+    memset(&uo, 0, sizeof uo);
+    uo.skip_painterly = 1;
+    for (int s = 0; r && ref && px && saved && s < 2; s++) {
+        float *v = sp->data;
+        memcpy(saved, v, cube->count * sizeof *saved);
+        pnpr_draw_options o;
+        memset(&o, 0, sizeof o);
+        o.style = s ? PNPR_STYLE_SKETCHY : PNPR_STYLE_POINTS;
+        o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
+        /* the reference: no property, the upload's own kNN */
+        sp->name[0] = 'x';
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, cube, &uo, NULL), PNPR_OK);
+        CHECK_STATUS(render(r, &cam, &o, ref, NULL), PNPR_OK);
+        sp->name[0] = 'p';
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, cube, &uo, NULL), PNPR_OK);
+        CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_OK);
+        CHECK_MSG(!memcmp(ref, px, W * H * 4), "%s: the stored spacing changed the frame", pnpr_style_name(o.style));
+        for (size_t i = 0; i < cube->count; i++) v[i] = 0.08f;
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, cube, &uo, NULL), PNPR_OK);
+        CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_OK);
+        CHECK_MSG(memcmp(ref, px, W * H * 4) != 0, "%s: a constant point_spacing was not used", pnpr_style_name(o.style));
+        memcpy(v, saved, cube->count * sizeof *saved);
+        v[cube->count / 2] = NAN;
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, cube, &uo, NULL), PNPR_OK);
+        CHECK_STATUS(render(r, &cam, &o, px, NULL), PNPR_OK);
+        CHECK_MSG(!memcmp(ref, px, W * H * 4), "%s: a NaN point_spacing was used", pnpr_style_name(o.style));
+        memcpy(v, saved, cube->count * sizeof *saved);
+    }
+    pnpr_renderer_destroy(r);
+    free(saved);
+    free(ref);
+    free(px);
+}
+
 /* ---- host GL state: everything the renderer touches is put back ------------------------- */
 typedef struct snapshot { GLint v[64][4]; GLboolean e[32]; } snapshot;
 
@@ -620,6 +673,7 @@ int main(void)
     pnpr_cloud cube = {0};
     feature_cube(&cube);
     test_determinism(&cube);
+    test_stored_spacing(&cube);
     test_gl_state(&cube);
     test_two_contexts(ctx, &cube);
     pnpr_cloud_free(&cube);
