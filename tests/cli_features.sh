@@ -29,7 +29,7 @@ n=$(grep -m1 "element vertex" "$dir/cube.ply" | awk '{print $3}')
 check 'grep -q "feature points" "$dir/log.txt"' "summary on stderr"
 for p in "float nx" "float ny" "float nz" "float feature_degree" "uchar feature_class" \
          "float feature_confidence" "float feature_dir_x" "float feature_dir_y" "float feature_dir_z" \
-         "int tag" "double x"; do
+         "float point_spacing" "int tag" "double x"; do
   check "grep -q \"^property $p\$\" \"$dir/out.ply\"" "output has property $p"
 done
 # coordinates exactly as they came in, in input order, and the extra property kept
@@ -73,6 +73,20 @@ check 'grep -q "warning" "$dir/err.txt" && grep -q "element vertex 0" "$dir/empt
 printf 'ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 2 3\n' > "$dir/one.ply"
 "$bin" features "$dir/one.ply" -o "$dir/one_out.ply" --ascii 2> /dev/null
 check '[ "$(sed "1,/end_header/d" "$dir/one_out.ply")" = "1 2 3 0 0 0 0 0 0 0 0 0" ]' "one point: zeros"
+
+# --memory-limit: below what the process already holds, refused before the work (exit 1, the
+# figures, no output); a large limit runs; a bad size is a usage error
+set +e
+"$bin" features "$dir/cube.ply" -o "$dir/m.ply" --memory-limit 1K 2> "$dir/err.txt"; rc=$?
+check '[ $rc -eq 1 ] && grep -q "needs about .* more, but the limit of 1.0 KiB leaves 0 B" "$dir/err.txt" && [ ! -e "$dir/m.ply" ]' \
+  "--memory-limit 1K: exit 1 with the figures, no output (rc $rc)"
+"$bin" features "$dir/cube.ply" -o "$dir/m.ply" --memory-limit 64G --quiet; rc=$?
+check '[ $rc -eq 0 ] && [ -s "$dir/m.ply" ]' "--memory-limit 64G runs (rc $rc)"
+for bad in 0 -5 abc 4X 1e30; do
+  "$bin" features "$dir/cube.ply" -o "$dir/m2.ply" --memory-limit "$bad" 2> /dev/null; rc=$?
+  check '[ $rc -eq 2 ]' "--memory-limit $bad: usage error (rc $rc)"
+done
+set -e
 
 if [ $fail -ne 0 ]; then echo "cli_features: FAILED" >&2; exit 1; fi
 echo "cli_features: all checks passed"

@@ -1,6 +1,7 @@
 /* Status strings, property management, append/merge of clouds, origin handling, style maps. */
 #include "testutil.h"
 
+#include <pointnpr/memory.h>
 #include <pointnpr/style.h>
 #include "../core/internal.h"
 #include <math.h>
@@ -144,9 +145,59 @@ static void test_select(void)
     CHECK(pnpr_select_float(&one, 1, 0) == 4);
 }
 
+/* memory.h: sizes parsed and printed, the estimate's parts (the feature stage at k, the renderer's
+ * frame in tiles beyond 8192 px) and its saturation, the check's two messages. */
+static void test_memory(void)
+{
+    static const struct { const char *text; size_t bytes; } ok[] = {
+        {"512M", (size_t)512 << 20}, {"4G", (size_t)4 << 30}, {"1.5G", (size_t)3 << 29}, {"4GiB", (size_t)4 << 30},
+        {"4gb", (size_t)4 << 30}, {"100", 100}, {"2k", 2048}, {"1T", (size_t)1 << 40}};
+    for (size_t i = 0; i < sizeof ok / sizeof *ok; i++) {
+        size_t b = 0;
+        CHECK_MSG(pnpr_memory_parse(ok[i].text, &b) == 0 && b == ok[i].bytes, "'%s' -> %zu", ok[i].text, b);
+    }
+    static const char *const bad[] = {"0", "-1", "abc", "4X", "1e30", "", "4 G", "0.5", "nan", "inf"};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        size_t b = 7;
+        CHECK_MSG(pnpr_memory_parse(bad[i], &b) == -1 && b == 7, "'%s' accepted", bad[i]);
+    }
+    char buf[32];
+    CHECK(!strcmp(pnpr_memory_text(0, buf, sizeof buf), "0 B"));
+    CHECK(!strcmp(pnpr_memory_text(1536, buf, sizeof buf), "1.5 KiB"));
+    CHECK(!strcmp(pnpr_memory_text((size_t)730 << 20, buf, sizeof buf), "730 MiB"));
+    CHECK(!strcmp(pnpr_memory_text((size_t)1 << 30, buf, sizeof buf), "1.0 GiB"));
+
+    pnpr_memory_estimate e;
+    pnpr_memory_plan p = {1000000, 16, 1, 0, 0, 0, 0};
+    pnpr_memory_estimate_plan(&p, &e);
+    CHECK(e.render == 0 && e.stages > 0 && e.total == e.kept + e.stages);
+    pnpr_memory_plan p32 = p;
+    p32.features_k = 32; /* 4 bytes a neighbour more per point */
+    pnpr_memory_estimate e32;
+    pnpr_memory_estimate_plan(&p32, &e32);
+    CHECK_MSG(e32.stages - e.stages == (size_t)16 * 4 * 1000000, "k 32 vs 16: %zu more", e32.stages - e.stages);
+    /* a frame of 16384 x 16384 is drawn in tiles of 8192: its pixels beyond one tile cost 8 bytes */
+    pnpr_memory_plan r1 = {1000, 0, 0, 0, 1u << PNPR_STYLE_POINTS, 8192, 8192}, r2 = r1;
+    r2.width = r2.height = 16384;
+    pnpr_memory_estimate a, b;
+    pnpr_memory_estimate_plan(&r1, &a);
+    pnpr_memory_estimate_plan(&r2, &b);
+    CHECK_MSG(b.render - a.render == (size_t)8 * (16384ull * 16384 - 8192ull * 8192), "tiles: %zu", b.render - a.render);
+    pnpr_memory_plan huge = {SIZE_MAX / 2, 1024, 1, 1, ~0u, 1 << 30, 1 << 30};
+    pnpr_memory_estimate_plan(&huge, &e);
+    CHECK(e.total == SIZE_MAX && e.render == SIZE_MAX);
+
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_memory_check(SIZE_MAX / 2, 0, "a huge cloud", &err), PNPR_ERR_OUT_OF_MEMORY);
+    CHECK_MSG(strstr(err.message, "a huge cloud needs about") && strstr(err.message, "available"), "%s", err.message);
+    CHECK_STATUS(pnpr_memory_check(1, 1024, "x", &err), pnpr_memory_resident() ? PNPR_ERR_OUT_OF_MEMORY : PNPR_OK);
+    CHECK_STATUS(pnpr_memory_check(1, (size_t)1 << 50, "x", NULL), PNPR_OK);
+}
+
 int main(void)
 {
     test_select();
+    test_memory();
     test_status_strings();
     test_zero_cloud_is_valid();
     test_properties();

@@ -5,6 +5,7 @@
 
 #include <pointnpr/camera.h>
 #include <pointnpr/io.h>
+#include <pointnpr/memory.h>
 #include <pointnpr/outliers.h>
 #include <pointnpr/view.h>
 
@@ -95,6 +96,16 @@ int cli_has_ext(const char *path, const char *ext);
 
 /* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
  * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */
+/* --memory-limit SIZE (render, animate, features): a limit on the whole process in bytes (K, M,
+ * G, T suffixes: KiB..TiB); 0 = what the machine has (pnpr_memory_available). As
+ * cli_outlier_option. */
+int cli_memory_option(size_t *limit, const char *cmd, int argc, char **argv, int *i);
+void cli_memory_usage(FILE *f);
+/* Before reading IN: the file is read whole, so its size must fit. After: the estimate of `plan`
+ * (memory.h). Both return 0 after printing why (with the figures), 1 when it fits. */
+int cli_memory_check_file(const char *cmd, const char *in, size_t limit);
+int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const pnpr_memory_plan *plan);
+
 typedef struct cli_outliers {
     int drop;
     double factor; /* 0 = PNPR_OUTLIER_FACTOR */

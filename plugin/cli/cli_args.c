@@ -4,6 +4,7 @@
 #include <pointnpr/camera.h>
 #include <pointnpr/camera_path.h>
 
+#include <pointnpr/memory.h>
 #include <pointnpr/output.h>
 
 #include <ctype.h>
@@ -336,4 +337,47 @@ void cli_columns_usage(FILE *f)
     fprintf(f, "  --columns NAMES      columns of a text point cloud (.xyz .pts .pwn .csv .txt), e.g.\n"
                "                       x,y,z,r,g,b; names: x y z nx ny nz r g b label intensity ... _ (skip);\n"
                "                       default: the file's header row, else the format's columns (docs/io.md)\n");
+}
+
+int cli_memory_option(size_t *limit, const char *cmd, int argc, char **argv, int *i)
+{
+    if (strcmp(argv[*i], "--memory-limit") || *i + 1 >= argc) return 0;
+    const char *v = argv[++*i];
+    if (pnpr_memory_parse(v, limit) == 0) return 1;
+    fprintf(stderr, "pointnpr %s: --memory-limit wants a size such as 512M or 4G (K, M, G, T: KiB..TiB), got '%s'\n",
+            cmd, v);
+    return -1;
+}
+
+void cli_memory_usage(FILE *f)
+{
+    fprintf(f, "  --memory-limit SIZE  refuse before the work when the estimated peak of the process\n"
+               "                       exceeds SIZE (512M, 4G; default: the memory the machine has\n"
+               "                       available); a larger SIZE overrides the check\n");
+}
+
+int cli_memory_check_file(const char *cmd, const char *in, size_t limit)
+{
+    struct stat st;
+    if (stat(in, &st) != 0 || !S_ISREG(st.st_mode)) return 1; /* a folder of tiles, a missing file: the reader says */
+    char what[600];
+    snprintf(what, sizeof what, "reading %s (read whole)", in);
+    pnpr_error err = {0};
+    if (pnpr_memory_check((size_t)st.st_size, limit, what, &err) == PNPR_OK) return 1;
+    fprintf(stderr, "pointnpr %s: %s%s\n", cmd, err.message, limit ? "" : "; --memory-limit SIZE sets the limit yourself");
+    return 0;
+}
+
+int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const pnpr_memory_plan *plan)
+{
+    pnpr_memory_estimate e;
+    pnpr_memory_estimate_plan(plan, &e);
+    char what[700], a[32], b[32], c[32];
+    snprintf(what, sizeof what, "%s: %zu points (stages %s, kept %s%s%s)", in, plan->points,
+             pnpr_memory_text(e.stages, a, sizeof a), pnpr_memory_text(e.kept, b, sizeof b),
+             e.render ? ", renderer " : "", e.render ? pnpr_memory_text(e.render, c, sizeof c) : "");
+    pnpr_error err = {0};
+    if (pnpr_memory_check(e.total, limit, what, &err) == PNPR_OK) return 1;
+    fprintf(stderr, "pointnpr %s: %s%s\n", cmd, err.message, limit ? "" : "; --memory-limit SIZE sets the limit yourself");
+    return 0;
 }

@@ -20,6 +20,7 @@ typedef struct cli_render_opts {
     double bg[3];                 /* 0..255 */
     int alpha, quiet, max_tile;
     int budget_all;               /* --budget all: every point (no --density either) */
+    size_t memory_limit;          /* --memory-limit (0: what the machine has) */
     cli_outliers outliers;
     const char *columns;          /* --columns (text point clouds) */
     cli_view view;

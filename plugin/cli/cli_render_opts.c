@@ -253,6 +253,7 @@ void cli_render_usage(FILE *f, int width, int height)
             "  colourless clouds, JSEG segments for cartoon when IN has colours but no segment labels,\n"
             "  brush sizes, colour clusters and normals for brush, the sphere hierarchy for hierarchy.\n");
     cli_outlier_usage(f);
+    cli_memory_usage(f);
     cli_columns_usage(f);
 }
 
@@ -319,6 +320,12 @@ static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, pnpr_sph
     req.outline = dopt->outline;
     pnpr_plan plan;
     pnpr_status st = pnpr_plan_make(&req, cloud, &plan);
+    if (st == PNPR_OK) { /* what is left to do must fit (memory.h), before any of it */
+        pnpr_memory_plan mp = {cloud->count, plan.want ? pnpr_features_defaults().k : 0,
+                               plan.want && !cloud->normal, plan.segments == PNPR_PLAN_SEGMENTS_JSEG, req.styles,
+                               o->view.width, o->view.height};
+        if (!cli_memory_check_plan(cmd, in, o->memory_limit, &mp)) return 0;
+    }
     if (st == PNPR_OK && plan.want) {
         if (!quiet) fprintf(stderr, "%s: computing %s (pointnpr explain shows the plan; pointnpr features saves them)\n", in,
                             (plan.want & ~(uint32_t)(PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) ? "features" : "normals");
@@ -415,6 +422,7 @@ int cli_render_option(cli_render_opts *o, const char *cmd, int argc, char **argv
     int r = cli_view_option(&o->view, cmd, argc, argv, ip);
     if (r == 0) r = cli_outlier_option(&o->outliers, cmd, argc, argv, ip);
     if (r == 0) r = cli_columns_option(&o->columns, cmd, argc, argv, ip);
+    if (r == 0) r = cli_memory_option(&o->memory_limit, cmd, argc, argv, ip);
     if (r == 0) r = table_option(o, cmd, argc, argv, ip);
     if (r == 0) r = cli_opts_parse(render_opts, CLI_COUNT(render_opts), o, cmd, argc, argv, ip);
     return r;
@@ -492,6 +500,7 @@ int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char 
     ro.progress = s->prog;
     ro.columns = o->columns;
     pnpr_error err = {0};
+    if (!cli_memory_check_file(cmd, in, o->memory_limit)) return 0;
     pnpr_status st = pnpr_read_file(in, &ro, &s->cloud, &err);
     if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
     return cli_outliers_apply(&o->outliers, cmd, in, &s->cloud, o->quiet, NULL) == 0;

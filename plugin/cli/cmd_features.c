@@ -64,6 +64,7 @@ static void usage(FILE *f)
     cli_opts_usage(f, features_opts + 1, CLI_COUNT(features_opts) - 1); /* --weights: weights_usage */
     cli_opts_usage(f, cli_common_opts + 1, 1); /* --quiet */
     cli_outlier_usage(f);
+    cli_memory_usage(f);
     cli_columns_usage(f);
 }
 
@@ -117,12 +118,14 @@ int cli_features(int argc, char **argv)
     pnpr_write_options wo = {0};
     cli_outliers outliers = {0, 0};
     const char *columns = NULL;
+    size_t memory_limit = 0;
     size_t tn;
     const pnpr_option_desc *table = pnpr_features_option_table(&tn);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int oo = cli_outlier_option(&outliers, "features", argc, argv, &i);
         if (oo == 0) oo = cli_columns_option(&columns, "features", argc, argv, &i);
+        if (oo == 0) oo = cli_memory_option(&memory_limit, "features", argc, argv, &i);
         if (oo == 0) oo = cli_table_option(table, tn, table_names, fo, "features", argc, argv, &i);
         if (oo == 0) oo = cli_opts_parse(features_opts, CLI_COUNT(features_opts), &A, "features", argc, argv, &i);
         if (oo == 0) oo = cli_opts_parse(cli_common_opts, CLI_COUNT(cli_common_opts), &A.c, "features", argc, argv, &i);
@@ -147,9 +150,12 @@ int cli_features(int argc, char **argv)
     wo.progress = prog;
     pnpr_cloud cloud = {0};
     pnpr_error err = {0};
+    if (!cli_memory_check_file("features", in, memory_limit)) return 1;
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("features", st, &err); return 1; }
     if (cli_outliers_apply(&outliers, "features", in, &cloud, quiet, NULL)) { pnpr_cloud_free(&cloud); return 1; }
+    pnpr_memory_plan mp = {cloud.count, fo->k ? fo->k : pnpr_features_defaults().k, cloud.normal == NULL, 0, 0, 0, 0};
+    if (!cli_memory_check_plan("features", in, memory_limit, &mp)) { pnpr_cloud_free(&cloud); return 1; }
 
     pnpr_features_stats stats;
     st = pnpr_features_check_options(fo, &err);

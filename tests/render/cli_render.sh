@@ -77,10 +77,16 @@ done
 "$bin" render "$dir/cube.ply" -o "$dir/x.png" --budget all --density 0.5 2> "$dir/err.txt"
 rc=$?; check '[ $rc -eq 2 ] && grep -q "give one" "$dir/err.txt"' "--budget all with --density exits 2 (got $rc)"
 
+# --memory-limit: the estimate of what is left (features, upload, frame) must fit
+"$bin" render "$dir/cube.ply" -o "$dir/mem.png" --style sketchy --memory-limit 1K 2> "$dir/err.txt"
+rc=$?; check '[ $rc -eq 1 ] && grep -q "needs about" "$dir/err.txt" && [ ! -e "$dir/mem.png" ]' "--memory-limit 1K: exit 1, no output (rc $rc)"
+"$bin" render "$dir/cube.ply" -o "$dir/mem.png" --style sketchy --size 64x48 --memory-limit 64G --quiet
+rc=$?; check '[ $rc -eq 0 ] && [ -s "$dir/mem.png" ]' "--memory-limit 64G renders (rc $rc)"
+
 # usage errors: 2
 for args in "" "$dir/cube.ply" "$dir/cube.ply -o $dir/x.png --style oil" "$dir/cube.ply -o $dir/x.png --size 0x10" \
             "$dir/cube.ply -o $dir/x.png --eye 1,2,3" "$dir/cube.ply -o $dir/x.png --background 300,0,0" \
-            "$dir/cube.ply -o $dir/x.png --budget -5" "$dir/cube.ply -o $dir/x.png --budget al" "$dir/cube.ply -o $dir/x.png --sketch d" "$dir/cube.ply -o $dir/x.png --bogus" \
+            "$dir/cube.ply -o $dir/x.png --budget -5" "$dir/cube.ply -o $dir/x.png --budget al" "$dir/cube.ply -o $dir/x.png --memory-limit 0" "$dir/cube.ply -o $dir/x.png --sketch d" "$dir/cube.ply -o $dir/x.png --bogus" \
             "$dir/cube.ply -o $dir/x.png --style lines --faint 2" "$dir/cube.ply -o $dir/x.png --line-width 0" \
             "$dir/cube.ply -o $dir/x.png --style stipple --dot-size -1" \
             "$dir/cube.ply -o $dir/x.png --style cartoon --levels 1" "$dir/cube.ply -o $dir/x.png --outline-scale 0.5"; do
