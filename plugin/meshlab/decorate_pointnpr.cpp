@@ -100,9 +100,12 @@ static_assert(PNPR_TONE_AUTO == 0 && PNPR_TONE_COLOR == 1 && PNPR_TONE_LIGHT == 
 const char *const kWantNames[5] = {"oriented normals", "feature degree", "feature classes", "dithering points",
                                    "normals"};
 
-bool isPointLayer(const MeshModel *mm)
+/* The layers the decorator draws: visible, with vertices, not a polyline layer (edges: the profile
+ * lines the filter makes, drawn by the lines style from the features). A mesh layer (an RGB-D
+ * PLY with a range grid opens as one) is drawn as its vertices. */
+bool isDrawnLayer(const MeshModel *mm)
 {
-    return mm && mm->isVisible() && mm->cm.vn > 0 && mm->cm.fn == 0 && mm->cm.en == 0;
+    return mm && mm->isVisible() && mm->cm.vn > 0 && mm->cm.en == 0;
 }
 
 struct Hash {
@@ -122,7 +125,7 @@ uint64_t layerSignature(MeshDocument &md)
 {
     Hash h;
     for (MeshModel *mm : md.meshList) {
-        if (!isPointLayer(mm)) continue;
+        if (!isDrawnLayer(mm)) continue;
         CMeshO &m = mm->cm;
         h.add(mm->id());
         h.add(m.vn);
@@ -581,9 +584,11 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
     std::vector<MeshModel *> layers;
     size_t total = 0;
     bool anyColour = false, allClass = true, allSeg = true, allNormals = true;
+    size_t meshes = 0;
     for (MeshModel *mm : md.meshList) {
-        if (!isPointLayer(mm)) continue;
+        if (!isDrawnLayer(mm)) continue;
         layers.push_back(mm);
+        meshes += mm->cm.fn > 0;
         total += (size_t)mm->cm.vn;
         anyColour |= mm->hasDataMask(MeshModel::MM_VERTCOLOR);
         if (allNormals && !meaningfulNormals(mm)) allNormals = false;
@@ -595,7 +600,7 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         if (!findAttribute<float>(mm->cm, PNPR_PROP_SEGMENT, hs)) allSeg = false;
     }
     layerFeatures = false;
-    if (layers.empty() || total == 0) { note = "no visible point layer"; return PNPR_OK; }
+    if (layers.empty() || total == 0) { note = "no visible layer with vertices"; return PNPR_OK; }
     std::vector<double> world(3 * total);
     std::vector<uint8_t> rgb(anyColour ? 3 * total : 0);
     std::vector<uint8_t> cls(allClass ? total : 0);
@@ -684,8 +689,9 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
             layerFeatures = true;
         }
     }
-    note = QString("%1 points from %2 layer(s)%3%4%5%6")
+    note = QString("%1 points from %2 layer(s)%3%4%5%6%7")
                .arg(j).arg(layers.size())
+               .arg(meshes ? QString(" (%1 mesh layer(s): their vertices)").arg(meshes) : QString())
                .arg(anyColour ? ", colours" : "")
                .arg(allNormals ? ", normals" : "")
                .arg(allClass ? ", feature classes from the layers' attributes" : "")

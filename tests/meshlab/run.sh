@@ -993,6 +993,16 @@ decorate)
   expect_log sketchy "features computed for the sketchy style \\(15002 points"
   geometry lines lines
   expect_log lines "pointnpr decorator: [0-9]+ profile lines"
+  # a mesh layer (an RGB-D PLY with a range grid opens as one): the same cube with 5000 thin
+  # triangles over its vertices is drawn as its vertices, with the point cube's edge checks
+  awk 'NR == FNR { if ($0 == "end_header") { print "element face 5000"; print "property list uchar int vertex_indices" }
+                   print; next }
+       END { for (i = 0; i < 5000; i++) printf "3 %d %d %d\n", 3 * i, 3 * i + 1, 3 * i + 2 }' "$T/cube.ply" > "$T/cube_mesh.ply"
+  if gui meshlayer sketchy "$T/cube_mesh.ply"; then
+    check_snapshot "$T/meshlayer-camera.txt" "$T/meshlayer-plain.pgm" "$T/meshlayer-npr.pgm" meshlayer ||
+      fail "'meshlayer': snapshot checks (see above)"
+  fi
+  expect_log meshlayer "pointnpr decorator: uploaded 15002 points from 1 layer\\(s\\) \\(1 mesh layer\\(s\\): their vertices\\)"
   ;;
 
 decorate_styles)
