@@ -2,6 +2,7 @@
 #include "decorate_glcontext.h"
 
 #include <QGLContext>
+#include <QGLWidget>
 #include <QOpenGLContext>
 #include <QWidget>
 
@@ -13,6 +14,14 @@ QWidget *currentGLWidget()
 {
     const QGLContext *qgl = QGLContext::currentContext();
     return qgl ? dynamic_cast<QWidget *>(qgl->device()) : nullptr;
+}
+
+bool makeWidgetCurrent(QWidget *widget)
+{
+    QGLWidget *gl = qobject_cast<QGLWidget *>(widget);
+    if (!gl) return false;
+    gl->makeCurrent();
+    return true;
 }
 
 void onGLContextDestroyed(void *ctx, QObject *receiver, std::function<void()> fn)

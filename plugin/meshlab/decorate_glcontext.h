@@ -14,6 +14,8 @@ namespace pnpr_meshlab {
 void *currentGLContext();
 /* The widget of the current QGLContext (MeshLab's GLArea), or nullptr. */
 QWidget *currentGLWidget();
+/* Makes the GL context of `widget` (MeshLab's GLArea, a QGLWidget) current; false if it has none. */
+bool makeWidgetCurrent(QWidget *widget);
 /* Calls fn when the context `ctx` is about to be destroyed (while `receiver` lives). */
 void onGLContextDestroyed(void *ctx, QObject *receiver, std::function<void()> fn);
 } // namespace pnpr_meshlab

@@ -196,6 +196,9 @@ struct DecorateContextState {
     double lastMV[16] = {0}, lastP[16] = {0};
     bool haveLast = false;
     size_t lastDrawn = 0;         /* points of the last on-screen frame at rest (tiles draw as many) */
+    int uploads = 0;              /* clouds uploaded in this state (the log says so after a restart) */
+    bool restarted = false;       /* MeshLab restarted the decoration: kept (startDecorate) */
+    int framesDrawn = 0;
     QPointer<QWidget> widget;     /* the GL widget, for the repaint after camera motion */
     QTimer *settle = nullptr;     /* full-budget repaint after motion stops */
     int frames = 0;
@@ -447,8 +450,22 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
     }
 }
 
+/* MeshLab ends and restarts every decoration when a parameter of the dialog is applied and after
+ * every filter (GLArea::updateAllDecorators: endDecorate, then startDecorate at once). The state
+ * of a context (the merged layers, their features and segments, the uploaded cloud) survives
+ * such a restart: endDecorate only marks it, and it is dropped on the next turn of the event loop
+ * unless startDecorate came first (the decoration was turned off). What changed is found as on
+ * any frame: the layers' signature, the plan, the parameters. */
 bool DecoratePointnprPlugin::startDecorate(QAction *, MeshDocument &, const RichParameterList *, GLArea *)
 {
+    try {
+        for (void *ctx : ending_) {
+            DecorateContextState *s = states_.value(ctx, nullptr);
+            if (s) s->restarted = true;
+        }
+        ending_.clear();
+    } catch (...) {
+    }
     return true; /* the renderer is made on the first frame, in the context that draws it */
 }
 
@@ -456,13 +473,24 @@ void DecoratePointnprPlugin::endDecorate(QAction *, MeshDocument &, const RichPa
 {
     try {
         void *ctx = pnpr_meshlab::currentGLContext();
-        if (ctx && states_.contains(ctx)) dropState(ctx);
+        if (!ctx || !states_.contains(ctx)) return;
+        ending_.insert(ctx);
+        QPointer<QWidget> w = pnpr_meshlab::currentGLWidget();
+        QTimer::singleShot(0, this, [this, ctx, w] {
+            try {
+                if (!ending_.remove(ctx)) return; /* restarted: kept */
+                if (w) pnpr_meshlab::makeWidgetCurrent(w); /* so that the renderer's GL objects go too */
+                dropState(ctx);
+            } catch (...) {
+            }
+        });
     } catch (...) {
     }
 }
 
 void DecoratePointnprPlugin::dropState(void *ctx)
 {
+    ending_.remove(ctx);
     DecorateContextState *s = states_.take(ctx);
     if (s) freeState(s, ctx);
 }
@@ -1088,6 +1116,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         uo.tone = tone; /* colourless clouds: greys lit from the scene's up */
         pnpr_status st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, &uo, &err);
         s->needUpload = false;
+        s->uploads++;
         if (st != PNPR_OK) {
             s->uploadFailed = true;
             report("cannot upload the layers: " + status(st, err), true);
@@ -1194,6 +1223,15 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         return;
     }
     if (!tile && !moving && !fxOn) s->lastDrawn = stats.points_drawn;
+    if (s->restarted) {
+        s->restarted = false;
+        report(QString("decoration restarted by MeshLab (a parameter applied or a filter run): layers, features and "
+                       "upload kept (%1 upload(s) so far)").arg(s->uploads), false);
+    }
+    /* test-only: PNPR_MESHLAB_TEST_RESTART=1 has MeshLab restart the decoration after the 2nd frame,
+     * as applying a parameter does (tests/meshlab/run.sh decorate, run 'restart') */
+    if (++s->framesDrawn == 2 && std::getenv("PNPR_MESHLAB_TEST_RESTART") && s->widget)
+        QMetaObject::invokeMethod(s->widget.data(), "updateAllDecorators", Qt::QueuedConnection);
     if (fxOn) report(QString("effects frame: %1 layers of %2x%3%4").arg(es.layers).arg(es.layer_width).arg(es.layer_height)
                          .arg(moving ? " (preview while moving)" : ""), false);
     if (moving && s->settle) s->settle->start(300); /* a full-budget frame once the camera rests */

@@ -8,6 +8,7 @@
 #include <common/interfaces.h>
 
 #include <QHash>
+#include <QSet>
 #include <QString>
 
 class QTimer;
@@ -43,6 +44,7 @@ private:
     void testStartupPoll();
 
     QHash<void *, DecorateContextState *> states_; /* one renderer per GL context (QOpenGLContext) */
+    QSet<void *> ending_; /* contexts whose decoration ended: dropped unless it restarts at once */
     QTimer *startupTimer_ = nullptr; /* test mode only (PNPR_MESHLAB_DECORATE_AT_START) */
     int startupTicks_ = 0;
     int seenTicks_ = 0; /* ticks since a visible GLArea appeared */

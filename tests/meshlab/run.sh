@@ -427,7 +427,7 @@ gui() {
     done
   fi
   (cd "$T" && exec env HOME="$T/home-$name" XDG_RUNTIME_DIR="$T/home-$name" PNPR_MESHLAB_DECORATE_AT_START=1 \
-    PNPR_MESHLAB_SNAPSHOT="$T/$name" "${extra[@]}" \
+    PNPR_MESHLAB_SNAPSHOT="$T/$name" "${extra[@]}" ${GUI_ENV[@]+"${GUI_ENV[@]}"} \
     LD_LIBRARY_PATH="$MLLIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 150 "$T/host/meshlab" "$input") \
     > "$T/$name.log" 2>&1 &
   pid=$!
@@ -1002,6 +1002,18 @@ decorate)
     check_snapshot "$T/meshlayer-camera.txt" "$T/meshlayer-plain.pgm" "$T/meshlayer-npr.pgm" meshlayer ||
       fail "'meshlayer': snapshot checks (see above)"
   fi
+  # MeshLab restarts the decoration when a parameter is applied (GLArea::updateAllDecorators: end,
+  # then start): the layers, features and upload are kept (one upload in the whole run), and the
+  # frames after the restart still pass the edge checks
+  GUI_ENV=(PNPR_MESHLAB_TEST_RESTART=1)
+  if gui restart sketchy "$T/cube.ply"; then
+    check_snapshot "$T/restart-camera.txt" "$T/restart-plain.pgm" "$T/restart-npr.pgm" restart ||
+      fail "'restart': snapshot checks (see above)"
+  fi
+  GUI_ENV=()
+  expect_log restart "pointnpr decorator: decoration restarted by MeshLab .*: layers, features and upload kept \\(1 upload\\(s\\) so far\\)"
+  nup=$(grep -c "pointnpr decorator: uploaded" "$T/restart.log")
+  [[ "$nup" == 1 ]] || fail "'restart': $nup uploads, expected 1 (the restart re-uploaded the cloud)"
   expect_log meshlayer "pointnpr decorator: uploaded 15002 points from 1 layer\\(s\\) \\(1 mesh layer\\(s\\): their vertices\\)"
   ;;
 
