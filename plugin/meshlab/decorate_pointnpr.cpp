@@ -196,6 +196,8 @@ struct DecorateContextState {
     double lastMV[16] = {0}, lastP[16] = {0};
     bool haveLast = false;
     size_t lastDrawn = 0;         /* points of the last on-screen frame at rest (tiles draw as many) */
+    double screenScale = 0;       /* |P[0]| of the last on-screen frame: a tile's over it is the multiplier */
+    double snapK = 0;             /* > 0 while MeshLab draws snapshot tiles: their multiplier */
     int uploads = 0;              /* clouds uploaded in this state (the log says so after a restart) */
     bool restarted = false;       /* MeshLab restarted the decoration: kept (startDecorate) */
     int framesDrawn = 0;
@@ -900,6 +902,25 @@ bool writeImages(const QString &prefix, const std::vector<unsigned char> &rgba, 
 
 } // namespace
 
+/* A tile of "Save snapshot" at screen multiplier k (its P[0] is k times the view's): every width in
+ * pixels (strokes, lines, dots, outlines, the hierarchy's strokes, the shortest line kept) k times the view's, resolved
+ * from the library's defaults, so that the snapshot is the view at k times the resolution instead
+ * of the same pixel widths over k times the area. */
+static void scaleForTile(pnpr_draw_options &o, double k)
+{
+    if (!(k > 1.001 && k <= 64)) return;
+    auto widen = [k](float v, const pnpr_option_desc *d) { return (float)((v > 0 ? v : (d ? d->def : 1)) * k); };
+    o.line_width = widen(o.line_width, drawOption("line-width"));
+    o.stroke_width = widen(o.stroke_width, drawOption("stroke-width"));
+    o.dot_size = widen(o.dot_size, drawOption("dot-size"));
+    o.line_min_px = widen(o.line_min_px, drawOption("line-min")); /* the same profile lines kept */
+    o.hierarchy.stroke_px = widen(o.hierarchy.stroke_px, hierOption("stroke-px"));
+    float ow = o.outline_width;
+    if (!(ow > 0)) pnpr_style_outline_default(o.style, &ow);
+    const pnpr_option_desc *od = drawOption("outline-width");
+    o.outline_width = (float)std::min(ow * k, od ? od->max : 64.0);
+}
+
 void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg)
 {
     void *ctx = pnpr_meshlab::currentGLContext();
@@ -1144,10 +1165,16 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     glGetIntegerv(GL_VIEWPORT, vp);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
     /* MeshLab's tiled "Save snapshot" draws its tiles with off-centre frusta (a symmetric frustum
-     * has P[8] = P[9] = 0, a symmetric orthographic box P[12] = P[13] = 0). A tile is not camera
-     * motion, and it draws the point count of the frame on screen: the screen-space budget of a
-     * tile's own coverage would differ from tile to tile and leave seams. */
-    bool tile = P[15] == 0 ? (P[8] != 0 || P[9] != 0) : (P[12] != 0 || P[13] != 0);
+     * has P[8] = P[9] = 0, a symmetric orthographic box P[12] = P[13] = 0) k times narrower than
+     * the view's (P[0] k times larger); the middle tile of an odd multiplier is symmetric, and is
+     * told by its P[0], k times the view's, right after the off-centre ones. A tile is not camera
+     * motion; it draws the point count of the frame on screen (the screen-space budget of a tile's
+     * own coverage would differ from tile to tile and leave seams) and every width k times. */
+    bool offCentre = P[15] == 0 ? (P[8] != 0 || P[9] != 0) : (P[12] != 0 || P[13] != 0);
+    double zoom = s->screenScale > 0 ? std::fabs(P[0]) / s->screenScale : 1;
+    if (offCentre) s->snapK = zoom;
+    else if (!(s->snapK > 0 && std::fabs(zoom - s->snapK) <= 1e-6 * s->snapK)) s->snapK = 0;
+    bool tile = s->snapK > 0;
     bool moving = !tile && s->haveLast &&
                   (std::memcmp(mv, s->lastMV, sizeof mv) != 0 || std::memcmp(P, s->lastP, sizeof P) != 0);
     std::memcpy(s->lastMV, mv, sizeof mv);
@@ -1188,6 +1215,12 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     o.stroke_width = prm.lineWidth;
     o.outline = prm.outline;
     o.outline_width = prm.outlineWidth;
+    if (tile) {
+        scaleForTile(o, s->snapK);
+        report(QString("snapshot tiles at %1x the view: %2 points each, widths %1x").arg(s->snapK, 0, 'g', 3).arg(o.budget), false);
+    } else {
+        s->screenScale = std::fabs(P[0]);
+    }
     o.composite = PNPR_COMPOSITE_REPLACE;
     o.matrices = &cm;
     pnpr_target tg;

@@ -1188,11 +1188,12 @@ snapshot)
     "$CLI" convert "$tiles" -o "$LION" --quiet || die "pointnpr convert of $tiles failed" # written whole or not at all
   fi
   SNAP="$T/meshlab_snapshot00.png"
+  SNAP_FACTOR=${SNAP_FACTOR:-3} # 3: its middle tile is symmetric, as the view is (the decorator must still tell it)
   rm -f "$SNAP" "$T"/lion-*
   mkdir -p "$T/home"
   (cd "$T" && HOME="$T/home" XDG_RUNTIME_DIR="$T/home" PNPR_MESHLAB_DECORATE_AT_START=1 \
-    PNPR_MESHLAB_SNAPSHOT="$T/lion" PNPR_MESHLAB_TEST_STYLE=sketchy PNPR_MESHLAB_TEST_SAVE_SNAPSHOT="$T" \
-    PNPR_MESHLAB_TEST_SNAPSHOT_FACTOR=2 \
+    PNPR_MESHLAB_SNAPSHOT="$T/lion" PNPR_MESHLAB_TEST_STYLE="${SNAP_STYLE:-sketchy}" PNPR_MESHLAB_TEST_SAVE_SNAPSHOT="$T" \
+    PNPR_MESHLAB_TEST_SNAPSHOT_FACTOR="$SNAP_FACTOR" \
     LD_LIBRARY_PATH="$MLLIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" exec timeout 170 "$T/host/meshlab" "$LION") \
     > "$T/gui.log" 2>&1 &
   pid=$!
@@ -1215,34 +1216,59 @@ snapshot)
   expect_log gui "Enabled Decorate mode NPR render"
   expect_log gui "pointnpr decorator: uploaded [0-9]+ points from 1 layer"
   expect_log gui "pointnpr decorator: snapshot .* written"
-  expect_log gui "pointnpr decorator: test: Save snapshot dialog accepted \\(folder .*, multiplier 2\\)"
+  expect_log gui "pointnpr decorator: test: Save snapshot dialog accepted \\(folder .*, multiplier $SNAP_FACTOR\\)"
+  expect_log gui "pointnpr decorator: snapshot tiles at ${SNAP_FACTOR}x the view: [0-9]+ points each, widths ${SNAP_FACTOR}x"
   grep "pointnpr decorator:" "$T/gui.log"
   [[ -s "$SNAP" ]] || die "MeshLab's Save snapshot wrote no $SNAP (log: $T/gui.log)"
   [[ -f "$T/lion-camera.txt" && -f "$T/lion-plain.pgm" ]] || die "no decorator frame pair (log: $T/gui.log)"
   read -r _ _ _ vw vh < <(grep '^viewport' "$T/lion-camera.txt")
   convert "$SNAP" -colorspace gray -depth 8 -compress none pgm:"$T/snapshot.pgm" || die "convert $SNAP failed"
-  # the snapshot: exactly 2x the viewport; paper-white corners; >= 50% light (> 200) pixels and
+  # the snapshot: exactly F x the viewport; paper-white corners; >= 50% light (> 200) pixels and
   # >= 1% dark (< 110) stroke pixels; >= 25% of its pixels differ by > 40 grey levels from MeshLab's
-  # own (undecorated) frame scaled 2x (the plain frame's background is MeshLab's gradient)
-  awk -v vw="$vw" -v vh="$vh" '
+  # own (undecorated) frame scaled F x (the plain frame's background is MeshLab's gradient)
+  awk -v vw="$vw" -v vh="$vh" -v F="$SNAP_FACTOR" '
     FNR == 1 { f++ }
     f == 1 { if (FNR == 2) { PW = $1; PH = $2 } if (FNR > 3) for (c = 1; c <= NF; c++) pl[n1++] = $c; next }
     { for (c = 1; c <= NF; c++) { k++
         if (k == 2) W = $c + 0; if (k == 3) H = $c + 0
         if (k > 4) { v = $c; i = k - 5; x = i % W; y = int(i / W); n++
           if (v < 110) dark++; if (v > 200) light++
-          p = pl[int(y / 2) * PW + int(x / 2)]; d = v - p; if (d > 40 || d < -40) differ++
+          p = pl[int(y / F) * PW + int(x / F)]; d = v - p; if (d > 40 || d < -40) differ++
           if ((x == 0 || x == W - 1) && (y == 0 || y == H - 1)) { corners++; if (v == 255) white++ } } } }
     END {
       printf "snapshot %dx%d (viewport %dx%d, plain frame %dx%d): %.1f%% dark, %.1f%% light, %.1f%% differ from the plain frame, %d of %d corners white\n",
              W, H, vw, vh, PW, PH, 100 * dark / n, 100 * light / n, 100 * differ / n, white, corners
       bad = 0
-      if (W != 2 * vw || H != 2 * vh || n != W * H) { print "wrong size"; bad++ }
+      if (W != F * vw || H != F * vh || n != W * H) { print "wrong size"; bad++ }
       if (PW != vw || PH != vh) { print "plain frame size differs from the viewport"; bad++ }
       if (dark < 0.01 * n || light < 0.5 * n) { print "not dark strokes on light paper"; bad++ }
       if (differ < 0.25 * n) { print "too close to the plain frame"; bad++ }
       if (white != 4) { print "corners are not paper white"; bad++ }
       exit bad ? 1 : 0 }' "$T/lion-plain.pgm" "$T/snapshot.pgm" || fail "snapshot checks (see above)"
+  # seamless and the same drawing: every row and column along a tile border is at most 1.5 x (+ 1%)
+  # as dark (< 128) as the darkest of the rows / columns 3 and 4 px from it (a dashed seam would
+  # double it: an injected 1 px line fails this), and the snapshot's ink share is 0.6 .. 1.6 x that
+  # of the decorator's frame on screen (widths scaled with the multiplier; unscaled 0.47 .. 0.67)
+  awk -v F="$SNAP_FACTOR" '
+    function pgm(v) { k++; if (k == 2) W = v + 0; if (k == 3) H = v + 0; return k > 4 }
+    FNR == 1 { f++; k = 0 }
+    f == 1 { for (c = 1; c <= NF; c++) if (pgm($c)) { sn++; if ($c < 128) sd++ } next }
+    { for (c = 1; c <= NF; c++) if (pgm($c)) { i = k - 5; x = i % W; y = int(i / W); n++
+        if ($c < 128) { dark++; col[x]++; row[y]++ } } }
+    END {
+      bad = 0; tw = W / F; th = H / F
+      for (b = 1; b < F; b++) for (e = 0; e < 2; e++) {
+        x = b * tw - 1 + e; near = 0
+        for (d = 3; d <= 4; d++) { near = col[x - d] > near ? col[x - d] : near; near = col[x + d] > near ? col[x + d] : near }
+        if (col[x] / H > 1.5 * near / H + 0.01) { printf "seam: column %d dark %.4f, its neighbours at most %.4f\n", x, col[x] / H, near / H; bad++ }
+        y = b * th - 1 + e; near = 0
+        for (d = 3; d <= 4; d++) { near = row[y - d] > near ? row[y - d] : near; near = row[y + d] > near ? row[y + d] : near }
+        if (row[y] / W > 1.5 * near / W + 0.01) { printf "seam: row %d dark %.4f, its neighbours at most %.4f\n", y, row[y] / W, near / W; bad++ }
+      }
+      ratio = (dark / n) / (sd / sn)
+      printf "tile borders checked: %d; ink %.4f of the snapshot, %.4f of the frame on screen (%.2fx)\n", 4 * (F - 1), dark / n, sd / sn, ratio
+      if (ratio < 0.6 || ratio > 1.6) { print "the snapshot is not the view at a higher resolution (ink share)"; bad++ }
+      exit bad ? 1 : 0 }' "$T/lion-npr.pgm" "$T/snapshot.pgm" || fail "snapshot seams / ink (see above)"
   ;;
 
 *) die "unknown test '$TEST'" ;;
