@@ -28,6 +28,10 @@ static const pnpr_option_desc draw_table[] = {
     D("stroke-length", stroke_length, FLOAT, 6, 0, UNB, EXCL, 0, NULL,
       "directional stroke length in disk radii (hatches: half)"),
     D("stroke-width", stroke_width, FLOAT, 2, 0, UNB, EXCL, 0, NULL, "stroke width in pixels"),
+    /* 48 px: a close-up draws the strokes of a view from further away (at 1024x768 a stroke of the
+     * default views is 6 to 20 px) instead of streaks across the frame (issue 15) */
+    D("stroke-max", stroke_max, FLOAT, 48, 1, 1e4, NEG_OFF, 0, NULL,
+      "longest directional stroke or hatch in pixels (close-ups: no streaks)"),
     /* ink: all four 0 = this colour; painterly's strokes then take the point colours */
     D("ink-r", ink[0], FLOAT, 0.08, 0, 1, ZERO_VALUE | PER_STYLE, 0, NULL, "ink colour, red (linear)"),
     D("ink-g", ink[1], FLOAT, 0.08, 0, 1, ZERO_VALUE | PER_STYLE, 0, NULL, "ink colour, green (linear)"),

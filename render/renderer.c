@@ -102,7 +102,7 @@ static const pnpr_gl_uniform stroke_table[] = {
     U(stroke_uniforms, strokes, "u_strokes"), U(stroke_uniforms, layer, "u_layer"), U(stroke_uniforms, ink, "u_ink"),
     U(stroke_uniforms, ink_from_points, "u_ink_from_points"), U(stroke_uniforms, thin, "u_thin"),
     U(stroke_uniforms, queue_end, "u_queue_end"), U(stroke_uniforms, queue_fade, "u_queue_fade"),
-    U(stroke_uniforms, tone_radius, "u_tone_radius"),
+    U(stroke_uniforms, tone_radius, "u_tone_radius"), U(stroke_uniforms, half_max, "u_half_max"),
 };
 static const pnpr_gl_uniform paint_table[] = {
     U(paint_uniforms, view, "u_view"), U(paint_uniforms, proj, "u_proj"), U(paint_uniforms, ppu, "u_pixels_per_unit"),

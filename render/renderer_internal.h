@@ -55,7 +55,7 @@ typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push,
 typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho, ppu, min_px; } line_uniforms;
 typedef struct stroke_uniforms {
     GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin, queue_end, queue_fade,
-        tone_radius;
+        tone_radius, half_max;
 } stroke_uniforms;
 
 typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
@@ -118,6 +118,11 @@ struct pnpr_renderer {
  * points (pnpr_draw_options.queue_fade), at most the points left undrawn + 1 (a whole group is
  * drawn at full alpha), 0 = no fade. */
 float pnpr_queue_fade_length(size_t drawn, size_t size, float fraction);
+
+/* The longest half length of a stroke or hatch in pixels: half of o->stroke_max (its default when
+ * 0), no limit (FLT_MAX) when negative. The stroke shader's u_half_max and the vector export's
+ * strokes both take it from here. */
+float pnpr_stroke_half_max(const pnpr_draw_options *o);
 
 /* The stroke textures (STROKE_LAYERS layers of STROKE_TEX_W x STROKE_TEX_H alpha bytes, u along
  * the stroke), generated once (paper figure 5 a-c, plus the hatch). */

@@ -5,6 +5,7 @@
  * needs and leaves the programs' uniforms as it found them where later frames rely on it. */
 #include "renderer_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -22,6 +23,12 @@ float pnpr_queue_fade_length(size_t drawn, size_t size, float fraction)
     double f = (fraction > 0 ? fraction : pnpr_draw_defaults().queue_fade) * (double)drawn, left = (double)(size - drawn) + 1;
     if (f > left) f = left;
     return f >= 1 ? (float)f : 1.0f;
+}
+
+float pnpr_stroke_half_max(const pnpr_draw_options *o)
+{
+    if (o->stroke_max < 0) return FLT_MAX;
+    return 0.5f * (o->stroke_max > 0 ? o->stroke_max : pnpr_draw_defaults().stroke_max);
 }
 
 /* ---- splats and the visibility mask --------------------------------------------------------- */
@@ -125,6 +132,7 @@ static void stroke_program(pnpr_renderer *r, const pnpr_frame_ctx *f, float stro
     glUniform2f(r->ut.viewport, (float)f->fw, (float)f->fh);
     glUniform1f(r->ut.ppu, f->fc.pixels_per_unit);
     glUniform1f(r->ut.width, stroke_width);
+    glUniform1f(r->ut.half_max, pnpr_stroke_half_max(&f->o));
     glUniform1f(r->ut.radius_scale, f->point_scale);
     glUniform1i(r->ut.strokes, 0);
     glUniform4fv(r->ut.ink, 1, ink);

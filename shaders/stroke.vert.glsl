@@ -21,6 +21,7 @@ uniform vec2 u_viewport;          // frame size in pixels
 uniform float u_pixels_per_unit;  // proj[1][1] * viewport height / 2
 uniform float u_length;           // stroke length in disk radii
 uniform float u_width;            // stroke width in pixels
+uniform float u_half_max;         // the longest half length in pixels (pnpr_draw_options.stroke_max / 2)
 uniform float u_radius_scale;
 uniform int u_mode;
 uniform int u_thin;               // 1: tone hatches, thinned so that ink coverage follows the tone
@@ -73,7 +74,7 @@ void main()
     }
     float r = a_radius * u_radius_scale;
     float r_len = u_thin != 0 && u_tone_radius > 0.0 ? u_tone_radius * u_radius_scale : r;
-    float half_len = max(0.5 * u_length * r_len * u_pixels_per_unit / w, 1.5);
+    float half_len = max(min(0.5 * u_length * r_len * u_pixels_per_unit / w, u_half_max), 1.5);
     float half_wid = 0.5 * u_width;
     if (u_thin != 0) {
         // a dithering point stands for the area of one sample (about r^2, r the distance to the

@@ -395,7 +395,7 @@ static void check_cli(void)
     check_cli_options("info", pnpr_outlier_option_table, outliers);
     check_segment_usage();
     /* render and animate: the draw and upload options of the renderer's tables */
-    static const char *const draw[] = {"stroke-texture", "density", "point-scale", "line-width", "line-min",
+    static const char *const draw[] = {"stroke-texture", "stroke-max", "density", "point-scale", "line-width", "line-min",
                                        "dot-size", "queue-fade", "levels", "outline-scale", "outline-width",
                                        "outline-jump", "outline-hole", "faint", NULL};
     static const char *const upload[] = {"paint-bins", NULL};

@@ -117,6 +117,8 @@ typedef struct pnpr_draw_options {
                             * the enlarged outline disks, with its own default) */
     float stroke_length;   /* directional stroke length in disk radii; hatches are half */
     float stroke_width;    /* stroke width in pixels */
+    float stroke_max;      /* longest stroke or hatch in pixels, whatever its length in disk radii
+                            * (0 = the default of the option table, "stroke-max"; negative = none) */
     int stroke_texture;    /* 0, 1, 2: the three directional stroke textures (paper fig. 5 a-c) */
     float ink[4];          /* stroke, line, dot and cartoon outline colour (all zero = the
                             * default, an opaque near-black; painterly strokes: the point colours) */

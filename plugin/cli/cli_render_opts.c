@@ -19,7 +19,7 @@
 
 /* The options read from the library's tables (options.h, pnpr_draw_option_table and
  * pnpr_upload_option_table), and their metavars: usage lines, defaults, ranges and parsing. */
-static const char *const draw_names[] = {"stroke-texture", "density", "point-scale", "line-width", "line-min",
+static const char *const draw_names[] = {"stroke-texture", "stroke-max", "density", "point-scale", "line-width", "line-min",
                                          "dot-size", "queue-fade", "levels", "outline-scale", "outline-width",
                                          "outline-jump", "outline-hole", "faint", "brush-scale", "brush-jitter", "brush-blur",
                                          NULL};
@@ -203,6 +203,7 @@ void cli_render_usage(FILE *f, int width, int height)
     cli_usage_more(f, "(negative: no limit, as --budget all)");
     opt_usage(f, "--seed");
     draw_usage(f, "point-scale", "F");
+    draw_usage(f, "stroke-max", "PX");
     draw_usage(f, "line-width", "PX");
     draw_usage(f, "line-min", "PX");
     draw_usage(f, "dot-size", "PX");

@@ -912,6 +912,7 @@ static void scaleForTile(pnpr_draw_options &o, double k)
     auto widen = [k](float v, const pnpr_option_desc *d) { return (float)((v > 0 ? v : (d ? d->def : 1)) * k); };
     o.line_width = widen(o.line_width, drawOption("line-width"));
     o.stroke_width = widen(o.stroke_width, drawOption("stroke-width"));
+    if (!(o.stroke_max < 0)) o.stroke_max = widen(o.stroke_max, drawOption("stroke-max"));
     o.dot_size = widen(o.dot_size, drawOption("dot-size"));
     o.line_min_px = widen(o.line_min_px, drawOption("line-min")); /* the same profile lines kept */
     o.hierarchy.stroke_px = widen(o.hierarchy.stroke_px, hierOption("stroke-px"));
