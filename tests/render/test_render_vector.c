@@ -263,6 +263,19 @@ static int pdf_page(const char *pdf, double *w, double *h)
     return pclose(p) == 0 && ok;
 }
 
+/* The drawing as SVG (SCRATCH/vector-NAME.svg), rasterised by rsvg-convert
+ * (SCRATCH/vector-NAME-svg.png) and read back into out (W x H, PNG_FORMAT_GRAY or _RGB). */
+static int rasterise(const pnpr_drawing *d, const char *name, int format, uint8_t *out)
+{
+    char svg[512], png[512], cmd[1100];
+    pnpr_error err = {0};
+    snprintf(svg, sizeof svg, "%s/vector-%s.svg", PNPR_TEST_SCRATCH, name);
+    snprintf(png, sizeof png, "%s/vector-%s-svg.png", PNPR_TEST_SCRATCH, name);
+    CHECK_STATUS(pnpr_drawing_write_svg(d, svg, &err), PNPR_OK);
+    snprintf(cmd, sizeof cmd, "rsvg-convert '%s' -o '%s'", svg, png);
+    return system(cmd) == 0 && pnpr_test_read_png(png, W, H, format, out);
+}
+
 /* A close-up (the back plane from 0.3 instead of 3: its strokes would be 6 disk radii = 110 px
  * long): every stroke is at most stroke_max (default 48 px) long, in the drawing (its paths
  * 48/110 of the uncapped ones: measured 37.5 and 85.9 px, the texture's ink spanning 0.78 of a
@@ -288,13 +301,7 @@ static void check_close_up(pnpr_renderer *r)
             longest[capped] = fmax(longest[capped], hypot(q[0] - p[0], q[1] - p[1]));
         }
         CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px, NULL, &err), PNPR_OK);
-        char svg[512], png[512], cmd[1100];
-        snprintf(svg, sizeof svg, "%s/vector-closeup.svg", PNPR_TEST_SCRATCH);
-        snprintf(png, sizeof png, "%s/vector-closeup-svg.png", PNPR_TEST_SCRATCH);
-        CHECK_STATUS(pnpr_drawing_write_svg(&d, svg, &err), PNPR_OK);
-        snprintf(cmd, sizeof cmd, "rsvg-convert '%s' -o '%s'", svg, png);
-        CHECK(system(cmd) == 0);
-        CHECK(pnpr_test_read_png(png, W, H, PNG_FORMAT_GRAY, grey));
+        CHECK(rasterise(&d, "closeup", PNG_FORMAT_GRAY, grey));
         printf("close-up, stroke_max %s: %zu paths, the longest %.1f px", capped ? "default" : "off", d.count, longest[capped]);
         double diff = ink_difference(px, grey);
         printf(", ink differs at %.2f%%\n", 100 * diff);
@@ -327,16 +334,11 @@ static void check_style(pnpr_renderer *r, const pnpr_camera *cam, pnpr_style sty
     CHECK_STATUS(pnpr_renderer_snapshot(r, cam, &o, W, H, NULL, px, NULL, &err), PNPR_OK);
     pnpr_drawing d = {0};
     CHECK_STATUS(pnpr_renderer_drawing(r, cam, &o, W, H, &d, &err), PNPR_OK);
-    char svg[512], png[512], pdf[512], raster[512], cmd[1600];
+    char pdf[512], raster[512];
     snprintf(raster, sizeof raster, "%s/vector-%s.png", PNPR_TEST_SCRATCH, pnpr_style_name(style));
     CHECK_STATUS(pnpr_write_png(raster, px, W, H, 0, &err), PNPR_OK);
-    snprintf(svg, sizeof svg, "%s/vector-%s.svg", PNPR_TEST_SCRATCH, pnpr_style_name(style));
-    snprintf(png, sizeof png, "%s/vector-%s-svg.png", PNPR_TEST_SCRATCH, pnpr_style_name(style));
     snprintf(pdf, sizeof pdf, "%s/vector-%s.pdf", PNPR_TEST_SCRATCH, pnpr_style_name(style));
-    CHECK_STATUS(pnpr_drawing_write_svg(&d, svg, &err), PNPR_OK);
-    snprintf(cmd, sizeof cmd, "rsvg-convert '%s' -o '%s'", svg, png);
-    CHECK(system(cmd) == 0);
-    CHECK(areas ? pnpr_test_read_png(png, W, H, PNG_FORMAT_RGB, rgb) : pnpr_test_read_png(png, W, H, PNG_FORMAT_GRAY, grey));
+    CHECK(rasterise(&d, pnpr_style_name(style), areas ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY, areas ? rgb : grey));
     printf("%-8s outlines %-7s %6zu paths", pnpr_style_name(style), outline < 0 ? "off" : outline > 0 ? "on" : "default", d.count);
     double diff = areas ? colour_difference(px, rgb) : ink_difference(px, grey);
     printf(", %s differs at %.2f%% of the pixels\n", areas ? "colour" : "ink", 100 * diff);
@@ -442,13 +444,7 @@ static void check_map(pnpr_renderer *r)
     o.style_map = map;
     o.style_map_count = 4;
     CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px, NULL, &err), PNPR_OK);
-    char svg[512], png[512], cmd[1100];
-    snprintf(svg, sizeof svg, "%s/vector-map.svg", PNPR_TEST_SCRATCH);
-    snprintf(png, sizeof png, "%s/vector-map-svg.png", PNPR_TEST_SCRATCH);
-    CHECK_STATUS(pnpr_drawing_write_svg(&d, svg, &err), PNPR_OK);
-    snprintf(cmd, sizeof cmd, "rsvg-convert '%s' -o '%s'", svg, png);
-    CHECK(system(cmd) == 0);
-    CHECK(pnpr_test_read_png(png, W, H, PNG_FORMAT_RGB, rgb));
+    CHECK(rasterise(&d, "map", PNG_FORMAT_RGB, rgb));
     double diff = colour_difference(px, rgb);
     printf("style map: %zu paths, colour differs at %.2f%% of the pixels\n", d.count, 100 * diff);
     CHECK(diff <= 0.02);
