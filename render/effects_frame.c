@@ -164,7 +164,7 @@ static pnpr_status rasterise(pnpr_renderer *r, const pnpr_camera *camera, const 
     o.layer_label_count = l->count;
     o.layer_exclude = l->count == 0;
     o.background[3] = 1.0f; /* opaque paper for the filters */
-    pnpr_target tgt = {0, 0, 0, slot->raster.width, slot->raster.height, 1};
+    pnpr_target tgt = {0, 0, 0, slot->raster.width, slot->raster.height, 1, 0};
     pnpr_status st = pnpr_renderer_draw(r, camera, &o, &tgt, NULL, err);
     if (st != PNPR_OK) return st;
     st = pnpr_renderer_read_frame(r, slot->raster.rgba, 1);

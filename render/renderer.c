@@ -646,17 +646,68 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
     return PNPR_OK;
 }
 
+/* The guard band of target (pnpr_target.guard; < 0: the renderer's own tile margin), at most what
+ * the GL's size limit leaves; 0 when none. */
+static pnpr_status guard_of(const pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
+                            const pnpr_target *t, int *r_guard, pnpr_error *err)
+{
+    *r_guard = 0;
+    int room = ((int)r->max_size - (t->width > t->height ? t->width : t->height)) / 2, g = t->guard;
+    if (g == 0 || t->width <= 0 || t->height <= 0 || room <= 0) return PNPR_OK;
+    if (g < 0) {
+        pnpr_draw_options o;
+        frame_plan plan;
+        pnpr_status st = pnpr_renderer_check_options(r, opts, &o, err);
+        if (st == PNPR_OK) st = pnpr_renderer_plan_frame(r, camera, &o, t->width, t->height, &plan, err);
+        if (st != PNPR_OK) return st;
+        g = pnpr_renderer_tile_margin(r, &o, &plan, 4 * room);
+    }
+    *r_guard = g < room ? g : room;
+    return PNPR_OK;
+}
+
 pnpr_status pnpr_renderer_draw(pnpr_renderer *r, const pnpr_camera *camera,
                                const pnpr_draw_options *opts, const pnpr_target *target,
                                pnpr_render_stats *r_stats, pnpr_error *err)
 {
-    return pnpr_renderer_draw_frame(r, camera, opts, target, NULL, r_stats, NULL, err);
+    int g = 0;
+    if (r && target) {
+        pnpr_status st = guard_of(r, camera, opts, target, &g, err);
+        if (st != PNPR_OK) return st;
+    }
+    if (g == 0) return pnpr_renderer_draw_frame(r, camera, opts, target, NULL, r_stats, NULL, err);
+    /* the target as the middle of a frame g px larger all round: drawn as that tile of the
+     * target's image (the plan, budget and coverage of the target's own size), then cropped */
+    tile_rect t = {target->width, target->height, -g, -g, target->width + 2 * g, target->height + 2 * g};
+    pnpr_target big = *target;
+    big.x -= g;
+    big.y -= g;
+    big.width = t.w;
+    big.height = t.h;
+    pnpr_status st = pnpr_renderer_draw_frame(r, camera, opts, &big, &t, r_stats, NULL, err);
+    if (st != PNPR_OK || target->offscreen) return st;
+    pnpr_gl_state saved;
+    pnpr_gl_state_save(&saved);
+    GLint box[4];
+    glGetIntegerv(GL_SCISSOR_BOX, box);
+    pnpr_gl_state_neutral();
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(target->x, target->y, target->width, target->height);
+    pnpr_frame_ctx f;
+    memset(&f, 0, sizeof f);
+    f.fw = big.width;
+    f.fh = big.height;
+    f.o.composite = opts ? opts->composite : PNPR_COMPOSITE_REPLACE;
+    composite(r, &f, &big);
+    glScissor(box[0], box[1], box[2], box[3]);
+    pnpr_gl_state_restore(&saved);
+    return PNPR_OK;
 }
 
 pnpr_status pnpr_renderer_draw_recorded(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
                                         int width, int height, pnpr_frame_record *rec, pnpr_error *err)
 {
-    pnpr_target tgt = {0, 0, 0, width, height, 1};
+    pnpr_target tgt = {0, 0, 0, width, height, 1, 0};
     return pnpr_renderer_draw_frame(r, camera, opts, &tgt, NULL, NULL, rec, err);
 }
 

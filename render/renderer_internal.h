@@ -206,6 +206,11 @@ typedef struct frame_plan {
     float lod;
 } frame_plan;
 
+/* The margin of a tile of at most tmax px (guard band, in px) that keeps the sprites, marks and
+ * outlines of the points beyond its border whole: half the largest sprite, the longest stroke's
+ * half length or the dots, lines and outline reach (o checked and filled); at most tmax / 4. */
+int pnpr_renderer_tile_margin(const pnpr_renderer *r, const pnpr_draw_options *o, const frame_plan *plan, int tmax);
+
 /* The draw (renderer.c): *o = the checked options (zeros where opts is NULL), their zeros
  * replaced by the defaults of pnpr_draw_option_table (options.h) except those of the style
  * (pnpr_draw_mask_scale, pnpr_draw_ink, pnpr_style_outline_default); the plan of a

@@ -86,7 +86,7 @@ pnpr_status pnpr_image_bytes(int width, int height, size_t limit, size_t *r_byte
  * whose centre leaves the viewport, so every tile is rendered with a margin of the largest
  * sprite's half size (estimated from the largest disk at the box's nearest depth, clamped to GL's
  * point size range and to a quarter tile), plus the reach of dots, lines and outlines. */
-static int tile_margin(const pnpr_renderer *r, const pnpr_draw_options *o, const frame_plan *plan, int tmax)
+int pnpr_renderer_tile_margin(const pnpr_renderer *r, const pnpr_draw_options *o, const frame_plan *plan, int tmax)
 {
     double dmin = INFINITY;
     for (int k = 0; k < 8; k++) {
@@ -105,6 +105,8 @@ static int tile_margin(const pnpr_renderer *r, const pnpr_draw_options *o, const
     if (!(sprite <= r->max_point_size)) sprite = r->max_point_size;
     double extra = (double)o->dot_size + (double)o->line_width +
                    PNPR_EDGE_MAX_REACH + PNPR_EDGE_MAX_INSET + 3 + (o->outline_width > 0 ? o->outline_width : 4);
+    double stroke = pnpr_stroke_half_max(o); /* a stroke reaches this far from its point */
+    if (stroke > extra && stroke < 1e4) extra = stroke;
     int margin = (int)ceil(0.5 * sprite + extra) + 1;
     if (margin > tmax / 4) margin = tmax / 4;
     return margin;
@@ -138,7 +140,7 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, 
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "snapshot: max_tile_size %d is negative", so.max_tile_size);
     int tmax = (int)r->max_size;
     if (so.max_tile_size > 0 && so.max_tile_size < tmax) tmax = so.max_tile_size;
-    pnpr_target tgt = {0, 0, 0, width, height, 1};
+    pnpr_target tgt = {0, 0, 0, width, height, 1, 0};
     if (width <= tmax && height <= tmax) { /* one frame: exactly pnpr_renderer_draw */
         pnpr_status st = pnpr_renderer_draw_frame(r, camera, opts, &tgt, NULL, r_stats, NULL, err);
         if (st != PNPR_OK) return st;
@@ -153,7 +155,7 @@ pnpr_status pnpr_renderer_snapshot(pnpr_renderer *r, const pnpr_camera *camera, 
     frame_plan plan;
     st = pnpr_renderer_plan_frame(r, camera, &o, width, height, &plan, err);
     if (st != PNPR_OK) return st;
-    int margin = tile_margin(r, &o, &plan, tmax);
+    int margin = pnpr_renderer_tile_margin(r, &o, &plan, tmax);
     int inner = tmax - 2 * margin;
     int nx = (width + inner - 1) / inner, ny = (height + inner - 1) / inner;
     if ((double)nx * ny > PNPR_SNAPSHOT_TILES_MAX)

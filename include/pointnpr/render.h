@@ -169,6 +169,14 @@ typedef struct pnpr_target {
     uint32_t framebuffer;
     int x, y, width, height;
     int offscreen;
+    /* A guard band (pnpr_renderer_draw): the frame is drawn this many pixels larger on each side
+     * (the projection widened to match) and only its width x height middle is composited, so that
+     * the marks, disks and outlines of points just outside the target are whole at its border, as
+     * when the target is one tile of a larger picture (MeshLab's tiled snapshots). 0 = none; < 0 =
+     * the margin the renderer's own tiles take (pnpr_renderer_snapshot); at most what the GL's
+     * size limit leaves. Pixels of the framebuffer outside the rectangle are left alone (scissor);
+     * offscreen, the renderer's frame is the larger one. */
+    int guard;
 } pnpr_target;
 
 typedef struct pnpr_render_stats {

@@ -314,7 +314,7 @@ static size_t render_study(row *rows, size_t room, int quick)
         memset(&o, 0, sizeof o);
         o.style = style ? PNPR_STYLE_SKETCHY : PNPR_STYLE_POINTS;
         for (int a = 0; a < 4; a++) o.background[a] = 1;
-        pnpr_target t = {0, 0, 0, W, H, 1};
+        pnpr_target t = {0, 0, 0, W, H, 1, 0};
         if (pnpr_renderer_draw(r, NULL, &o, &t, NULL, &err) != PNPR_OK || pnpr_renderer_read_frame(r, full, 0) != PNPR_OK) goto done;
         for (int f = 0; f < 4 && nr < room; f++) {
             o.budget = (size_t)(fractions[f] * (double)c.count);

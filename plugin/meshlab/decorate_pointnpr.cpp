@@ -1231,6 +1231,10 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     tg.y = vp[1];
     tg.width = vp[2];
     tg.height = vp[3];
+    /* a tile of "Save snapshot": drawn with the renderer's guard band, so that the sprites, strokes
+     * and outlines of the points beyond its border are whole (else GL drops the sprites whose
+     * centre lies outside, and strokes and outlines stop at the tile's edge: seams) */
+    if (tile) tg.guard = -1;
 
     const char *snap = std::getenv("PNPR_MESHLAB_SNAPSHOT");
     /* test mode: the snapshot is taken on the 3rd frame with unchanged matrices */

@@ -1247,14 +1247,20 @@ snapshot)
       exit bad ? 1 : 0 }' "$T/lion-plain.pgm" "$T/snapshot.pgm" || fail "snapshot checks (see above)"
   # seamless and the same drawing: every row and column along a tile border is at most 1.5 x (+ 1%)
   # as dark (< 128) as the darkest of the rows / columns 3 and 4 px from it (a dashed seam would
-  # double it: an injected 1 px line fails this), and the snapshot's ink share is 0.6 .. 1.6 x that
+  # double it: an injected 1 px line fails this); the hard jumps (> 100 grey levels) across a
+  # tile border are at most 1.5 x (+ 10) those across the neighbouring lines 2..4 px away (marks
+  # cut at the border: 73 against 10..29 before the guard band); the snapshot's ink share is 0.6 .. 1.6 x that
   # of the decorator's frame on screen (widths scaled with the multiplier; unscaled 0.47 .. 0.67)
   awk -v F="$SNAP_FACTOR" '
     function pgm(v) { k++; if (k == 2) W = v + 0; if (k == 3) H = v + 0; return k > 4 }
     FNR == 1 { f++; k = 0 }
     f == 1 { for (c = 1; c <= NF; c++) if (pgm($c)) { sn++; if ($c < 128) sd++ } next }
-    { for (c = 1; c <= NF; c++) if (pgm($c)) { i = k - 5; x = i % W; y = int(i / W); n++
-        if ($c < 128) { dark++; col[x]++; row[y]++ } } }
+    { for (c = 1; c <= NF; c++) if (pgm($c)) { i = k - 5; x = i % W; y = int(i / W); n++; v = $c + 0
+        if (v < 128) { dark++; col[x]++; row[y]++ }
+        # hard jumps (> 100 grey levels) between neighbouring columns / rows: a mark cut at a border
+        if (x > 0 && (v - prev > 100 || prev - v > 100)) cj[x]++
+        if (y > 0 && (v - up[x] > 100 || up[x] - v > 100)) rj[y]++
+        prev = v; up[x] = v } }
     END {
       bad = 0; tw = W / F; th = H / F
       for (b = 1; b < F; b++) for (e = 0; e < 2; e++) {
@@ -1264,6 +1270,14 @@ snapshot)
         y = b * th - 1 + e; near = 0
         for (d = 3; d <= 4; d++) { near = row[y - d] > near ? row[y - d] : near; near = row[y + d] > near ? row[y + d] : near }
         if (row[y] / W > 1.5 * near / W + 0.01) { printf "seam: row %d dark %.4f, its neighbours at most %.4f\n", y, row[y] / W, near / W; bad++ }
+      }
+      for (b = 1; b < F; b++) {
+        x = b * tw; y = b * th; nc = 0; nr = 0
+        for (d = 2; d <= 4; d++) { nc = cj[x - d] > nc ? cj[x - d] : nc; nc = cj[x + d] > nc ? cj[x + d] : nc
+                                   nr = rj[y - d] > nr ? rj[y - d] : nr; nr = rj[y + d] > nr ? rj[y + d] : nr }
+        printf "tile border x %d: %d hard jumps (neighbours at most %d); y %d: %d (%d)\n", x, cj[x], nc, y, rj[y], nr
+        if (cj[x] > 1.5 * nc + 10) { print "seam: marks cut at column " x; bad++ }
+        if (rj[y] > 1.5 * nr + 10) { print "seam: marks cut at row " y; bad++ }
       }
       ratio = (dark / n) / (sd / sn)
       printf "tile borders checked: %d; ink %.4f of the snapshot, %.4f of the frame on screen (%.2fx)\n", 4 * (F - 1), dark / n, sd / sn, ratio

@@ -98,7 +98,7 @@ static void hierarchy_sweep(pnpr_renderer *r, const pnpr_cloud *c, const pnpr_ca
             o.style = PNPR_STYLE_HIERARCHY;
             o.hierarchy.stroke_px = (float)px;
             o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
-            pnpr_target tg = {0, 0, 0, w, h, 1};
+            pnpr_target tg = {0, 0, 0, w, h, 1, 0};
             pnpr_render_stats st = {0};
             for (int f = -1; f < frames; f++) {
                 glFinish();
@@ -219,7 +219,7 @@ int main(int argc, char **argv)
         o.outline = runs[k].outline;
         o.brush_blur = strstr(runs[k].name, "blur") ? 1.5f : 0.0f;
         o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
-        pnpr_target t = {0, 0, 0, w, h, 1};
+        pnpr_target t = {0, 0, 0, w, h, 1, 0};
         pnpr_render_stats st;
         for (int f = -1; f < frames; f++) {
             glFinish();

@@ -21,7 +21,7 @@ static pnpr_status render(pnpr_renderer *r, const pnpr_draw_options *o, uint8_t 
 {
     /* eye 4 units from the centre: the sphere's outline is at sin a = 1/4 from the axis */
     pnpr_camera cam = {{kOffset[0], kOffset[1] - 4, kOffset[2]}, {kOffset[0], kOffset[1], kOffset[2]}, {0, 0, 1}, 40, 0, 0};
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     pnpr_status s = pnpr_renderer_draw(r, &cam, o, &t, NULL, err);
     return s == PNPR_OK ? pnpr_renderer_read_frame(r, px, 0) : s;
 }

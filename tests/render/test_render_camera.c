@@ -7,6 +7,9 @@
 
 #include <pointnpr/render.h>
 
+#include <epoxy/gl.h>
+
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,7 +43,7 @@ static void make_cloud(pnpr_cloud *c, const double origin[3])
 static pnpr_status draw(pnpr_renderer *r, const pnpr_camera *cam, const pnpr_draw_options *o, int w,
                         int h, uint8_t *px)
 {
-    pnpr_target t = {0, 0, 0, w, h, 1};
+    pnpr_target t = {0, 0, 0, w, h, 1, 0};
     pnpr_error err = {0};
     pnpr_status s = pnpr_renderer_draw(r, cam, o, &t, NULL, &err);
     if (s != PNPR_OK) { fprintf(stderr, "draw: %s\n", err.message); return s; }
@@ -53,6 +56,80 @@ static int non_background(const uint8_t *px, int w, int h)
     for (int i = 0; i < w * h; i++)
         if (px[4 * i] < 240 || px[4 * i + 1] < 240 || px[4 * i + 2] < 240) n++;
     return n;
+}
+
+/* The two halves of the frame, each an off-centre frustum drawn into its half of a host
+ * framebuffer (MeshLab's tiled snapshot, 2x1), against the whole frame `a` (top row first): with
+ * a guard band (pnpr_target.guard -1) the 16 columns along the cut match as the rest does; without
+ * one they do not (GL drops the sprites whose centre lies beyond the cut, and the image-space
+ * outlines see the frame's border). Cartoon, whose outlines are found in image space. Drawn alone,
+ * the left half leaves the right half of the framebuffer as it was (the guard is cropped). */
+static void check_guard(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr_camera_matrices *m)
+{
+    uint8_t *a = malloc((size_t)W * H * 4);
+    pnpr_draw_options of = *o;
+    of.matrices = m;
+    CHECK(a && draw(r, NULL, &of, W, H, a) == PNPR_OK);
+    GLuint fbo, tex;
+    glGenFramebuffers(1, &fbo);
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    pnpr_camera_matrices half[2] = {*m, *m};
+    for (int col = 0; col < 4; col++) {
+        half[0].projection[col * 4] = 2 * m->projection[col * 4] + m->projection[col * 4 + 3];
+        half[1].projection[col * 4] = 2 * m->projection[col * 4] - m->projection[col * 4 + 3];
+    }
+    uint8_t *px = malloc((size_t)W * H * 4);
+    int bad[2] = {0, 0}, compared = 0;
+    for (int guarded = 0; px && guarded < 2; guarded++) {
+        for (int side = 0; side < 2; side++) {
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            if (side == 0) { glClearColor(1, 0, 1, 1); glClear(GL_COLOR_BUFFER_BIT); }
+            pnpr_draw_options oh = *o;
+            oh.matrices = &half[side];
+            pnpr_target t = {fbo, side * (W / 2), 0, W / 2, H, 0, guarded ? -1 : 0};
+            pnpr_error err = {0};
+            CHECK_STATUS(pnpr_renderer_draw(r, NULL, &oh, &t, NULL, &err), PNPR_OK);
+            if (side == 1 || !guarded) continue;
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glPixelStorei(GL_PACK_ALIGNMENT, 1);
+            glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+            int untouched = 1;
+            for (int y = 0; y < H; y++)
+                for (int x = W / 2; x < W; x++) {
+                    const uint8_t *p = px + 4 * ((size_t)y * W + x);
+                    untouched &= p[0] == 255 && p[1] == 0 && p[2] == 255;
+                }
+            CHECK_MSG(untouched, "guard band: the left half's frame reached into the right half");
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+        compared = 0;
+        for (int y = 16; y < H - 16; y++) /* not the image's own top and bottom borders, where the
+                                           * guard band sees beyond the image and the frame does not */
+            for (int x = W / 2 - 8; x < W / 2 + 8; x++) {
+                compared++;
+                int d = 0;
+                for (int c = 0; c < 3; c++) {
+                    int dc = abs((int)px[((size_t)(H - 1 - y) * W + x) * 4 + c] - (int)a[((size_t)y * W + x) * 4 + c]);
+                    d = dc > d ? dc : d;
+                }
+                bad[guarded] += d > 16;
+            }
+    }
+    fprintf(stderr, "two halves, the 16 columns along the cut: %d of %d pixels differ by > 16 without a guard band, %d with\n",
+            bad[0], compared, bad[1]);
+    CHECK_MSG(bad[1] * 100 <= compared, "with a guard band: %d of %d pixels along the cut differ", bad[1], compared);
+    CHECK_MSG(bad[0] > 4 * bad[1] + 10, "without a guard band the cut shows nothing to fix: %d vs %d", bad[0], bad[1]);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+    free(px);
+    free(a);
 }
 
 int main(void)
@@ -131,6 +208,11 @@ int main(void)
     int covered_half = non_background(half, W / 2, H);
     CHECK_MSG(covered_half > 0, "off-centre half frame is empty");
     fprintf(stderr, "off-centre half: %d/%d pixels differ by > 16, max %d\n", bad, compared, maxh);
+
+    pnpr_draw_options oc = o; /* cartoon: its outlines are found in image space, up to the frame's border */
+    oc.style = PNPR_STYLE_CARTOON;
+    oc.density = -1; /* every point in the whole frame and in each half, as the decorator's tiles */
+    check_guard(r, &oc, &m);
 
     /* the right half too, through the tiled snapshot path (guard bands on top of the frustum) */
     pnpr_camera_matrices mr = m;

@@ -238,7 +238,7 @@ static void test_layer_then_plain(pnpr_renderer *r)
     pnpr_draw_options o;
     memset(&o, 0, sizeof o);
     o.background[0] = o.background[1] = o.background[2] = o.background[3] = 1;
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     uint8_t *a = malloc(W * H * 4), *b = malloc(W * H * 4);
     pnpr_render_stats s;
     CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, &s, NULL), PNPR_OK);

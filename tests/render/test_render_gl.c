@@ -62,7 +62,7 @@ static void add_grid(pnpr_cloud *cl, int nx, int ny, double h, double z, const u
 static pnpr_status render(pnpr_renderer *r, const pnpr_camera *cam, const pnpr_draw_options *o,
                           uint8_t *px, pnpr_render_stats *st)
 {
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     pnpr_error err = {0};
     pnpr_status s = pnpr_renderer_draw(r, cam, o, &t, st, &err);
     if (s != PNPR_OK) { fprintf(stderr, "draw: %s\n", err.message); return s; }
@@ -411,7 +411,7 @@ static void test_gl_state(pnpr_cloud *cube)
             memset(&o, 0, sizeof o);
             o.style = (pnpr_style)style;
             o.background[0] = o.background[3] = 1; /* opaque red, as the host's clear */
-            pnpr_target t = {fbo, 40, 30, W, H, 0}; /* composite into the host's framebuffer */
+            pnpr_target t = {fbo, 40, 30, W, H, 0, 0}; /* composite into the host's framebuffer */
             CHECK_STATUS(pnpr_renderer_draw(r, NULL, &o, &t, NULL, NULL), PNPR_OK);
             CHECK_STATUS(pnpr_renderer_read_frame(r, px, 0), PNPR_OK);
             t.offscreen = 1;
@@ -450,7 +450,7 @@ static void test_gl_state(pnpr_cloud *cube)
         pnpr_draw_options o;
         memset(&o, 0, sizeof o);
         o.composite = PNPR_COMPOSITE_OVER;
-        pnpr_target t = {fbo, 0, 0, W, H, 0};
+        pnpr_target t = {fbo, 0, 0, W, H, 0, 0};
         static const double dir[3] = {0, -1, 0.5};
         pnpr_camera cam;
         CHECK_STATUS(pnpr_camera_fit(cube, dir, 45, (float)W / H, &cam), PNPR_OK);
@@ -499,7 +499,7 @@ static void test_bad_input(pnpr_renderer *r)
     uint8_t *px = malloc(W * H * 4);
     pnpr_draw_options o;
     memset(&o, 0, sizeof o);
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     static const uint8_t grey[3] = {100, 100, 100};
     pnpr_cloud cl = {0};
     add_grid(&cl, 10, 10, 0.1, 0, grey, -1); /* no features */
@@ -517,7 +517,7 @@ static void test_bad_input(pnpr_renderer *r)
     CHECK(strstr(err.message, "feature_class") != NULL);
     o.style = PNPR_STYLE_POINTS;
     /* zero / negative size */
-    pnpr_target t0 = {0, 0, 0, 0, H, 1};
+    pnpr_target t0 = {0, 0, 0, 0, H, 1, 0};
     memset(&err, 0, sizeof err);
     CHECK_STATUS(pnpr_renderer_draw(r, NULL, &o, &t0, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
     CHECK(err.message[0] != 0);

@@ -20,7 +20,7 @@ static const double kOffset[3] = {4.0e6, -2.5e6, 310};
 static pnpr_status render_at(pnpr_renderer *r, const pnpr_draw_options *o, double dist, uint8_t *px, pnpr_error *err)
 {
     pnpr_camera cam = {{kOffset[0], kOffset[1] - dist, kOffset[2]}, {kOffset[0], kOffset[1], kOffset[2]}, {0, 0, 1}, 40, 0, 0};
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     pnpr_status s = pnpr_renderer_draw(r, &cam, o, &t, NULL, err);
     return s == PNPR_OK ? pnpr_renderer_read_frame(r, px, 0) : s;
 }
@@ -132,7 +132,7 @@ static double zoom_popping(pnpr_renderer *r, const pnpr_cloud *c, int plain, uin
     o.hierarchy.noise_angle = -1;
     o.hierarchy.stroke_px = 24;
     pnpr_error err = {0};
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     double sum = 0;
     const int frames = 40;
     for (int f = 1; f <= frames; f++) {

@@ -20,7 +20,7 @@ enum { W = 240, H = 200 };
 static pnpr_status render(pnpr_renderer *r, const pnpr_camera *cam, const pnpr_draw_options *o,
                           uint8_t *px, pnpr_render_stats *st)
 {
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     pnpr_error err = {0};
     pnpr_status s = pnpr_renderer_draw(r, cam, o, &t, st, &err);
     if (s != PNPR_OK) { fprintf(stderr, "draw: %s\n", err.message); return s; }
@@ -142,7 +142,7 @@ static void test_painterly(pnpr_renderer *r)
     while (glGetError() != GL_NO_ERROR) {}
     gl_snap before, after;
     snap(&before);
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, NULL), PNPR_OK);
     snap(&after);
     CHECK(memcmp(&before, &after, sizeof before) == 0);

@@ -23,7 +23,7 @@ static const double SP = 0.025; /* point spacing */
 
 static pnpr_status render(pnpr_renderer *r, const pnpr_camera *cam, const pnpr_draw_options *o, uint8_t *px)
 {
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     pnpr_error err = {0};
     pnpr_status s = pnpr_renderer_draw(r, cam, o, &t, NULL, &err);
     if (s != PNPR_OK) { fprintf(stderr, "draw: %s\n", err.message); return s; }
@@ -289,7 +289,7 @@ int main(void)
     uo.ignore_features = 1;
     CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, &uo, NULL), PNPR_OK);
     pnpr_error e2 = {0};
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, &e2), PNPR_ERR_NOT_FOUND);
     CHECK(strstr(e2.message, "label 1") != NULL);
     /* a cloud without labels: every point takes the default */

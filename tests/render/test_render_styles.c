@@ -24,7 +24,7 @@ static const double cube_off[3] = {500000.25, -300000.5, 120.0}; /* georeference
 static pnpr_status render(pnpr_renderer *r, const pnpr_camera *cam, const pnpr_draw_options *o,
                           uint8_t *px, pnpr_render_stats *st)
 {
-    pnpr_target t = {0, 0, 0, W, H, 1};
+    pnpr_target t = {0, 0, 0, W, H, 1, 0};
     pnpr_error err = {0};
     pnpr_status s = pnpr_renderer_draw(r, cam, o, &t, st, &err);
     if (s != PNPR_OK) { fprintf(stderr, "draw: %s\n", err.message); return s; }
@@ -233,7 +233,7 @@ static void test_lines_cube(pnpr_renderer *r)
         mini_state before, after;
         take(&before);
         CHECK_STATUS(pnpr_renderer_set_lines(r, &l, NULL), PNPR_OK);
-        pnpr_target t = {fbo, 4, 6, W, H, 0};
+        pnpr_target t = {fbo, 4, 6, W, H, 0, 0};
         o.faint = 0.5f;
         CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, NULL, NULL), PNPR_OK);
         o.faint = 0;

@@ -74,7 +74,7 @@ static void test_tiles(pnpr_renderer *r)
         memset(&o, 0, sizeof o);
         o.style = styles[s];
         o.background[0] = 0.9f; o.background[1] = 0.95f; o.background[2] = 1; o.background[3] = 1;
-        pnpr_target t = {0, 0, 0, W, H, 1};
+        pnpr_target t = {0, 0, 0, W, H, 1, 0};
         pnpr_error err = {0};
         pnpr_render_stats st1, st2;
         CHECK_STATUS(pnpr_renderer_draw(r, &cam, &o, &t, &st1, &err), PNPR_OK);
@@ -118,7 +118,7 @@ static void test_tiles(pnpr_renderer *r)
     CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, NULL, 0, H, NULL, tiled, NULL, NULL), PNPR_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, NULL, W, H, NULL, NULL, NULL, NULL), PNPR_ERR_INVALID_ARGUMENT);
     /* over the GL limit, pnpr_renderer_draw refuses and names the snapshot */
-    pnpr_target big = {0, 0, 0, pnpr_renderer_max_size(r) + 1, 8, 1};
+    pnpr_target big = {0, 0, 0, pnpr_renderer_max_size(r) + 1, 8, 1, 0};
     pnpr_error err = {0};
     CHECK_STATUS(pnpr_renderer_draw(r, &cam, NULL, &big, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
     CHECK(strstr(err.message, "snapshot") != NULL);
