@@ -94,8 +94,6 @@ int cli_output_is_stream(const char *out);
 /* Whether the name ends in `ext` (".png"; case-insensitive). */
 int cli_has_ext(const char *path, const char *ext);
 
-/* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
- * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */
 /* --memory-limit SIZE (render, animate, features): a limit on the whole process in bytes (K, M,
  * G, T suffixes: KiB..TiB); 0 = what the machine has (pnpr_memory_available). As
  * cli_outlier_option. */
@@ -106,6 +104,8 @@ void cli_memory_usage(FILE *f);
 int cli_memory_check_file(const char *cmd, const char *in, size_t limit);
 int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const pnpr_memory_plan *plan);
 
+/* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
+ * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */
 typedef struct cli_outliers {
     int drop;
     double factor; /* 0 = PNPR_OUTLIER_FACTOR */

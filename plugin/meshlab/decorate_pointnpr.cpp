@@ -200,7 +200,7 @@ struct DecorateContextState {
     double snapK = 0;             /* > 0 while MeshLab draws snapshot tiles: their multiplier */
     int uploads = 0;              /* clouds uploaded in this state (the log says so after a restart) */
     bool restarted = false;       /* MeshLab restarted the decoration: kept (startDecorate) */
-    int framesDrawn = 0;
+    int framesDrawn = 0;          /* frames drawn in this state (test hook PNPR_MESHLAB_TEST_RESTART) */
     QPointer<QWidget> widget;     /* the GL widget, for the repaint after camera motion */
     QTimer *settle = nullptr;     /* full-budget repaint after motion stops */
     int frames = 0;

@@ -58,8 +58,16 @@ static int non_background(const uint8_t *px, int w, int h)
     return n;
 }
 
+/* The host framebuffer fbo (W x H) into px, bottom row first (glReadPixels). */
+static void read_host(GLuint fbo, uint8_t *px)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+}
+
 /* The two halves of the frame, each an off-centre frustum drawn into its half of a host
- * framebuffer (MeshLab's tiled snapshot, 2x1), against the whole frame `a` (top row first): with
+ * framebuffer (MeshLab's tiled snapshot, 2x1), against the whole frame drawn at once: with
  * a guard band (pnpr_target.guard -1) the 16 columns along the cut match as the rest does; without
  * one they do not (GL drops the sprites whose centre lies beyond the cut, and the image-space
  * outlines see the frame's border). Cartoon, whose outlines are found in image space. Drawn alone,
@@ -94,9 +102,7 @@ static void check_guard(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr
             pnpr_error err = {0};
             CHECK_STATUS(pnpr_renderer_draw(r, NULL, &oh, &t, NULL, &err), PNPR_OK);
             if (side == 1 || !guarded) continue;
-            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-            glPixelStorei(GL_PACK_ALIGNMENT, 1);
-            glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+            read_host(fbo, px);
             int untouched = 1;
             for (int y = 0; y < H; y++)
                 for (int x = W / 2; x < W; x++) {
@@ -105,9 +111,7 @@ static void check_guard(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr
                 }
             CHECK_MSG(untouched, "guard band: the left half's frame reached into the right half");
         }
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+        read_host(fbo, px);
         compared = 0;
         for (int y = 16; y < H - 16; y++) /* not the image's own top and bottom borders, where the
                                            * guard band sees beyond the image and the frame does not */
