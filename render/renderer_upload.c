@@ -47,7 +47,8 @@ typedef struct upload_ctx {
     size_t pstarts[PAINT_MAX_BINS + 2];
     int paint;               /* painterly data built */
     int paint_skipped;       /* the cloud has them, pnpr_upload_options.skip_painterly left them out */
-    uint32_t *vlabel, *paint_src; /* style maps: labels in queue order; painterly -> queue index */
+    const uint32_t *key;          /* what style maps read: cloud->label or the style key property */
+    uint32_t *vlabel, *paint_src; /* style maps: keys in queue order; painterly -> queue index */
     uint8_t *zeros;               /* the initial style bytes */
     pnpr_brush_vertex *bverts;    /* brush: the brush attributes in queue order (NULL: no brush data) */
 } upload_ctx;
@@ -238,6 +239,15 @@ static pnpr_status upload_check(const pnpr_cloud *cloud, const pnpr_upload_optio
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: painterly_bins %u is more than %d",
                               (unsigned)u->o.painterly_bins, PAINT_MAX_BINS);
     u->nbins = u->o.painterly_bins;
+    u->key = cloud->label;
+    if (u->o.style_key) {
+        const pnpr_property *p = pnpr_cloud_find_property(cloud, u->o.style_key);
+        if (!p) return pnpr_error_set(err, PNPR_ERR_NOT_FOUND, "renderer: no style key property '%s'", u->o.style_key);
+        if (p->type != PNPR_TYPE_UINT32 || (cloud->count > 0 && !p->data))
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: style key property '%s' is not uint32",
+                                  u->o.style_key);
+        u->key = (const uint32_t *)p->data;
+    }
     return PNPR_OK;
 }
 
@@ -391,10 +401,10 @@ static pnpr_status upload_vertices(upload_ctx *u)
         pnpr_status st = paint_data(u);
         if (st != PNPR_OK) return st;
     }
-    if (u->cloud->label) {
+    if (u->key) {
         u->vlabel = malloc((n ? n : 1) * sizeof *u->vlabel);
         if (!u->vlabel) return PNPR_ERR_OUT_OF_MEMORY;
-        for (size_t q = 0; q < n; q++) u->vlabel[q] = u->cloud->label[u->src[u->order[q]]];
+        for (size_t q = 0; q < n; q++) u->vlabel[q] = u->key[u->src[u->order[q]]];
     }
     if (u->paint) {
         u->paint_src = malloc(n * sizeof *u->paint_src);

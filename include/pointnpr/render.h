@@ -75,6 +75,12 @@ typedef struct pnpr_upload_options {
     pnpr_tone_options tone;  /* clouds without colours are drawn in greys shaded by this tone's
                               * key light on their normals (tone.h; the source is always the
                               * light, the curve is not applied): grey = 240 - 170 * darkness */
+    const char *style_key;   /* the per-point key that style maps and segment layers
+                              * (pnpr_draw_options.style_map, layer_labels) read: NULL = the
+                              * segment labels (cloud->label); else the name of a PNPR_TYPE_UINT32
+                              * property, e.g. one value per MeshLab layer for a style per layer,
+                              * while cartoon's fills keep following the segment labels. A missing
+                              * property: PNPR_ERR_NOT_FOUND; another type: PNPR_ERR_INVALID_ARGUMENT */
 } pnpr_upload_options;
 
 /* pnpr_style_map_entry and its file format: style.h. */

@@ -20,6 +20,7 @@
  * point catches everything. */
 #include "decorate_pointnpr.h"
 #include "decorate_glcontext.h"
+#include "decorate_stages.h"
 #include "vcg_attributes.h"
 
 #include <pointnpr/effects.h>
@@ -40,6 +41,10 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QImage>
+#include <QKeyEvent>
+#include <QMainWindow>
+#include <QProgressBar>
+#include <QStatusBar>
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSpinBox>
@@ -53,6 +58,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <new>
 #include <vector>
 
@@ -96,9 +103,7 @@ static_assert(PNPR_TONE_AUTO == 0 && PNPR_TONE_COLOR == 1 && PNPR_TONE_LIGHT == 
                   PNPR_TONE_SOURCE_COUNT_ == 4,
               "the tone source list of the dialog follows pnpr_tone_source");
 
-/* What the PNPR_WANT_* bits of a plan are, for the log (index = bit number). */
-const char *const kWantNames[5] = {"oriented normals", "feature degree", "feature classes", "dithering points",
-                                   "normals"};
+using pnpr_meshlab::kWantNames;
 
 /* The layers the decorator draws: visible, with vertices, not a polyline layer (edges: the profile
  * lines the filter makes, drawn by the lines style from the features). A mesh layer (an RGB-D
@@ -172,9 +177,11 @@ struct DecorateContextState {
                                    * them and wants nothing more) */
     pnpr_polylines lines;         /* profile lines for the lines style */
     bool linesReady = false;
+    bool linesPending = false;    /* lines computed, not yet handed to the renderer */
     uint64_t signature = 0;
     bool built = false;           /* cloud holds the layers of `signature` */
     bool needUpload = false;      /* the renderer does not have the cloud as it is now */
+    bool skippedPainterly = false; /* uploaded without painterly's data (no frame painted) */
     bool uploadFailed = false;    /* not retried until the layers change */
     QString layersNote;           /* what buildCloud found, for the upload message */
     qint64 layersMs = 0;          /* how long reading the layers took */
@@ -205,6 +212,14 @@ struct DecorateContextState {
     QTimer *settle = nullptr;     /* full-budget repaint after motion stops */
     int frames = 0;
     bool snapshotDone = false;
+    std::unique_ptr<pnpr_meshlab::StageJob> job; /* the plan's stages running on a worker thread */
+    bool cancelled = false;       /* the last computation was cancelled: plain points until the
+                                   * layers change or the decoration is turned off and on */
+    bool cancelRequested = false; /* Esc pressed while computing */
+    QTimer *poll = nullptr;       /* while computing: progress bar, status line, repaint when done */
+    QPointer<QObject> keys;       /* while computing: Esc on the application cancels */
+    int pollTicks = 0, barUpdates = 0; /* event-loop ticks and progress shown during the computation */
+    QElapsedTimer synthetic;      /* test hook PNPR_MESHLAB_TEST_EVENTS: when its event was posted */
     pnpr_effect_pipeline fx;      /* the effects pipeline of fxKey (count 0: none or it failed) */
     QString fxKey;                /* the preset or file (with its modification time) fx holds */
     std::vector<unsigned char> fxPixels, fxRows; /* the effects frame, top row first / bottom first */
@@ -235,6 +250,9 @@ DecoratePointnprPlugin::DecoratePointnprPlugin()
  * objects went, or go, with the context; only the CPU side is freed). */
 static void freeState(DecorateContextState *s, void *ctx)
 {
+    s->job.reset(); /* cancels the computation and waits for it */
+    delete s->poll;
+    delete s->keys.data();
     if (s->renderer && pnpr_meshlab::currentGLContext() == ctx) pnpr_renderer_destroy(s->renderer);
     pnpr_cloud_free(&s->cloud);
     pnpr_sphere_tree_free(&s->tree);
@@ -922,6 +940,304 @@ static void scaleForTile(pnpr_draw_options &o, double k)
     o.outline_width = (float)std::min(ow * k, od ? od->max : 64.0);
 }
 
+/* Reports a message in MeshLab's log and on stderr, not repeating the last one every frame. */
+using Reporter = std::function<void(const QString &, bool)>;
+
+/* Whether an effects pipeline has a node in `style`. */
+static bool fxHasStyle(const pnpr_effect_pipeline &fx, pnpr_style style)
+{
+    for (size_t k = 0; k < fx.count; k++)
+        if (fx.nodes[k].style == style) return true;
+    return false;
+}
+
+/* 1. The merged cloud, rebuilt from the layers when they changed (a running computation on the
+ * old layers is cancelled first). Returns false when there is nothing to draw. */
+static bool refreshLayers(MeshDocument &md, DecorateContextState *s, const Reporter &report)
+{
+    uint64_t sig = layerSignature(md);
+    if (s->built && sig == s->signature) return !s->uploadFailed && s->cloud.count > 0;
+    s->job.reset(); /* cancels and waits: its results would be those of the old layers */
+    QElapsedTimer t;
+    t.start();
+    pnpr_status st = buildCloud(md, s->cloud, s->layerFeatures, s->layersNote);
+    s->built = true;
+    s->signature = sig;
+    s->needUpload = true;
+    s->uploadFailed = false;
+    s->ownFeatures = s->ownDither = false;
+    s->failedWant = 0;
+    s->jsegFailed = s->brushFailed = s->cancelled = false;
+    if (s->renderer) pnpr_renderer_set_hierarchy(s->renderer, nullptr);
+    pnpr_sphere_tree_free(&s->tree);
+    s->treeReady = s->treeFailed = false;
+    s->lastPlan.clear();
+    pnpr_lines_free(&s->lines);
+    s->linesReady = s->linesPending = false;
+    /* the scene's up, as the CLI's default view finds it: the tone's key light comes from there */
+    s->up[0] = 0; s->up[1] = 0; s->up[2] = 1;
+    pnpr_view_info vi;
+    if (st == PNPR_OK && s->cloud.count > 0 && pnpr_scene_frame(&s->cloud, nullptr, &vi) == PNPR_OK)
+        std::memcpy(s->up, vi.up, sizeof s->up);
+    if (st != PNPR_OK) {
+        s->uploadFailed = true;
+        pnpr_error err{};
+        report("cannot read the layers: " + status(st, err), true);
+        return false;
+    }
+    s->layersMs = t.elapsed();
+    return s->cloud.count > 0;
+}
+
+/* 2. The library's plan for the style (or the effects' styles) on the cloud as it is; logged once
+ * per request and cloud. Features this plugin computed without dithering points, or for another
+ * tone, are dropped when dithering is needed (the plan cannot tell them from the classes): the plan
+ * then computes them anew. */
+static bool makePlan(DecorateContextState *s, const Params &prm, bool fxOn, const pnpr_tone_options &tone,
+                     pnpr_plan &plan, const Reporter &report)
+{
+    pnpr_plan_request req;
+    std::memset(&req, 0, sizeof req);
+    req.styles = 1u << prm.style;
+    if (fxOn) { /* the pipeline's nodes choose the styles of their layers */
+        req.styles = 0;
+        for (size_t k = 0; k < s->fx.count; k++) req.styles |= 1u << s->fx.nodes[k].style;
+    }
+    req.sketch_variant = prm.variant;
+    req.outline = prm.outline;
+    pnpr_status pst = pnpr_plan_make(&req, &s->cloud, &plan);
+    if (pst == PNPR_OK && s->ownFeatures && (plan.needed & PNPR_WANT_DITHER) &&
+        (!s->ownDither || s->ditherToneSource != (int)tone.source || s->ditherToneGamma != tone.gamma)) {
+        static const char *const props[] = {PNPR_PROP_FEATURE_DEGREE, PNPR_PROP_FEATURE_CLASS, PNPR_PROP_FEATURE_CONFIDENCE,
+                                            PNPR_PROP_FEATURE_DIR_X, PNPR_PROP_FEATURE_DIR_Y, PNPR_PROP_FEATURE_DIR_Z};
+        for (const char *name : props) {
+            pnpr_status rs = pnpr_cloud_remove_property(&s->cloud, name); /* NOT_FOUND: nothing to drop */
+            (void)rs;
+        }
+        s->ownFeatures = s->ownDither = false;
+        s->failedWant = 0;
+        pst = pnpr_plan_make(&req, &s->cloud, &plan);
+    }
+    if (pst != PNPR_OK) {
+        report(QString("no plan for the %1 style: %2").arg(pnpr_style_name(prm.style)).arg(pnpr_status_string(pst)), true);
+        return false;
+    }
+    QStringList parts;
+    for (int b = 0; b < 5; b++)
+        if (plan.want & (1u << b)) parts << QString("compute %1 (%2)").arg(kWantNames[b]).arg(plan.why[b] ? plan.why[b] : "");
+    if (plan.reused_features) parts << QString("features from the %1").arg(s->ownFeatures ? "earlier computation" : "layers");
+    if (plan.reused_normals && (plan.needed & (PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY))) parts << "normals reused";
+    if (plan.segments == PNPR_PLAN_SEGMENTS_JSEG) parts << QString("segments by JSEG (%1)").arg(plan.segments_why);
+    else if (plan.segments == PNPR_PLAN_SEGMENTS_INPUT) parts << QString("segment labels reused (%1)").arg(plan.segments_why);
+    else if (plan.segments == PNPR_PLAN_SEGMENTS_SHADE) parts << QString("shading bands (%1)").arg(plan.segments_why);
+    if (plan.lines) parts << QString("profile lines (%1)").arg(plan.lines_why ? plan.lines_why : "");
+    if (plan.brush) parts << QString("brush sizes and clusters (%1)").arg(plan.brush_why);
+    if (plan.hierarchy) parts << QString("sphere hierarchy (%1)").arg(plan.hierarchy_why);
+    /* logged once per request and cloud (not again when its own results arrive) */
+    QString key = QString("%1 %2 %3 %4").arg(s->signature).arg((int)prm.style).arg((int)prm.variant).arg(prm.outline);
+    if (key != s->lastPlan) {
+        s->lastPlan = key;
+        report(QString("plan for the %1 style: %2").arg(pnpr_style_name(prm.style))
+                   .arg(parts.isEmpty() ? QString("nothing to compute") : parts.join("; ")), false);
+    }
+    return true;
+}
+
+/* What the plan still asks for, less what failed or was cancelled before (not retried every
+ * frame: features only when the tone changes, the other stages when the layers change). */
+static pnpr_meshlab::StageRequest stageRequest(const DecorateContextState *s, const pnpr_plan &plan,
+                                               const pnpr_tone_options &tone, pnpr_style style)
+{
+    pnpr_meshlab::StageRequest rq;
+    bool failedBefore = plan.want == s->failedWant && s->failedToneSource == (int)tone.source &&
+                        s->failedToneGamma == tone.gamma;
+    if (plan.want != 0 && !failedBefore) rq.want = plan.want;
+    rq.tone = tone;
+    rq.jseg = plan.segments == PNPR_PLAN_SEGMENTS_JSEG && !s->jsegFailed && s->cloud.rgb;
+    rq.brush = plan.brush && !s->brushFailed;
+    rq.tree = plan.hierarchy && !s->treeReady && !s->treeFailed;
+    rq.lines = plan.lines && (!s->linesReady || rq.want); /* new features: new lines */
+    rq.style = pnpr_style_name(style);
+    return rq;
+}
+
+/* While a computation runs, Esc anywhere in MeshLab cancels it (the key still reaches MeshLab);
+ * the test hook's synthetic event (PNPR_MESHLAB_TEST_EVENTS) is answered here, which proves the
+ * event loop runs meanwhile. Installed on the application once per state. */
+class JobKeys : public QObject
+{
+public:
+    static const QEvent::Type kSynthetic = QEvent::Type(QEvent::User + 817);
+    explicit JobKeys(DecorateContextState *s) : s_(s) {}
+
+protected:
+    bool eventFilter(QObject *o, QEvent *e) override
+    {
+        try {
+            if (e->type() == kSynthetic) {
+                bool computing = s_->job && !s_->job->done();
+                std::fprintf(stderr, "pointnpr decorator: synthetic event answered after %lld ms %s\n",
+                             (long long)s_->synthetic.elapsed(),
+                             computing ? qUtf8Printable("while computing (" + QString::fromStdString(s_->job->stage()) + ")")
+                                       : "after the computation");
+                return true;
+            }
+            if (e->type() == QEvent::KeyPress && static_cast<QKeyEvent *>(e)->key() == Qt::Key_Escape && s_->job &&
+                !s_->job->done() && !s_->cancelRequested) {
+                s_->cancelRequested = true;
+                s_->job->cancel();
+                std::fprintf(stderr, "pointnpr decorator: Esc: cancelling the computation\n");
+            }
+        } catch (...) {
+        }
+        return QObject::eventFilter(o, e);
+    }
+
+private:
+    DecorateContextState *s_;
+};
+
+/* MeshLab's own progress bar (MainWindow::qb, the status bar's progress bar without a style
+ * sheet; the other one shows GPU memory), or null. */
+static QProgressBar *meshlabProgressBar(QWidget *w)
+{
+    QMainWindow *mw = w ? qobject_cast<QMainWindow *>(w->window()) : nullptr;
+    if (!mw || !mw->statusBar()) return nullptr;
+    for (QProgressBar *b : mw->statusBar()->findChildren<QProgressBar *>())
+        if (b->styleSheet().isEmpty()) return b;
+    return nullptr;
+}
+
+/* Every 50 ms while computing: the progress bar and the status line; a repaint once done (the
+ * next frame takes the results over). Test hook PNPR_MESHLAB_TEST_CANCEL: Esc once the
+ * computation reported progress. */
+static void pollJob(DecorateContextState *s)
+{
+    QProgressBar *bar = meshlabProgressBar(s->widget);
+    QMainWindow *mw = s->widget ? qobject_cast<QMainWindow *>(s->widget->window()) : nullptr;
+    QStatusBar *sb = mw ? mw->statusBar() : nullptr;
+    if (!s->job || s->job->done()) {
+        s->poll->stop();
+        if (bar) bar->reset();
+        if (sb && sb->currentMessage().startsWith("NPR render:")) sb->clearMessage();
+        if (s->widget) s->widget->update();
+        return;
+    }
+    s->pollTicks++;
+    int pct = (int)std::lround(100 * s->job->fraction());
+    if (bar) {
+        bar->show();
+        bar->setValue(pct);
+        s->barUpdates++;
+    }
+    if (sb) sb->showMessage(QString("NPR render: %1 %2% (Esc cancels)").arg(QString::fromStdString(s->job->stage())).arg(pct));
+    if (std::getenv("PNPR_MESHLAB_TEST_CANCEL") && s->job->reports() > 0 && !s->cancelRequested && s->widget)
+        QCoreApplication::postEvent(s->widget.data(), new QKeyEvent(QEvent::KeyPress, Qt::Key_Escape, Qt::NoModifier));
+}
+
+/* Starts the plan's stages on a worker thread over a copy of the cloud. */
+static void startJob(DecorateContextState *s, const pnpr_meshlab::StageRequest &rq, const Reporter &report)
+{
+    std::unique_ptr<pnpr_meshlab::StageJob> job(new pnpr_meshlab::StageJob);
+    std::string why;
+    if (!job->start(s->cloud, rq, why)) { /* remembered as failed: not retried every frame */
+        report(QString::fromStdString(why), true);
+        s->failedWant = rq.want;
+        s->failedToneSource = (int)rq.tone.source;
+        s->failedToneGamma = rq.tone.gamma;
+        s->jsegFailed |= rq.jseg;
+        s->brushFailed |= rq.brush;
+        s->treeFailed |= rq.tree;
+        s->linesReady |= rq.lines;
+        return;
+    }
+    s->job = std::move(job);
+    s->cancelled = s->cancelRequested = false;
+    s->pollTicks = s->barUpdates = 0;
+    if (!s->poll) {
+        s->poll = new QTimer;
+        s->poll->setInterval(50);
+        QObject::connect(s->poll, &QTimer::timeout, [s] { try { pollJob(s); } catch (...) {} });
+    }
+    s->poll->start();
+    if (!s->keys) {
+        s->keys = new JobKeys(s);
+        qApp->installEventFilter(s->keys.data());
+    }
+    QStringList what;
+    if (rq.want) what << "features";
+    if (rq.jseg) what << "segments";
+    if (rq.brush) what << "brush";
+    if (rq.tree) what << "hierarchy";
+    if (rq.lines) what << "profile lines";
+    report(QString("computing %1 for the %2 style in the background (%3 points): MeshLab's own points meanwhile, Esc cancels")
+               .arg(what.join(", ")).arg(QString::fromStdString(rq.style)).arg(s->cloud.count), false);
+    if (std::getenv("PNPR_MESHLAB_TEST_EVENTS") && s->widget) {
+        s->synthetic.start();
+        QCoreApplication::postEvent(s->widget.data(), new QEvent(JobKeys::kSynthetic));
+    }
+}
+
+/* Takes over a finished computation's results (GUI thread): the cloud with its new properties,
+ * the tree, the lines; what failed or was cancelled is remembered so that it is not restarted
+ * every frame. */
+static void finishJob(DecorateContextState *s, const Reporter &report)
+{
+    using pnpr_meshlab::StageOutcome;
+    pnpr_meshlab::StageJob &j = *s->job;
+    j.join();
+    for (const pnpr_meshlab::StageMessage &m : j.messages) report(QString::fromStdString(m.text), m.warning);
+    const pnpr_meshlab::StageRequest &rq = j.request;
+    auto undone = [](bool asked, StageOutcome o) { return asked && o != StageOutcome::Done; };
+    bool cancelled = j.features == StageOutcome::Cancelled || j.jseg == StageOutcome::Cancelled ||
+                     j.brush == StageOutcome::Cancelled || j.hierarchy == StageOutcome::Cancelled ||
+                     j.profile == StageOutcome::Cancelled || s->cancelRequested;
+    if (undone(rq.want != 0, j.features)) {
+        s->failedWant = rq.want;
+        s->failedToneSource = (int)rq.tone.source;
+        s->failedToneGamma = rq.tone.gamma;
+    }
+    s->jsegFailed |= undone(rq.jseg, j.jseg);
+    s->brushFailed |= undone(rq.brush, j.brush);
+    s->treeFailed |= undone(rq.tree, j.hierarchy);
+    bool changed = j.features == StageOutcome::Done || j.jseg == StageOutcome::Done || j.brush == StageOutcome::Done;
+    if (changed) { /* the copy holds everything the old cloud had, and the new results */
+        std::swap(s->cloud, j.cloud);
+        s->needUpload = true;
+    }
+    if (j.features == StageOutcome::Done) {
+        if (rq.want & ~(uint32_t)(PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) s->ownFeatures = true;
+        if (rq.want & PNPR_WANT_DITHER) {
+            s->ownDither = true;
+            s->ditherToneSource = (int)rq.tone.source;
+            s->ditherToneGamma = rq.tone.gamma;
+        }
+        pnpr_lines_free(&s->lines); /* lines of the old features */
+        s->linesReady = s->linesPending = false;
+    }
+    if (j.hierarchy == StageOutcome::Done) {
+        pnpr_renderer_set_hierarchy(s->renderer, nullptr);
+        pnpr_sphere_tree_free(&s->tree);
+        std::swap(s->tree, j.tree);
+        s->treeReady = true;
+    }
+    if (rq.lines) {
+        s->linesReady = true; /* also on failure: no retry every frame */
+        if (j.profile == StageOutcome::Done) {
+            pnpr_lines_free(&s->lines);
+            std::swap(s->lines, j.lines);
+            s->linesPending = true; /* handed to the renderer after the upload */
+        }
+    }
+    s->cancelled = cancelled;
+    report(QString("background computation %1 after %2 ms: %3 progress reports, %4 progress bar updates, %5 event-loop "
+                   "timer ticks meanwhile")
+               .arg(cancelled ? "cancelled" : "done").arg(j.elapsedMs()).arg(j.reports()).arg(s->barUpdates)
+               .arg(s->pollTicks), false);
+    s->job.reset();
+    s->cancelRequested = false;
+}
+
 void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg)
 {
     void *ctx = pnpr_meshlab::currentGLContext();
@@ -951,7 +1267,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     }
     if (s->failed || !s->renderer) return;
     Params prm = readParams(par);
-    auto report = [&](const QString &msg, bool warning) {
+    Reporter report = [&lg, s](const QString &msg, bool warning) {
         if (msg == s->lastError) return;
         s->lastError = msg;
         lg.Logf(warning ? GLLogStream::WARNING : GLLogStream::FILTER, "NPR render: %s", qUtf8Printable(msg));
@@ -961,181 +1277,40 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     bool fxOn = loadEffects(s, prm.effects, fxMsg);
     if (s->fxKey != fxKeyBefore && !fxMsg.isEmpty()) report(fxMsg, !fxOn);
 
-    /* 1. the cloud, rebuilt from the layers when they changed */
-    uint64_t sig = layerSignature(md);
+    if (!refreshLayers(md, s, report)) return; /* nothing to draw over MeshLab's own frame */
     pnpr_error err{};
-    if (!s->built || sig != s->signature) {
-        QElapsedTimer t;
-        t.start();
-        pnpr_status st = buildCloud(md, s->cloud, s->layerFeatures, s->layersNote);
-        s->built = true;
-        s->signature = sig;
-        s->needUpload = true;
-        s->uploadFailed = false;
-        s->ownFeatures = s->ownDither = false;
-        s->failedWant = 0;
-        s->jsegFailed = false;
-        s->brushFailed = false;
-        if (s->renderer) pnpr_renderer_set_hierarchy(s->renderer, nullptr);
-        pnpr_sphere_tree_free(&s->tree);
-        s->treeReady = s->treeFailed = false;
-        s->lastPlan.clear();
-        pnpr_lines_free(&s->lines);
-        s->linesReady = false;
-        /* the scene's up, as the CLI's default view finds it: the tone's key light comes from there */
-        s->up[0] = 0; s->up[1] = 0; s->up[2] = 1;
-        pnpr_view_info vi;
-        if (st == PNPR_OK && s->cloud.count > 0 && pnpr_scene_frame(&s->cloud, nullptr, &vi) == PNPR_OK)
-            std::memcpy(s->up, vi.up, sizeof s->up);
-        if (st != PNPR_OK) {
-            s->uploadFailed = true;
-            report("cannot read the layers: " + status(st, err), true);
-            return;
-        }
-        s->layersMs = t.elapsed();
-    }
-    if (s->uploadFailed || s->cloud.count == 0) return; /* nothing to draw over MeshLab's own frame */
-
-    /* 2. the library's plan for this style on this cloud; what it computes stays in the cloud */
     pnpr_tone_options tone;
     std::memset(&tone, 0, sizeof tone);
     tone.source = prm.toneSource;
     tone.gamma = prm.toneGamma;
     std::memcpy(tone.up, s->up, sizeof tone.up);
-    pnpr_plan_request req;
-    std::memset(&req, 0, sizeof req);
-    req.styles = 1u << prm.style;
-    if (fxOn) { /* the pipeline's nodes choose the styles of their layers */
-        req.styles = 0;
-        for (size_t k = 0; k < s->fx.count; k++) req.styles |= 1u << s->fx.nodes[k].style;
+
+    /* 2. the plan; what it asks for runs on a worker thread while plain points are drawn. A running
+     * computation finishes first (a style changed meanwhile is planned when its results are in). */
+    if (s->job && s->job->done()) finishJob(s, report);
+    if (!s->job) {
+        pnpr_plan plan;
+        if (!makePlan(s, prm, fxOn, tone, plan, report)) return;
+        pnpr_meshlab::StageRequest rq = stageRequest(s, plan, tone, prm.style);
+        if (rq.any()) startJob(s, rq, report);
     }
-    req.sketch_variant = prm.variant;
-    req.outline = prm.outline;
-    pnpr_plan plan;
-    pnpr_status pst = pnpr_plan_make(&req, &s->cloud, &plan);
-    /* Dithering points follow the tone (and exist only when they were asked for); the plan cannot
-     * tell them apart from the classes, so features this plugin computed without them, or for
-     * another tone, are dropped when dithering is needed: the plan then computes them anew. */
-    if (pst == PNPR_OK && s->ownFeatures && (plan.needed & PNPR_WANT_DITHER) &&
-        (!s->ownDither || s->ditherToneSource != (int)tone.source || s->ditherToneGamma != tone.gamma)) {
-        static const char *const props[] = {PNPR_PROP_FEATURE_DEGREE, PNPR_PROP_FEATURE_CLASS, PNPR_PROP_FEATURE_CONFIDENCE,
-                                            PNPR_PROP_FEATURE_DIR_X, PNPR_PROP_FEATURE_DIR_Y, PNPR_PROP_FEATURE_DIR_Z};
-        for (const char *name : props) {
-            pnpr_status rs = pnpr_cloud_remove_property(&s->cloud, name); /* NOT_FOUND: nothing to drop */
-            (void)rs;
-        }
-        s->ownFeatures = s->ownDither = false;
-        s->failedWant = 0;
-        pst = pnpr_plan_make(&req, &s->cloud, &plan);
-    }
-    if (pst != PNPR_OK) { report(QString("no plan for the %1 style: %2").arg(pnpr_style_name(prm.style)).arg(pnpr_status_string(pst)), true); return; }
-    {
-        QStringList parts;
-        for (int b = 0; b < 5; b++)
-            if (plan.want & (1u << b)) parts << QString("compute %1 (%2)").arg(kWantNames[b]).arg(plan.why[b] ? plan.why[b] : "");
-        if (plan.reused_features) parts << QString("features from the %1").arg(s->ownFeatures ? "earlier computation" : "layers");
-        if (plan.reused_normals && (plan.needed & (PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY))) parts << "normals reused";
-        if (plan.segments == PNPR_PLAN_SEGMENTS_JSEG) parts << QString("segments by JSEG (%1)").arg(plan.segments_why);
-        else if (plan.segments == PNPR_PLAN_SEGMENTS_INPUT) parts << QString("segment labels reused (%1)").arg(plan.segments_why);
-        else if (plan.segments == PNPR_PLAN_SEGMENTS_SHADE) parts << QString("shading bands (%1)").arg(plan.segments_why);
-        if (plan.lines) parts << QString("profile lines (%1)").arg(plan.lines_why ? plan.lines_why : "");
-        if (plan.brush) parts << QString("brush sizes and clusters (%1)").arg(plan.brush_why);
-        if (plan.hierarchy) parts << QString("sphere hierarchy (%1)").arg(plan.hierarchy_why);
-        /* logged once per request and cloud (not again when its own results arrive) */
-        QString key = QString("%1 %2 %3 %4").arg(s->signature).arg((int)prm.style).arg((int)prm.variant).arg(prm.outline);
-        if (key != s->lastPlan) {
-            s->lastPlan = key;
-            report(QString("plan for the %1 style: %2").arg(pnpr_style_name(prm.style))
-                       .arg(parts.isEmpty() ? QString("nothing to compute") : parts.join("; ")), false);
-        }
-    }
-    bool failedBefore = plan.want == s->failedWant && s->failedToneSource == (int)tone.source &&
-                        s->failedToneGamma == tone.gamma;
-    if (plan.want != 0 && !failedBefore) {
-        QElapsedTimer t;
-        t.start();
-        pnpr_features_options fo;
-        std::memset(&fo, 0, sizeof fo);
-        fo.want = plan.want;
-        fo.tone = tone;
-        pnpr_status st = pnpr_compute_features(&s->cloud, &fo, nullptr);
-        QStringList what;
-        for (int b = 0; b < 5; b++)
-            if (plan.want & (1u << b)) what << kWantNames[b];
-        if (st != PNPR_OK) {
-            s->failedWant = plan.want; /* not retried every frame; the style then reports what is missing */
-            s->failedToneSource = (int)tone.source;
-            s->failedToneGamma = tone.gamma;
-            report(QString("feature analysis (%1) failed: %2").arg(what.join(", ")).arg(pnpr_status_string(st)), true);
-        } else {
-            if (plan.want & ~(uint32_t)(PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) s->ownFeatures = true;
-            if (plan.want & PNPR_WANT_DITHER) {
-                s->ownDither = true;
-                s->ditherToneSource = (int)tone.source;
-                s->ditherToneGamma = tone.gamma;
-            }
-            s->needUpload = true;
-            pnpr_lines_free(&s->lines);
-            s->linesReady = false;
-            report(QString("features computed for the %1 style (%2 points, %3 ms): %4")
-                       .arg(pnpr_style_name(prm.style)).arg(s->cloud.count).arg(t.elapsed()).arg(what.join(", ")), false);
-        }
-    }
-    if (plan.segments == PNPR_PLAN_SEGMENTS_JSEG && !s->jsegFailed && s->cloud.rgb) {
-        QElapsedTimer t;
-        t.start();
-        std::vector<uint32_t> labels(s->cloud.count);
-        pnpr_jseg_options jo;
-        std::memset(&jo, 0, sizeof jo);
-        pnpr_segment_info info;
-        pnpr_status st = pnpr_segment_jseg(s->cloud.xyz, s->cloud.rgb, s->cloud.count, &jo, labels.data(), &info);
-        if (st == PNPR_OK && (st = pnpr_cloud_alloc_labels(&s->cloud)) == PNPR_OK)
-            std::memcpy(s->cloud.label, labels.data(), labels.size() * sizeof(uint32_t));
-        if (st != PNPR_OK) {
-            s->jsegFailed = true;
-            report(QString("segmentation (JSEG) failed: %1").arg(pnpr_status_string(st)), true);
-        } else {
-            s->needUpload = true;
-            report(QString("%1 segments (JSEG, %2 points, %3 ms) for the %4 style")
-                       .arg(info.segment_count).arg(s->cloud.count).arg(t.elapsed()).arg(pnpr_style_name(prm.style)), false);
-        }
-    }
-    if (plan.brush && !s->brushFailed) {
-        QElapsedTimer t;
-        t.start();
-        pnpr_brush_stats bs;
-        pnpr_error berr;
-        std::memset(&berr, 0, sizeof berr);
-        pnpr_status st = pnpr_brush_prepare(&s->cloud, nullptr, &bs, &berr);
-        if (st != PNPR_OK) {
-            s->brushFailed = true;
-            report("brush preparation failed: " + status(st, berr), true);
-        } else {
-            s->needUpload = true;
-            report(QString("brush strokes prepared (%1 colour clusters, %2 points, %3 ms)")
-                       .arg(bs.clusters).arg(s->cloud.count).arg(t.elapsed()), false);
-        }
-    }
-    if (plan.hierarchy && !s->treeReady && !s->treeFailed) {
-        QElapsedTimer t;
-        t.start();
-        pnpr_sphere_tree_stats ts;
-        pnpr_error terr;
-        std::memset(&terr, 0, sizeof terr);
-        pnpr_status st = pnpr_sphere_tree_build(&s->cloud, nullptr, &s->tree, &ts, &terr);
-        s->treeReady = st == PNPR_OK;
-        s->treeFailed = !s->treeReady;
-        if (st != PNPR_OK) report("sphere hierarchy failed: " + status(st, terr), true);
-        else
-            report(QString("sphere hierarchy built (%1 leaves, %2 regions, %3 points, %4 ms)")
-                       .arg(ts.leaves).arg(ts.regions).arg(s->cloud.count).arg(t.elapsed()), false);
-    }
+    /* While computing, MeshLab's own frame (its plain points) stays: nothing is uploaded or drawn,
+     * so the GUI thread is free (an upload's spacing kNN would hold it as long as the features). */
+    if (s->job) return;
+    /* plain points after a cancel (the style lacks what it needs) */
+    bool plainPoints = s->cancelled;
+    /* painterly's data (12-neighbour lists, colour passes: 4x the upload time and memory) only
+     * for a frame that paints; a later painterly frame uploads again */
+    bool paints = !plainPoints && (fxOn ? fxHasStyle(s->fx, PNPR_STYLE_PAINTERLY) : prm.style == PNPR_STYLE_PAINTERLY);
+    if (paints && s->skippedPainterly) s->needUpload = true;
     if (s->needUpload) {
         QElapsedTimer t;
         t.start();
         pnpr_upload_options uo;
         std::memset(&uo, 0, sizeof uo);
         uo.tone = tone; /* colourless clouds: greys lit from the scene's up */
+        uo.skip_painterly = !paints;
+        s->skippedPainterly = !paints;
         pnpr_status st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, &uo, &err);
         s->needUpload = false;
         s->uploads++;
@@ -1144,18 +1319,13 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
             report("cannot upload the layers: " + status(st, err), true);
             return;
         }
-        report(QString("uploaded %1 (layers read in %2 ms, upload %3 ms)").arg(s->layersNote).arg(s->layersMs).arg(t.elapsed()), false);
+        report(QString("uploaded %1 (layers read in %2 ms, upload %3 ms)").arg(s->layersNote).arg(s->layersMs).arg(t.elapsed()),
+               false);
     }
-    if (plan.lines && !s->linesReady) {
-        QElapsedTimer t;
-        t.start();
-        pnpr_lines_options lo;
-        std::memset(&lo, 0, sizeof lo);
-        pnpr_status st = pnpr_profile_lines(&s->cloud, &lo, &s->lines, nullptr);
-        if (st == PNPR_OK) st = pnpr_renderer_set_lines(s->renderer, &s->lines, &err);
-        s->linesReady = true; /* also on failure: no retry every frame */
+    if (s->linesPending) {
+        s->linesPending = false;
+        pnpr_status st = pnpr_renderer_set_lines(s->renderer, &s->lines, &err);
         if (st != PNPR_OK) report("profile lines failed: " + status(st, err), true);
-        else report(QString("%1 profile lines (%2 ms)").arg(s->lines.count).arg(t.elapsed()), false);
     }
 
     /* 3. camera from MeshLab's matrices; motion = the matrices changed since the last frame */
@@ -1192,7 +1362,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
 
     pnpr_draw_options o;
     std::memset(&o, 0, sizeof o);
-    o.style = prm.style;
+    o.style = plainPoints ? PNPR_STYLE_POINTS : prm.style;
     o.sketch_variant = prm.variant;
     o.background[0] = (float)prm.paper.redF();
     o.background[1] = (float)prm.paper.greenF();
@@ -1214,7 +1384,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     o.hierarchy.abstraction = prm.abstraction;
     o.hierarchy.stroke_px = prm.strokePx;
     o.stroke_width = prm.lineWidth;
-    o.outline = prm.outline;
+    o.outline = plainPoints ? -1 : prm.outline;
     o.outline_width = prm.outlineWidth;
     if (tile) {
         scaleForTile(o, s->snapK);
@@ -1251,16 +1421,17 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     std::memset(&stats, 0, sizeof stats);
     pnpr_effects_stats es;
     std::memset(&es, 0, sizeof es);
-    pnpr_status st = fxOn ? drawEffects(s, o, vp, fb, moving ? prm.effectsPreview : 0.0f, es, &err)
+    bool fxDraw = fxOn && !plainPoints;
+    pnpr_status st = fxDraw ? drawEffects(s, o, vp, fb, moving ? prm.effectsPreview : 0.0f, es, &err)
                           : pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, &stats, &err);
     if (takeSnap && st == PNPR_OK) readViewport(vp, npr);
     glPopClientAttrib();
     glPopAttrib();
     if (st != PNPR_OK) {
-        report(QString("draw (%1) failed: %2").arg(fxOn ? "effects" : pnpr_style_name(prm.style)).arg(status(st, err)), true);
+        report(QString("draw (%1) failed: %2").arg(fxDraw ? "effects" : pnpr_style_name(prm.style)).arg(status(st, err)), true);
         return;
     }
-    if (!tile && !moving && !fxOn) s->lastDrawn = stats.points_drawn;
+    if (!tile && !moving && !fxDraw) s->lastDrawn = stats.points_drawn;
     if (s->restarted) {
         s->restarted = false;
         report(QString("decoration restarted by MeshLab (a parameter applied or a filter run): layers, features and "
@@ -1270,7 +1441,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
      * as applying a parameter does (tests/meshlab/run.sh decorate, run 'restart') */
     if (++s->framesDrawn == 2 && std::getenv("PNPR_MESHLAB_TEST_RESTART") && s->widget)
         QMetaObject::invokeMethod(s->widget.data(), "updateAllDecorators", Qt::QueuedConnection);
-    if (fxOn) report(QString("effects frame: %1 layers of %2x%3%4").arg(es.layers).arg(es.layer_width).arg(es.layer_height)
+    if (fxDraw) report(QString("effects frame: %1 layers of %2x%3%4").arg(es.layers).arg(es.layer_width).arg(es.layer_height)
                          .arg(moving ? " (preview while moving)" : ""), false);
     if (moving && s->settle) s->settle->start(300); /* a full-budget frame once the camera rests */
 
@@ -1288,7 +1459,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
                 txt += QString("\nviewport %1 %2 %3 %4\nstyle %5\npoints %6 drawn %7 strokes %8\n")
                            .arg(vp[0]).arg(vp[1]).arg(vp[2]).arg(vp[3]).arg(pnpr_style_name(prm.style))
                            .arg(stats.points_total).arg(stats.points_drawn).arg(stats.strokes_drawn);
-                if (fxOn)
+                if (fxDraw)
                     txt += QString("effects %1 layers %2 of %3x%4\n").arg(prm.effects).arg(es.layers).arg(es.layer_width)
                                .arg(es.layer_height);
                 ok = f.write(txt.toUtf8()) > 0;

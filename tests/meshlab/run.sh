@@ -448,7 +448,7 @@ gui() {
   no_plugin_errors "$name"
   expect_log "$name" "Enabled Decorate mode NPR render"
   expect_log "$name" "NPR render: renderer created \\(OpenGL"
-  expect_log "$name" "pointnpr decorator: uploaded 15002 points from 1 layer"
+  expect_log "$name" "pointnpr decorator: uploaded ${GUI_POINTS:-15002} points from 1 layer"
   expect_log "$name" "pointnpr decorator: snapshot .* written"
   grep "pointnpr decorator:" "$T/$name.log"
   [[ -f "$T/$name-camera.txt" && -f "$T/$name-npr.pgm" && -f "$T/$name-plain.pgm" ]] || { fail "'$name': no snapshot"; return 1; }
@@ -1014,6 +1014,35 @@ decorate)
   expect_log restart "pointnpr decorator: decoration restarted by MeshLab .*: layers, features and upload kept \\(1 upload\\(s\\) so far\\)"
   nup=$(grep -c "pointnpr decorator: uploaded" "$T/restart.log")
   [[ "$nup" == 1 ]] || fail "'restart': $nup uploads, expected 1 (the restart re-uploaded the cloud)"
+  # The plan's stages run on a worker thread: on a 240 002-point cube the viewport first shows
+  # MeshLab's own points (nothing uploaded yet), MeshLab's progress bar moves, the event loop answers a synthetic event posted
+  # when the computation starts while it still runs, and the frame after it passes the edge
+  # checks. Then Esc (a synthetic key press once progress is reported) cancels: the run reports
+  # it, the style's frame becomes plain points, MeshLab goes on.
+  cube_ply "$T/cube200.ply" 1 200 0 0 0
+  GUI_POINTS=240002 GUI_ENV=(PNPR_MESHLAB_TEST_EVENTS=1)
+  if gui background sketchy "$T/cube200.ply"; then
+    check_snapshot "$T/background-camera.txt" "$T/background-plain.pgm" "$T/background-npr.pgm" background ||
+      fail "'background': snapshot checks (see above)"
+  fi
+  expect_log background "pointnpr decorator: computing features for the sketchy style in the background \\(240002 points\\): MeshLab's own points meanwhile, Esc cancels"
+  nup=$(grep -c "pointnpr decorator: uploaded" "$T/background.log")
+  [[ "$nup" == 1 ]] || fail "'background': $nup uploads, expected 1 (after the features)"
+  expect_log background "pointnpr decorator: synthetic event answered after [0-9]+ ms while computing \\(features"
+  expect_log background "pointnpr decorator: features computed for the sketchy style \\(240002 points, [0-9]+ ms\\)"
+  bg=$(sed -n 's/.*background computation done after \([0-9]*\) ms: \([0-9]*\) progress reports, \([0-9]*\) progress bar updates, \([0-9]*\) event-loop.*/\1 \2 \3 \4/p' "$T/background.log" | head -n 1)
+  log "background: ${bg:-no summary} (ms, progress reports, progress bar updates, event-loop ticks)"
+  read -r bg_ms bg_rep bg_bar bg_ticks <<< "${bg:-0 0 0 0}"
+  holds background "progress reported (>= 5) and shown in MeshLab's progress bar (>= 1), the event loop ticking (>= 1)" \
+    "$bg_rep >= 5 && $bg_bar >= 1 && $bg_ticks >= 1"
+  GUI_ENV=(PNPR_MESHLAB_TEST_CANCEL=1)
+  gui cancel sketchy "$T/cube200.ply"
+  GUI_ENV=() GUI_POINTS=
+  expect_log cancel "pointnpr decorator: Esc: cancelling the computation"
+  expect_log cancel "pointnpr decorator: feature analysis \\(.*\\) cancelled"
+  expect_log cancel "pointnpr decorator: background computation cancelled after"
+  expect_no_log cancel "features computed for the sketchy style"
+  grep -q "^points 240002 drawn [1-9][0-9]* strokes 0\$" "$T/cancel-camera.txt" || fail "'cancel': the frame after the cancel is not plain points (strokes 0): $(grep ^points "$T/cancel-camera.txt")"
   expect_log meshlayer "pointnpr decorator: uploaded 15002 points from 1 layer\\(s\\) \\(1 mesh layer\\(s\\): their vertices\\)"
   ;;
 

@@ -276,6 +276,40 @@ int main(void)
     printf("tiles vs one frame: %zu channel values differ by more than 2\n", off);
     CHECK(off < (size_t)W * H * 4 / 200);
 
+    /* a style key (pnpr_upload_options.style_key): the map reads a uint32 property instead of
+     * the segment labels (the MeshLab decorator's style per layer). Labels all 5, the key holding
+     * the old labels: the same frame byte for byte; without the key every point is unlisted (the
+     * default, points: the grey half turns grey); a missing key or one of another type is refused */
+    {
+        CHECK_STATUS(render(r, &cam, &o, px), PNPR_OK);
+        pnpr_cloud c2 = {0};
+        CHECK_STATUS(pnpr_cloud_append(&c2, &c), PNPR_OK);
+        pnpr_property *kp = NULL, *fp = NULL;
+        CHECK_STATUS(pnpr_cloud_add_property(&c2, "layer", PNPR_TYPE_UINT32, &kp), PNPR_OK);
+        for (size_t i = 0; i < c2.count; i++) {
+            ((uint32_t *)kp->data)[i] = c2.label[i];
+            c2.label[i] = 5;
+        }
+        pnpr_upload_options ku = {0};
+        ku.style_key = "layer";
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c2, &ku, NULL), PNPR_OK);
+        CHECK_STATUS(render(r, &cam, &o, px2), PNPR_OK);
+        CHECK(memcmp(px, px2, W * H * 4) == 0);
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c2, NULL, NULL), PNPR_OK);
+        CHECK_STATUS(render(r, &cam, &o, px2), PNPR_OK);
+        tally g1 = count(px2, half1, aroundB);
+        CHECK(g1.pencil > g1.n * 9 / 10 && g1.white == 0); /* plain grey points, no paper */
+        pnpr_error ke = {0};
+        ku.style_key = "nope";
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c2, &ku, &ke), PNPR_ERR_NOT_FOUND);
+        CHECK(strstr(ke.message, "'nope'") != NULL);
+        CHECK_STATUS(pnpr_cloud_add_property(&c2, "f", PNPR_TYPE_FLOAT32, &fp), PNPR_OK);
+        ku.style_key = "f";
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c2, &ku, &ke), PNPR_ERR_INVALID_ARGUMENT);
+        pnpr_cloud_free(&c2);
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
+    }
+
     /* bad maps */
     pnpr_style_map_entry bad[1] = {{0, (pnpr_style)99}};
     o2 = o;
