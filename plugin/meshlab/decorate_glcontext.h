@@ -5,6 +5,7 @@
 #define POINTNPR_DECORATE_GLCONTEXT_H
 
 #include <functional>
+#include <vector>
 
 class QObject;
 class QWidget;
@@ -16,6 +17,9 @@ void *currentGLContext();
 QWidget *currentGLWidget();
 /* Makes the GL context of `widget` (MeshLab's GLArea, a QGLWidget) current; false if it has none. */
 bool makeWidgetCurrent(QWidget *widget);
+/* The frame MeshLab last showed in `widget` (QGLWidget::grabFrameBuffer) as RGBA rows bottom-up, as
+ * glReadPixels gives them; false if it is not a QGLWidget. Test hooks only. */
+bool grabWidgetFrame(QWidget *widget, std::vector<unsigned char> &r_rgba, int &r_width, int &r_height);
 /* Calls fn when the context `ctx` is about to be destroyed (while `receiver` lives). */
 void onGLContextDestroyed(void *ctx, QObject *receiver, std::function<void()> fn);
 } // namespace pnpr_meshlab

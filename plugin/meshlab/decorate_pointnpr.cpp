@@ -46,6 +46,7 @@
 #include <QProgressBar>
 #include <QStatusBar>
 #include <QLineEdit>
+#include <QMouseEvent>
 #include <QPushButton>
 #include <QSpinBox>
 #include <QPointer>
@@ -182,6 +183,15 @@ struct DecorateContextState {
     bool built = false;           /* cloud holds the layers of `signature` */
     bool needUpload = false;      /* the renderer does not have the cloud as it is now */
     bool skippedPainterly = false; /* uploaded without painterly's data (no frame painted) */
+    bool keyedUpload = false;     /* uploaded with the layer index as the style maps' key */
+    QString lastLayerStyles;      /* the styles per layer logged last */
+    bool testStylesSet = false;   /* test hook PNPR_MESHLAB_TEST_LAYER_STYLES applied */
+    int infoStage = 0, infoFrames = 0; /* test hook PNPR_MESHLAB_TEST_INFOBOX: 0 undrawn frame next, 1 drawn, 2 done */
+    int dragPhase = 0;            /* test hook PNPR_MESHLAB_TEST_DRAG: 1 dragging, 2 released, 3 done */
+    int dragFrames = 0;
+    size_t dragPoints = 0;
+    QElapsedTimer dragClock;
+    qint64 dragReleaseMs = 0;
     bool uploadFailed = false;    /* not retried until the layers change */
     QString layersNote;           /* what buildCloud found, for the upload message */
     qint64 layersMs = 0;          /* how long reading the layers took */
@@ -625,14 +635,37 @@ bool meaningfulNormals(MeshModel *mm)
     return good > 0 && good >= finite - finite / 100;
 }
 
-/* The visible point layers merged into `cloud` in scene coordinates (Tr applied). */
+/* What buildCloud reads from one layer's attributes. Attributes the filter stamped for an older
+ * version of the layer (File > Reload, a filter that moved the vertices) are left out. */
+struct LayerAttributes {
+    CMeshO::PerVertexAttributeHandle<float> cls, seg;
+    CMeshO::PerVertexAttributeHandle<Point3m> dir;
+    bool hasClass = false, hasSeg = false, stale = false;
+    explicit LayerAttributes(CMeshO &m)
+    {
+        stale = pnpr_meshlab::checkStamp(m) == pnpr_meshlab::StampState::Stale;
+        if (stale) return;
+        hasClass = findAttribute<float>(m, PNPR_PROP_FEATURE_CLASS, cls) && findAttribute<Point3m>(m, PNPR_PROP_FEATURE_DIR, dir);
+        hasSeg = findAttribute<float>(m, PNPR_PROP_SEGMENT, seg);
+    }
+};
+
+/* The per-point layer index of a merged cloud of several layers (uint32): the key of the style
+ * map that gives layers their own styles (pnpr_upload_options.style_key). */
+const char *const kLayerKey = "meshlab_layer";
+
+/* The visible point layers merged into `cloud` in scene coordinates (Tr applied), with the layers'
+ * colours, meaningful normals and (when every layer has them) feature classes. Segment labels:
+ * when any layer has them, each layer's are kept, offset past the previous layer's, and a layer
+ * without them is one segment (said in the note). Several layers: kLayerKey. */
 pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures, QString &note)
 {
     pnpr_cloud_free(&cloud);
     std::vector<MeshModel *> layers;
     size_t total = 0;
-    bool anyColour = false, allClass = true, allSeg = true, allNormals = true;
+    bool anyColour = false, allClass = true, anySeg = false, allNormals = true;
     size_t meshes = 0;
+    QStringList stale, oneSegment;
     for (MeshModel *mm : md.meshList) {
         if (!isDrawnLayer(mm)) continue;
         layers.push_back(mm);
@@ -640,12 +673,10 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         total += (size_t)mm->cm.vn;
         anyColour |= mm->hasDataMask(MeshModel::MM_VERTCOLOR);
         if (allNormals && !meaningfulNormals(mm)) allNormals = false;
-        CMeshO::PerVertexAttributeHandle<float> hc;
-        CMeshO::PerVertexAttributeHandle<Point3m> hd;
-        if (!findAttribute<float>(mm->cm, PNPR_PROP_FEATURE_CLASS, hc) || !findAttribute<Point3m>(mm->cm, PNPR_PROP_FEATURE_DIR, hd))
-            allClass = false;
-        CMeshO::PerVertexAttributeHandle<float> hs;
-        if (!findAttribute<float>(mm->cm, PNPR_PROP_SEGMENT, hs)) allSeg = false;
+        LayerAttributes la(mm->cm);
+        if (la.stale) stale << QString("'%1'").arg(mm->label());
+        allClass &= la.hasClass;
+        anySeg |= la.hasSeg;
     }
     layerFeatures = false;
     if (layers.empty() || total == 0) { note = "no visible layer with vertices"; return PNPR_OK; }
@@ -653,11 +684,13 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
     std::vector<uint8_t> rgb(anyColour ? 3 * total : 0);
     std::vector<uint8_t> cls(allClass ? total : 0);
     std::vector<float> dir(allClass ? 3 * total : 0);
-    std::vector<uint32_t> label(allSeg ? total : 0);
+    std::vector<uint32_t> label(anySeg ? total : 0);
+    std::vector<uint32_t> layerIndex(layers.size() > 1 ? total : 0);
     std::vector<float> normal(allNormals ? 3 * total : 0);
     size_t j = 0;
     uint32_t labelBase = 0;
-    for (MeshModel *mm : layers) {
+    for (size_t li = 0; li < layers.size(); li++) {
+        MeshModel *mm = layers[li];
         CMeshO &m = mm->cm;
         double T[4][4];
         for (int r = 0; r < 4; r++)
@@ -669,10 +702,8 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
                 C[r][c] = T[(r + 1) % 3][(c + 1) % 3] * T[(r + 2) % 3][(c + 2) % 3] -
                           T[(r + 1) % 3][(c + 2) % 3] * T[(r + 2) % 3][(c + 1) % 3];
         bool colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
-        CMeshO::PerVertexAttributeHandle<float> hc, hs;
-        CMeshO::PerVertexAttributeHandle<Point3m> hd;
-        if (allClass) { findAttribute<float>(m, PNPR_PROP_FEATURE_CLASS, hc); findAttribute<Point3m>(m, PNPR_PROP_FEATURE_DIR, hd); }
-        if (allSeg) findAttribute<float>(m, PNPR_PROP_SEGMENT, hs);
+        LayerAttributes la(m);
+        if (anySeg && !la.hasSeg) oneSegment << QString("'%1'").arg(mm->label());
         uint32_t maxLabel = 0;
         for (size_t i = 0; i < m.vert.size() && j < total; i++) {
             const CVertexO &v = m.vert[i];
@@ -685,9 +716,9 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
                 for (int c = 0; c < 3; c++) rgb[3 * j + c] = colour ? v.cC()[c] : 180;
             }
             if (allClass) {
-                float c = hc[i];
+                float c = la.cls[i];
                 cls[j] = (c >= 0 && c <= 3) ? (uint8_t)std::lround(c) : 0;
-                double d[3] = {hd[i][0], hd[i][1], hd[i][2]}, t[3], n = 0;
+                double d[3] = {la.dir[i][0], la.dir[i][1], la.dir[i][2]}, t[3], n = 0;
                 for (int r = 0; r < 3; r++) { t[r] = T[r][0] * d[0] + T[r][1] * d[1] + T[r][2] * d[2]; n += t[r] * t[r]; }
                 n = std::sqrt(n);
                 for (int r = 0; r < 3; r++) dir[3 * j + r] = n > 0 && std::isfinite(n) ? (float)(t[r] / n) : 0.0f;
@@ -698,12 +729,13 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
                 len = std::sqrt(len);
                 for (int r = 0; r < 3; r++) normal[3 * j + r] = len > 0 && std::isfinite(len) ? (float)(t[r] / len) : 0.0f;
             }
-            if (allSeg) {
-                float s = hs[i];
-                uint32_t l = (s >= 0 && s < 16777216.0f) ? (uint32_t)s : 0;
+            if (anySeg) {
+                float sv = la.hasSeg ? la.seg[i] : 0.0f;
+                uint32_t l = (sv >= 0 && sv < 16777216.0f) ? (uint32_t)sv : 0;
                 label[j] = labelBase + l;
                 maxLabel = std::max(maxLabel, l);
             }
+            if (!layerIndex.empty()) layerIndex[j] = (uint32_t)li;
             j++;
         }
         labelBase += maxLabel + 1;
@@ -712,10 +744,13 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
     if (st == PNPR_OK) st = pnpr_cloud_set_world(&cloud, world.data());
     if (st == PNPR_OK && anyColour && (st = pnpr_cloud_alloc_rgb(&cloud)) == PNPR_OK)
         std::memcpy(cloud.rgb, rgb.data(), 3 * j);
-    if (st == PNPR_OK && allSeg && (st = pnpr_cloud_alloc_labels(&cloud)) == PNPR_OK)
+    if (st == PNPR_OK && anySeg && (st = pnpr_cloud_alloc_labels(&cloud)) == PNPR_OK)
         std::memcpy(cloud.label, label.data(), j * sizeof(uint32_t));
     if (st == PNPR_OK && allNormals && (st = pnpr_cloud_alloc_normals(&cloud)) == PNPR_OK)
         std::memcpy(cloud.normal, normal.data(), 3 * j * sizeof(float));
+    pnpr_property *pk = nullptr;
+    if (st == PNPR_OK && !layerIndex.empty() && (st = pnpr_cloud_add_property(&cloud, kLayerKey, PNPR_TYPE_UINT32, &pk)) == PNPR_OK)
+        std::memcpy(pk->data, layerIndex.data(), j * sizeof(uint32_t));
     if (st == PNPR_OK && allClass) {
         pnpr_property *pc = nullptr, *px = nullptr, *py = nullptr, *pz = nullptr;
         st = pnpr_cloud_add_property(&cloud, PNPR_PROP_FEATURE_CLASS, PNPR_TYPE_UINT8, &pc);
@@ -737,13 +772,17 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
             layerFeatures = true;
         }
     }
-    note = QString("%1 points from %2 layer(s)%3%4%5%6%7")
+    note = QString("%1 points from %2 layer(s)%3%4%5%6%7%8%9")
                .arg(j).arg(layers.size())
                .arg(meshes ? QString(" (%1 mesh layer(s): their vertices)").arg(meshes) : QString())
                .arg(anyColour ? ", colours" : "")
                .arg(allNormals ? ", normals" : "")
                .arg(allClass ? ", feature classes from the layers' attributes" : "")
-               .arg(allSeg ? ", segment labels" : "");
+               .arg(anySeg ? ", segment labels" : "")
+               .arg(oneSegment.isEmpty() ? QString() : QString(" (%1 without: one segment each)").arg(oneSegment.join(", ")))
+               .arg(stale.isEmpty() ? QString()
+                                    : QString("; the attributes of %1 belong to an older version of the layer (reloaded or "
+                                              "edited): left out").arg(stale.join(", ")));
     return st;
 }
 
@@ -943,12 +982,62 @@ static void scaleForTile(pnpr_draw_options &o, double k)
 /* Reports a message in MeshLab's log and on stderr, not repeating the last one every frame. */
 using Reporter = std::function<void(const QString &, bool)>;
 
-/* Whether an effects pipeline has a node in `style`. */
-static bool fxHasStyle(const pnpr_effect_pipeline &fx, pnpr_style style)
+/* The styles drawn: the decorator's Style, or a layer's own (per-mesh attribute written by the
+ * filter "NPR: Set layer style"), or with an effects pipeline its nodes' styles (the layers' own
+ * styles are then not used: the pipeline chooses by segment). */
+struct LayerStyles {
+    pnpr_style main = PNPR_STYLE_SKETCHY;   /* the frame's style (of layers without their own) */
+    uint32_t bits = 0;                      /* every style drawn (the plan's request) */
+    std::vector<pnpr_style_map_entry> map;  /* layer index (kLayerKey) -> own style; empty: one style */
+    QString text;                           /* "'a.ply' cartoon, 'b.ply' sketchy (Style)" for the log */
+};
+
+static LayerStyles layerStyles(MeshDocument &md, const DecorateContextState *s, pnpr_style def, bool fxOn)
 {
-    for (size_t k = 0; k < fx.count; k++)
-        if (fx.nodes[k].style == style) return true;
-    return false;
+    LayerStyles ls;
+    ls.main = def;
+    if (fxOn) {
+        for (size_t k = 0; k < s->fx.count; k++) ls.bits |= 1u << s->fx.nodes[k].style;
+        return ls;
+    }
+    std::vector<int> own;
+    QStringList parts;
+    bool anyOwn = false;
+    for (MeshModel *mm : md.meshList) {
+        if (!isDrawnLayer(mm)) continue;
+        int st = -1;
+        if (!pnpr_meshlab::layerStyle(mm->cm, st) || st >= (int)PNPR_STYLE_COUNT_) st = -1;
+        own.push_back(st);
+        anyOwn |= st >= 0;
+        parts << QString("'%1' %2").arg(mm->label()).arg(st >= 0 ? pnpr_style_name((pnpr_style)st)
+                                                                  : qUtf8Printable(QString("%1 (Style)").arg(pnpr_style_name(def))));
+    }
+    if (own.size() == 1 && own[0] >= 0) ls.main = (pnpr_style)own[0]; /* one layer: its style is the frame's */
+    ls.bits = 1u << ls.main;
+    if (own.size() > 1 && anyOwn && pnpr_cloud_find_property(&s->cloud, kLayerKey)) {
+        ls.bits = 0;
+        bool defUsed = false;
+        for (size_t i = 0; i < own.size(); i++) {
+            pnpr_style st = own[i] >= 0 ? (pnpr_style)own[i] : def;
+            defUsed |= own[i] < 0;
+            ls.bits |= 1u << st;
+            if (own[i] >= 0) ls.map.push_back({(uint32_t)i, st});
+        }
+        if (!defUsed) ls.main = ls.map[0].style; /* the renderer needs what the frame's style needs */
+    }
+    if (anyOwn) ls.text = parts.join(", ");
+    return ls;
+}
+
+/* "cartoon and points" */
+static QString styleNames(uint32_t bits)
+{
+    QStringList names;
+    for (int st = 0; st < (int)PNPR_STYLE_COUNT_; st++)
+        if (bits & (1u << st)) names << pnpr_style_name((pnpr_style)st);
+    if (names.size() <= 1) return names.join("");
+    QString last = names.takeLast();
+    return names.join(", ") + " and " + last;
 }
 
 /* 1. The merged cloud, rebuilt from the layers when they changed (a running computation on the
@@ -993,16 +1082,12 @@ static bool refreshLayers(MeshDocument &md, DecorateContextState *s, const Repor
  * per request and cloud. Features this plugin computed without dithering points, or for another
  * tone, are dropped when dithering is needed (the plan cannot tell them from the classes): the plan
  * then computes them anew. */
-static bool makePlan(DecorateContextState *s, const Params &prm, bool fxOn, const pnpr_tone_options &tone,
+static bool makePlan(DecorateContextState *s, const Params &prm, uint32_t styles, const pnpr_tone_options &tone,
                      pnpr_plan &plan, const Reporter &report)
 {
     pnpr_plan_request req;
     std::memset(&req, 0, sizeof req);
-    req.styles = 1u << prm.style;
-    if (fxOn) { /* the pipeline's nodes choose the styles of their layers */
-        req.styles = 0;
-        for (size_t k = 0; k < s->fx.count; k++) req.styles |= 1u << s->fx.nodes[k].style;
-    }
+    req.styles = styles;
     req.sketch_variant = prm.variant;
     req.outline = prm.outline;
     pnpr_status pst = pnpr_plan_make(&req, &s->cloud, &plan);
@@ -1019,7 +1104,7 @@ static bool makePlan(DecorateContextState *s, const Params &prm, bool fxOn, cons
         pst = pnpr_plan_make(&req, &s->cloud, &plan);
     }
     if (pst != PNPR_OK) {
-        report(QString("no plan for the %1 style: %2").arg(pnpr_style_name(prm.style)).arg(pnpr_status_string(pst)), true);
+        report(QString("no plan for the %1 style: %2").arg(styleNames(styles)).arg(pnpr_status_string(pst)), true);
         return false;
     }
     QStringList parts;
@@ -1034,10 +1119,10 @@ static bool makePlan(DecorateContextState *s, const Params &prm, bool fxOn, cons
     if (plan.brush) parts << QString("brush sizes and clusters (%1)").arg(plan.brush_why);
     if (plan.hierarchy) parts << QString("sphere hierarchy (%1)").arg(plan.hierarchy_why);
     /* logged once per request and cloud (not again when its own results arrive) */
-    QString key = QString("%1 %2 %3 %4").arg(s->signature).arg((int)prm.style).arg((int)prm.variant).arg(prm.outline);
+    QString key = QString("%1 %2 %3 %4").arg(s->signature).arg(styles).arg((int)prm.variant).arg(prm.outline);
     if (key != s->lastPlan) {
         s->lastPlan = key;
-        report(QString("plan for the %1 style: %2").arg(pnpr_style_name(prm.style))
+        report(QString("plan for the %1 style: %2").arg(styleNames(styles))
                    .arg(parts.isEmpty() ? QString("nothing to compute") : parts.join("; ")), false);
     }
     return true;
@@ -1046,7 +1131,7 @@ static bool makePlan(DecorateContextState *s, const Params &prm, bool fxOn, cons
 /* What the plan still asks for, less what failed or was cancelled before (not retried every
  * frame: features only when the tone changes, the other stages when the layers change). */
 static pnpr_meshlab::StageRequest stageRequest(const DecorateContextState *s, const pnpr_plan &plan,
-                                               const pnpr_tone_options &tone, pnpr_style style)
+                                               const pnpr_tone_options &tone, const QString &styles)
 {
     pnpr_meshlab::StageRequest rq;
     bool failedBefore = plan.want == s->failedWant && s->failedToneSource == (int)tone.source &&
@@ -1057,7 +1142,7 @@ static pnpr_meshlab::StageRequest stageRequest(const DecorateContextState *s, co
     rq.brush = plan.brush && !s->brushFailed;
     rq.tree = plan.hierarchy && !s->treeReady && !s->treeFailed;
     rq.lines = plan.lines && (!s->linesReady || rq.want); /* new features: new lines */
-    rq.style = pnpr_style_name(style);
+    rq.style = styles.toStdString();
     return rq;
 }
 
@@ -1238,6 +1323,80 @@ static void finishJob(DecorateContextState *s, const Reporter &report)
     s->cancelRequested = false;
 }
 
+/* test-only (PNPR_MESHLAB_TEST_INFOBOX): once MeshLab has finished the frame (its info box drawn
+ * over ours), writes PREFIX-under-NAME (the viewport as the overlay found it) and PREFIX-host-NAME
+ * (the frame shown), NAME plain (stage 0, undrawn) or npr (stage 1), and asks for the next frame. */
+void DecoratePointnprPlugin::testGrabAfterPaint(void *ctx, int stage, const QString &prefix,
+                                                std::vector<unsigned char> under, int w, int h)
+{
+    DecorateContextState *s = states_.value(ctx, nullptr);
+    if (!s || !s->widget) return;
+    QPointer<QWidget> widget = s->widget;
+    auto shared = std::make_shared<std::vector<unsigned char>>(std::move(under));
+    QTimer::singleShot(0, this, [this, ctx, stage, prefix, shared, w, h, widget] {
+        try {
+            DecorateContextState *st = states_.value(ctx, nullptr);
+            std::vector<unsigned char> host;
+            int hw = 0, hh = 0;
+            if (!st || !widget || !pnpr_meshlab::grabWidgetFrame(widget, host, hw, hh)) return;
+            QString name = stage == 0 ? "plain" : "npr";
+            bool ok = writeImages(prefix + "-under-" + name, *shared, w, h) && writeImages(prefix + "-host-" + name, host, hw, hh);
+            std::fprintf(stderr, "pointnpr decorator: info box frame '%s' %s (%dx%d, viewport %dx%d)\n", qUtf8Printable(name),
+                         ok ? "written" : "FAILED", hw, hh, w, h);
+            st->infoStage = stage + 1;
+            widget->update();
+        } catch (...) {
+        }
+    });
+}
+
+/* test-only: PNPR_MESHLAB_TEST_DRAG=SECONDS (docs/meshlab.md's frame rates): once a frame at rest is
+ * drawn, drags the trackball with synthetic mouse events (a move every 10 ms, 3 px each, for
+ * SECONDS), counts the frames drawn meanwhile and times the full-budget frame after the release. */
+static void testDragFrame(DecorateContextState *s, bool moving, size_t drawn)
+{
+    QPointer<QWidget> w = s->widget;
+    if (!w || s->dragPhase == 3) return;
+    if (s->dragPhase == 0) {
+        if (moving) return;
+        double seconds = std::atof(std::getenv("PNPR_MESHLAB_TEST_DRAG"));
+        if (!(seconds > 0 && seconds <= 60)) seconds = 2;
+        s->dragPhase = 1;
+        s->dragClock.start();
+        QPoint c(w->width() / 2, w->height() / 2);
+        QCoreApplication::postEvent(w.data(), new QMouseEvent(QEvent::MouseButtonPress, c, Qt::LeftButton, Qt::LeftButton, Qt::NoModifier));
+        auto step = std::make_shared<int>(0);
+        QTimer *mover = new QTimer(w.data());
+        QObject::connect(mover, &QTimer::timeout, [s, w, c, step, mover, seconds] {
+            if (!w) return;
+            QPoint p = c + QPoint((++*step * 3) % 200 - 100, 0);
+            if (s->dragClock.elapsed() < (qint64)(seconds * 1000)) {
+                QCoreApplication::postEvent(w.data(), new QMouseEvent(QEvent::MouseMove, p, Qt::NoButton, Qt::LeftButton, Qt::NoModifier));
+                return;
+            }
+            mover->stop();
+            mover->deleteLater();
+            QCoreApplication::postEvent(w.data(), new QMouseEvent(QEvent::MouseButtonRelease, p, Qt::LeftButton, Qt::NoButton, Qt::NoModifier));
+            s->dragPhase = 2;
+            s->dragReleaseMs = s->dragClock.elapsed();
+        });
+        mover->start(10);
+        return;
+    }
+    if (s->dragPhase == 1 && moving) {
+        s->dragFrames++;
+        s->dragPoints += drawn;
+    }
+    if (s->dragPhase == 2 && !moving) {
+        s->dragPhase = 3;
+        double secs = s->dragReleaseMs / 1000.0;
+        std::fprintf(stderr, "pointnpr decorator: drag: %d frames in %.2f s (%.1f frames/s, %zu points per frame); full "
+                             "budget %lld ms after the release (%zu points)\n",
+                     s->dragFrames, secs, secs > 0 ? s->dragFrames / secs : 0.0, s->dragFrames ? s->dragPoints / s->dragFrames : 0,
+                     (long long)(s->dragClock.elapsed() - s->dragReleaseMs), drawn);
+    }
+}
+
 void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg)
 {
     void *ctx = pnpr_meshlab::currentGLContext();
@@ -1278,6 +1437,26 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (s->fxKey != fxKeyBefore && !fxMsg.isEmpty()) report(fxMsg, !fxOn);
 
     if (!refreshLayers(md, s, report)) return; /* nothing to draw over MeshLab's own frame */
+    /* test-only: PNPR_MESHLAB_TEST_LAYER_STYLES=cartoon,points gives the drawn layers, in order, their
+     * own styles as the filter "NPR: Set layer style" does (tests/meshlab/run.sh 'layers') */
+    if (const char *tls = std::getenv("PNPR_MESHLAB_TEST_LAYER_STYLES")) {
+        if (!s->testStylesSet) {
+            s->testStylesSet = true;
+            QStringList names = QString::fromLocal8Bit(tls).split(',');
+            int i = 0;
+            for (MeshModel *mm : md.meshList) {
+                pnpr_style st;
+                if (isDrawnLayer(mm) && i < names.size() &&
+                    pnpr_style_from_name(qUtf8Printable(names[i++]), &st) == PNPR_OK)
+                    pnpr_meshlab::setLayerStyle(mm->cm, (int)st);
+            }
+        }
+    }
+    LayerStyles ls = layerStyles(md, s, prm.style, fxOn);
+    if (ls.text != s->lastLayerStyles) {
+        s->lastLayerStyles = ls.text;
+        if (!ls.text.isEmpty()) report("styles per layer: " + ls.text, false);
+    }
     pnpr_error err{};
     pnpr_tone_options tone;
     std::memset(&tone, 0, sizeof tone);
@@ -1290,8 +1469,8 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (s->job && s->job->done()) finishJob(s, report);
     if (!s->job) {
         pnpr_plan plan;
-        if (!makePlan(s, prm, fxOn, tone, plan, report)) return;
-        pnpr_meshlab::StageRequest rq = stageRequest(s, plan, tone, prm.style);
+        if (!makePlan(s, prm, ls.bits, tone, plan, report)) return;
+        pnpr_meshlab::StageRequest rq = stageRequest(s, plan, tone, styleNames(ls.bits));
         if (rq.any()) startJob(s, rq, report);
     }
     /* While computing, MeshLab's own frame (its plain points) stays: nothing is uploaded or drawn,
@@ -1301,8 +1480,10 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     bool plainPoints = s->cancelled;
     /* painterly's data (12-neighbour lists, colour passes: 4x the upload time and memory) only
      * for a frame that paints; a later painterly frame uploads again */
-    bool paints = !plainPoints && (fxOn ? fxHasStyle(s->fx, PNPR_STYLE_PAINTERLY) : prm.style == PNPR_STYLE_PAINTERLY);
+    bool paints = !plainPoints && (ls.bits & (1u << PNPR_STYLE_PAINTERLY));
     if (paints && s->skippedPainterly) s->needUpload = true;
+    bool keyed = !plainPoints && !ls.map.empty(); /* styles per layer: the map reads the layer index */
+    if (keyed != s->keyedUpload) s->needUpload = true; /* the key: the layer index, or the segments */
     if (s->needUpload) {
         QElapsedTimer t;
         t.start();
@@ -1311,6 +1492,8 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         uo.tone = tone; /* colourless clouds: greys lit from the scene's up */
         uo.skip_painterly = !paints;
         s->skippedPainterly = !paints;
+        uo.style_key = keyed ? kLayerKey : nullptr;
+        s->keyedUpload = keyed;
         pnpr_status st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, &uo, &err);
         s->needUpload = false;
         s->uploads++;
@@ -1362,7 +1545,11 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
 
     pnpr_draw_options o;
     std::memset(&o, 0, sizeof o);
-    o.style = plainPoints ? PNPR_STYLE_POINTS : prm.style;
+    o.style = plainPoints ? PNPR_STYLE_POINTS : ls.main;
+    if (keyed && s->keyedUpload) {
+        o.style_map = ls.map.data();
+        o.style_map_count = ls.map.size();
+    }
     o.sketch_variant = prm.variant;
     o.background[0] = (float)prm.paper.redF();
     o.background[1] = (float)prm.paper.greenF();
@@ -1408,14 +1595,29 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
 
     const char *snap = std::getenv("PNPR_MESHLAB_SNAPSHOT");
     /* test mode: the snapshot is taken on the 3rd frame with unchanged matrices */
-    bool takeSnap = snap && !s->snapshotDone && !moving && ++s->frames >= 3;
+    bool takeSnap = snap && !s->snapshotDone && !moving && ++s->frames >= 3 &&
+                    !(std::getenv("PNPR_MESHLAB_TEST_INFOBOX") && s->infoStage < 2); /* after the info box frames */
     std::vector<unsigned char> plain, npr;
+
+    /* test-only: PNPR_MESHLAB_TEST_INFOBOX=PREFIX (tests/meshlab/run.sh 'infobox'): a frame at rest
+     * left undrawn, then one drawn; of each, the viewport as MeshLab's overlay (the info box) finds
+     * it and the whole frame once MeshLab has drawn the overlay */
+    const char *infoPrefix = std::getenv("PNPR_MESHLAB_TEST_INFOBOX");
+    int infoStage = infoPrefix && !moving && !tile && s->infoStage < 2 && ++s->infoFrames >= 3 ? s->infoStage : -1;
+    std::vector<unsigned char> under;
 
     /* MeshLab calls decorateDoc outside its own glPushAttrib: save the legacy state here too. In a
      * compatibility context gl_PointCoord needs GL_POINT_SPRITE (the core renderer assumes it). */
     glPushAttrib(GL_ALL_ATTRIB_BITS);
     glPushClientAttrib(GL_CLIENT_ALL_ATTRIB_BITS);
     if (takeSnap) readViewport(vp, plain);
+    if (infoStage == 0) {
+        readViewport(vp, under);
+        glPopClientAttrib();
+        glPopAttrib();
+        testGrabAfterPaint(ctx, 0, QString::fromLocal8Bit(infoPrefix), std::move(under), vp[2], vp[3]);
+        return;
+    }
     glEnable(GL_POINT_SPRITE);
     pnpr_render_stats stats;
     std::memset(&stats, 0, sizeof stats);
@@ -1425,10 +1627,12 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     pnpr_status st = fxDraw ? drawEffects(s, o, vp, fb, moving ? prm.effectsPreview : 0.0f, es, &err)
                           : pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, &stats, &err);
     if (takeSnap && st == PNPR_OK) readViewport(vp, npr);
+    if (infoStage == 1 && st == PNPR_OK && readViewport(vp, under))
+        testGrabAfterPaint(ctx, 1, QString::fromLocal8Bit(infoPrefix), std::move(under), vp[2], vp[3]);
     glPopClientAttrib();
     glPopAttrib();
     if (st != PNPR_OK) {
-        report(QString("draw (%1) failed: %2").arg(fxDraw ? "effects" : pnpr_style_name(prm.style)).arg(status(st, err)), true);
+        report(QString("draw (%1) failed: %2").arg(fxDraw ? QString("effects") : styleNames(ls.bits)).arg(status(st, err)), true);
         return;
     }
     if (!tile && !moving && !fxDraw) s->lastDrawn = stats.points_drawn;
@@ -1444,6 +1648,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (fxDraw) report(QString("effects frame: %1 layers of %2x%3%4").arg(es.layers).arg(es.layer_width).arg(es.layer_height)
                          .arg(moving ? " (preview while moving)" : ""), false);
     if (moving && s->settle) s->settle->start(300); /* a full-budget frame once the camera rests */
+    if (std::getenv("PNPR_MESHLAB_TEST_DRAG")) testDragFrame(s, moving, stats.points_drawn);
 
     if (snap && !s->snapshotDone) {
         if (takeSnap && !plain.empty() && !npr.empty()) {

@@ -11,6 +11,8 @@
 #include <QSet>
 #include <QString>
 
+#include <vector>
+
 class QTimer;
 struct DecorateContextState;
 
@@ -42,6 +44,7 @@ private:
     void draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg);
     void dropState(void *ctx);
     void testStartupPoll();
+    void testGrabAfterPaint(void *ctx, int stage, const QString &prefix, std::vector<unsigned char> under, int w, int h);
 
     QHash<void *, DecorateContextState *> states_; /* one renderer per GL context (QOpenGLContext) */
     QSet<void *> ending_; /* contexts whose decoration ended: dropped unless it restarts at once */

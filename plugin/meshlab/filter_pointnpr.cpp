@@ -17,6 +17,7 @@
 #include <pointnpr/options.h>
 #include <pointnpr/outliers.h>
 #include <pointnpr/segment.h>
+#include <pointnpr/style.h>
 
 #include <algorithm>
 #include <array>
@@ -224,7 +225,7 @@ FloatPrecision floatPrecision(const pnpr_cloud &cloud)
 
 FilterPointnprPlugin::FilterPointnprPlugin()
 {
-    typeList << FP_FEATURES << FP_SELECT_FEATURES << FP_PROFILE_LINES << FP_SEGMENT_JSEG << FP_SEGMENT_GROW;
+    typeList << FP_FEATURES << FP_SELECT_FEATURES << FP_PROFILE_LINES << FP_SEGMENT_JSEG << FP_SEGMENT_GROW << FP_LAYER_STYLE;
     for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
 }
 
@@ -241,6 +242,7 @@ QString FilterPointnprPlugin::filterName(FilterIDType filter) const
     case FP_PROFILE_LINES: return "NPR: Profile lines";
     case FP_SEGMENT_JSEG: return "NPR: Segment (JSEG)";
     case FP_SEGMENT_GROW: return "NPR: Segment (connected components / colour region growing)";
+    case FP_LAYER_STYLE: return "NPR: Set layer style";
     default: return QString();
     }
 }
@@ -295,6 +297,12 @@ QString FilterPointnprPlugin::filterInfo(FilterIDType filter) const
                "Result: per-vertex attribute <b>segment</b> (float label 0..S-1; -1 for NaN/Inf vertices); "
                "optionally vertex colours by segment (mean colour, or a distinct colour per segment for a layer "
                "without colours) and vertex quality = label.";
+    case FP_LAYER_STYLE:
+        return "Gives the current layer its own style in the <b>NPR render</b> decoration (Render menu): e.g. a "
+               "building in <i>cartoon</i> and the trees around it in <i>sketchy</i>, one picture with one "
+               "visibility. <i>The decoration's Style</i> returns the layer to the decoration's own Style "
+               "parameter. The choice is kept with the layer (a per-mesh attribute) for this session; it "
+               "changes nothing else in the layer.";
     default: return QString();
     }
 }
@@ -319,7 +327,7 @@ int FilterPointnprPlugin::getPreConditions(QAction *) const
 int FilterPointnprPlugin::postCondition(QAction *a) const
 {
     if (ID(a) == FP_SELECT_FEATURES) return MeshModel::MM_VERTFLAGSELECT;
-    if (ID(a) == FP_PROFILE_LINES) return MeshModel::MM_NONE; /* a new layer; the source is unchanged */
+    if (ID(a) == FP_PROFILE_LINES || ID(a) == FP_LAYER_STYLE) return MeshModel::MM_NONE; /* a new layer / an attribute */
     if (ID(a) == FP_SEGMENT_JSEG || ID(a) == FP_SEGMENT_GROW)
         return MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR;
     return MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTNORMAL | MeshModel::MM_VERTCOLOR;
@@ -556,7 +564,7 @@ void growParameters(RichParameterList &par)
 }
 } // namespace
 
-void FilterPointnprPlugin::initParameterSet(QAction *a, MeshModel &, RichParameterList &par)
+void FilterPointnprPlugin::initParameterSet(QAction *a, MeshModel &m, RichParameterList &par)
 {
     switch (ID(a)) {
     case FP_FEATURES:
@@ -589,6 +597,17 @@ void FilterPointnprPlugin::initParameterSet(QAction *a, MeshModel &, RichParamet
     case FP_PROFILE_LINES: linesParameters(par); break;
     case FP_SEGMENT_JSEG: jsegParameters(par); break;
     case FP_SEGMENT_GROW: growParameters(par); break;
+    case FP_LAYER_STYLE: {
+        /* the library's styles, in its order (index + 1), after "the decoration's Style" */
+        QStringList names("The decoration's Style");
+        for (int st = 0; st < (int)PNPR_STYLE_COUNT_; st++) names << pnpr_style_name((pnpr_style)st);
+        int current = -1;
+        if (!pnpr_meshlab::layerStyle(m.cm, current) || current >= (int)PNPR_STYLE_COUNT_) current = -1;
+        par.addParam(RichEnum("style", current + 1, names, "Style",
+                              "This layer's style in the NPR render decoration; the first entry: the decoration's "
+                              "Style parameter."));
+        break;
+    }
     default: break;
     }
 }
@@ -611,6 +630,7 @@ bool FilterPointnprPlugin::applyFilter(QAction *a, MeshDocument &md, const RichP
         case FP_PROFILE_LINES: return profileLines(md, par, cb);
         case FP_SEGMENT_JSEG: return segment(md, par, cb, true);
         case FP_SEGMENT_GROW: return segment(md, par, cb, false);
+        case FP_LAYER_STYLE: return layerStyle(md, par);
         default: return fail("unknown filter");
         }
     } catch (const std::bad_alloc &) {
@@ -805,6 +825,9 @@ bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameter
         return fail("internal error: the library returned no feature properties");
 
     /* ---- write back (nothing above touched the layer) ---- */
+    if (pnpr_meshlab::dropStaleAttributes(m))
+        Log("pointnpr: layer '%s': dropped the attributes of an older version of the layer (reloaded or edited)",
+            qUtf8Printable(layer));
     mm->updateDataMask(MeshModel::MM_VERTQUALITY);
     auto hClass = attributeOfType<float>(m, kAttrClass);
     auto hConf = attributeOfType<float>(m, kAttrConfidence);
@@ -835,6 +858,7 @@ bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameter
             v->C() = vcg::Color4b(kPalette[cls][0], kPalette[cls][1], kPalette[cls][2], 255);
     }
 
+    pnpr_meshlab::writeStamp(m); /* what readers check the attributes against (vcg_attributes.h) */
     Log("pointnpr: layer '%s': %zu points (%zu valid), k %u, threshold %.3f%s, %s colour, normals %s",
         qUtf8Printable(layer), n, stats.valid_points, stats.k_used, stats.threshold_used,
         threshold > 0 ? "" : " (automatic)", hasColor ? "with" : "without",
@@ -859,6 +883,11 @@ bool FilterPointnprPlugin::selectFeatures(MeshDocument &md, const RichParameterL
                             "'NPR: Compute feature degree and classify points' on it first")
                         .arg(mm->label())
                         .arg(kAttrClass));
+    if (pnpr_meshlab::checkStamp(m) == pnpr_meshlab::StampState::Stale)
+        return fail(QString("layer '%1': its feature classes belong to an older version of the layer (reloaded, or "
+                            "its vertices changed since they were computed): run 'NPR: Compute feature degree and "
+                            "classify points' on it again")
+                        .arg(mm->label()));
     const int which = par.getEnum("featureClass");
     if (which < 0 || which > 3) return fail(QString("unknown class choice %1").arg(which));
     const bool add = par.getBool("addToSelection");
@@ -931,8 +960,12 @@ bool FilterPointnprPlugin::profileLines(MeshDocument &md, const RichParameterLis
 
     CMeshO::PerVertexAttributeHandle<float> hClass;
     CMeshO::PerVertexAttributeHandle<vcg::Point3f> hDir;
-    const bool fromLayer = !par.getBool("recomputeFeatures") && findAttribute<float>(m, kAttrClass, hClass) &&
+    const bool stale = pnpr_meshlab::checkStamp(m) == pnpr_meshlab::StampState::Stale;
+    const bool fromLayer = !par.getBool("recomputeFeatures") && !stale && findAttribute<float>(m, kAttrClass, hClass) &&
                            findAttribute<vcg::Point3f>(m, kAttrDir, hDir);
+    if (stale && findAttribute<float>(m, kAttrClass, hClass))
+        Log("pointnpr: layer '%s': its feature attributes belong to an older version of the layer (reloaded or edited): "
+            "computed anew", qUtf8Printable(mm->label()));
 
     LayerCloud lc;
     if (!loadLayerCloud(*mm, true, true, "profile lines", "no line passes through them", lc)) return false;
@@ -1222,6 +1255,9 @@ bool FilterPointnprPlugin::segment(MeshDocument &md, const RichParameterList &pa
     }
 
     /* ---- write back (nothing above touched the layer) ---- */
+    if (pnpr_meshlab::dropStaleAttributes(m))
+        Log("pointnpr: layer '%s': dropped the attributes of an older version of the layer (reloaded or edited)",
+            qUtf8Printable(layer));
     auto hSeg = attributeOfType<float>(m, kAttrSegment);
     for (CMeshO::VertexIterator vi = m.vert.begin(); vi != m.vert.end(); ++vi) hSeg[vi] = -1.0f;
     if (toQuality) mm->updateDataMask(MeshModel::MM_VERTQUALITY);
@@ -1260,6 +1296,24 @@ bool FilterPointnprPlugin::segment(MeshDocument &md, const RichParameterList &pa
         kAttrSegment, validSegments ? validSegments - 1 : 0, invalid == PNPR_LABEL_NONE ? "" : ", -1 for NaN/Inf vertices",
         colorBy ? (lc.hasColor ? ", vertex colours = segment mean colour" : ", vertex colours = one colour per segment") : "",
         toQuality ? ", vertex quality = label" : "");
+    pnpr_meshlab::writeStamp(m);
     if (cb) cb(100, "NPR segments: done");
+    return true;
+}
+
+/* ---- NPR: Set layer style ------------------------------------------------------------------ */
+
+bool FilterPointnprPlugin::layerStyle(MeshDocument &md, const RichParameterList &par)
+{
+    MeshModel *mm = md.mm();
+    if (!mm) return fail("there is no current layer");
+    const int choice = par.getEnum("style");
+    if (choice < 0 || choice > (int)PNPR_STYLE_COUNT_) return fail(QString("unknown style choice %1").arg(choice));
+    pnpr_meshlab::setLayerStyle(mm->cm, choice - 1);
+    if (choice == 0)
+        Log("pointnpr: layer '%s' takes the NPR render decoration's Style", qUtf8Printable(mm->label()));
+    else
+        Log("pointnpr: layer '%s' is drawn in the %s style by the NPR render decoration", qUtf8Printable(mm->label()),
+            pnpr_style_name((pnpr_style)(choice - 1)));
     return true;
 }

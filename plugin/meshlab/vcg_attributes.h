@@ -4,6 +4,9 @@
 #define PNPR_MESHLAB_VCG_ATTRIBUTES_H
 
 #include <common/ml_mesh_type.h>
+#include <pointnpr/props.h>
+
+#include <cstdint>
 
 #include <typeindex>
 #include <typeinfo>
@@ -20,6 +23,104 @@ bool findAttribute(CMeshO &m, const char *name, typename CMeshO::template PerVer
     if (it == m.vert_attr.end() || it->_type != std::type_index(typeid(T))) return false;
     h = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<T>(m, name);
     return vcg::tri::Allocator<CMeshO>::IsValidHandle<T>(m, h);
+}
+
+/* The per-mesh stamp the filter writes next to its per-vertex attributes (feature classes,
+ * directions, segments): a hash of the vertices' positions and of those attributes' values. MeshLab
+ * keeps attribute handles through File > Reload and through filters that move or rebuild
+ * vertices; the values then belong to an older version of the layer (reset to zero by a reload,
+ * or left on moved points). Readers compare the stamp with the layer as it is. */
+const char *const kStampName = "pnpr_stamp";
+
+inline uint64_t layerStamp(CMeshO &m)
+{
+    uint64_t h = 1469598103934665603ull;
+    auto mix = [&h](const void *p, size_t n) {
+        const unsigned char *c = static_cast<const unsigned char *>(p);
+        for (size_t i = 0; i < n; i++) { h ^= c[i]; h *= 1099511628211ull; }
+    };
+    size_t n = m.vert.size();
+    mix(&n, sizeof n);
+    typename CMeshO::template PerVertexAttributeHandle<float> hc, hs;
+    typename CMeshO::template PerVertexAttributeHandle<vcg::Point3f> hd;
+    bool c = findAttribute<float>(m, PNPR_PROP_FEATURE_CLASS, hc), s = findAttribute<float>(m, PNPR_PROP_SEGMENT, hs);
+    bool d = findAttribute<vcg::Point3f>(m, PNPR_PROP_FEATURE_DIR, hd);
+    for (size_t i = 0; i < n; i++) {
+        const CVertexO &v = m.vert[i];
+        bool del = v.IsD();
+        mix(&del, sizeof del);
+        if (del) continue;
+        float p[3] = {(float)v.cP()[0], (float)v.cP()[1], (float)v.cP()[2]};
+        mix(p, sizeof p);
+        if (c) mix(&hc[i], sizeof(float));
+        if (s) mix(&hs[i], sizeof(float));
+        if (d) { float q[3] = {hd[i][0], hd[i][1], hd[i][2]}; mix(q, sizeof q); }
+    }
+    return h;
+}
+
+inline void writeStamp(CMeshO &m)
+{
+    CMeshO::PointerToAttribute key;
+    key._name = kStampName;
+    auto it = m.mesh_attr.find(key);
+    if (it != m.mesh_attr.end() && it->_type != std::type_index(typeid(long long))) return; /* not ours: kept */
+    auto h = vcg::tri::Allocator<CMeshO>::GetPerMeshAttribute<long long>(m, kStampName);
+    h() = (long long)layerStamp(m);
+}
+
+enum class StampState { None, Valid, Stale };
+
+/* None: no stamp (attributes from elsewhere, e.g. a PLY file: taken as they are). */
+inline StampState checkStamp(CMeshO &m)
+{
+    CMeshO::PointerToAttribute key;
+    key._name = kStampName;
+    auto it = m.mesh_attr.find(key);
+    if (it == m.mesh_attr.end() || it->_type != std::type_index(typeid(long long))) return StampState::None;
+    auto h = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<long long>(m, kStampName);
+    if (!vcg::tri::Allocator<CMeshO>::IsValidHandle<long long>(m, h)) return StampState::None;
+    return (uint64_t)h() == layerStamp(m) ? StampState::Valid : StampState::Stale;
+}
+
+/* A layer's own NPR style (per-mesh attribute, the pnpr_style value; set by the filter "NPR: Set
+ * layer style", read by the decorator): layers without one take the decorator's Style. */
+const char *const kLayerStyleName = "pnpr_style";
+
+inline bool layerStyle(CMeshO &m, int &r_style)
+{
+    CMeshO::PointerToAttribute key;
+    key._name = kLayerStyleName;
+    auto it = m.mesh_attr.find(key);
+    if (it == m.mesh_attr.end() || it->_type != std::type_index(typeid(int))) return false;
+    auto h = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<int>(m, kLayerStyleName);
+    if (!vcg::tri::Allocator<CMeshO>::IsValidHandle<int>(m, h)) return false;
+    r_style = h();
+    return r_style >= 0;
+}
+
+/* style < 0: the layer takes the decorator's Style again. */
+inline void setLayerStyle(CMeshO &m, int style)
+{
+    CMeshO::PointerToAttribute key;
+    key._name = kLayerStyleName;
+    auto it = m.mesh_attr.find(key);
+    if (it != m.mesh_attr.end() && it->_type != std::type_index(typeid(int))) return; /* not ours: kept */
+    auto h = vcg::tri::Allocator<CMeshO>::GetPerMeshAttribute<int>(m, kLayerStyleName);
+    h() = style < 0 ? -1 : style;
+}
+
+/* Before a filter writes some of the attributes and a new stamp: the others, when they belong to an
+ * older version of the layer, go (a new stamp would otherwise vouch for them). True when they went. */
+inline bool dropStaleAttributes(CMeshO &m)
+{
+    if (checkStamp(m) != StampState::Stale) return false;
+    for (const char *name : {PNPR_PROP_FEATURE_CLASS, PNPR_PROP_FEATURE_CONFIDENCE, PNPR_PROP_FEATURE_DIR, PNPR_PROP_SEGMENT})
+        vcg::tri::Allocator<CMeshO>::DeletePerVertexAttribute(m, name);
+    /* typed: vcglib's by-name deletion casts per-mesh attributes to the per-element base class */
+    auto h = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<long long>(m, kStampName);
+    vcg::tri::Allocator<CMeshO>::DeletePerMeshAttribute<long long>(m, h);
+    return true;
 }
 
 } // namespace pnpr_meshlab

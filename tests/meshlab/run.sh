@@ -428,11 +428,12 @@ gui() {
   fi
   (cd "$T" && exec env HOME="$T/home-$name" XDG_RUNTIME_DIR="$T/home-$name" PNPR_MESHLAB_DECORATE_AT_START=1 \
     PNPR_MESHLAB_SNAPSHOT="$T/$name" "${extra[@]}" ${GUI_ENV[@]+"${GUI_ENV[@]}"} \
-    LD_LIBRARY_PATH="$MLLIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 150 "$T/host/meshlab" "$input") \
+    LD_LIBRARY_PATH="$MLLIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" timeout 150 "$T/host/meshlab" "$input" \
+    ${GUI_INPUTS[@]+"${GUI_INPUTS[@]}"}) \
     > "$T/$name.log" 2>&1 &
   pid=$!
   for i in $(seq 1 1200); do
-    [[ -f "$T/$name-camera.txt" ]] && break
+    [[ -f "$T/$name-camera.txt" && ( -z "${GUI_WAIT:-}" || -f "${GUI_WAIT:-}" ) ]] && break
     kill -0 "$pid" 2> /dev/null || break
     sleep 0.1
   done
@@ -448,12 +449,47 @@ gui() {
   no_plugin_errors "$name"
   expect_log "$name" "Enabled Decorate mode NPR render"
   expect_log "$name" "NPR render: renderer created \\(OpenGL"
-  expect_log "$name" "pointnpr decorator: uploaded ${GUI_POINTS:-15002} points from 1 layer"
+  expect_log "$name" "pointnpr decorator: uploaded ${GUI_POINTS:-15002} points from ${GUI_LAYERS:-1} layer"
   expect_log "$name" "pointnpr decorator: snapshot .* written"
   grep "pointnpr decorator:" "$T/$name.log"
   [[ -f "$T/$name-camera.txt" && -f "$T/$name-npr.pgm" && -f "$T/$name-plain.pgm" ]] || { fail "'$name': no snapshot"; return 1; }
   grep -q "^style $style\$" "$T/$name-camera.txt" || { fail "'$name': style in $name-camera.txt is not $style"; return 1; }
   return 0
+}
+
+# check_infobox PREFIX: MeshLab's info box (a band of its log-area colour at alpha 128/255 over the
+# bottom rows, drawn by QPainter after the decorations) over our frame is the same overlay as over
+# MeshLab's own frame, i.e. the GL state we leave does not change it. From the test hook's frames:
+# under-plain P and host-plain F0 (a frame left undrawn: the viewport before and after MeshLab's
+# overlay), under-npr N and host-npr F1 (drawn). The band: rows in the lower 40% where F0 differs
+# from P in half the pixels. There, where N and P differ by >= 40 grey levels, F1 must be
+# F0 + (1 - 128/255) (N - P) within 4 levels for >= 85% of the pixels (measured 90.8%: the rest is
+# the text, drawn at another alpha, whose frame rate changes between the frames; a box drawn
+# opaque, the bug this guards against, matches almost nowhere).
+check_infobox() {
+  awk '
+    FNR == 1 { f++; row = -3 } { row++ }
+    row == -1 { w[f] = $1; h[f] = $2; W = $1; H = $2; next }
+    row < 1 { next }
+    { for (c = 1; c <= NF; c++) v[f, (row - 1) * W + c - 1] = $c }
+    END {
+      for (k = 2; k <= 4; k++) if (w[k] != w[1] || h[k] != h[1]) { printf "infobox: frame sizes differ (%dx%d, %dx%d)\n", w[1], h[1], w[k], h[k]; exit 1 }
+      a = 128 / 255; band = 0; n = 0; ok = 0
+      for (y = int(H * 0.6); y < H; y++) {
+        d = 0
+        for (x = 0; x < W; x++) { i = y * W + x; e = v[2, i] - v[1, i]; if (e > 3 || e < -3) d++ }
+        if (d < W / 2) continue
+        band++
+        for (x = 0; x < W; x++) {
+          i = y * W + x; dp = v[3, i] - v[1, i]
+          if (dp < 40 && dp > -40) continue
+          n++; e = v[4, i] - (v[2, i] + (1 - a) * dp)
+          if (e <= 4 && e >= -4) ok++
+        }
+      }
+      printf "infobox: %d band rows of %dx%d; %d pixels whose frames under the box differ by >= 40: %d (%.1f%%) as predicted from the undrawn frame\n", band, W, H, n, ok, n ? 100 * ok / n : 0
+      exit band >= 20 && n >= 2000 && ok >= 0.85 * n ? 0 : 1
+    }' "$1-under-plain.pgm" "$1-host-plain.pgm" "$1-under-npr.pgm" "$1-host-npr.pgm"
 }
 
 # check_snapshot CAMERA PLAIN NPR NAME: the cube's 4 front edges (z = 1) projected with MeshLab's
@@ -547,7 +583,8 @@ colour_stats() {
     END { for (h = 0; h < 2; h++) { m = s[h] / n[h]; printf "%.2f %.2f ", m, sqrt(q[h] / n[h] - m * m) } print "" }' "$1"
 }
 
-# measure_colour CAMERA PLAIN NPR NAME: figures of a frame of the coloured cube in MeshLab's
+# measure_colour CAMERA PLAIN NPR NAME [OX]: figures of a frame of the coloured cube (moved by OX
+# along x, default 0) in MeshLab's
 # default view (front face z = 1 towards the eye; its top and bottom edges are the silhouette
 # inside the viewport), projected with MeshLab's own matrices. Prints a readable line on stderr
 # and shell assignments on stdout:
@@ -561,7 +598,7 @@ colour_stats() {
 #         within 2 px;  DARKIN  fraction of dark pixels among the two halves' samples
 #   DIFFER fraction of pixels differing by > 40 grey levels from MeshLab's frame; BG top-left pixel
 measure_colour() {
-  awk -v name="$4" '
+  awk -v name="$4" -v OX="${5:-0}" '
     FILENAME == ARGV[1] { if ($1 == "modelview") for (i = 0; i < 16; i++) M[i] = $(i + 2)
                           if ($1 == "projection") for (i = 0; i < 16; i++) P[i] = $(i + 2)
                           if ($1 == "viewport") { vw = $4; vh = $5 }
@@ -572,7 +609,7 @@ measure_colour() {
     row < 1 { next }
     { for (c = 1; c <= NF; c++) { if (f == 1) pl[(row - 1) * W + c - 1] = $c; else np[(row - 1) * W + c - 1] = $c } }
     function project(x, y, z,   e, i, cl) {
-      for (i = 0; i < 4; i++) e[i] = M[i] * x + M[4 + i] * y + M[8 + i] * z + M[12 + i]
+      for (i = 0; i < 4; i++) e[i] = M[i] * (x + OX) + M[4 + i] * y + M[8 + i] * z + M[12 + i]
       for (i = 0; i < 4; i++) cl[i] = P[i] * e[0] + P[4 + i] * e[1] + P[8 + i] * e[2] + P[12 + i] * e[3]
       if (cl[3] <= 0) return 0
       PX = (cl[0] / cl[3] + 1) / 2 * vw; PY = vh - 1 - (cl[1] / cl[3] + 1) / 2 * vh
@@ -632,7 +669,8 @@ load)
   no_plugin_errors dump
   [[ -f "$T/filters.html" ]] || die "meshlabserver -d wrote no filter list"
   for f in "NPR: Compute feature degree and classify points" "NPR: Select feature points" "NPR: Profile lines" \
-           "NPR: Segment (JSEG)" "NPR: Segment (connected components / colour region growing)"; do
+           "NPR: Segment (JSEG)" "NPR: Segment (connected components / colour region growing)" \
+           "NPR: Set layer style"; do
     grep -qF "$f" "$T/filters.html" || fail "filter '$f' is not registered"
   done
   # the list shows each parameter's type and description
@@ -644,7 +682,7 @@ load)
            "Bool:Join at corners" "Bool:Recompute features" "Int:Segment count (hierarchy)" "Float:Hierarchy threshold" \
            "Int:Colour classes" "Float:Class merge distance" "Float:Seed factor" "Float:Region merge distance" \
            "Int:Minimum segment size" "Bool:Colour vertices by segment" "Bool:Label to vertex quality" "Enum:Method" \
-           "Float:Neighbour distance" "Float:Point colour distance"; do
+           "Float:Neighbour distance" "Float:Point colour distance" "Enum:Style"; do
     grep -qF "\c ${p%%:*}  </TD> <TD> ${p#*:} </TD>" "$T/filters.html" || fail "parameter '$p' missing from the filter list"
   done
   # the same plugin loaded into the interactive host's plugin folder layout works with a script too
@@ -653,6 +691,14 @@ load)
   mlserver run -i "$T/cube.ply" -o "$T/out.ply" -m vq -s "$T/f.mlx" && expect_rc run 0
   no_plugin_errors run
   expect_log run "pointnpr: layer"
+  # NPR: Set layer style: the library's styles by name (index + 1), 0 = the decoration's Style
+  style_xml() {
+    printf ' <filter name="NPR: Set layer style">\n  <Param type="RichEnum" name="style" value="%s" enum_cardinality="9"/>\n </filter>\n' "$1"
+  }
+  mlx "$T/style.mlx" "$(style_xml 5)" "$(style_xml 0)"
+  mlserver style -i "$T/cube.ply" -o "$T/style-out.ply" -s "$T/style.mlx" && expect_rc style 0
+  expect_log style "pointnpr: layer 'cube.ply' is drawn in the cartoon style by the NPR render decoration"
+  expect_log style "pointnpr: layer 'cube.ply' takes the NPR render decoration's Style"
   ;;
 
 cube | offset)
@@ -703,6 +749,18 @@ select)
             exit (bad == 0 && (expect > 0 || want == 1)) ? 0 : 1 }' "$T/sel$c-a.ply" ||
       fail "selection of class choice $c does not match the classes"
   done
+  # attributes of an older version of the layer (MeshLab keeps attribute handles when a filter
+  # moves the vertices, and through File > Reload): refused with the reason, not used
+  translate_xml='<filter name="Transform: Translate, Center, set Origin"><Param type="RichEnum" name="traslMethod" value="0" enum_cardinality="3"/><Param type="RichDynamicFloat" name="axisX" value="0.25" min="-10" max="10"/><Param type="RichDynamicFloat" name="axisY" value="0" min="-10" max="10"/><Param type="RichDynamicFloat" name="axisZ" value="0" min="-10" max="10"/><Param type="RichPoint3f" name="newOrigin" x="0" y="0" z="0"/><Param type="RichBool" name="Freeze" value="true"/><Param type="RichBool" name="allLayers" value="false"/></filter>'
+  mlx "$T/stale.mlx" "$(features_xml)" "$translate_xml" "$(select_xml 0)"
+  mlserver stale -i "$T/cube.ply" -o "$T/stale.ply" -s "$T/stale.mlx"
+  expect_log stale "pointnpr: layer 'cube.ply': its feature classes belong to an older version of the layer"
+  expect_no_log stale "pointnpr: layer 'cube.ply': selected"
+  # ... and computing the features again drops the old ones and stamps the new: the selection runs
+  mlx "$T/fresh.mlx" "$(features_xml)" "$translate_xml" "$(features_xml)" "$(select_xml 0)"
+  mlserver fresh -i "$T/cube.ply" -o "$T/fresh.ply" -s "$T/fresh.mlx" && expect_rc fresh 0
+  expect_log fresh "pointnpr: layer 'cube.ply': dropped the attributes of an older version of the layer"
+  expect_no_log fresh "its feature classes belong to an older version"
   mlx "$T/add.mlx" "$(features_xml color=true dither=3)" "$(select_xml 0)" "$(select_xml 3 true)"
   if mlserver add -i "$T/cube.ply" -o "$T/add.ply" -m vc vf -s "$T/add.mlx" && to_ascii "$T/add.ply" "$T/add-a.ply"; then
     awk '/^property/ && !b { col[$NF] = np++ } /^end_header/ { b = 1; next }
@@ -1014,6 +1072,13 @@ decorate)
   expect_log restart "pointnpr decorator: decoration restarted by MeshLab .*: layers, features and upload kept \\(1 upload\\(s\\) so far\\)"
   nup=$(grep -c "pointnpr decorator: uploaded" "$T/restart.log")
   [[ "$nup" == 1 ]] || fail "'restart': $nup uploads, expected 1 (the restart re-uploaded the cloud)"
+  # MeshLab's info box over our frame: the same overlay as over its own (no GL state left changed)
+  GUI_ENV=(PNPR_MESHLAB_TEST_INFOBOX="$T/infobox") GUI_WAIT="$T/infobox-host-npr.pgm"
+  gui infobox sketchy "$T/cube.ply"
+  GUI_ENV=() GUI_WAIT=''
+  expect_log infobox "pointnpr decorator: info box frame 'plain' written"
+  expect_log infobox "pointnpr decorator: info box frame 'npr' written"
+  check_infobox "$T/infobox" || fail "'infobox': MeshLab's info box over the decorated frame is not the overlay it draws without it"
   # The plan's stages run on a worker thread: on a 240 002-point cube the viewport first shows
   # MeshLab's own points (nothing uploaded yet), MeshLab's progress bar moves, the event loop answers a synthetic event posted
   # when the computation starts while it still runs, and the frame after it passes the edge
@@ -1195,6 +1260,29 @@ decorate_styles)
   printf 'node a labels 1\ntoon levels=99\n' > "$T/bad.fx"
   PNPR_MESHLAB_TEST_EFFECTS="file:$T/bad.fx" gui fxbad points "$T/colour.ply"
   expect_log fxbad "pointnpr decorator: effects file: .*bad.fx:2: .*levels.*; drawn without"
+
+  # 7. a style per layer (the filter "NPR: Set layer style"; here the test hook writes the same
+  #    per-mesh attribute): the coloured cube in cartoon and a copy 1.2 to its right in points, the
+  #    decoration's Style sketchy (drawn nowhere). One frame, one plan for both styles: the left
+  #    cube's halves flat at their mean colours (cartoon's fills), the right cube's keep the points'
+  #    colour noise, each near its input grey.
+  awk '/^end_header/ { print; b = 1; next } b { $1 += 1.2 } { print }' "$T/colour.ply" > "$T/colour_right.ply"
+  GUI_INPUTS=("$T/colour_right.ply") GUI_POINTS=30004 GUI_LAYERS=2 GUI_ENV=(PNPR_MESHLAB_TEST_LAYER_STYLES=cartoon,points)
+  gui layers sketchy "$T/colour.ply"
+  GUI_INPUTS=() GUI_POINTS='' GUI_LAYERS='' GUI_ENV=()
+  expect_log layers "pointnpr decorator: styles per layer: 'colour.ply' cartoon, 'colour_right.ply' points"
+  expect_log layers "pointnpr decorator: plan for the points and cartoon style: .*segments by JSEG"
+  grep -q "pointnpr decorator: draw (.*) failed" "$T/layers.log" && fail "'layers': the draw failed"
+  for side in left:0 right:1.2; do
+    out=$(measure_colour "$T/layers-camera.txt" "$T/layers-plain.pgm" "$T/layers-npr.pgm" "layers-${side%%:*}" "${side#*:}") ||
+      { fail "'layers': cannot measure the ${side%%:*} cube"; continue; }
+    eval "$(sed "s/\([A-Z]*\)=/N_${side%%:*}_\1=/g" <<< "$out")"
+  done
+  # the inner halves (the view may cut the outer ones): the left cube's blue, the right cube's yellow
+  holds layers "left cube (cartoon): its blue half flat (sd <= 1.5) at its mean (+- 4 of $INMB)" \
+    "${N_left_SB:-99} >= 0 && ${N_left_SB:-99} <= 1.5 && (${N_left_MB:-0} - $INMB)^2 <= 16 && ${N_left_NIN:-0} >= 500"
+  holds layers "right cube (points): its yellow half keeps the colour noise (sd >= half the input's $INSY) near its grey (+- 10)" \
+    "${N_right_SY:-0} >= 0.5 * $INSY && (${N_right_MY:-0} - $INMY)^2 <= 100 && ${N_right_NIN:-0} >= 500"
   ;;
 
 snapshot)
