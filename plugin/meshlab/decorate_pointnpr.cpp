@@ -106,6 +106,12 @@ static_assert(PNPR_TONE_AUTO == 0 && PNPR_TONE_COLOR == 1 && PNPR_TONE_LIGHT == 
 
 using pnpr_meshlab::kWantNames;
 
+/* While the camera moves: our draw's share of a frame. On this project's 2-core llvmpipe machine
+ * MeshLab's own redraw of a 486k-point layer under ours takes about 60 ms: 40 ms of ours makes
+ * about 10 frames/s (docs/meshlab.md, "Frame rates"). Never fewer points than kMotionMinPoints. */
+const double kMotionDrawMs = 40;
+const size_t kMotionMinPoints = 10000;
+
 /* The layers the decorator draws: visible, with vertices, not a polyline layer (edges: the profile
  * lines the filter makes, drawn by the lines style from the features). A mesh layer (an RGB-D
  * PLY with a range grid opens as one) is drawn as its vertices. */
@@ -191,7 +197,8 @@ struct DecorateContextState {
     int dragFrames = 0;
     size_t dragPoints = 0;
     QElapsedTimer dragClock;
-    qint64 dragReleaseMs = 0;
+    qint64 dragReleaseMs = 0, dragDrawMs = 0;
+    double motionMsPerPoint = 0;  /* our draw's time per point in the last moving frames (running mean) */
     bool uploadFailed = false;    /* not retried until the layers change */
     QString layersNote;           /* what buildCloud found, for the upload message */
     qint64 layersMs = 0;          /* how long reading the layers took */
@@ -1390,10 +1397,17 @@ static void testDragFrame(DecorateContextState *s, bool moving, size_t drawn)
     if (s->dragPhase == 2 && !moving) {
         s->dragPhase = 3;
         double secs = s->dragReleaseMs / 1000.0;
-        std::fprintf(stderr, "pointnpr decorator: drag: %d frames in %.2f s (%.1f frames/s, %zu points per frame); full "
-                             "budget %lld ms after the release (%zu points)\n",
-                     s->dragFrames, secs, secs > 0 ? s->dragFrames / secs : 0.0, s->dragFrames ? s->dragPoints / s->dragFrames : 0,
-                     (long long)(s->dragClock.elapsed() - s->dragReleaseMs), drawn);
+        QString line = QString("drag: %1 frames in %2 s (%3 frames/s, %4 points per frame, our draw %7 ms of each); full "
+                               "budget %5 ms after the release (%6 points)")
+                           .arg(s->dragFrames).arg(secs, 0, 'f', 2).arg(secs > 0 ? s->dragFrames / secs : 0.0, 0, 'f', 1)
+                           .arg(s->dragFrames ? s->dragPoints / s->dragFrames : 0)
+                           .arg(s->dragClock.elapsed() - s->dragReleaseMs).arg(drawn)
+                           .arg(s->dragFrames ? s->dragDrawMs / s->dragFrames : 0);
+        std::fprintf(stderr, "pointnpr decorator: %s\n", qUtf8Printable(line));
+        if (const char *snap = std::getenv("PNPR_MESHLAB_SNAPSHOT")) { /* PREFIX-drag.txt for the script */
+            QFile f(QString::fromLocal8Bit(snap) + "-drag.txt");
+            if (f.open(QIODevice::WriteOnly)) f.write((line + "\n").toUtf8());
+        }
     }
 }
 
@@ -1559,6 +1573,12 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     o.density = prm.density;
     if (moving && prm.motionBudget > 0 && (prm.budget == 0 || prm.motionBudget < prm.budget))
         o.budget = (size_t)prm.motionBudget;
+    /* while moving, the budget also follows the time our draw took in the last moving frames: about
+     * kMotionDrawMs for our part of a frame (MeshLab redraws its own layers under ours too) */
+    if (moving && s->motionMsPerPoint > 0) {
+        size_t timed = (size_t)std::max((double)kMotionMinPoints, kMotionDrawMs / s->motionMsPerPoint);
+        o.budget = o.budget > 0 ? std::min(o.budget, timed) : timed;
+    }
     if (tile && s->lastDrawn > 0 && !(prm.density < 0)) {
         o.budget = s->lastDrawn;
         o.density = -1;
@@ -1624,8 +1644,23 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     pnpr_effects_stats es;
     std::memset(&es, 0, sizeof es);
     bool fxDraw = fxOn && !plainPoints;
+    /* moving frames are timed (finished before and after: the swap waits for them anyway) */
+    QElapsedTimer drawClock;
+    if (moving) {
+        glFinish();
+        drawClock.start();
+    }
     pnpr_status st = fxDraw ? drawEffects(s, o, vp, fb, moving ? prm.effectsPreview : 0.0f, es, &err)
                           : pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, &stats, &err);
+    if (moving) {
+        glFinish();
+        qint64 ms = drawClock.nsecsElapsed() / 1000000;
+        if (st == PNPR_OK && stats.points_drawn > 0) { /* a running mean over about 4 frames */
+            double perPoint = (double)drawClock.nsecsElapsed() / 1e6 / (double)stats.points_drawn;
+            s->motionMsPerPoint = s->motionMsPerPoint > 0 ? 0.75 * s->motionMsPerPoint + 0.25 * perPoint : perPoint;
+        }
+        if (s->dragPhase == 1) s->dragDrawMs += ms; /* test hook PNPR_MESHLAB_TEST_DRAG: our share of a frame */
+    }
     if (takeSnap && st == PNPR_OK) readViewport(vp, npr);
     if (infoStage == 1 && st == PNPR_OK && readViewport(vp, under))
         testGrabAfterPaint(ctx, 1, QString::fromLocal8Bit(infoPrefix), std::move(under), vp[2], vp[3]);

@@ -1285,6 +1285,22 @@ decorate_styles)
     "${N_right_SY:-0} >= 0.5 * $INSY && (${N_right_MY:-0} - $INMY)^2 <= 100 && ${N_right_NIN:-0} >= 500"
   ;;
 
+drag)
+  # Not a test (no ctest entry): the frame rates of docs/meshlab.md. The GUI on PNPR_DRAG_INPUT (a
+  # PLY), the decorator in each of PNPR_DRAG_STYLES (default "points sketchy"): once a frame at
+  # rest is drawn (the features computed), the test hook PNPR_MESHLAB_TEST_DRAG drags the
+  # trackball for 2 s with synthetic mouse moves and prints the frames drawn meanwhile and when
+  # the full-budget frame follows the release.
+  [[ -n "$DECORATE" && -f "${PNPR_DRAG_INPUT:-}" ]] || die "usage: PNPR_DRAG_INPUT=FILE.ply run.sh drag PLUGIN CLI WORKDIR DECORATE"
+  ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
+  GUI_POINTS=$(awk '/^element vertex/ { print $3; exit }' "$PNPR_DRAG_INPUT")
+  for style in ${PNPR_DRAG_STYLES:-points sketchy}; do
+    GUI_ENV=(PNPR_MESHLAB_TEST_DRAG=2) GUI_WAIT="$T/drag-$style-drag.txt"
+    gui "drag-$style" "$style" "$PNPR_DRAG_INPUT"
+    log "$style, $GUI_POINTS points: $(cat "$T/drag-$style-drag.txt" 2> /dev/null || echo "no figures")"
+  done
+  ;;
+
 snapshot)
   # MeshLab's own File > Save snapshot with the decorator on, on the sample scan (the lion case's
   # cached WORKDIR/lion.ply, fetched + converted once): the GUI opens the lion, the plugin turns
