@@ -381,6 +381,9 @@ QString hierTip(const char *name)
 void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList &par)
 {
     try {
+        /* The panel's order (MeshLab shows the parameters as added; the settings names are what is
+         * saved): the look first (style, paper, outline, line width, how dense), then each group
+         * under a prefix naming what it is for (budget, tone, a style, effects). */
         if (!par.hasParameter(kStyle)) {
             QStringList names;
             for (pnpr_style st : kStyles) names << QString::fromUtf8(pnpr_style_name(st));
@@ -392,10 +395,8 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                                   "the first time); hierarchy: Chi & Lee's painterly strokes over a sphere hierarchy "
                                   "of colour regions (built the first time)"));
         }
-        if (!par.hasParameter(kVariant))
-            par.addParam(RichEnum(kVariant, 0, QStringList() << "all (strokes + hatches)" << "directional strokes only"
-                                                             << "strokes + non-directional hatches",
-                                  "Sketch variant", "sketchy style: which primitives are drawn"));
+        if (!par.hasParameter(kPaper))
+            par.addParam(RichColor(kPaper, QColor(255, 255, 255), "Paper colour", "background of the drawing"));
         if (!par.hasParameter(kOutline))
             par.addParam(RichEnum(kOutline, 0, QStringList() << "style default" << "on" << "off", "Outline",
                                   QString("silhouettes and occluding contours, drawn in image space (normals are "
@@ -407,27 +408,60 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                                    QString("outline width in pixels, %1; 0 = the style's default (%2)")
                                        .arg(drawRange("outline-width"))
                                        .arg(outlineDefaults())));
+        if (!par.hasParameter(kLineWidth))
+            par.addParam(RichFloat(kLineWidth, static_cast<float>(drawOption("line-width")->def), "Line width",
+                                   QString("profile lines and sketch strokes, pixels, %1").arg(drawRange("line-width"))));
+        if (!par.hasParameter(kDensity))
+            par.addParam(RichFloat(kDensity, static_cast<float>(drawOption("density")->def), "budget: Screen density",
+                                   QString("%1, %2; negative = every point, however dense the view")
+                                       .arg(drawOption("density")->help)
+                                       .arg(drawRange("density"))));
+        if (!par.hasParameter(kBudget))
+            par.addParam(RichInt(kBudget, 0, "budget: Points per frame", "at most this many points per frame (continuous "
+                                 "resolution queue prefix); 0 = no count (the screen density still limits them)"));
+        if (!par.hasParameter(kMotionBudget))
+            par.addParam(RichInt(kMotionBudget, 200000, "budget: Points while moving",
+                                 "budget of frames drawn while the camera changes (a full frame follows 0.3 s "
+                                 "after the motion stops); 0 = same as the point budget"));
         if (!par.hasParameter(kToneSource))
-            par.addParam(RichEnum(kToneSource, 0, QStringList() << "auto" << "colour" << "light" << "both", "Tone source",
+            par.addParam(RichEnum(kToneSource, 0, QStringList() << "auto" << "colour" << "light" << "both", "tone: Source",
                                   "what makes a point dark (density of the dithering points: sketchy hatches, stipple "
                                   "dots): its colour, a key light from above on its normals, or both; auto = both "
                                   "with colours and normals, light without colours"));
         if (!par.hasParameter(kToneGamma))
-            par.addParam(RichFloat(kToneGamma, 0.0f, "Tone gamma",
+            par.addParam(RichFloat(kToneGamma, 0.0f, "tone: Gamma",
                                    "tone curve exponent (> 1 keeps large mid-tone areas light, the darkest parts "
                                    "dark); 0 = library default"));
-        if (!par.hasParameter(kBudget))
-            par.addParam(RichInt(kBudget, 0, "Point budget", "at most this many points per frame (continuous "
-                                 "resolution queue prefix); 0 = no count (the screen density still limits them)"));
-        if (!par.hasParameter(kDensity))
-            par.addParam(RichFloat(kDensity, static_cast<float>(drawOption("density")->def), "Screen density",
-                                   QString("%1, %2; negative = every point, however dense the view")
-                                       .arg(drawOption("density")->help)
-                                       .arg(drawRange("density"))));
-        if (!par.hasParameter(kMotionBudget))
-            par.addParam(RichInt(kMotionBudget, 200000, "Point budget while moving",
-                                 "budget of frames drawn while the camera changes (a full frame follows 0.3 s "
-                                 "after the motion stops); 0 = same as the point budget"));
+        if (!par.hasParameter(kVariant))
+            par.addParam(RichEnum(kVariant, 0, QStringList() << "all (strokes + hatches)" << "directional strokes only"
+                                                             << "strokes + non-directional hatches",
+                                  "sketchy: Sketch variant", "sketchy style: which primitives are drawn"));
+        if (!par.hasParameter(kBrush)) {
+            size_t np = 0;
+            const pnpr_brush_preset *bp = pnpr_brush_presets(&np);
+            QStringList names;
+            QString tip = "brush style: the brush";
+            for (size_t i = 0; i < np; i++) {
+                names << QString::fromUtf8(bp[i].name);
+                tip += QString("; %1: %2").arg(bp[i].name).arg(bp[i].description);
+            }
+            par.addParam(RichEnum(kBrush, 0, names, "brush: Brush", tip));
+        }
+        if (!par.hasParameter(kBrushScale))
+            par.addParam(RichFloat(kBrushScale, static_cast<float>(drawOption("brush-scale")->def), "brush: Brush scale",
+                                   QString("brush style: %1, %2").arg(drawOption("brush-scale")->help).arg(drawRange("brush-scale"))));
+        if (!par.hasParameter(kTam)) {
+            QStringList names;
+            for (int k = 0; k < PNPR_TAM_COUNT_; k++) names << QString::fromUtf8(pnpr_tam_name((pnpr_tam_kind)k));
+            par.addParam(RichEnum(kTam, 0, names, "hierarchy: Tonal art map",
+                                  "hierarchy style: paint (coloured dabs), hatch (pencil hatching in ink), dots (halftone)"));
+        }
+        if (!par.hasParameter(kAbstraction))
+            par.addParam(RichFloat(kAbstraction, static_cast<float>(hierOption("hier-abstraction")->def), "hierarchy: Abstraction",
+                                   hierTip("hier-abstraction")));
+        if (!par.hasParameter(kStrokePx))
+            par.addParam(RichFloat(kStrokePx, static_cast<float>(hierOption("stroke-px")->def), "hierarchy: Stroke size (px)",
+                                   hierTip("stroke-px")));
         if (!par.hasParameter(kEffects)) {
             QStringList names;
             names << "none";
@@ -439,50 +473,19 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                 docs += QString("; %1: %2").arg(QString::fromUtf8(pr[i].name)).arg(QString::fromUtf8(pr[i].doc));
             }
             names << "pipeline file";
-            par.addParam(RichEnum(kEffects, 0, names, "Image-space effects",
+            par.addParam(RichEnum(kEffects, 0, names, "effects: Image-space effects",
                                   "segment-specific image-space effects (Wegen et al., docs/effects.md) over the "
                                   "style: a preset for every point, or a pipeline file (effect chains per segment "
                                   "label, as `pointnpr render --effects`)" + docs));
         }
         if (!par.hasParameter(kEffectsFile))
             par.addParam(RichOpenFile(kEffectsFile, QString(), QStringList() << "*.fx" << "*.txt" << "*",
-                                      "Effects pipeline file", "the pipeline file read when the effects are 'pipeline "
+                                      "effects: Pipeline file", "the pipeline file read when the effects are 'pipeline "
                                       "file' (read again when it changes)"));
         if (!par.hasParameter(kEffectsPreview))
-            par.addParam(RichFloat(kEffectsPreview, 0.5f, "Effects preview scale while moving",
+            par.addParam(RichFloat(kEffectsPreview, 0.5f, "effects: Preview scale while moving",
                                    QString("effects layers at this fraction of the viewport while the camera moves "
                                            "(%1..1; the full frame follows when it rests)").arg((double)PNPR_EFFECTS_SCALE_MIN)));
-        if (!par.hasParameter(kPaper))
-            par.addParam(RichColor(kPaper, QColor(255, 255, 255), "Paper colour", "background of the drawing"));
-        if (!par.hasParameter(kLineWidth))
-            par.addParam(RichFloat(kLineWidth, static_cast<float>(drawOption("line-width")->def), "Line width",
-                                   QString("profile lines and sketch strokes, pixels, %1").arg(drawRange("line-width"))));
-        if (!par.hasParameter(kBrush)) {
-            size_t np = 0;
-            const pnpr_brush_preset *bp = pnpr_brush_presets(&np);
-            QStringList names;
-            QString tip = "brush style: the brush";
-            for (size_t i = 0; i < np; i++) {
-                names << QString::fromUtf8(bp[i].name);
-                tip += QString("; %1: %2").arg(bp[i].name).arg(bp[i].description);
-            }
-            par.addParam(RichEnum(kBrush, 0, names, "Brush", tip));
-        }
-        if (!par.hasParameter(kBrushScale))
-            par.addParam(RichFloat(kBrushScale, static_cast<float>(drawOption("brush-scale")->def), "Brush scale",
-                                   QString("brush style: %1, %2").arg(drawOption("brush-scale")->help).arg(drawRange("brush-scale"))));
-        if (!par.hasParameter(kTam)) {
-            QStringList names;
-            for (int k = 0; k < PNPR_TAM_COUNT_; k++) names << QString::fromUtf8(pnpr_tam_name((pnpr_tam_kind)k));
-            par.addParam(RichEnum(kTam, 0, names, "Tonal art map",
-                                  "hierarchy style: paint (coloured dabs), hatch (pencil hatching in ink), dots (halftone)"));
-        }
-        if (!par.hasParameter(kAbstraction))
-            par.addParam(RichFloat(kAbstraction, static_cast<float>(hierOption("hier-abstraction")->def), "Abstraction",
-                                   hierTip("hier-abstraction")));
-        if (!par.hasParameter(kStrokePx))
-            par.addParam(RichFloat(kStrokePx, static_cast<float>(hierOption("stroke-px")->def), "Stroke size (px)",
-                                   hierTip("stroke-px")));
     } catch (...) {
     }
 }
