@@ -86,100 +86,109 @@ bool StageJob::start(const pnpr_cloud &src, const StageRequest &req, std::string
     return true;
 }
 
+void StageJob::begin(const char *part)
+{
+    std::lock_guard<std::mutex> lock(stageMutex_);
+    part_ = part;
+    stage_ = part;
+    permille_.store(0);
+}
+
+/* The message of a stage: `ok` when done, "WHAT cancelled" / "WHAT failed: WHY" otherwise. */
+void StageJob::note(StageOutcome o, const std::string &ok, const std::string &what, const std::string &why)
+{
+    if (o == StageOutcome::Done) messages.push_back({false, ok});
+    else if (o == StageOutcome::Cancelled) messages.push_back({true, what + " cancelled"});
+    else messages.push_back({true, what + " failed: " + why});
+}
+
+StageOutcome StageJob::runFeatures(const pnpr_progress &pr, std::chrono::steady_clock::time_point t)
+{
+    pnpr_features_options fo{};
+    fo.want = request.want;
+    fo.tone = request.tone;
+    fo.progress = pr;
+    pnpr_status st = pnpr_compute_features(&cloud, &fo, nullptr);
+    std::string what = wantList(request.want);
+    note(outcome(st), format("features computed for the %s style (%zu points, %ld ms): %s", request.style.c_str(), cloud.count,
+                             msSince(t), what.c_str()),
+         "feature analysis (" + what + ")", pnpr_status_string(st));
+    return outcome(st);
+}
+
+StageOutcome StageJob::runJseg(const pnpr_progress &pr, std::chrono::steady_clock::time_point t)
+{
+    std::vector<uint32_t> labels(cloud.count);
+    pnpr_jseg_options jo{};
+    jo.progress = pr;
+    pnpr_segment_info info{};
+    pnpr_status st = pnpr_segment_jseg(cloud.xyz, cloud.rgb, cloud.count, &jo, labels.data(), &info);
+    if (st == PNPR_OK && (st = pnpr_cloud_alloc_labels(&cloud)) == PNPR_OK)
+        std::memcpy(cloud.label, labels.data(), labels.size() * sizeof(uint32_t));
+    note(outcome(st), format("%zu segments (JSEG, %zu points, %ld ms) for the %s style", (size_t)info.segment_count,
+                             cloud.count, msSince(t), request.style.c_str()),
+         "segmentation (JSEG)", pnpr_status_string(st));
+    return outcome(st);
+}
+
+StageOutcome StageJob::runBrush(const pnpr_progress &pr, std::chrono::steady_clock::time_point t)
+{
+    pnpr_brush_options bo{};
+    bo.progress = pr;
+    pnpr_brush_stats bs{};
+    pnpr_error err{};
+    pnpr_status st = pnpr_brush_prepare(&cloud, &bo, &bs, &err);
+    note(outcome(st), format("brush strokes prepared (%zu colour clusters, %zu points, %ld ms)", (size_t)bs.clusters,
+                             cloud.count, msSince(t)),
+         "brush preparation", errorText(st, err));
+    return outcome(st);
+}
+
+StageOutcome StageJob::runTree(const pnpr_progress &pr, std::chrono::steady_clock::time_point t)
+{
+    pnpr_sphere_tree_options to{};
+    to.progress = pr;
+    pnpr_sphere_tree_stats ts{};
+    pnpr_error err{};
+    pnpr_status st = pnpr_sphere_tree_build(&cloud, &to, &tree, &ts, &err);
+    note(outcome(st), format("sphere hierarchy built (%zu leaves, %zu regions, %zu points, %ld ms)", (size_t)ts.leaves,
+                             (size_t)ts.regions, cloud.count, msSince(t)),
+         "sphere hierarchy", errorText(st, err));
+    return outcome(st);
+}
+
+StageOutcome StageJob::runLines(const pnpr_progress &pr, std::chrono::steady_clock::time_point t)
+{
+    pnpr_lines_options lo{};
+    lo.progress = pr;
+    pnpr_status st = pnpr_profile_lines(&cloud, &lo, &lines, nullptr);
+    note(outcome(st), format("%zu profile lines (%ld ms)", (size_t)lines.count, msSince(t)), "profile lines",
+         pnpr_status_string(st));
+    return outcome(st);
+}
+
+/* The stages asked for, in the plan's order; a cancel ends the job (the later stages are not run). */
 void StageJob::run()
 {
     auto t0 = std::chrono::steady_clock::now();
     pnpr_progress pr{&StageJob::progress, this};
-    const char *style = request.style.c_str();
-    auto begin = [this](const char *part) {
-        std::lock_guard<std::mutex> lock(stageMutex_);
-        part_ = part;
-        stage_ = part;
-        permille_.store(0);
+    using Runner = StageOutcome (StageJob::*)(const pnpr_progress &, std::chrono::steady_clock::time_point);
+    struct Step {
+        bool asked;
+        const char *part;
+        Runner fn;
+        StageOutcome *out;
     };
-    auto note = [this](StageOutcome o, std::string ok, std::string what, const std::string &why) {
-        if (o == StageOutcome::Done) messages.push_back({false, std::move(ok)});
-        else if (o == StageOutcome::Cancelled) messages.push_back({true, what + " cancelled"});
-        else messages.push_back({true, what + " failed: " + why});
-    };
-    bool stop = false; /* a cancel ends the job: the later stages are not run */
-    if (request.want) {
-        begin("features");
-        auto t = std::chrono::steady_clock::now();
-        pnpr_features_options fo;
-        std::memset(&fo, 0, sizeof fo);
-        fo.want = request.want;
-        fo.tone = request.tone;
-        fo.progress = pr;
-        pnpr_status st = pnpr_compute_features(&cloud, &fo, nullptr);
-        features = outcome(st);
-        note(features, format("features computed for the %s style (%zu points, %ld ms): %s", style, cloud.count, msSince(t),
-                              wantList(request.want).c_str()),
-             "feature analysis (" + wantList(request.want) + ")", pnpr_status_string(st));
-        stop = features == StageOutcome::Cancelled;
-    }
-    if (request.jseg && !stop && cloud.rgb) {
-        begin("segments");
-        auto t = std::chrono::steady_clock::now();
-        std::vector<uint32_t> labels(cloud.count);
-        pnpr_jseg_options jo;
-        std::memset(&jo, 0, sizeof jo);
-        jo.progress = pr;
-        pnpr_segment_info info;
-        std::memset(&info, 0, sizeof info);
-        pnpr_status st = pnpr_segment_jseg(cloud.xyz, cloud.rgb, cloud.count, &jo, labels.data(), &info);
-        if (st == PNPR_OK && (st = pnpr_cloud_alloc_labels(&cloud)) == PNPR_OK)
-            std::memcpy(cloud.label, labels.data(), labels.size() * sizeof(uint32_t));
-        jseg = outcome(st);
-        note(jseg, format("%zu segments (JSEG, %zu points, %ld ms) for the %s style", (size_t)info.segment_count, cloud.count,
-                          msSince(t), style),
-             "segmentation (JSEG)", pnpr_status_string(st));
-        stop = jseg == StageOutcome::Cancelled;
-    }
-    if (request.brush && !stop) {
-        begin("brush");
-        auto t = std::chrono::steady_clock::now();
-        pnpr_brush_options bo;
-        std::memset(&bo, 0, sizeof bo);
-        bo.progress = pr;
-        pnpr_brush_stats bs;
-        std::memset(&bs, 0, sizeof bs);
-        pnpr_error err;
-        std::memset(&err, 0, sizeof err);
-        pnpr_status st = pnpr_brush_prepare(&cloud, &bo, &bs, &err);
-        brush = outcome(st);
-        note(brush, format("brush strokes prepared (%zu colour clusters, %zu points, %ld ms)", (size_t)bs.clusters, cloud.count,
-                           msSince(t)),
-             "brush preparation", errorText(st, err));
-        stop = brush == StageOutcome::Cancelled;
-    }
-    if (request.tree && !stop) {
-        begin("hierarchy");
-        auto t = std::chrono::steady_clock::now();
-        pnpr_sphere_tree_options to;
-        std::memset(&to, 0, sizeof to);
-        to.progress = pr;
-        pnpr_sphere_tree_stats ts;
-        std::memset(&ts, 0, sizeof ts);
-        pnpr_error err;
-        std::memset(&err, 0, sizeof err);
-        pnpr_status st = pnpr_sphere_tree_build(&cloud, &to, &tree, &ts, &err);
-        hierarchy = outcome(st);
-        note(hierarchy, format("sphere hierarchy built (%zu leaves, %zu regions, %zu points, %ld ms)", (size_t)ts.leaves,
-                               (size_t)ts.regions, cloud.count, msSince(t)),
-             "sphere hierarchy", errorText(st, err));
-        stop = hierarchy == StageOutcome::Cancelled;
-    }
-    if (request.lines && !stop) {
-        begin("profile lines");
-        auto t = std::chrono::steady_clock::now();
-        pnpr_lines_options lo;
-        std::memset(&lo, 0, sizeof lo);
-        lo.progress = pr;
-        pnpr_status st = pnpr_profile_lines(&cloud, &lo, &lines, nullptr);
-        profile = outcome(st);
-        note(profile, format("%zu profile lines (%ld ms)", (size_t)lines.count, msSince(t)), "profile lines",
-             pnpr_status_string(st));
+    const Step steps[] = {{request.want != 0, "features", &StageJob::runFeatures, &features},
+                          {request.jseg && cloud.rgb, "segments", &StageJob::runJseg, &jseg},
+                          {request.brush, "brush", &StageJob::runBrush, &brush},
+                          {request.tree, "hierarchy", &StageJob::runTree, &hierarchy},
+                          {request.lines, "profile lines", &StageJob::runLines, &profile}};
+    for (const Step &step : steps) {
+        if (!step.asked) continue;
+        begin(step.part);
+        *step.out = (this->*step.fn)(pr, std::chrono::steady_clock::now());
+        if (*step.out == StageOutcome::Cancelled) break;
     }
     elapsedMs_ = msSince(t0);
     finished_.store(true);

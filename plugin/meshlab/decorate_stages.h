@@ -13,6 +13,7 @@
 #include <pointnpr/tone.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -68,6 +69,13 @@ public:
 
 private:
     void run();
+    void begin(const char *part);
+    void note(StageOutcome o, const std::string &ok, const std::string &what, const std::string &why);
+    StageOutcome runFeatures(const pnpr_progress &pr, std::chrono::steady_clock::time_point t);
+    StageOutcome runJseg(const pnpr_progress &pr, std::chrono::steady_clock::time_point t);
+    StageOutcome runBrush(const pnpr_progress &pr, std::chrono::steady_clock::time_point t);
+    StageOutcome runTree(const pnpr_progress &pr, std::chrono::steady_clock::time_point t);
+    StageOutcome runLines(const pnpr_progress &pr, std::chrono::steady_clock::time_point t);
     static int progress(void *user, const char *stage, double fraction);
     std::thread thread_;
     std::atomic<bool> cancel_{false}, finished_{false};

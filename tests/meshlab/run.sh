@@ -457,6 +457,53 @@ gui() {
   return 0
 }
 
+# aerial_ply OUT: a rolling field [0,100]^2 of 600 x 600 jittered points (z = 0.6 sin(x/7) cos(y/9)
+# plus 0.03 noise, greens and browns with noise) and 50 trees (hemispheres of radius 2..4 at
+# random places, 2 000 points each, dark green) and a 250 m mast of 200 points at its centre (in
+# MeshLab's view, fitted to the bounding box, the field is then small: about 20 points per pixel):
+# 460 200 points, coloured, ascii
+aerial_ply() {
+  awk 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
+    function c(v) { v = int(v + rnd() * 41 - 20); return v < 0 ? 0 : (v > 255 ? 255 : v) }
+    BEGIN { S = 7; n = 600; nt = 50; m = 2000
+      printf "ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n", n * n + nt * m + 200
+      for (i = 0; i < n; i++) for (j = 0; j < n; j++) {
+        x = (i + rnd() - 0.5) * 100 / n; y = (j + rnd() - 0.5) * 100 / n
+        z = 0.6 * sin(x / 7) * cos(y / 9) + 0.03 * (rnd() - 0.5)
+        g = (int(x / 25) + int(y / 25)) % 2
+        printf "%.4f %.4f %.4f %d %d %d\n", x, y, z, c(g ? 120 : 150), c(g ? 150 : 130), c(g ? 70 : 80) }
+      for (t = 0; t < nt; t++) {
+        cx = 5 + rnd() * 90; cy = 5 + rnd() * 90; r = 2 + 2 * rnd()
+        for (k = 0; k < m; k++) {
+          u = rnd(); ph = 6.2831853 * rnd(); ct = u; st = sqrt(1 - u * u)
+          printf "%.4f %.4f %.4f %d %d %d\n", cx + r * st * cos(ph), cy + r * st * sin(ph), 0.6 * sin(cx / 7) * cos(cy / 9) + r * ct, c(40), c(90), c(40) } }
+      for (k = 0; k < 200; k++) printf "50 50 %.4f 90 90 90\n", 1.25 * k }' > "$1"
+}
+
+# aerial_ink CAMERA NPR: the fraction of dark pixels (grey < 128) among the samples of the field's
+# square [5,95]^2 at z = 0 projected with MeshLab's matrices (steps of 0.5)
+aerial_ink() {
+  awk 'FILENAME == ARGV[1] { if ($1 == "modelview") for (i = 0; i < 16; i++) M[i] = $(i + 2)
+                              if ($1 == "projection") for (i = 0; i < 16; i++) P[i] = $(i + 2)
+                              if ($1 == "viewport") { vw = $4; vh = $5 }
+                              next }
+    FNR == 1 { row = -3 } { row++ }
+    row == -1 { W = $1; next }
+    row < 1 { next }
+    { for (c = 1; c <= NF; c++) px[(row - 1) * W + c - 1] = $c }
+    END {
+      n = 0; d = 0
+      for (x = 5; x <= 95; x += 0.5) for (y = 5; y <= 95; y += 0.5) {
+        for (i = 0; i < 4; i++) e[i] = M[i] * x + M[4 + i] * y + M[12 + i]
+        for (i = 0; i < 4; i++) cl[i] = P[i] * e[0] + P[4 + i] * e[1] + P[8 + i] * e[2] + P[12 + i] * e[3]
+        if (cl[3] <= 0) continue
+        X = int((cl[0] / cl[3] + 1) / 2 * vw); Y = int(vh - 1 - (cl[1] / cl[3] + 1) / 2 * vh)
+        if (X < 0 || X >= vw || Y < 0 || Y >= vh) continue
+        n++; d += px[Y * W + X] < 128 }
+      if (n < 1000) exit 1
+      printf "%.4f\n", d / n }' "$1" "$2"
+}
+
 # check_infobox PREFIX: MeshLab's info box (a band of its log-area colour at alpha 128/255 over the
 # bottom rows, drawn by QPainter after the decorations) over our frame is the same overlay as over
 # MeshLab's own frame, i.e. the GL state we leave does not change it. From the test hook's frames:
@@ -1108,6 +1155,19 @@ decorate)
   expect_log cancel "pointnpr decorator: background computation cancelled after"
   expect_no_log cancel "features computed for the sketchy style"
   grep -q "^points 240002 drawn [1-9][0-9]* strokes 0\$" "$T/cancel-camera.txt" || fail "'cancel': the frame after the cancel is not plain points (strokes 0): $(grep ^points "$T/cancel-camera.txt")"
+  # An aerial-like scene at first sight (issue: sketchy drew a 499k-point aerial scan as a black
+  # shape): a rolling field of 360 000 jittered points (0.17 apart, colour noise) with 50 trees
+  # (hemispheres of 2 000 points) and a tall mast, 460 200 points in all, in MeshLab's default
+  # top view (fitted to the bounding box, so the field is small: about 12 points drawn per pixel;
+  # the mast's box also makes the screen density's estimate of the covered pixels generous).
+  # Default sketchy: ink (grey < 128) below half of the field's pixels (measured 0.21).
+  aerial_ply "$T/aerial.ply"
+  GUI_POINTS=460200
+  gui aerial sketchy "$T/aerial.ply"
+  GUI_POINTS=''
+  ink_def=$(aerial_ink "$T/aerial-camera.txt" "$T/aerial-npr.pgm")
+  log "aerial: ink of the field's pixels ${ink_def:-?}; $(grep ^points "$T/aerial-camera.txt" 2> /dev/null)"
+  holds aerial "default sketchy not a black shape: ink < 0.5 of the field's pixels" "${ink_def:-1} < 0.5"
   expect_log meshlayer "pointnpr decorator: uploaded 15002 points from 1 layer\\(s\\) \\(1 mesh layer\\(s\\): their vertices\\)"
   ;;
 
