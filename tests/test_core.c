@@ -1,6 +1,9 @@
 /* Status strings, property management, append/merge of clouds, origin handling, style maps. */
 #include "testutil.h"
 
+#include <pointnpr/look.h>
+#include <pointnpr/options.h>
+
 #include <pointnpr/memory.h>
 #include <pointnpr/style.h>
 #include "../core/internal.h"
@@ -194,10 +197,63 @@ static void test_memory(void)
     CHECK_STATUS(pnpr_memory_check(1, (size_t)1 << 50, "x", NULL), PNPR_OK);
 }
 
+/* The looks (look.h): names unique, lower case without spaces, found case-insensitively; applied to
+ * zeroed options they give option values in the draw table's ranges and an opaque paper; an explicit
+ * choice of the caller stays. */
+static void test_looks(void)
+{
+    size_t n = 0;
+    const pnpr_look *looks = pnpr_looks(&n);
+    CHECK(looks != NULL && n >= 5);
+    size_t nt = 0;
+    const pnpr_option_desc *table = pnpr_draw_option_table(&nt);
+    for (size_t i = 0; i < n; i++) {
+        const char *name = looks[i].name;
+        CHECK(name && name[0] && looks[i].description && looks[i].description[0]);
+        for (const char *c = name; *c; c++) CHECK_MSG(*c >= 'a' && *c <= 'z', "look '%s'", name);
+        for (size_t j = 0; j < i; j++) CHECK(strcmp(name, looks[j].name) != 0);
+        size_t k = 99;
+        char upper[32];
+        snprintf(upper, sizeof upper, "%s", name);
+        for (char *c = upper; *c; c++) *c = (char)(*c - 'a' + 'A');
+        CHECK_STATUS(pnpr_look_find(upper, &k), PNPR_OK);
+        CHECK(k == i);
+        pnpr_draw_options o;
+        memset(&o, 0, sizeof o);
+        pnpr_look_apply(&looks[i], &o);
+        CHECK(o.style == looks[i].style && (unsigned)o.style < PNPR_STYLE_COUNT_);
+        CHECK(o.background[3] == 1 && o.background[0] == looks[i].paper[0] / 255.0f);
+        pnpr_error err = {0};
+        CHECK_MSG(pnpr_option_check(table, nt, &o, &err) == PNPR_OK, "look '%s': %s", name, err.message);
+    }
+    size_t k = 0;
+    CHECK_STATUS(pnpr_look_find("crayon", &k), PNPR_ERR_NOT_FOUND);
+    CHECK_STATUS(pnpr_look_find(NULL, &k), PNPR_ERR_INVALID_ARGUMENT);
+    char buf[256];
+    CHECK(strncmp(pnpr_look_list(buf, sizeof buf, ", "), looks[0].name, strlen(looks[0].name)) == 0);
+    /* sepia: its ink and paper on zeroed options; a given line width, ink and background stay */
+    CHECK_STATUS(pnpr_look_find("sepia", &k), PNPR_OK);
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    pnpr_look_apply(&looks[k], &o);
+    CHECK(o.style == PNPR_STYLE_SKETCHY && o.outline == 1 && o.ink[0] > o.ink[2] && o.background[0] > o.background[2]);
+    memset(&o, 0, sizeof o);
+    o.line_width = 3;
+    o.ink[3] = 0.5f;
+    o.background[3] = 1; /* opaque black, given */
+    o.sketch_variant = PNPR_SKETCH_DIRECTIONAL;
+    pnpr_look_apply(&looks[k], &o);
+    CHECK(o.line_width == 3 && o.ink[0] == 0 && o.ink[3] == 0.5f && o.background[0] == 0 && o.background[3] == 1);
+    CHECK(o.sketch_variant == PNPR_SKETCH_DIRECTIONAL);
+    pnpr_look_apply(NULL, &o); /* no crash */
+    pnpr_look_apply(&looks[k], NULL);
+}
+
 int main(void)
 {
     test_select();
     test_memory();
+    test_looks();
     test_status_strings();
     test_zero_cloud_is_valid();
     test_properties();

@@ -17,7 +17,9 @@ typedef struct cli_render_opts {
     pnpr_sphere_tree_options topt; /* the hierarchy's tree (the plan builds it for the hierarchy style) */
     const char *importance_path;  /* --importance FILE.png */
     uint8_t *importance;          /* read by cli_render_opts_finish (dopt.hierarchy points at it) */
-    double bg[3];                 /* 0..255 */
+    double bg[3];                 /* 0..255; bg[0] < 0: not given (the look's paper, else white) */
+    int look;                     /* --look: pnpr_looks index + 1 (0: none) */
+    int style_given;              /* --style was given (it and --look exclude each other) */
     int alpha, quiet, max_tile;
     int budget_all;               /* --budget all: every point (no --density either) */
     size_t memory_limit;          /* --memory-limit (0: what the machine has) */

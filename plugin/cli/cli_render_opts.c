@@ -7,6 +7,8 @@
 #include "cli_render.h"
 #include "cli_opts.h"
 
+#include <pointnpr/look.h>
+
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
 #include <pointnpr/plan.h>
@@ -107,12 +109,36 @@ static int parse_background(void *member, const char *cmd, const char *v)
     return 0;
 }
 
+static int parse_look(void *member, const char *cmd, const char *v)
+{
+    size_t i = 0;
+    if (pnpr_look_find(v, &i) == PNPR_OK) {
+        *(int *)member = (int)i + 1;
+        return 1;
+    }
+    char names[200];
+    fprintf(stderr, "pointnpr %s: --look wants one of %s, got '%s'\n", cmd, pnpr_look_list(names, sizeof names, ", "), v);
+    return 0;
+}
+
+/* --style, remembered as given (member is dopt.style inside cli_render_opts) */
+static int parse_render_style(void *member, const char *cmd, const char *v)
+{
+    cli_render_opts *o = (cli_render_opts *)(void *)((char *)member - offsetof(cli_render_opts, dopt.style));
+    o->style_given = 1;
+    return cli_parse_style(member, cmd, v);
+}
+
 static const char *const tone_sources[] = {"auto", "color", "light", "both", NULL}; /* pnpr_tone_source */
 
 #define R_OPT(name, kind, member, parse, metavar, help)                                                              \
     {name, NULL, kind, offsetof(cli_render_opts, member), 0, 0, 0, 0, NULL, parse, metavar, help}
 static const cli_opt render_opts[] = {
-    CLI_STYLE_OPT(cli_render_opts, dopt.style),
+    {"--style", NULL, CLI_CUSTOM, offsetof(cli_render_opts, dopt.style), 0, 0, 0, 0, NULL, parse_render_style, "S",
+     "the drawing style (docs/rendering.md)"},
+    R_OPT("--look", CLI_CUSTOM, look, parse_look, "NAME",
+          "a finished look: a style with its variant, outline, widths, ink and paper (the library's looks, "
+          "docs/rendering.md \"Looks\"; a wrong name lists them); the options given beside it win"),
     R_OPT("--style-map", CLI_TEXT, style_map_path, NULL, "FILE",
           "intermingled styles: FILE has lines 'LABEL STYLE' (a segment label of IN, PLY property segment or "
           "label) and '* STYLE' (the default, else --style); '#' starts a comment"),
@@ -182,6 +208,10 @@ void cli_render_usage(FILE *f, int width, int height)
     opt_usage(f, "--style");
     snprintf(more, sizeof more, "(%s; default %s)", pnpr_style_list(styles, sizeof styles, " | ", 0),
              pnpr_style_name((pnpr_style)0));
+    cli_usage_more(f, more);
+    char looks[200];
+    opt_usage(f, "--look");
+    snprintf(more, sizeof more, "(%s)", pnpr_look_list(looks, sizeof looks, " | "));
     cli_usage_more(f, more);
     static const char *const first[] = {"--style-map", "--effects", "--layering", "--effects-scale",
                                         "--effects-serial", "--sketch"};
@@ -433,7 +463,7 @@ void cli_render_opts_init(cli_render_opts *o, int width, int height)
 {
     memset(o, 0, sizeof *o);
     cli_view_init(&o->view, width, height);
-    o->bg[0] = o->bg[1] = o->bg[2] = 255;
+    o->bg[0] = -1; /* not given */
 }
 
 int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
@@ -445,7 +475,16 @@ int cli_render_opts_finish(cli_render_opts *o, const char *cmd)
         return 0;
     }
     if (o->budget_all) o->dopt.density = -1; /* no screen-space budget (render.h) */
-    for (int c = 0; c < 3; c++) o->dopt.background[c] = (float)(o->bg[c] / 255.0);
+    if (o->look && o->style_given) {
+        fprintf(stderr, "pointnpr %s: --look chooses the style; give --look or --style\n", cmd);
+        return 0;
+    }
+    if (o->bg[0] >= 0) { /* given (black too: opaque, so the look keeps it) */
+        for (int c = 0; c < 3; c++) o->dopt.background[c] = (float)(o->bg[c] / 255.0);
+        o->dopt.background[3] = 1;
+    }
+    if (o->look) pnpr_look_apply(&pnpr_looks(NULL)[o->look - 1], &o->dopt); /* fills what was not given */
+    if (o->bg[0] < 0 && !o->look) o->dopt.background[0] = o->dopt.background[1] = o->dopt.background[2] = 1;
     o->dopt.background[3] = o->alpha ? 0.0f : 1.0f;
     if (o->style_map_path && !read_style_map(cmd, o->style_map_path, &o->smap)) return 0;
     if (o->smap.have_default) o->dopt.style = o->smap.default_style;

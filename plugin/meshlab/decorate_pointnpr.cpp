@@ -26,6 +26,7 @@
 #include <pointnpr/effects.h>
 #include <pointnpr/features.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/look.h>
 #include <pointnpr/options.h>
 #include <pointnpr/plan.h>
 #include <pointnpr/render.h>
@@ -70,6 +71,7 @@ using pnpr_meshlab::findAttribute;
 /* Settings names. The style list grew (painterly): MeshLab keeps a saved RichEnum with its old
  * entries, so the style is stored under a new name (the old "PointNPR::Style" is ignored). */
 const char *const kStyle = "PointNPR::DrawStyle";
+const char *const kLook = "PointNPR::Look";
 const char *const kVariant = "PointNPR::SketchVariant";
 const char *const kBudget = "PointNPR::PointBudget";
 const char *const kMotionBudget = "PointNPR::MotionBudget";
@@ -384,6 +386,18 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
         /* The panel's order (MeshLab shows the parameters as added; the settings names are what is
          * saved): the look first (style, paper, outline, line width, how dense), then each group
          * under a prefix naming what it is for (budget, tone, a style, effects). */
+        if (!par.hasParameter(kLook)) {
+            size_t n = 0;
+            const pnpr_look *looks = pnpr_looks(&n);
+            QStringList names("custom (the parameters below)");
+            QString tip = "a finished look from the library (pointnpr render --look): it sets the style and, where "
+                          "the parameters below are at their defaults, the outline, widths, ink and paper";
+            for (size_t i = 0; i < n; i++) {
+                names << QString::fromUtf8(looks[i].name);
+                tip += QString("; %1: %2").arg(looks[i].name).arg(looks[i].description);
+            }
+            par.addParam(RichEnum(kLook, 0, names, "Look", tip));
+        }
         if (!par.hasParameter(kStyle)) {
             QStringList names;
             for (pnpr_style st : kStyles) names << QString::fromUtf8(pnpr_style_name(st));
@@ -552,6 +566,7 @@ namespace {
 /* Parameters with fallbacks (a missing parameter never throws into MeshLab). */
 struct Params {
     pnpr_style style = PNPR_STYLE_SKETCHY;
+    const pnpr_look *look = nullptr; /* a library look chosen: it sets the style (and fills defaults) */
     pnpr_sketch_variant variant = PNPR_SKETCH_ALL;
     int budget = 0, motionBudget = 200000;
     float density = 0;        /* 0 = the library's default (pnpr_draw_option_table), < 0 = none */
@@ -618,6 +633,17 @@ Params readParams(const RichParameterList *par)
     /* abstraction: a negative value is "none" (NEGATIVE_OFF); out of range otherwise: the default */
     if (p.abstraction > 0 && !pnpr_option_in_range(hierOption("hier-abstraction"), p.abstraction)) p.abstraction = 0;
     if (!pnpr_option_in_range(hierOption("stroke-px"), p.strokePx)) p.strokePx = 0;
+    if (par && par->hasParameter(kLook)) {
+        size_t n = 0;
+        const pnpr_look *looks = pnpr_looks(&n);
+        int i = par->getEnum(kLook);
+        if (i >= 1 && (size_t)i <= n) p.look = &looks[i - 1];
+    }
+    if (p.look) { /* the look's style; its variant and outline where the dialog's are at their defaults */
+        p.style = p.look->style;
+        if (p.variant == PNPR_SKETCH_ALL) p.variant = p.look->sketch_variant;
+        if (p.outline == 0) p.outline = p.look->outline;
+    }
     /* test-only override (tests/meshlab/run.sh): the style by name */
     if (const char *s = std::getenv("PNPR_MESHLAB_TEST_STYLE")) {
         pnpr_style st;
@@ -1596,6 +1622,13 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     o.stroke_width = prm.lineWidth;
     o.outline = plainPoints ? -1 : prm.outline;
     o.outline_width = prm.outlineWidth;
+    if (prm.look && !plainPoints) { /* the look fills what the dialog leaves at its defaults */
+        const pnpr_option_desc *lw = drawOption("line-width");
+        if (lw && o.line_width == (float)lw->def) o.line_width = o.stroke_width = 0;
+        if (prm.paper == QColor(255, 255, 255)) std::memset(o.background, 0, sizeof o.background);
+        pnpr_look_apply(prm.look, &o);
+        o.style = ls.main; /* the look's style, or a layer's own */
+    }
     if (tile) {
         scaleForTile(o, s->snapK);
         report(QString("snapshot tiles at %1x the view: %2 points each, widths %1x").arg(s->snapK, 0, 'g', 3).arg(o.budget), false);

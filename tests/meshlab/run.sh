@@ -1216,6 +1216,7 @@ decorate_styles)
   BASECONF=$(find "$T/home-cartoon/.config" -name '*.conf' | head -n 1)
   [[ -f "$BASECONF" ]] || die "MeshLab wrote no settings file under $T/home-cartoon/.config"
   conf_has() { grep -q "^PointNPR%3A%3A$1=.*$2" "$BASECONF" || fail "settings: PointNPR::$1 lacks /$2/"; }
+  conf_has Look 'enum_val5=\\"comic\\"'
   conf_has DrawStyle 'enum_cardinality=\\"8\\"'
   conf_has DrawStyle 'enum_val5=\\"painterly\\"'
   conf_has DrawStyle 'enum_val6=\\"brush\\"'
@@ -1320,6 +1321,15 @@ decorate_styles)
   printf 'node a labels 1\ntoon levels=99\n' > "$T/bad.fx"
   PNPR_MESHLAB_TEST_EFFECTS="file:$T/bad.fx" gui fxbad points "$T/colour.ply"
   expect_log fxbad "pointnpr decorator: effects file: .*bad.fx:2: .*levels.*; drawn without"
+
+  # 6b. a look (the library's looks, pointnpr render --look) from the settings: Look = comic (the
+  #    5th look): the cartoon style planned and drawn, flat fills, and outlines at the look's 3.5 px
+  #    (more outline ink than the cartoon default's 2.5 px)
+  nlook=$("$CLI" render --help 2>&1 | tr -d '\n' | sed -n 's/.*(\(pencil[^)]*\)).*/\1/p' | tr -s ' ' | tr '|' '\n' | awk '{$1=$1} $0 == "comic" {print NR}')
+  gui lookcomic cartoon "$T/colour.ply" Look="${nlook:-0}" && measure lookcomic
+  expect_log lookcomic "pointnpr decorator: plan for the cartoon style: .*segments by JSEG"
+  holds lookcomic "comic look: cartoon's flat fills (sd <= 1.5) and silhouette (>= 90%), more outline ink than cartoon's default (${N_cartoon_BAND:-?})" \
+    "${N_lookcomic_SY:-99} <= 1.5 && ${N_lookcomic_EDGE:-0} >= 0.9 && ${N_lookcomic_BAND:-0} >= 1.2 * ${N_cartoon_BAND:-1e9}"
 
   # 7. a style per layer (the filter "NPR: Set layer style"; here the test hook writes the same
   #    per-mesh attribute): the coloured cube in cartoon and a copy 1.2 to its right in points, the

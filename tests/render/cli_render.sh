@@ -107,6 +107,24 @@ printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty floa
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/empty.png")" -eq 32 ]' "empty cloud renders the background"
 "$bin" render "$dir/empty.ply" -o "$dir/empty-lines.png" --size 32x32 --quiet --style lines
 check '[ $? -eq 0 ] && cmp -s "$dir/empty.png" "$dir/empty-lines.png"' "empty cloud, lines style: the same background image"
+# --look (the library's looks, look.h): sepia's paper on an empty cloud is --background 244,234,212;
+# a background given beside it wins; comic on the cube is cartoon with outlines 3.5 px, byte for byte;
+# --look with --style and an unknown look are usage errors naming the choices
+"$bin" render "$dir/empty.ply" -o "$dir/sepia.png" --size 32x32 --quiet --look sepia
+"$bin" render "$dir/empty.ply" -o "$dir/cream.png" --size 32x32 --quiet --style sketchy --background 244,234,212
+check '[ -s "$dir/sepia.png" ] && cmp -s "$dir/sepia.png" "$dir/cream.png"' "--look sepia: its cream paper"
+"$bin" render "$dir/empty.ply" -o "$dir/sepia-black.png" --size 32x32 --quiet --look sepia --background 0,0,0
+"$bin" render "$dir/empty.ply" -o "$dir/black.png" --size 32x32 --quiet --style sketchy --background 0,0,0
+check '[ -s "$dir/black.png" ] && cmp -s "$dir/sepia-black.png" "$dir/black.png"' "--look sepia --background 0,0,0: the given black wins"
+"$bin" render "$dir/cube.ply" -o "$dir/comic.png" --size 120x90 --quiet --look comic
+"$bin" render "$dir/cube.ply" -o "$dir/cartoon35.png" --size 120x90 --quiet --style cartoon --outline on --outline-width 3.5
+check '[ -s "$dir/comic.png" ] && cmp -s "$dir/comic.png" "$dir/cartoon35.png"' "--look comic is cartoon with 3.5 px outlines"
+"$bin" render "$dir/cube.ply" -o "$dir/cartoon.png" --size 120x90 --quiet --style cartoon
+check '[ -s "$dir/cartoon.png" ] && ! cmp -s "$dir/comic.png" "$dir/cartoon.png"' "--look comic differs from cartoon's default outline"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --look comic --style sketchy 2> "$dir/err-look.txt"
+check '[ $? -eq 2 ] && grep -q "give --look or --style" "$dir/err-look.txt"' "--look with --style exits 2"
+"$bin" render "$dir/cube.ply" -o "$dir/x.png" --look crayon 2> "$dir/err-look2.txt"
+check '[ $? -eq 2 ] && grep -q "pencil, contour" "$dir/err-look2.txt"' "an unknown look exits 2 and lists the looks"
 # painterly: features computed on the fly, --paint-bins
 "$bin" render "$dir/cube.ply" -o "$dir/paint.png" --size 120x90 --style painterly --paint-bins 3 --quiet
 check '[ $? -eq 0 ] && [ "$(png_w "$dir/paint.png")" -eq 120 ]' "painterly renders (--paint-bins 3)"
