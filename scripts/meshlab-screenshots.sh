@@ -9,7 +9,8 @@
 # a fresh HOME), opens BUILD_DIR/demo/lion.ply (else a generated cube), opens each "NPR: ..." entry
 # of Filters -> Point Set with xdotool clicks, saves the dialog window (ImageMagick `import -window`)
 # as OUT_DIR/meshlab-dialog-<name>.png and closes it; then turns Render -> NPR render on and saves
-# the main window as OUT_DIR/meshlab-dialog-decorate.png.
+# the main window as OUT_DIR/meshlab-dialog-decorate.png, and with the decorator's panel unfolded as
+# OUT_DIR/meshlab-decorate-panel.png.
 #
 # Needs: meshlab, xvfb, xdotool, imagemagick, x11-utils. The menu positions are those of Debian's
 # meshlab 2020.09+dfsg1 with its own plugins plus ours, main window at 0,0 sized 1280x1000; every
@@ -138,6 +139,10 @@ if [[ -f "$DECORATE_SO" ]]; then
   sleep 3
   if grep -q "Enabled Decorate mode NPR render" "$T/meshlab.log"; then
     import -window "$MAIN" "$OUT/meshlab-dialog-decorate.png" && made+=("meshlab-dialog-decorate.png")
+    # the decorator's panel: unfold "NPR render" in the layer dialog's decorator list (its arrow at
+    # 883,666 in this window layout), then the main window again
+    click 883 666 1.5
+    import -window "$MAIN" "$OUT/meshlab-decorate-panel.png" && made+=("meshlab-decorate-panel.png")
   else
     echo "meshlab-screenshots: the NPR render decorator did not turn on" >&2
   fi
