@@ -9,23 +9,23 @@
 
 static const pnpr_look looks[] = {
     {"pencil", "graphite sketch: strokes along the features, hatches for the tone", PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL,
-     0, 0, 0, 0, 0, {0, 0, 0, 0}, {255, 255, 255}, 0},
+     0, 0, 0, 0, 0, {0, 0, 0, 0}, {255, 255, 255}, 0, 0},
     {"contour", "a light line sketch: strokes along the features and outlines, no hatching", PNPR_STYLE_SKETCHY,
-     PNPR_SKETCH_DIRECTIONAL, 1, 0, 0, 0, 0, {0, 0, 0, 0}, {255, 255, 255}, 0},
+     PNPR_SKETCH_DIRECTIONAL, 1, 0, 0, 0, 0, {0, 0, 0, 0}, {255, 255, 255}, 0, 0},
     {"sepia", "brown ink on cream paper: the pencil sketch of an old notebook", PNPR_STYLE_SKETCHY, PNPR_SKETCH_ALL, 1, 0,
-     0, 0, 0, {0.20f, 0.09f, 0.03f, 1}, {244, 234, 212}, 0},
+     0, 0, 0, {0.20f, 0.09f, 0.03f, 1}, {244, 234, 212}, 0, 0},
     {"stipple", "ink dots for the tone and the features, with outlines", PNPR_STYLE_STIPPLE, PNPR_SKETCH_ALL, 1, 0, 0, 0,
-     0, {0, 0, 0, 0}, {255, 255, 255}, 0},
+     0, {0, 0, 0, 0}, {255, 255, 255}, 0, 0},
     {"comic", "flat colours with bold outlines", PNPR_STYLE_CARTOON, PNPR_SKETCH_ALL, 1, 3.5f, 0, 0, 0, {0, 0, 0, 0},
-     {255, 255, 255}, 0},
+     {255, 255, 255}, 0, 0},
     {"technical", "profile lines and outlines over a faint picture of the scan", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 1, 0,
-     0, 0, 0.3f, {0, 0, 0, 0}, {255, 255, 255}, 0},
+     0, 0, 0.3f, {0, 0, 0, 0}, {255, 255, 255}, 0, 0},
     {"blueprint", "white profile lines and outlines on blue paper", PNPR_STYLE_LINES, PNPR_SKETCH_ALL, 1, 0, 0, 0, 0,
-     {0.85f, 0.9f, 1, 1}, {24, 56, 112}, 0},
+     {0.85f, 0.9f, 1, 1}, {24, 56, 112}, 0, 0},
     {"painting", "brush dabs in the points' colours, large to small", PNPR_STYLE_PAINTERLY, PNPR_SKETCH_ALL, 0, 0, 0, 0,
-     0, {0, 0, 0, 0}, {255, 255, 255}, 0},
-    {"oil", "bristle brush strokes on surface-aligned splats", PNPR_STYLE_BRUSH, PNPR_SKETCH_ALL, 0, 0, 0, 0, 0,
-     {0, 0, 0, 0}, {255, 255, 255}, 0},
+     0, {0, 0, 0, 0}, {255, 255, 255}, 0, 0},
+    {"oil", "bristle brush strokes on surface-aligned splats, large enough to see the brushwork", PNPR_STYLE_BRUSH,
+     PNPR_SKETCH_ALL, 0, 0, 0, 0, 0, {0, 0, 0, 0}, {255, 255, 255}, 0, 2},
 };
 
 const pnpr_look *pnpr_looks(size_t *r_count)
@@ -73,4 +73,5 @@ void pnpr_look_apply(const pnpr_look *look, pnpr_draw_options *o)
         o->background[3] = 1;
     }
     if (o->brush_preset == 0) o->brush_preset = look->brush_preset;
+    fill(&o->brush_scale, look->brush_scale);
 }

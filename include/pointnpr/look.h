@@ -24,6 +24,7 @@ typedef struct pnpr_look {
     float ink[4];                /* linear RGBA; all zero = the table's ink */
     unsigned char paper[3];      /* the background, 0..255 as `--background` */
     int brush_preset;            /* brush: pnpr_brush_presets index */
+    float brush_scale;           /* brush: splat half-size in r + eps units; 0 = the table's */
 } pnpr_look;
 
 /* The looks in order; *r_count (may be NULL) receives how many. Index 0 is the default look. */
@@ -34,7 +35,7 @@ PNPR_NODISCARD pnpr_status pnpr_look_find(const char *name, size_t *r_index);
  * Returns buf. */
 const char *pnpr_look_list(char *buf, size_t cap, const char *sep);
 /* Writes the look into o: the style always; every other member the look sets (the sketch
- * variant, outline, widths, faint, ink, brush) only where o still holds zero (zero = the default,
+ * variant, outline, widths, faint, ink, brush and its scale) only where o still holds zero (zero = the default,
  * so an explicit choice of the caller wins); the background when o's is all zero (then opaque). */
 void pnpr_look_apply(const pnpr_look *look, pnpr_draw_options *o);
 
