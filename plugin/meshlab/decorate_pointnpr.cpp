@@ -384,8 +384,10 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
 {
     try {
         /* The panel's order (MeshLab shows the parameters as added; the settings names are what is
-         * saved): the look first (style, paper, outline, line width, how dense), then each group
-         * under a prefix naming what it is for (budget, tone, a style, effects). */
+         * saved): the Look, the look's own parameters (style, paper, outline, line width), then the
+         * groups (budget, tone, each style's own, effects; the tooltips say which style). Labels of at
+         * most 15 characters: MeshLab sizes the label column by the longest, and a longer one pushed
+         * the paper colour's swatch out of the panel. */
         if (!par.hasParameter(kLook)) {
             size_t n = 0;
             const pnpr_look *looks = pnpr_looks(&n);
@@ -418,7 +420,7 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                                           "off for the others (points and painterly draw none)")
                                       .arg(outlineDefaults())));
         if (!par.hasParameter(kOutlineWidth))
-            par.addParam(RichFloat(kOutlineWidth, 0.0f, "Outline width (px)",
+            par.addParam(RichFloat(kOutlineWidth, 0.0f, "Outline width",
                                    QString("outline width in pixels, %1; 0 = the style's default (%2)")
                                        .arg(drawRange("outline-width"))
                                        .arg(outlineDefaults())));
@@ -426,30 +428,30 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
             par.addParam(RichFloat(kLineWidth, static_cast<float>(drawOption("line-width")->def), "Line width",
                                    QString("profile lines and sketch strokes, pixels, %1").arg(drawRange("line-width"))));
         if (!par.hasParameter(kDensity))
-            par.addParam(RichFloat(kDensity, static_cast<float>(drawOption("density")->def), "budget: Screen density",
+            par.addParam(RichFloat(kDensity, static_cast<float>(drawOption("density")->def), "Screen density",
                                    QString("%1, %2; negative = every point, however dense the view")
                                        .arg(drawOption("density")->help)
                                        .arg(drawRange("density"))));
         if (!par.hasParameter(kBudget))
-            par.addParam(RichInt(kBudget, 0, "budget: Points per frame", "at most this many points per frame (continuous "
+            par.addParam(RichInt(kBudget, 0, "Point budget", "at most this many points per frame (continuous "
                                  "resolution queue prefix); 0 = no count (the screen density still limits them)"));
         if (!par.hasParameter(kMotionBudget))
-            par.addParam(RichInt(kMotionBudget, 200000, "budget: Points while moving",
+            par.addParam(RichInt(kMotionBudget, 200000, "Moving budget",
                                  "budget of frames drawn while the camera changes (a full frame follows 0.3 s "
                                  "after the motion stops); 0 = same as the point budget"));
         if (!par.hasParameter(kToneSource))
-            par.addParam(RichEnum(kToneSource, 0, QStringList() << "auto" << "colour" << "light" << "both", "tone: Source",
+            par.addParam(RichEnum(kToneSource, 0, QStringList() << "auto" << "colour" << "light" << "both", "Tone source",
                                   "what makes a point dark (density of the dithering points: sketchy hatches, stipple "
                                   "dots): its colour, a key light from above on its normals, or both; auto = both "
                                   "with colours and normals, light without colours"));
         if (!par.hasParameter(kToneGamma))
-            par.addParam(RichFloat(kToneGamma, 0.0f, "tone: Gamma",
+            par.addParam(RichFloat(kToneGamma, 0.0f, "Tone gamma",
                                    "tone curve exponent (> 1 keeps large mid-tone areas light, the darkest parts "
                                    "dark); 0 = library default"));
         if (!par.hasParameter(kVariant))
             par.addParam(RichEnum(kVariant, 0, QStringList() << "all (strokes + hatches)" << "directional strokes only"
                                                              << "strokes + non-directional hatches",
-                                  "sketchy: Sketch variant", "sketchy style: which primitives are drawn"));
+                                  "Sketch variant", "sketchy style: which primitives are drawn"));
         if (!par.hasParameter(kBrush)) {
             size_t np = 0;
             const pnpr_brush_preset *bp = pnpr_brush_presets(&np);
@@ -459,22 +461,22 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                 names << QString::fromUtf8(bp[i].name);
                 tip += QString("; %1: %2").arg(bp[i].name).arg(bp[i].description);
             }
-            par.addParam(RichEnum(kBrush, 0, names, "brush: Brush", tip));
+            par.addParam(RichEnum(kBrush, 0, names, "Brush", tip));
         }
         if (!par.hasParameter(kBrushScale))
-            par.addParam(RichFloat(kBrushScale, static_cast<float>(drawOption("brush-scale")->def), "brush: Brush scale",
+            par.addParam(RichFloat(kBrushScale, static_cast<float>(drawOption("brush-scale")->def), "Brush scale",
                                    QString("brush style: %1, %2").arg(drawOption("brush-scale")->help).arg(drawRange("brush-scale"))));
         if (!par.hasParameter(kTam)) {
             QStringList names;
             for (int k = 0; k < PNPR_TAM_COUNT_; k++) names << QString::fromUtf8(pnpr_tam_name((pnpr_tam_kind)k));
-            par.addParam(RichEnum(kTam, 0, names, "hierarchy: Tonal art map",
+            par.addParam(RichEnum(kTam, 0, names, "Tonal art map",
                                   "hierarchy style: paint (coloured dabs), hatch (pencil hatching in ink), dots (halftone)"));
         }
         if (!par.hasParameter(kAbstraction))
-            par.addParam(RichFloat(kAbstraction, static_cast<float>(hierOption("hier-abstraction")->def), "hierarchy: Abstraction",
+            par.addParam(RichFloat(kAbstraction, static_cast<float>(hierOption("hier-abstraction")->def), "Abstraction",
                                    hierTip("hier-abstraction")));
         if (!par.hasParameter(kStrokePx))
-            par.addParam(RichFloat(kStrokePx, static_cast<float>(hierOption("stroke-px")->def), "hierarchy: Stroke size (px)",
+            par.addParam(RichFloat(kStrokePx, static_cast<float>(hierOption("stroke-px")->def), "Stroke size",
                                    hierTip("stroke-px")));
         if (!par.hasParameter(kEffects)) {
             QStringList names;
@@ -487,17 +489,17 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                 docs += QString("; %1: %2").arg(QString::fromUtf8(pr[i].name)).arg(QString::fromUtf8(pr[i].doc));
             }
             names << "pipeline file";
-            par.addParam(RichEnum(kEffects, 0, names, "effects: Image-space effects",
+            par.addParam(RichEnum(kEffects, 0, names, "Effects",
                                   "segment-specific image-space effects (Wegen et al., docs/effects.md) over the "
                                   "style: a preset for every point, or a pipeline file (effect chains per segment "
                                   "label, as `pointnpr render --effects`)" + docs));
         }
         if (!par.hasParameter(kEffectsFile))
             par.addParam(RichOpenFile(kEffectsFile, QString(), QStringList() << "*.fx" << "*.txt" << "*",
-                                      "effects: Pipeline file", "the pipeline file read when the effects are 'pipeline "
+                                      "Effects file", "the pipeline file read when the effects are 'pipeline "
                                       "file' (read again when it changes)"));
         if (!par.hasParameter(kEffectsPreview))
-            par.addParam(RichFloat(kEffectsPreview, 0.5f, "effects: Preview scale while moving",
+            par.addParam(RichFloat(kEffectsPreview, 0.5f, "Effects preview",
                                    QString("effects layers at this fraction of the viewport while the camera moves "
                                            "(%1..1; the full frame follows when it rests)").arg((double)PNPR_EFFECTS_SCALE_MIN)));
     } catch (...) {
