@@ -89,6 +89,7 @@ const char *const kToneSource = "PointNPR::ToneSource";
 const char *const kToneGamma = "PointNPR::ToneGamma";
 const char *const kEffects = "PointNPR::Effects";
 const char *const kEffectsFile = "PointNPR::EffectsFile";
+const char *const kStyleMapFile = "PointNPR::StyleMapFile";
 const char *const kEffectsPreview = "PointNPR::EffectsPreview";
 
 /* enum index -> renderer style (the order shown in the dialog; new styles go at the end so that
@@ -113,6 +114,8 @@ using pnpr_meshlab::kWantNames;
  * about 10 frames/s (docs/meshlab.md, "Frame rates"). Never fewer points than kMotionMinPoints. */
 const double kMotionDrawMs = 40;
 const size_t kMotionMinPoints = 10000;
+/* ... and the resolution of a moving frame of a style whose cost is in the pixels */
+const float kMotionPreviewScale = 0.5f;
 
 /* The layers the decorator draws: visible, with vertices, not a polyline layer (edges: the profile
  * lines the filter makes, drawn by the lines style from the features). A mesh layer (an RGB-D
@@ -201,6 +204,10 @@ struct DecorateContextState {
     QElapsedTimer dragClock;
     qint64 dragReleaseMs = 0, dragDrawMs = 0;
     double motionMsPerPoint = 0;  /* our draw's time per point in the last moving frames (running mean) */
+    int slowFrames = 0;           /* moving frames in a row over 1.25 kMotionDrawMs at the timed budget (2: preview) */
+    uint32_t slowBits = 0;        /*   ... for these styles */
+    uint64_t slowSignature = 0;   /*   ... and these layers */
+    int dragPreviews = 0;         /* test hook PNPR_MESHLAB_TEST_DRAG: frames drawn as previews */
     bool uploadFailed = false;    /* not retried until the layers change */
     QString layersNote;           /* what buildCloud found, for the upload message */
     qint64 layersMs = 0;          /* how long reading the layers took */
@@ -241,6 +248,8 @@ struct DecorateContextState {
     QElapsedTimer synthetic;      /* test hook PNPR_MESHLAB_TEST_EVENTS: when its event was posted */
     pnpr_effect_pipeline fx;      /* the effects pipeline of fxKey (count 0: none or it failed) */
     QString fxKey;                /* the preset or file (with its modification time) fx holds */
+    pnpr_style_map smap;          /* the style map file of smapKey (count 0 and no default: none) */
+    QString smapKey;
     std::vector<unsigned char> fxPixels, fxRows; /* the effects frame, top row first / bottom first */
     DecorateContextState()
     {
@@ -248,6 +257,7 @@ struct DecorateContextState {
         std::memset(&lines, 0, sizeof lines);
         std::memset(&fx, 0, sizeof fx);
         std::memset(&tree, 0, sizeof tree);
+        std::memset(&smap, 0, sizeof smap);
     }
 };
 
@@ -277,6 +287,7 @@ static void freeState(DecorateContextState *s, void *ctx)
     pnpr_sphere_tree_free(&s->tree);
     pnpr_lines_free(&s->lines);
     pnpr_effect_pipeline_free(&s->fx);
+    pnpr_style_map_free(&s->smap);
     delete s->settle;
     delete s;
 }
@@ -411,6 +422,11 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
                                   "the first time); hierarchy: Chi & Lee's painterly strokes over a sphere hierarchy "
                                   "of colour regions (built the first time)"));
         }
+        if (!par.hasParameter(kStyleMapFile))
+            par.addParam(RichOpenFile(kStyleMapFile, QString(), QStringList() << "*.txt" << "*",
+                                      "Style map", "a style per segment (as pointnpr render --style-map): lines "
+                                      "'LABEL STYLE' for the layers' segment labels and '* STYLE' for the others; "
+                                      "empty: none. It takes precedence over the layers' own styles"));
         if (!par.hasParameter(kPaper))
             par.addParam(RichColor(kPaper, QColor(255, 255, 255), "Paper colour", "background of the drawing"));
         if (!par.hasParameter(kOutline))
@@ -584,6 +600,7 @@ struct Params {
     pnpr_tone_source toneSource = PNPR_TONE_AUTO;
     float toneGamma = 0;      /* 0 = the library's default */
     QString effects;          /* "" none, a preset's name, or "file:PATH" */
+    QString styleMap;         /* "" none, or the style map file's path */
     float effectsPreview = 0.5f;
 };
 
@@ -627,6 +644,7 @@ Params readParams(const RichParameterList *par)
             else if (i == np + 1 && par->hasParameter(kEffectsFile)) p.effects = "file:" + par->getOpenFileName(kEffectsFile);
         }
         if (par->hasParameter(kEffectsPreview)) p.effectsPreview = par->getFloat(kEffectsPreview);
+        if (par->hasParameter(kStyleMapFile)) p.styleMap = par->getOpenFileName(kStyleMapFile);
     }
     if (!(p.effectsPreview >= PNPR_EFFECTS_SCALE_MIN && p.effectsPreview <= 1)) p.effectsPreview = 0.5f;
     if (!pnpr_option_in_range(drawOption("line-width"), p.lineWidth)) p.lineWidth = 0; /* the default */
@@ -651,6 +669,7 @@ Params readParams(const RichParameterList *par)
         pnpr_style st;
         if (pnpr_style_from_name(s, &st) == PNPR_OK) p.style = st;
     }
+    if (const char *m = std::getenv("PNPR_MESHLAB_TEST_STYLE_MAP")) p.styleMap = QString::fromLocal8Bit(m);
     if (const char *e = std::getenv("PNPR_MESHLAB_TEST_EFFECTS")) /* a preset's name or file:PATH */
         p.effects = QString::fromLocal8Bit(e);
     return p;
@@ -929,29 +948,74 @@ bool loadEffects(DecorateContextState *s, const QString &what, QString &msg)
     return true;
 }
 
-/* Draws the effects frame (pnpr_renderer_effects, layers at `scale` of the viewport) and copies it
- * into MeshLab's framebuffer `fb` at the viewport: the renderer's own frame holds the layers, so
- * the host's framebuffer and viewport are bound again first. The fixed-function state that
- * glDrawPixels goes through is in the caller's glPushAttrib; the program is restored here. */
-pnpr_status drawEffects(DecorateContextState *s, const pnpr_draw_options &o, const GLint vp[4], GLint fb, float scale,
-                        pnpr_effects_stats &es, pnpr_error *err)
+/* The style map file `path` into s->smap, read again when its modification time or size changes;
+ * true when a map is in use. msg: what to log when it was (re)read. */
+bool loadStyleMap(DecorateContextState *s, const QString &path, QString &msg)
 {
-    size_t row = (size_t)vp[2] * 4, n = row * (size_t)vp[3];
-    s->fxPixels.resize(n);
-    s->fxRows.resize(n);
-    pnpr_effects_options eo;
-    std::memset(&eo, 0, sizeof eo);
-    eo.scale = scale;
-    GLint program = 0, readFb = 0;
-    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFb);
-    pnpr_status st = pnpr_renderer_effects(s->renderer, nullptr, &o, &s->fx, vp[2], vp[3], &eo, s->fxPixels.data(), &es, err);
+    msg.clear();
+    if (path.isEmpty()) {
+        pnpr_style_map_free(&s->smap);
+        s->smapKey.clear();
+        return false;
+    }
+    QFileInfo fi(path);
+    QString key = QString("%1@%2:%3").arg(path).arg(fi.lastModified().toMSecsSinceEpoch()).arg(fi.size());
+    if (key == s->smapKey) return s->smap.count > 0 || s->smap.have_default;
+    s->smapKey = key;
+    pnpr_style_map_free(&s->smap);
+    QByteArray p = path.toLocal8Bit();
+    char *text = nullptr;
+    size_t size = 0;
+    pnpr_error err{};
+    pnpr_status st = pnpr_text_file_load(p.constData(), PNPR_STYLE_MAP_FILE_MAX, &text, &size, &err);
+    if (st == PNPR_OK) st = pnpr_style_map_parse(text, size, p.constData(), &s->smap, &err);
+    std::free(text);
+    if (st != PNPR_OK) {
+        msg = QString("style map file: %1; drawn without").arg(status(st, err));
+        return false;
+    }
+    msg = QString("style map: %1, %2 entries%3").arg(path).arg(s->smap.count)
+              .arg(s->smap.have_default ? QString(", others %1").arg(pnpr_style_name(s->smap.default_style)) : QString());
+    return true;
+}
+
+/* Every width in pixels at k times the view's: a tile of "Save snapshot" at screen multiplier k (its
+ * P[0] is k times the view's), or a moving frame drawn at k < 1 of the viewport. Every width in
+ * pixels (strokes, lines, dots, outlines, the hierarchy's strokes, the shortest line kept) k times the view's, resolved
+ * from the library's defaults, so that the snapshot is the view at k times the resolution instead
+ * of the same pixel widths over k times the area. */
+static void scaleWidths(pnpr_draw_options &o, double k)
+{
+    if (!(k > 0.01 && k <= 64) || std::fabs(k - 1) < 0.001) return;
+    auto widen = [k](float v, const pnpr_option_desc *d) { /* within the option's range */
+        double w = (v > 0 ? v : (d ? d->def : 1)) * k;
+        return (float)(d ? std::min(d->max, std::max(d->min, w)) : w);
+    };
+    o.line_width = widen(o.line_width, drawOption("line-width"));
+    o.stroke_width = widen(o.stroke_width, drawOption("stroke-width"));
+    if (!(o.stroke_max < 0)) o.stroke_max = widen(o.stroke_max, drawOption("stroke-max"));
+    o.dot_size = widen(o.dot_size, drawOption("dot-size"));
+    o.line_min_px = widen(o.line_min_px, drawOption("line-min")); /* the same profile lines kept */
+    o.hierarchy.stroke_px = widen(o.hierarchy.stroke_px, hierOption("stroke-px"));
+    float ow = o.outline_width;
+    if (!(ow > 0)) pnpr_style_outline_default(o.style, &ow);
+    const pnpr_option_desc *od = drawOption("outline-width");
+    o.outline_width = (float)std::min(ow * k, od ? od->max : 64.0);
+}
+
+/* Copies a frame of w x h pixels (RGBA8, top row first, in s->fxPixels) into MeshLab's framebuffer
+ * `fb`, stretched over the viewport: the renderer's own frame held it, so the host's framebuffer
+ * and viewport are bound again first. The fixed-function state that glDrawPixels goes through is
+ * in the caller's glPushAttrib; the program is restored here. */
+static void copyToHost(DecorateContextState *s, int w, int h, const GLint vp[4], GLint fb, GLint readFb, GLint program)
+{
+    size_t row = (size_t)w * 4;
+    s->fxRows.resize(row * (size_t)h);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)fb);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)readFb);
     glViewport(vp[0], vp[1], vp[2], vp[3]);
-    if (st != PNPR_OK) { glUseProgram((GLuint)program); return st; }
-    for (int y = 0; y < vp[3]; y++) /* GL rows go bottom-up */
-        std::memcpy(&s->fxRows[(size_t)(vp[3] - 1 - y) * row], &s->fxPixels[(size_t)y * row], row);
+    for (int y = 0; y < h; y++) /* GL rows go bottom-up */
+        std::memcpy(&s->fxRows[(size_t)(h - 1 - y) * row], &s->fxPixels[(size_t)y * row], row);
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
@@ -965,10 +1029,64 @@ pnpr_status drawEffects(DecorateContextState *s, const pnpr_draw_options &o, con
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
-    glPixelZoom(1, 1);
+    glPixelZoom((float)vp[2] / (float)w, (float)vp[3] / (float)h);
     glWindowPos2i(vp[0], vp[1]);
-    glDrawPixels(vp[2], vp[3], GL_RGBA, GL_UNSIGNED_BYTE, s->fxRows.data());
+    glDrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, s->fxRows.data());
+    glPixelZoom(1, 1);
     glUseProgram((GLuint)program);
+}
+
+/* Draws the effects frame (pnpr_renderer_effects, layers at `scale` of the viewport) and copies it
+ * into MeshLab's framebuffer. */
+pnpr_status drawEffects(DecorateContextState *s, const pnpr_draw_options &o, const GLint vp[4], GLint fb, float scale,
+                        pnpr_effects_stats &es, pnpr_error *err)
+{
+    s->fxPixels.resize((size_t)vp[2] * 4 * (size_t)vp[3]);
+    pnpr_effects_options eo;
+    std::memset(&eo, 0, sizeof eo);
+    eo.scale = scale;
+    GLint program = 0, readFb = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFb);
+    pnpr_status st = pnpr_renderer_effects(s->renderer, nullptr, &o, &s->fx, vp[2], vp[3], &eo, s->fxPixels.data(), &es, err);
+    if (st != PNPR_OK) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)fb);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)readFb);
+        glViewport(vp[0], vp[1], vp[2], vp[3]);
+        glUseProgram((GLuint)program);
+        return st;
+    }
+    copyToHost(s, vp[2], vp[3], vp, fb, readFb, program);
+    return PNPR_OK;
+}
+
+/* A moving frame at `scale` of the viewport (the renderer's own framebuffer, widths in pixels
+ * scaled alike), stretched into MeshLab's: for styles whose cost is in the pixels (cartoon's fills
+ * and outlines, the brush's splats), where fewer points do not make the frame cheaper. */
+pnpr_status drawPreview(DecorateContextState *s, pnpr_draw_options o, const GLint vp[4], GLint fb, float scale,
+                        pnpr_render_stats *stats, pnpr_error *err)
+{
+    int w = std::max(1, (int)std::lround(vp[2] * scale)), h = std::max(1, (int)std::lround(vp[3] * scale));
+    scaleWidths(o, (double)w / vp[2]);
+    GLint program = 0, readFb = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFb);
+    pnpr_target tg;
+    std::memset(&tg, 0, sizeof tg);
+    tg.width = w;
+    tg.height = h;
+    tg.offscreen = 1;
+    s->fxPixels.resize((size_t)w * 4 * (size_t)h);
+    pnpr_status st = pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, stats, err);
+    if (st == PNPR_OK) st = pnpr_renderer_read_frame(s->renderer, s->fxPixels.data(), 1);
+    if (st != PNPR_OK) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)fb);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)readFb);
+        glViewport(vp[0], vp[1], vp[2], vp[3]);
+        glUseProgram((GLuint)program);
+        return st;
+    }
+    copyToHost(s, w, h, vp, fb, readFb, program);
     return PNPR_OK;
 }
 
@@ -997,25 +1115,6 @@ bool writeImages(const QString &prefix, const std::vector<unsigned char> &rgba, 
 
 } // namespace
 
-/* A tile of "Save snapshot" at screen multiplier k (its P[0] is k times the view's): every width in
- * pixels (strokes, lines, dots, outlines, the hierarchy's strokes, the shortest line kept) k times the view's, resolved
- * from the library's defaults, so that the snapshot is the view at k times the resolution instead
- * of the same pixel widths over k times the area. */
-static void scaleForTile(pnpr_draw_options &o, double k)
-{
-    if (!(k > 1.001 && k <= 64)) return;
-    auto widen = [k](float v, const pnpr_option_desc *d) { return (float)((v > 0 ? v : (d ? d->def : 1)) * k); };
-    o.line_width = widen(o.line_width, drawOption("line-width"));
-    o.stroke_width = widen(o.stroke_width, drawOption("stroke-width"));
-    if (!(o.stroke_max < 0)) o.stroke_max = widen(o.stroke_max, drawOption("stroke-max"));
-    o.dot_size = widen(o.dot_size, drawOption("dot-size"));
-    o.line_min_px = widen(o.line_min_px, drawOption("line-min")); /* the same profile lines kept */
-    o.hierarchy.stroke_px = widen(o.hierarchy.stroke_px, hierOption("stroke-px"));
-    float ow = o.outline_width;
-    if (!(ow > 0)) pnpr_style_outline_default(o.style, &ow);
-    const pnpr_option_desc *od = drawOption("outline-width");
-    o.outline_width = (float)std::min(ow * k, od ? od->max : 64.0);
-}
 
 /* Reports a message in MeshLab's log and on stderr, not repeating the last one every frame. */
 using Reporter = std::function<void(const QString &, bool)>;
@@ -1026,16 +1125,26 @@ using Reporter = std::function<void(const QString &, bool)>;
 struct LayerStyles {
     pnpr_style main = PNPR_STYLE_SKETCHY;   /* the frame's style (of layers without their own) */
     uint32_t bits = 0;                      /* every style drawn (the plan's request) */
-    std::vector<pnpr_style_map_entry> map;  /* layer index (kLayerKey) -> own style; empty: one style */
+    std::vector<pnpr_style_map_entry> map;  /* layer index (kLayerKey) -> own style, or with bySegment
+                                             * the style map file's entries; empty: one style */
+    bool bySegment = false;                 /* map keyed by segment labels (a style map file) */
     QString text;                           /* "'a.ply' cartoon, 'b.ply' sketchy (Style)" for the log */
 };
 
-static LayerStyles layerStyles(MeshDocument &md, const DecorateContextState *s, pnpr_style def, bool fxOn)
+static LayerStyles layerStyles(MeshDocument &md, const DecorateContextState *s, pnpr_style def, bool fxOn, bool mapOn)
 {
     LayerStyles ls;
     ls.main = def;
     if (fxOn) {
         for (size_t k = 0; k < s->fx.count; k++) ls.bits |= 1u << s->fx.nodes[k].style;
+        return ls;
+    }
+    if (mapOn) { /* a style per segment label; the others in the map's default, else the Style */
+        if (s->smap.have_default) ls.main = s->smap.default_style;
+        ls.bits = 1u << ls.main;
+        ls.map.assign(s->smap.entries, s->smap.entries + s->smap.count);
+        for (const pnpr_style_map_entry &e : ls.map) ls.bits |= 1u << e.style;
+        ls.bySegment = !ls.map.empty();
         return ls;
     }
     std::vector<int> own;
@@ -1428,12 +1537,12 @@ static void testDragFrame(DecorateContextState *s, bool moving, size_t drawn)
     if (s->dragPhase == 2 && !moving) {
         s->dragPhase = 3;
         double secs = s->dragReleaseMs / 1000.0;
-        QString line = QString("drag: %1 frames in %2 s (%3 frames/s, %4 points per frame, our draw %7 ms of each); full "
-                               "budget %5 ms after the release (%6 points)")
+        QString line = QString("drag: %1 frames in %2 s (%3 frames/s, %4 points per frame, our draw %7 ms of each, %8 "
+                               "at half resolution); full budget %5 ms after the release (%6 points)")
                            .arg(s->dragFrames).arg(secs, 0, 'f', 2).arg(secs > 0 ? s->dragFrames / secs : 0.0, 0, 'f', 1)
                            .arg(s->dragFrames ? s->dragPoints / s->dragFrames : 0)
                            .arg(s->dragClock.elapsed() - s->dragReleaseMs).arg(drawn)
-                           .arg(s->dragFrames ? s->dragDrawMs / s->dragFrames : 0);
+                           .arg(s->dragFrames ? s->dragDrawMs / s->dragFrames : 0).arg(s->dragPreviews);
         std::fprintf(stderr, "pointnpr decorator: %s\n", qUtf8Printable(line));
         if (const char *snap = std::getenv("PNPR_MESHLAB_SNAPSHOT")) { /* PREFIX-drag.txt for the script */
             QFile f(QString::fromLocal8Bit(snap) + "-drag.txt");
@@ -1497,7 +1606,10 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
             }
         }
     }
-    LayerStyles ls = layerStyles(md, s, prm.style, fxOn);
+    QString smapMsg, smapKeyBefore = s->smapKey;
+    bool mapOn = !fxOn && loadStyleMap(s, prm.styleMap, smapMsg);
+    if (s->smapKey != smapKeyBefore && !smapMsg.isEmpty()) report(smapMsg, !mapOn);
+    LayerStyles ls = layerStyles(md, s, prm.style, fxOn, mapOn);
     if (ls.text != s->lastLayerStyles) {
         s->lastLayerStyles = ls.text;
         if (!ls.text.isEmpty()) report("styles per layer: " + ls.text, false);
@@ -1527,7 +1639,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
      * for a frame that paints; a later painterly frame uploads again */
     bool paints = !plainPoints && (ls.bits & (1u << PNPR_STYLE_PAINTERLY));
     if (paints && s->skippedPainterly) s->needUpload = true;
-    bool keyed = !plainPoints && !ls.map.empty(); /* styles per layer: the map reads the layer index */
+    bool keyed = !plainPoints && !ls.map.empty() && !ls.bySegment; /* styles per layer: the map reads the layer index */
     if (keyed != s->keyedUpload) s->needUpload = true; /* the key: the layer index, or the segments */
     if (s->needUpload) {
         QElapsedTimer t;
@@ -1591,7 +1703,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     pnpr_draw_options o;
     std::memset(&o, 0, sizeof o);
     o.style = plainPoints ? PNPR_STYLE_POINTS : ls.main;
-    if (keyed && s->keyedUpload) {
+    if ((keyed && s->keyedUpload) || (ls.bySegment && !plainPoints && !s->keyedUpload)) {
         o.style_map = ls.map.data();
         o.style_map_count = ls.map.size();
     }
@@ -1606,9 +1718,16 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         o.budget = (size_t)prm.motionBudget;
     /* while moving, the budget also follows the time our draw took in the last moving frames: about
      * kMotionDrawMs for our part of a frame (MeshLab redraws its own layers under ours too) */
+    bool budgetTimed = false; /* the time, not the parameters, set this frame's budget */
     if (moving && s->motionMsPerPoint > 0) {
         size_t timed = (size_t)std::max((double)kMotionMinPoints, kMotionDrawMs / s->motionMsPerPoint);
+        budgetTimed = o.budget == 0 || timed < o.budget;
         o.budget = o.budget > 0 ? std::min(o.budget, timed) : timed;
+    }
+    if (ls.bits != s->slowBits || s->signature != s->slowSignature) { /* learnt per style and layers */
+        s->slowFrames = 0;
+        s->slowBits = ls.bits;
+        s->slowSignature = s->signature;
     }
     if (tile && s->lastDrawn > 0 && !(prm.density < 0)) {
         o.budget = s->lastDrawn;
@@ -1632,7 +1751,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         o.style = ls.main; /* the look's style, or a layer's own */
     }
     if (tile) {
-        scaleForTile(o, s->snapK);
+        scaleWidths(o, s->snapK);
         report(QString("snapshot tiles at %1x the view: %2 points each, widths %1x").arg(s->snapK, 0, 'g', 3).arg(o.budget), false);
     } else {
         s->screenScale = std::fabs(P[0]);
@@ -1688,16 +1807,25 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         glFinish();
         drawClock.start();
     }
-    pnpr_status st = fxDraw ? drawEffects(s, o, vp, fb, moving ? prm.effectsPreview : 0.0f, es, &err)
-                          : pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, &stats, &err);
+    /* while moving, a style whose frames stay slow at the time-following budget (two in a row over
+     * 1.25 kMotionDrawMs: its cost is in the pixels, fewer points draw larger disks) is drawn at
+     * kMotionPreviewScale of the viewport, for these styles and layers from then on */
+    bool preview = moving && !fxDraw && !tile && (s->slowFrames >= 2 || std::getenv("PNPR_MESHLAB_TEST_PREVIEW"));
+    pnpr_status st = fxDraw    ? drawEffects(s, o, vp, fb, moving ? prm.effectsPreview : 0.0f, es, &err)
+                     : preview ? drawPreview(s, o, vp, fb, kMotionPreviewScale, &stats, &err)
+                               : pnpr_renderer_draw(s->renderer, nullptr, &o, &tg, &stats, &err);
     if (moving) {
         glFinish();
         qint64 ms = drawClock.nsecsElapsed() / 1000000;
-        if (st == PNPR_OK && stats.points_drawn > 0) { /* a running mean over about 4 frames */
+        if (st == PNPR_OK && stats.points_drawn > 0) { /* slower at once, faster over about 4 frames */
             double perPoint = (double)drawClock.nsecsElapsed() / 1e6 / (double)stats.points_drawn;
-            s->motionMsPerPoint = s->motionMsPerPoint > 0 ? 0.75 * s->motionMsPerPoint + 0.25 * perPoint : perPoint;
+            s->motionMsPerPoint = s->motionMsPerPoint > 0 && perPoint < s->motionMsPerPoint
+                                      ? 0.75 * s->motionMsPerPoint + 0.25 * perPoint
+                                      : perPoint;
         }
         if (s->dragPhase == 1) s->dragDrawMs += ms; /* test hook PNPR_MESHLAB_TEST_DRAG: our share of a frame */
+        if (!preview && budgetTimed) s->slowFrames = ms > 1.25 * kMotionDrawMs ? s->slowFrames + 1 : 0; /* in a row */
+        if (preview && s->dragPhase == 1) s->dragPreviews++;
     }
     if (takeSnap && st == PNPR_OK) readViewport(vp, npr);
     if (infoStage == 1 && st == PNPR_OK && readViewport(vp, under))

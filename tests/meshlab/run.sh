@@ -1119,6 +1119,17 @@ decorate)
   expect_log restart "pointnpr decorator: decoration restarted by MeshLab .*: layers, features and upload kept \\(1 upload\\(s\\) so far\\)"
   nup=$(grep -c "pointnpr decorator: uploaded" "$T/restart.log")
   [[ "$nup" == 1 ]] || fail "'restart': $nup uploads, expected 1 (the restart re-uploaded the cloud)"
+  # A drag (synthetic mouse moves for 1 s, PNPR_MESHLAB_TEST_DRAG) with the moving frames forced to
+  # the half-resolution preview (PNPR_MESHLAB_TEST_PREVIEW; unforced, a style whose moving frames stay
+  # slow gets it): frames drawn while moving, every one a preview, no draw failure, the full frame
+  # after the release
+  GUI_ENV=(PNPR_MESHLAB_TEST_DRAG=1 PNPR_MESHLAB_TEST_PREVIEW=1) GUI_WAIT="$T/preview-drag.txt"
+  gui preview sketchy "$T/cube.ply"
+  GUI_ENV=() GUI_WAIT=''
+  grep -q "pointnpr decorator: draw (.*) failed" "$T/preview.log" && fail "'preview': a draw failed"
+  read -r pv_frames pv_half < <(sed -n 's/^drag: \([0-9]*\) frames in .*, \([0-9]*\) at half resolution.*/\1 \2/p' "$T/preview-drag.txt" 2> /dev/null)
+  log "preview: $(cat "$T/preview-drag.txt" 2> /dev/null || echo "no drag figures")"
+  holds preview "frames drawn while moving (>= 3), every one at half resolution" "${pv_frames:-0} >= 3 && ${pv_half:-0} == ${pv_frames:-1}"
   # MeshLab's info box over our frame: the same overlay as over its own (no GL state left changed)
   GUI_ENV=(PNPR_MESHLAB_TEST_INFOBOX="$T/infobox") GUI_WAIT="$T/infobox-host-npr.pgm"
   gui infobox sketchy "$T/cube.ply"
@@ -1353,6 +1364,22 @@ decorate_styles)
     "${N_left_SB:-99} >= 0 && ${N_left_SB:-99} <= 1.5 && (${N_left_MB:-0} - $INMB)^2 <= 16 && ${N_left_NIN:-0} >= 500"
   holds layers "right cube (points): its yellow half keeps the colour noise (sd >= half the input's $INSY) near its grey (+- 10)" \
     "${N_right_SY:-0} >= 0.5 * $INSY && (${N_right_MY:-0} - $INMY)^2 <= 100 && ${N_right_NIN:-0} >= 500"
+
+  # 8. a style map file (the panel's Style map, as pointnpr render --style-map; here through the
+  #    test hook PNPR_MESHLAB_TEST_STYLE_MAP): segments 0 and 1 in points, the others in cartoon, on
+  #    the coloured cube (JSEG planned for cartoon: its 3 segments). One frame: at least one half of
+  #    the front face keeps its colour noise (points), the log names the map. A bad file: its
+  #    FILE:LINE in the log, the frame drawn without it (in the Style).
+  printf '0 points\n1 points\n* cartoon\n' > "$T/map.txt"
+  PNPR_MESHLAB_TEST_STYLE_MAP="$T/map.txt" gui smap sketchy "$T/colour.ply" && measure smap
+  expect_log smap "pointnpr decorator: style map: .*map.txt, 2 entries, others cartoon"
+  expect_log smap "pointnpr decorator: plan for the points and cartoon style: .*segments by JSEG"
+  grep -q "pointnpr decorator: draw (.*) failed" "$T/smap.log" && fail "'smap': the draw failed"
+  holds smap "a half drawn as points keeps the colour noise (sd >= half the input's $INSY / $INSB)" \
+    "${N_smap_SY:-0} >= 0.5 * $INSY || ${N_smap_SB:-0} >= 0.5 * $INSB"
+  printf '0 crayon\n' > "$T/badmap.txt"
+  PNPR_MESHLAB_TEST_STYLE_MAP="$T/badmap.txt" gui badmap sketchy "$T/colour.ply"
+  expect_log badmap "pointnpr decorator: style map file: .*badmap.txt:1: .*; drawn without"
   ;;
 
 drag)
