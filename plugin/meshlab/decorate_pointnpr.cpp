@@ -905,6 +905,25 @@ void testSaveSnapshot()
     act->trigger(); /* MainWindow::saveSnapshot: dialog.exec() runs the poll above */
 }
 
+/* "PATH@MTIME:SIZE": what a file is kept by, so that it is read again after it was saved. */
+QString fileKey(const QString &path)
+{
+    QFileInfo fi(path);
+    return QString("%1@%2:%3").arg(path).arg(fi.lastModified().toMSecsSinceEpoch()).arg(fi.size());
+}
+
+/* Reads the text file `path` (at most max bytes) and hands it to parse(text, size, path). */
+template <class Parse> pnpr_status parseFile(const QString &path, size_t max, pnpr_error &err, Parse parse)
+{
+    QByteArray p = path.toLocal8Bit();
+    char *text = nullptr;
+    size_t size = 0;
+    pnpr_status st = pnpr_text_file_load(p.constData(), max, &text, &size, &err);
+    if (st == PNPR_OK) st = parse(text, size, p.constData());
+    std::free(text);
+    return st;
+}
+
 /* The effects pipeline of `what` ("" none, a preset's name, "file:PATH") in s->fx, kept while the
  * preset, or the file with its modification time and size, stays the same (a file is read again
  * after it was saved). False when there are no effects; msg then says why (empty for none), else
@@ -918,23 +937,16 @@ bool loadEffects(DecorateContextState *s, const QString &what, QString &msg)
         return false;
     }
     bool file = what.startsWith("file:");
-    QString key = what;
-    if (file) {
-        QFileInfo fi(what.mid(5));
-        key += QString("@%1:%2").arg(fi.lastModified().toMSecsSinceEpoch()).arg(fi.size());
-    }
+    QString key = file ? "file:" + fileKey(what.mid(5)) : what;
     if (key == s->fxKey) return s->fx.count > 0;
     s->fxKey = key;
     pnpr_effect_pipeline_free(&s->fx);
     pnpr_error err{};
     pnpr_status st;
     if (file) {
-        QByteArray path = what.mid(5).toLocal8Bit();
-        char *text = nullptr;
-        size_t size = 0;
-        st = pnpr_text_file_load(path.constData(), PNPR_EFFECT_PIPELINE_FILE_MAX, &text, &size, &err);
-        if (st == PNPR_OK) st = pnpr_effect_pipeline_parse(text, size, path.constData(), &s->fx, &err);
-        std::free(text);
+        st = parseFile(what.mid(5), PNPR_EFFECT_PIPELINE_FILE_MAX, err, [&](const char *text, size_t size, const char *name) {
+            return pnpr_effect_pipeline_parse(text, size, name, &s->fx, &err);
+        });
     } else {
         QByteArray text = ("preset " + what + "\n").toUtf8();
         st = pnpr_effect_pipeline_parse(text.constData(), (size_t)text.size(), "preset", &s->fx, &err);
@@ -958,18 +970,14 @@ bool loadStyleMap(DecorateContextState *s, const QString &path, QString &msg)
         s->smapKey.clear();
         return false;
     }
-    QFileInfo fi(path);
-    QString key = QString("%1@%2:%3").arg(path).arg(fi.lastModified().toMSecsSinceEpoch()).arg(fi.size());
+    QString key = fileKey(path);
     if (key == s->smapKey) return s->smap.count > 0 || s->smap.have_default;
     s->smapKey = key;
     pnpr_style_map_free(&s->smap);
-    QByteArray p = path.toLocal8Bit();
-    char *text = nullptr;
-    size_t size = 0;
     pnpr_error err{};
-    pnpr_status st = pnpr_text_file_load(p.constData(), PNPR_STYLE_MAP_FILE_MAX, &text, &size, &err);
-    if (st == PNPR_OK) st = pnpr_style_map_parse(text, size, p.constData(), &s->smap, &err);
-    std::free(text);
+    pnpr_status st = parseFile(path, PNPR_STYLE_MAP_FILE_MAX, err, [&](const char *text, size_t size, const char *name) {
+        return pnpr_style_map_parse(text, size, name, &s->smap, &err);
+    });
     if (st != PNPR_OK) {
         msg = QString("style map file: %1; drawn without").arg(status(st, err));
         return false;
