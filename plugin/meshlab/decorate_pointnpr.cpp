@@ -178,6 +178,14 @@ QString status(pnpr_status st, const pnpr_error &err)
     return err.message[0] ? QString::fromUtf8(err.message) : QString::fromUtf8(pnpr_status_string(st));
 }
 
+/* Feature classes of some layers, when not every layer has them: the plan computes classes for
+ * the merged cloud, then these replace the computed ones at the points of those layers. */
+struct OwnClasses {
+    std::vector<uint8_t> has, cls; /* per point: from a layer with classes; its class */
+    std::vector<float> dir;        /* its direction (3 per point), in scene coordinates */
+    QString layers;                /* "'a.ply', 'b.ply'" */
+};
+
 } // namespace
 
 /* Everything the plugin keeps for one GL context. */
@@ -197,6 +205,7 @@ struct DecorateContextState {
     bool keyedUpload = false;     /* uploaded with the layer index as the style maps' key */
     QString lastLayerStyles;      /* the styles per layer logged last */
     bool testStylesSet = false;   /* test hook PNPR_MESHLAB_TEST_LAYER_STYLES applied */
+    bool testClassSet = false;    /* test hook PNPR_MESHLAB_TEST_LAYER_CLASS applied */
     int infoStage = 0, infoFrames = 0; /* test hook PNPR_MESHLAB_TEST_INFOBOX: 0 undrawn frame next, 1 drawn, 2 done */
     int dragPhase = 0;            /* test hook PNPR_MESHLAB_TEST_DRAG: 1 dragging, 2 released, 3 done */
     int dragFrames = 0;
@@ -212,6 +221,7 @@ struct DecorateContextState {
     QString layersNote;           /* what buildCloud found, for the upload message */
     qint64 layersMs = 0;          /* how long reading the layers took */
     bool layerFeatures = false;   /* classes/directions came from the layers' attributes */
+    OwnClasses ownClasses;        /* some layers' own classes (not every layer has them) */
     bool ownFeatures = false;     /* feature properties computed here (not from the layers) */
     bool ownDither = false;       /*   ... with dithering points, */
     int ditherToneSource = 0;     /*   ... for this tone */
@@ -707,6 +717,24 @@ struct LayerAttributes {
     }
 };
 
+/* Writes the layers' own classes and directions over the computed ones (finishJob). */
+static void applyOwnClasses(pnpr_cloud &cloud, const OwnClasses &own)
+{
+    if (own.has.size() != cloud.count) return;
+    pnpr_property *pc = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_CLASS);
+    pnpr_property *pd[3] = {pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_X),
+                            pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Y),
+                            pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Z)};
+    if (!pc || pc->type != PNPR_TYPE_UINT8 || !pd[0] || !pd[1] || !pd[2]) return;
+    for (int a = 0; a < 3; a++)
+        if (pd[a]->type != PNPR_TYPE_FLOAT32) return;
+    for (size_t i = 0; i < cloud.count; i++) {
+        if (!own.has[i]) continue;
+        ((uint8_t *)pc->data)[i] = own.cls[i];
+        for (int a = 0; a < 3; a++) ((float *)pd[a]->data)[i] = own.dir[3 * i + a];
+    }
+}
+
 /* The per-point layer index of a merged cloud of several layers (uint32): the key of the style
  * map that gives layers their own styles (pnpr_upload_options.style_key). */
 const char *const kLayerKey = "meshlab_layer";
@@ -715,12 +743,14 @@ const char *const kLayerKey = "meshlab_layer";
  * colours, meaningful normals and (when every layer has them) feature classes. Segment labels:
  * when any layer has them, each layer's are kept, offset past the previous layer's, and a layer
  * without them is one segment (said in the note). Several layers: kLayerKey. */
-pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures, QString &note)
+pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures, OwnClasses &own, QString &note)
 {
     pnpr_cloud_free(&cloud);
+    own = OwnClasses();
     std::vector<MeshModel *> layers;
     size_t total = 0;
-    bool anyColour = false, allClass = true, anySeg = false, allNormals = true;
+    bool anyColour = false, allClass = true, anyClass = false, anySeg = false, allNormals = true;
+    QStringList withClass;
     size_t meshes = 0;
     QStringList stale, oneSegment;
     for (MeshModel *mm : md.meshList) {
@@ -733,14 +763,17 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         LayerAttributes la(mm->cm);
         if (la.stale) stale << QString("'%1'").arg(mm->label());
         allClass &= la.hasClass;
+        anyClass |= la.hasClass;
+        if (la.hasClass) withClass << QString("'%1'").arg(mm->label());
         anySeg |= la.hasSeg;
     }
     layerFeatures = false;
     if (layers.empty() || total == 0) { note = "no visible layer with vertices"; return PNPR_OK; }
     std::vector<double> world(3 * total);
     std::vector<uint8_t> rgb(anyColour ? 3 * total : 0);
-    std::vector<uint8_t> cls(allClass ? total : 0);
-    std::vector<float> dir(allClass ? 3 * total : 0);
+    std::vector<uint8_t> cls(anyClass ? total : 0);
+    std::vector<float> dir(anyClass ? 3 * total : 0);
+    if (anyClass && !allClass) own.has.assign(total, 0);
     std::vector<uint32_t> label(anySeg ? total : 0);
     std::vector<uint32_t> layerIndex(layers.size() > 1 ? total : 0);
     std::vector<float> normal(allNormals ? 3 * total : 0);
@@ -772,7 +805,8 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
             if (anyColour) {
                 for (int c = 0; c < 3; c++) rgb[3 * j + c] = colour ? v.cC()[c] : 180;
             }
-            if (allClass) {
+            if (la.hasClass) {
+                if (!own.has.empty()) own.has[j] = 1;
                 float c = la.cls[i];
                 cls[j] = (c >= 0 && c <= 3) ? (uint8_t)std::lround(c) : 0;
                 double d[3] = {la.dir[i][0], la.dir[i][1], la.dir[i][2]}, t[3], n = 0;
@@ -796,6 +830,14 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
             j++;
         }
         labelBase += maxLabel + 1;
+    }
+    if (!own.has.empty()) { /* some layers have classes: theirs replace the computed ones */
+        own.has.resize(j);
+        cls.resize(j);
+        dir.resize(3 * j);
+        own.cls = std::move(cls);
+        own.dir = std::move(dir);
+        own.layers = withClass.join(", ");
     }
     pnpr_status st = pnpr_cloud_alloc(&cloud, j);
     if (st == PNPR_OK) st = pnpr_cloud_set_world(&cloud, world.data());
@@ -834,7 +876,9 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
                .arg(meshes ? QString(" (%1 mesh layer(s): their vertices)").arg(meshes) : QString())
                .arg(anyColour ? ", colours" : "")
                .arg(allNormals ? ", normals" : "")
-               .arg(allClass ? ", feature classes from the layers' attributes" : "")
+               .arg(allClass ? ", feature classes from the layers' attributes"
+                             : anyClass ? QString(", feature classes from %1's attributes (computed for the others)").arg(own.layers)
+                                        : QString())
                .arg(anySeg ? ", segment labels" : "")
                .arg(oneSegment.isEmpty() ? QString() : QString(" (%1 without: one segment each)").arg(oneSegment.join(", ")))
                .arg(stale.isEmpty() ? QString()
@@ -1204,7 +1248,7 @@ static bool refreshLayers(MeshDocument &md, DecorateContextState *s, const Repor
     s->job.reset(); /* cancels and waits: its results would be those of the old layers */
     QElapsedTimer t;
     t.start();
-    pnpr_status st = buildCloud(md, s->cloud, s->layerFeatures, s->layersNote);
+    pnpr_status st = buildCloud(md, s->cloud, s->layerFeatures, s->ownClasses, s->layersNote);
     s->built = true;
     s->signature = sig;
     s->needUpload = true;
@@ -1446,6 +1490,7 @@ static void finishJob(DecorateContextState *s, const Reporter &report)
         s->needUpload = true;
     }
     if (j.features == StageOutcome::Done) {
+        applyOwnClasses(s->cloud, s->ownClasses);
         if (rq.want & ~(uint32_t)(PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) s->ownFeatures = true;
         if (rq.want & PNPR_WANT_DITHER) {
             s->ownDither = true;
@@ -1598,6 +1643,23 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     bool fxOn = loadEffects(s, prm.effects, fxMsg);
     if (s->fxKey != fxKeyBefore && !fxMsg.isEmpty()) report(fxMsg, !fxOn);
 
+    /* test-only: PNPR_MESHLAB_TEST_LAYER_CLASS=C gives the first drawn layer feature classes C and
+     * directions (1,0,0), as the features filter's attributes (tests/meshlab/run.sh 'ownclass') */
+    if (const char *tc = std::getenv("PNPR_MESHLAB_TEST_LAYER_CLASS")) {
+        if (!s->testClassSet) {
+            s->testClassSet = true;
+            for (MeshModel *mm : md.meshList) {
+                if (!isDrawnLayer(mm)) continue;
+                auto hc = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<float>(mm->cm, PNPR_PROP_FEATURE_CLASS);
+                auto hd = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Point3m>(mm->cm, PNPR_PROP_FEATURE_DIR);
+                for (size_t i = 0; i < mm->cm.vert.size(); i++) {
+                    hc[i] = (float)std::atof(tc);
+                    hd[i] = Point3m(1, 0, 0);
+                }
+                break;
+            }
+        }
+    }
     if (!refreshLayers(md, s, report)) return; /* nothing to draw over MeshLab's own frame */
     /* test-only: PNPR_MESHLAB_TEST_LAYER_STYLES=cartoon,points gives the drawn layers, in order, their
      * own styles as the filter "NPR: Set layer style" does (tests/meshlab/run.sh 'layers') */

@@ -1365,6 +1365,24 @@ decorate_styles)
   holds layers "right cube (points): its yellow half keeps the colour noise (sd >= half the input's $INSY) near its grey (+- 10)" \
     "${N_right_SY:-0} >= 0.5 * $INSY && (${N_right_MY:-0} - $INMY)^2 <= 100 && ${N_right_NIN:-0} >= 500"
 
+  # 7b. each layer's own feature classes: two colourless cubes side by side in sketchy without
+  #    outlines (settings); the first carries the features filter's attributes, every point class
+  #    0 (test hook PNPR_MESHLAB_TEST_LAYER_CLASS), the second none. The plan computes classes for
+  #    the merged cloud and the first layer's own replace them at its points: the first cube gets
+  #    no strokes (its silhouette samples <= 10% dark, nothing inside), the second its edge strokes
+  awk '/^end_header/ { print; b = 1; next } b { $1 += 1.2 } { print }' "$T/cube.ply" > "$T/cube_right.ply"
+  GUI_INPUTS=("$T/cube_right.ply") GUI_POINTS=30004 GUI_LAYERS=2 GUI_ENV=(PNPR_MESHLAB_TEST_LAYER_CLASS=0)
+  gui ownclass sketchy "$T/cube.ply" DrawStyle=1 Outline=2
+  GUI_INPUTS=() GUI_POINTS='' GUI_LAYERS='' GUI_ENV=()
+  expect_log ownclass "pointnpr decorator: uploaded 30004 points from 2 layer.*feature classes from 'cube.ply''s attributes \\(computed for the others\\)"
+  for side in left:0 right:1.2; do
+    out=$(measure_colour "$T/ownclass-camera.txt" "$T/ownclass-plain.pgm" "$T/ownclass-npr.pgm" "ownclass-${side%%:*}" "${side#*:}") ||
+      { fail "'ownclass': cannot measure the ${side%%:*} cube"; continue; }
+    eval "$(sed "s/\([A-Z]*\)=/O_${side%%:*}_\1=/g" <<< "$out")"
+  done
+  holds ownclass "the first cube keeps its own classes (none: <= 10% of its silhouette samples dark, no ink inside), the second its computed edge strokes (>= 50%)" \
+    "${O_left_EDGE:-1} <= 0.1 && ${O_left_DARKIN:-1} == 0 && ${O_left_NEDGE:-0} >= 50 && ${O_right_EDGE:-0} >= 0.5 && ${O_right_NEDGE:-0} >= 50"
+
   # 8. a style map file (the panel's Style map, as pointnpr render --style-map; here through the
   #    test hook PNPR_MESHLAB_TEST_STYLE_MAP): segments 0 and 1 in points, the others in cartoon, on
   #    the coloured cube (JSEG planned for cartoon: its 3 segments). One frame: at least one half of
