@@ -1604,10 +1604,9 @@ static void testDragFrame(DecorateContextState *s, bool moving, size_t drawn)
     }
 }
 
-void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg)
+/* The state of context ctx, made on its first frame (the renderer created there: one per context). */
+DecorateContextState *DecoratePointnprPlugin::stateFor(void *ctx, GLLogStream &lg)
 {
-    void *ctx = pnpr_meshlab::currentGLContext();
-    if (!ctx) return;
     DecorateContextState *s = states_.value(ctx, nullptr);
     if (!s) {
         s = new DecorateContextState;
@@ -1631,18 +1630,13 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
                      (const char *)glGetString(GL_VERSION));
         }
     }
-    if (s->failed || !s->renderer) return;
-    Params prm = readParams(par);
-    Reporter report = [&lg, s](const QString &msg, bool warning) {
-        if (msg == s->lastError) return;
-        s->lastError = msg;
-        lg.Logf(warning ? GLLogStream::WARNING : GLLogStream::FILTER, "NPR render: %s", qUtf8Printable(msg));
-        std::fprintf(stderr, "pointnpr decorator: %s\n", qUtf8Printable(msg));
-    };
-    QString fxKeyBefore = s->fxKey, fxMsg;
-    bool fxOn = loadEffects(s, prm.effects, fxMsg);
-    if (s->fxKey != fxKeyBefore && !fxMsg.isEmpty()) report(fxMsg, !fxOn);
+    return s;
+}
 
+/* test-only hooks that write what the filters would on the drawn layers, once per state (before
+ * the layers are read) */
+static void applyTestLayerHooks(MeshDocument &md, DecorateContextState *s)
+{
     /* test-only: PNPR_MESHLAB_TEST_LAYER_CLASS=C gives the first drawn layer feature classes C and
      * directions (1,0,0), as the features filter's attributes (tests/meshlab/run.sh 'ownclass') */
     if (const char *tc = std::getenv("PNPR_MESHLAB_TEST_LAYER_CLASS")) {
@@ -1660,7 +1654,6 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
             }
         }
     }
-    if (!refreshLayers(md, s, report)) return; /* nothing to draw over MeshLab's own frame */
     /* test-only: PNPR_MESHLAB_TEST_LAYER_STYLES=cartoon,points gives the drawn layers, in order, their
      * own styles as the filter "NPR: Set layer style" does (tests/meshlab/run.sh 'layers') */
     if (const char *tls = std::getenv("PNPR_MESHLAB_TEST_LAYER_STYLES")) {
@@ -1676,6 +1669,114 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
             }
         }
     }
+}
+
+/* Uploads the cloud when it changed (with painterly's data when a frame paints, keyed by the
+ * layer index for styles per layer); false when the upload failed (logged). */
+static bool uploadIfNeeded(DecorateContextState *s, const pnpr_tone_options &tone, bool paints, bool keyed,
+                           const Reporter &report)
+{
+    if (s->needUpload) {
+        QElapsedTimer t;
+        t.start();
+        pnpr_upload_options uo;
+        std::memset(&uo, 0, sizeof uo);
+        uo.tone = tone; /* colourless clouds: greys lit from the scene's up */
+        uo.skip_painterly = !paints;
+        s->skippedPainterly = !paints;
+        uo.style_key = keyed ? kLayerKey : nullptr;
+        s->keyedUpload = keyed;
+        pnpr_error err{};
+        pnpr_status st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, &uo, &err);
+        s->needUpload = false;
+        s->uploads++;
+        if (st != PNPR_OK) {
+            s->uploadFailed = true;
+            report("cannot upload the layers: " + status(st, err), true);
+            return false;
+        }
+        report(QString("uploaded %1 (layers read in %2 ms, upload %3 ms)").arg(s->layersNote).arg(s->layersMs).arg(t.elapsed()),
+               false);
+    }
+    return true;
+}
+
+/* The frame's draw options from the panel, the styles of the layers, the motion and the tiles.
+ * r_budgetTimed: the time, not the parameters, set this frame's budget. */
+static pnpr_draw_options frameOptions(DecorateContextState *s, const Params &prm, const LayerStyles &ls, bool plainPoints,
+                                      bool keyed, bool moving, bool tile, bool &r_budgetTimed)
+{
+    r_budgetTimed = false;
+    pnpr_draw_options o;
+    std::memset(&o, 0, sizeof o);
+    o.style = plainPoints ? PNPR_STYLE_POINTS : ls.main;
+    if ((keyed && s->keyedUpload) || (ls.bySegment && !plainPoints && !s->keyedUpload)) {
+        o.style_map = ls.map.data();
+        o.style_map_count = ls.map.size();
+    }
+    o.sketch_variant = prm.variant;
+    o.background[0] = (float)prm.paper.redF();
+    o.background[1] = (float)prm.paper.greenF();
+    o.background[2] = (float)prm.paper.blueF();
+    o.background[3] = 1;
+    o.budget = (size_t)prm.budget;
+    o.density = prm.density;
+    if (moving && prm.motionBudget > 0 && (prm.budget == 0 || prm.motionBudget < prm.budget))
+        o.budget = (size_t)prm.motionBudget;
+    /* while moving, the budget also follows the time our draw took in the last moving frames: about
+     * kMotionDrawMs for our part of a frame (MeshLab redraws its own layers under ours too) */
+    if (moving && s->motionMsPerPoint > 0) {
+        size_t timed = (size_t)std::max((double)kMotionMinPoints, kMotionDrawMs / s->motionMsPerPoint);
+        r_budgetTimed = o.budget == 0 || timed < o.budget;
+        o.budget = o.budget > 0 ? std::min(o.budget, timed) : timed;
+    }
+    if (ls.bits != s->slowBits || s->signature != s->slowSignature) { /* learnt per style and layers */
+        s->slowFrames = 0;
+        s->slowBits = ls.bits;
+        s->slowSignature = s->signature;
+    }
+    if (tile && s->lastDrawn > 0 && !(prm.density < 0)) {
+        o.budget = s->lastDrawn;
+        o.density = -1;
+    }
+    o.line_width = prm.lineWidth;
+    o.brush_preset = prm.brush;
+    o.brush_scale = prm.brushScale;
+    o.hierarchy.tam = prm.tam;
+    o.hierarchy.abstraction = prm.abstraction;
+    o.hierarchy.stroke_px = prm.strokePx;
+    o.stroke_width = prm.lineWidth;
+    o.outline = plainPoints ? -1 : prm.outline;
+    o.outline_width = prm.outlineWidth;
+    if (prm.look && !plainPoints) { /* the look fills what the dialog leaves at its defaults */
+        const pnpr_option_desc *lw = drawOption("line-width");
+        if (lw && o.line_width == (float)lw->def) o.line_width = o.stroke_width = 0;
+        if (prm.paper == QColor(255, 255, 255)) std::memset(o.background, 0, sizeof o.background);
+        pnpr_look_apply(prm.look, &o);
+        o.style = ls.main; /* the look's style, or a layer's own */
+    }
+    return o;
+}
+
+void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg)
+{
+    void *ctx = pnpr_meshlab::currentGLContext();
+    if (!ctx) return;
+    DecorateContextState *s = stateFor(ctx, lg);
+    if (s->failed || !s->renderer) return;
+    Params prm = readParams(par);
+    Reporter report = [&lg, s](const QString &msg, bool warning) {
+        if (msg == s->lastError) return;
+        s->lastError = msg;
+        lg.Logf(warning ? GLLogStream::WARNING : GLLogStream::FILTER, "NPR render: %s", qUtf8Printable(msg));
+        std::fprintf(stderr, "pointnpr decorator: %s\n", qUtf8Printable(msg));
+    };
+    QString fxKeyBefore = s->fxKey, fxMsg;
+    bool fxOn = loadEffects(s, prm.effects, fxMsg);
+    if (s->fxKey != fxKeyBefore && !fxMsg.isEmpty()) report(fxMsg, !fxOn);
+
+    applyTestLayerHooks(md, s);
+    if (!refreshLayers(md, s, report)) return; /* nothing to draw over MeshLab's own frame */
     QString smapMsg, smapKeyBefore = s->smapKey;
     bool mapOn = !fxOn && loadStyleMap(s, prm.styleMap, smapMsg);
     if (s->smapKey != smapKeyBefore && !smapMsg.isEmpty()) report(smapMsg, !mapOn);
@@ -1711,27 +1812,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (paints && s->skippedPainterly) s->needUpload = true;
     bool keyed = !plainPoints && !ls.map.empty() && !ls.bySegment; /* styles per layer: the map reads the layer index */
     if (keyed != s->keyedUpload) s->needUpload = true; /* the key: the layer index, or the segments */
-    if (s->needUpload) {
-        QElapsedTimer t;
-        t.start();
-        pnpr_upload_options uo;
-        std::memset(&uo, 0, sizeof uo);
-        uo.tone = tone; /* colourless clouds: greys lit from the scene's up */
-        uo.skip_painterly = !paints;
-        s->skippedPainterly = !paints;
-        uo.style_key = keyed ? kLayerKey : nullptr;
-        s->keyedUpload = keyed;
-        pnpr_status st = pnpr_renderer_set_cloud(s->renderer, &s->cloud, &uo, &err);
-        s->needUpload = false;
-        s->uploads++;
-        if (st != PNPR_OK) {
-            s->uploadFailed = true;
-            report("cannot upload the layers: " + status(st, err), true);
-            return;
-        }
-        report(QString("uploaded %1 (layers read in %2 ms, upload %3 ms)").arg(s->layersNote).arg(s->layersMs).arg(t.elapsed()),
-               false);
-    }
+    if (!uploadIfNeeded(s, tone, paints, keyed, report)) return;
     if (s->linesPending) {
         s->linesPending = false;
         pnpr_status st = pnpr_renderer_set_lines(s->renderer, &s->lines, &err);
@@ -1770,56 +1851,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     std::memcpy(cm.projection, P, sizeof P);
     if (vp[2] <= 0 || vp[3] <= 0) return;
 
-    pnpr_draw_options o;
-    std::memset(&o, 0, sizeof o);
-    o.style = plainPoints ? PNPR_STYLE_POINTS : ls.main;
-    if ((keyed && s->keyedUpload) || (ls.bySegment && !plainPoints && !s->keyedUpload)) {
-        o.style_map = ls.map.data();
-        o.style_map_count = ls.map.size();
-    }
-    o.sketch_variant = prm.variant;
-    o.background[0] = (float)prm.paper.redF();
-    o.background[1] = (float)prm.paper.greenF();
-    o.background[2] = (float)prm.paper.blueF();
-    o.background[3] = 1;
-    o.budget = (size_t)prm.budget;
-    o.density = prm.density;
-    if (moving && prm.motionBudget > 0 && (prm.budget == 0 || prm.motionBudget < prm.budget))
-        o.budget = (size_t)prm.motionBudget;
-    /* while moving, the budget also follows the time our draw took in the last moving frames: about
-     * kMotionDrawMs for our part of a frame (MeshLab redraws its own layers under ours too) */
-    bool budgetTimed = false; /* the time, not the parameters, set this frame's budget */
-    if (moving && s->motionMsPerPoint > 0) {
-        size_t timed = (size_t)std::max((double)kMotionMinPoints, kMotionDrawMs / s->motionMsPerPoint);
-        budgetTimed = o.budget == 0 || timed < o.budget;
-        o.budget = o.budget > 0 ? std::min(o.budget, timed) : timed;
-    }
-    if (ls.bits != s->slowBits || s->signature != s->slowSignature) { /* learnt per style and layers */
-        s->slowFrames = 0;
-        s->slowBits = ls.bits;
-        s->slowSignature = s->signature;
-    }
-    if (tile && s->lastDrawn > 0 && !(prm.density < 0)) {
-        o.budget = s->lastDrawn;
-        o.density = -1;
-    }
-    o.line_width = prm.lineWidth;
-    o.brush_preset = prm.brush;
-    o.brush_scale = prm.brushScale;
     pnpr_renderer_set_hierarchy(s->renderer, s->treeReady ? &s->tree : nullptr);
-    o.hierarchy.tam = prm.tam;
-    o.hierarchy.abstraction = prm.abstraction;
-    o.hierarchy.stroke_px = prm.strokePx;
-    o.stroke_width = prm.lineWidth;
-    o.outline = plainPoints ? -1 : prm.outline;
-    o.outline_width = prm.outlineWidth;
-    if (prm.look && !plainPoints) { /* the look fills what the dialog leaves at its defaults */
-        const pnpr_option_desc *lw = drawOption("line-width");
-        if (lw && o.line_width == (float)lw->def) o.line_width = o.stroke_width = 0;
-        if (prm.paper == QColor(255, 255, 255)) std::memset(o.background, 0, sizeof o.background);
-        pnpr_look_apply(prm.look, &o);
-        o.style = ls.main; /* the look's style, or a layer's own */
-    }
+    bool budgetTimed = false;
+    pnpr_draw_options o = frameOptions(s, prm, ls, plainPoints, keyed, moving, tile, budgetTimed);
     if (tile) {
         scaleWidths(o, s->snapK);
         report(QString("snapshot tiles at %1x the view: %2 points each, widths %1x").arg(s->snapK, 0, 'g', 3).arg(o.budget), false);

@@ -43,6 +43,7 @@ public:
 private:
     void draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg);
     void dropState(void *ctx);
+    DecorateContextState *stateFor(void *ctx, GLLogStream &lg);
     void testStartupPoll();
     void testGrabAfterPaint(void *ctx, int stage, const QString &prefix, std::vector<unsigned char> under, int w, int h);
 
