@@ -701,6 +701,17 @@ measure_colour() {
     }' "$1" "$2" "$3"
 }
 
+# measure_sides RUN VAR: measure_colour of run RUN's frame for the cube at x 0 (left) and its copy
+# at x 1.2 (right), as the shell variables VAR_left_FIGURE and VAR_right_FIGURE
+measure_sides() {
+  local side out
+  for side in left:0 right:1.2; do
+    out=$(measure_colour "$T/$1-camera.txt" "$T/$1-plain.pgm" "$T/$1-npr.pgm" "$1-${side%%:*}" "${side#*:}") ||
+      { fail "'$1': cannot measure the ${side%%:*} cube"; continue; }
+    eval "$(sed "s/\([A-Z]*\)=/$2_${side%%:*}_\1=/g" <<< "$out")"
+  done
+}
+
 # holds NAME "DESCRIPTION" AWK-CONDITION: fails NAME when the condition on the figures is false
 holds() { awk "BEGIN { exit ($3) ? 0 : 1 }" || fail "'$1': $2 (figures: $3)"; }
 
@@ -1354,11 +1365,7 @@ decorate_styles)
   expect_log layers "pointnpr decorator: styles per layer: 'colour.ply' cartoon, 'colour_right.ply' points"
   expect_log layers "pointnpr decorator: plan for the points and cartoon style: .*segments by JSEG"
   grep -q "pointnpr decorator: draw (.*) failed" "$T/layers.log" && fail "'layers': the draw failed"
-  for side in left:0 right:1.2; do
-    out=$(measure_colour "$T/layers-camera.txt" "$T/layers-plain.pgm" "$T/layers-npr.pgm" "layers-${side%%:*}" "${side#*:}") ||
-      { fail "'layers': cannot measure the ${side%%:*} cube"; continue; }
-    eval "$(sed "s/\([A-Z]*\)=/N_${side%%:*}_\1=/g" <<< "$out")"
-  done
+  measure_sides layers N
   # the inner halves (the view may cut the outer ones): the left cube's blue, the right cube's yellow
   holds layers "left cube (cartoon): its blue half flat (sd <= 1.5) at its mean (+- 4 of $INMB)" \
     "${N_left_SB:-99} >= 0 && ${N_left_SB:-99} <= 1.5 && (${N_left_MB:-0} - $INMB)^2 <= 16 && ${N_left_NIN:-0} >= 500"
@@ -1375,11 +1382,7 @@ decorate_styles)
   gui ownclass sketchy "$T/cube.ply" DrawStyle=1 Outline=2
   GUI_INPUTS=() GUI_POINTS='' GUI_LAYERS='' GUI_ENV=()
   expect_log ownclass "pointnpr decorator: uploaded 30004 points from 2 layer.*feature classes from 'cube.ply''s attributes \\(computed for the others\\)"
-  for side in left:0 right:1.2; do
-    out=$(measure_colour "$T/ownclass-camera.txt" "$T/ownclass-plain.pgm" "$T/ownclass-npr.pgm" "ownclass-${side%%:*}" "${side#*:}") ||
-      { fail "'ownclass': cannot measure the ${side%%:*} cube"; continue; }
-    eval "$(sed "s/\([A-Z]*\)=/O_${side%%:*}_\1=/g" <<< "$out")"
-  done
+  measure_sides ownclass O
   holds ownclass "the first cube keeps its own classes (none: <= 10% of its silhouette samples dark, no ink inside), the second its computed edge strokes (>= 50%)" \
     "${O_left_EDGE:-1} <= 0.1 && ${O_left_DARKIN:-1} == 0 && ${O_left_NEDGE:-0} >= 50 && ${O_right_EDGE:-0} >= 0.5 && ${O_right_NEDGE:-0} >= 50"
 
