@@ -669,10 +669,16 @@ Params readParams(const RichParameterList *par)
         int i = par->getEnum(kLook);
         if (i >= 1 && (size_t)i <= n) p.look = &looks[i - 1];
     }
-    if (p.look) { /* the look's style; its variant and outline where the dialog's are at their defaults */
-        p.style = p.look->style;
-        if (p.variant == PNPR_SKETCH_ALL) p.variant = p.look->sketch_variant;
-        if (p.outline == 0) p.outline = p.look->outline;
+    if (p.look) { /* the look's style; its variant and outline where the dialog's are at their defaults
+                   * (the library's rule, pnpr_look_apply: the plan needs them before the frame) */
+        pnpr_draw_options lo;
+        std::memset(&lo, 0, sizeof lo);
+        lo.sketch_variant = p.variant;
+        lo.outline = p.outline;
+        pnpr_look_apply(p.look, &lo);
+        p.style = lo.style;
+        p.variant = lo.sketch_variant;
+        p.outline = lo.outline;
     }
     /* test-only override (tests/meshlab/run.sh): the style by name */
     if (const char *s = std::getenv("PNPR_MESHLAB_TEST_STYLE")) {
@@ -751,6 +757,7 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
     size_t total = 0;
     bool anyColour = false, allClass = true, anyClass = false, anySeg = false, allNormals = true;
     QStringList withClass;
+    std::vector<LayerAttributes> attrs; /* per drawn layer (its stamp is checked once) */
     size_t meshes = 0;
     QStringList stale, oneSegment;
     for (MeshModel *mm : md.meshList) {
@@ -760,7 +767,8 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
         total += (size_t)mm->cm.vn;
         anyColour |= mm->hasDataMask(MeshModel::MM_VERTCOLOR);
         if (allNormals && !meaningfulNormals(mm)) allNormals = false;
-        LayerAttributes la(mm->cm);
+        attrs.emplace_back(mm->cm);
+        const LayerAttributes &la = attrs.back();
         if (la.stale) stale << QString("'%1'").arg(mm->label());
         allClass &= la.hasClass;
         anyClass |= la.hasClass;
@@ -792,7 +800,7 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
                 C[r][c] = T[(r + 1) % 3][(c + 1) % 3] * T[(r + 2) % 3][(c + 2) % 3] -
                           T[(r + 1) % 3][(c + 2) % 3] * T[(r + 2) % 3][(c + 1) % 3];
         bool colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
-        LayerAttributes la(m);
+        LayerAttributes &la = attrs[li];
         if (anySeg && !la.hasSeg) oneSegment << QString("'%1'").arg(mm->label());
         uint32_t maxLabel = 0;
         for (size_t i = 0; i < m.vert.size() && j < total; i++) {

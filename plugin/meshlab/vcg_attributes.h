@@ -25,6 +25,32 @@ bool findAttribute(CMeshO &m, const char *name, typename CMeshO::template PerVer
     return vcg::tri::Allocator<CMeshO>::IsValidHandle<T>(m, h);
 }
 
+/* The per-mesh attribute `name` of exactly type T into r_value; false when there is none (or one
+ * of another type: vcglib's lookup checks only the size). */
+template <class T> bool meshValue(CMeshO &m, const char *name, T &r_value)
+{
+    CMeshO::PointerToAttribute key;
+    key._name = name;
+    auto it = m.mesh_attr.find(key);
+    if (it == m.mesh_attr.end() || it->_type != std::type_index(typeid(T))) return false;
+    auto h = vcg::tri::Allocator<CMeshO>::template FindPerMeshAttribute<T>(m, name);
+    if (!vcg::tri::Allocator<CMeshO>::template IsValidHandle<T>(m, h)) return false;
+    r_value = h();
+    return true;
+}
+
+/* Sets the per-mesh attribute `name` of type T (made when missing); one of that name but another
+ * type is not ours and is kept (nothing written). */
+template <class T> void setMeshValue(CMeshO &m, const char *name, const T &value)
+{
+    CMeshO::PointerToAttribute key;
+    key._name = name;
+    auto it = m.mesh_attr.find(key);
+    if (it != m.mesh_attr.end() && it->_type != std::type_index(typeid(T))) return;
+    auto h = vcg::tri::Allocator<CMeshO>::template GetPerMeshAttribute<T>(m, name);
+    h() = value;
+}
+
 /* The per-mesh stamp the filter writes next to its per-vertex attributes (feature classes,
  * directions, segments): a hash of the vertices' positions and of those attributes' values. MeshLab
  * keeps attribute handles through File > Reload and through filters that move or rebuild
@@ -59,28 +85,16 @@ inline uint64_t layerStamp(CMeshO &m)
     return h;
 }
 
-inline void writeStamp(CMeshO &m)
-{
-    CMeshO::PointerToAttribute key;
-    key._name = kStampName;
-    auto it = m.mesh_attr.find(key);
-    if (it != m.mesh_attr.end() && it->_type != std::type_index(typeid(long long))) return; /* not ours: kept */
-    auto h = vcg::tri::Allocator<CMeshO>::GetPerMeshAttribute<long long>(m, kStampName);
-    h() = (long long)layerStamp(m);
-}
+inline void writeStamp(CMeshO &m) { setMeshValue<long long>(m, kStampName, (long long)layerStamp(m)); }
 
 enum class StampState { None, Valid, Stale };
 
 /* None: no stamp (attributes from elsewhere, e.g. a PLY file: taken as they are). */
 inline StampState checkStamp(CMeshO &m)
 {
-    CMeshO::PointerToAttribute key;
-    key._name = kStampName;
-    auto it = m.mesh_attr.find(key);
-    if (it == m.mesh_attr.end() || it->_type != std::type_index(typeid(long long))) return StampState::None;
-    auto h = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<long long>(m, kStampName);
-    if (!vcg::tri::Allocator<CMeshO>::IsValidHandle<long long>(m, h)) return StampState::None;
-    return (uint64_t)h() == layerStamp(m) ? StampState::Valid : StampState::Stale;
+    long long stamp = 0;
+    if (!meshValue<long long>(m, kStampName, stamp)) return StampState::None;
+    return (uint64_t)stamp == layerStamp(m) ? StampState::Valid : StampState::Stale;
 }
 
 /* A layer's own NPR style (per-mesh attribute, the pnpr_style value; set by the filter "NPR: Set
@@ -89,26 +103,11 @@ const char *const kLayerStyleName = "pnpr_style";
 
 inline bool layerStyle(CMeshO &m, int &r_style)
 {
-    CMeshO::PointerToAttribute key;
-    key._name = kLayerStyleName;
-    auto it = m.mesh_attr.find(key);
-    if (it == m.mesh_attr.end() || it->_type != std::type_index(typeid(int))) return false;
-    auto h = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<int>(m, kLayerStyleName);
-    if (!vcg::tri::Allocator<CMeshO>::IsValidHandle<int>(m, h)) return false;
-    r_style = h();
-    return r_style >= 0;
+    return meshValue<int>(m, kLayerStyleName, r_style) && r_style >= 0;
 }
 
 /* style < 0: the layer takes the decorator's Style again. */
-inline void setLayerStyle(CMeshO &m, int style)
-{
-    CMeshO::PointerToAttribute key;
-    key._name = kLayerStyleName;
-    auto it = m.mesh_attr.find(key);
-    if (it != m.mesh_attr.end() && it->_type != std::type_index(typeid(int))) return; /* not ours: kept */
-    auto h = vcg::tri::Allocator<CMeshO>::GetPerMeshAttribute<int>(m, kLayerStyleName);
-    h() = style < 0 ? -1 : style;
-}
+inline void setLayerStyle(CMeshO &m, int style) { setMeshValue<int>(m, kLayerStyleName, style < 0 ? -1 : style); }
 
 /* Before a filter writes some of the attributes and a new stamp: the others, when they belong to an
  * older version of the layer, go (a new stamp would otherwise vouch for them). True when they went. */
