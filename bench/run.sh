@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# make bench: the feature pipeline on 1M generated points vs Open3D's normal estimation on the
-# same cloud, in the same run. Writes build/bench/features.md (the table for docs/benchmarks.md).
+# make bench: the feature pipeline on 1M generated points vs PCL's NormalEstimationOMP and Open3D's
+# normal estimation on the same cloud, in the same run, all on the same number of threads
+# (PNPR_BENCH_THREADS, default 2). Writes build/bench/features.md (the table for docs/benchmarks.md).
 #   bash bench/run.sh BUILD_DIR [POINTS] [K]
 set -euo pipefail
 build=${1:-build}
@@ -9,22 +10,29 @@ k=${3:-16}
 out=$build/bench
 mkdir -p "$out"
 cloud=$out/scene_${points}.ply
+threads=${PNPR_BENCH_THREADS:-2}
+pcl=$build/bench/normals_pcl
 
-# Ours and Open3D alternate, 3 rounds each, and the medians are compared: on a shared 2-core
-# machine a background process slows OpenMP (Open3D) far more than our threads, so a single
-# pair of runs can be misleading either way.
+# Ours, PCL and Open3D take turns, 3 rounds each, and the medians are compared: on a shared
+# 2-core machine a background process slows OpenMP (the peers) far more than our threads, so a
+# single run of each can be misleading either way.
 rounds=3
-: > "$out/ours_all.txt"; : > "$out/open3d_all.txt"
+: > "$out/ours_all.txt"; : > "$out/open3d_all.txt"; : > "$out/pcl_all.txt"
 for r in $(seq 1 $rounds); do
-  echo "== round $r/$rounds: pointnpr features pipeline, $points points, k=$k" >&2
+  echo "== round $r/$rounds: pointnpr features pipeline, $points points, k=$k, $threads threads" >&2
   if [ "$r" -eq 1 ]; then
-    "$build/bench/bench_features" --points "$points" --k "$k" --write "$cloud" > "$out/ours.txt"
+    "$build/bench/bench_features" --points "$points" --k "$k" --threads "$threads" --write "$cloud" > "$out/ours.txt"
   else
-    "$build/bench/bench_features" --points "$points" --k "$k" > "$out/ours.txt"
+    "$build/bench/bench_features" --points "$points" --k "$k" --threads "$threads" > "$out/ours.txt"
   fi
   grep BENCH_TOTAL_SECONDS "$out/ours.txt" | awk '{print $2}' >> "$out/ours_all.txt"
+  if [ -x "$pcl" ]; then
+    echo "== round $r/$rounds: PCL NormalEstimationOMP on the same file" >&2
+    "$pcl" "$cloud" "$k" "$threads" 1 > "$out/pcl.txt"
+    grep PCL_NORMALS_SECONDS "$out/pcl.txt" | awk '{print $2}' >> "$out/pcl_all.txt"
+  fi
   echo "== round $r/$rounds: Open3D estimate_normals on the same file" >&2
-  /usr/bin/python3 bench/open3d_normals.py "$cloud" "$k" 1 > "$out/open3d.txt"
+  OMP_NUM_THREADS=$threads /usr/bin/python3 bench/open3d_normals.py "$cloud" "$k" 1 > "$out/open3d.txt"
   grep OPEN3D_NORMALS_SECONDS "$out/open3d.txt" | awk '{print $2}' >> "$out/open3d_all.txt"
 done
 median() { sort -g "$1" | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
@@ -42,7 +50,7 @@ o3dv=$(grep OPEN3D_VERSION "$out/open3d.txt" | awk '{print $2}')
 ratio=$(awk -v a="$o3d" -v b="$ours" 'BEGIN { printf "%.2f", a / b }')
 e2e_bpp=$(awk -v r="$rss" -v n="$points" 'BEGIN { printf "%.0f", r * 1024 / n }')
 {
-  echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(date -u +%Y-%m-%d)"
+  echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(date -u +%Y-%m-%d); every side on $threads threads"
   echo
   echo "Stage times of the last round:"
   echo
@@ -52,6 +60,13 @@ e2e_bpp=$(awk -v r="$rss" -v n="$points" 'BEGIN { printf "%.0f", r * 1024 / n }'
   echo "| our whole features pipeline (7 stages, in memory), median of $rounds | $ours s ($(paste -sd' ' "$out/ours_all.txt")) |"
   echo "| Open3D $o3dv estimate_normals (KNN $k) alone, median of $rounds | $o3d s ($(paste -sd' ' "$out/open3d_all.txt")) |"
   echo "| speed-up (Open3D normals / our whole pipeline) | **${ratio}x** |"
+  if [ -s "$out/pcl_all.txt" ]; then
+    pclm=$(median "$out/pcl_all.txt")
+    echo "| PCL $(grep PCL_VERSION "$out/pcl.txt" | awk '{print $2}') NormalEstimationOMP (KNN $k) alone, median of $rounds | $pclm s ($(paste -sd' ' "$out/pcl_all.txt")) |"
+    echo "| speed-up (PCL normals / our whole pipeline) | **$(awk -v a="$pclm" -v b="$ours" 'BEGIN { printf "%.2f", a / b }')x** |"
+  else
+    echo "| PCL NormalEstimationOMP | not built (libpcl-dev missing: packaging/deps/segment.bench.txt) |"
+  fi
   echo "| peak memory, pipeline in memory (cloud + pipeline) | $bpp bytes/point |"
   echo "| \`pointnpr features\` end to end (read + compute + write PLY): wall | $wall |"
   echo "| \`pointnpr features\` end to end: peak RSS | $((rss / 1024)) MB = $e2e_bpp bytes/point |"

@@ -3,6 +3,13 @@
 #include <pointnpr/knn.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
 
 static float d2(const float *a, const float *b)
 {
@@ -50,6 +57,40 @@ static void test_against_brute_force(void)
     CHECK(pnpr_kdtree_radius(t, q, 0.2f, buf, 4) == want);
     CHECK(want > 4);
     free(all); free(idx); free(dd); free(p);
+    pnpr_kdtree_free(t);
+}
+
+/* pnpr_knn_self on both sides of the kd-tree's switch from a sorted list to a heap (k of 256):
+ * each row's distances are the brute-force k smallest, nearest first, each point its own first
+ * neighbour, and 1 and 2 threads give byte-identical rows. */
+static void test_self(size_t k)
+{
+    enum { N = 2000 };
+    pnpr_test_rng rng = {11};
+    float *p = malloc(N * 3 * sizeof(float)), *all = malloc(N * sizeof(float));
+    for (int i = 0; i < N * 3; i++) p[i] = (float)pnpr_test_uniform(&rng);
+    for (int i = 0; i < 50; i++) memcpy(p + 3 * (2 * i + 1), p + 3 * (2 * i), 3 * sizeof(float)); /* duplicates */
+    pnpr_kdtree *t = NULL;
+    CHECK_STATUS(pnpr_kdtree_build(p, N, 0, &t), PNPR_OK);
+    uint32_t *idx[2] = {malloc(N * k * sizeof(uint32_t)), malloc(N * k * sizeof(uint32_t))};
+    float *dd[2] = {malloc(N * k * sizeof(float)), malloc(N * k * sizeof(float))};
+    for (int th = 0; th < 2; th++) {
+        pnpr_knn_options o = {th + 1, {0}, 0};
+        CHECK_STATUS(pnpr_knn_self(t, N, k, &o, idx[th], dd[th]), PNPR_OK);
+    }
+    CHECK_MSG(!memcmp(idx[0], idx[1], N * k * sizeof(uint32_t)) && !memcmp(dd[0], dd[1], N * k * sizeof(float)),
+              "k %zu: rows differ between 1 and 2 threads", k);
+    int bad = 0;
+    for (int q = 0; q < N; q += 37) {
+        for (int i = 0; i < N; i++) all[i] = d2(p + 3 * q, p + 3 * i);
+        qsort(all, N, sizeof(float), cmp_float);
+        bad += dd[0][q * k] != 0;
+        for (size_t j = 0; j < k; j++)
+            bad += dd[0][q * k + j] != all[j] || d2(p + 3 * q, p + 3 * idx[0][q * k + j]) != all[j];
+    }
+    CHECK_MSG(bad == 0, "k %zu: %d mismatches against brute force", k, bad);
+    for (int th = 0; th < 2; th++) { free(idx[th]); free(dd[th]); }
+    free(all); free(p);
     pnpr_kdtree_free(t);
 }
 
@@ -145,6 +186,9 @@ static void test_spacing(void)
 int main(void)
 {
     test_against_brute_force();
+    test_self(10);
+    test_self(256);
+    test_self(300);
     test_degenerate();
     test_stride();
     test_spacing();

@@ -35,7 +35,7 @@ int main(int argc, char **argv)
     pnpr_kdtree *tree = nullptr;
     std::vector<float> xyz(3 * n);
     for (uint64_t i = 0; i < n; i++) { xyz[3 * i] = (*cloud)[i].x; xyz[3 * i + 1] = (*cloud)[i].y; xyz[3 * i + 2] = (*cloud)[i].z; }
-    pnpr_kdtree_build(xyz.data(), n, 0, &tree);
+    if (pnpr_kdtree_build(xyz.data(), n, 0, &tree) != PNPR_OK) { std::fprintf(stderr, "segment_pcl: kd-tree failed\n"); return 1; }
     float dist = argc > 2 ? (float)std::atof(argv[2]) : 3.0f * pnpr_segment_median_spacing(tree, xyz.data(), n);
     pnpr_kdtree_free(tree);
 
@@ -64,7 +64,7 @@ int main(int argc, char **argv)
         segments = clusters.size();
     }
     pnpr_segment_score sc{};
-    pnpr_segment_score_labels(truth.data(), labels.data(), n, &sc);
+    if (pnpr_segment_score_labels(truth.data(), labels.data(), n, &sc) != PNPR_OK) { std::fprintf(stderr, "segment_pcl: scoring failed\n"); return 1; }
     std::printf("%-8s %9llu %8.4f %9zu %5u %5u %9.3f\n", "pcl-rgb", (unsigned long long)n, sc.ari, segments,
                 sc.over_segmented, sc.under_segmented, best);
     return 0;

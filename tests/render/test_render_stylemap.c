@@ -217,9 +217,12 @@ int main(void)
     CHECK(t1.red == 0);
     CHECK(t1.pencil > t1.n / 10 && t1.dark > 0);
     CHECK(t1.white > t1.n / 5);
-    /* occlusion with one mask: A hides the red points behind it, B the strokes behind it */
+    /* occlusion with one mask: A hides the red points behind it, B the strokes behind it. A's
+     * paper share depends on how the kd-tree cuts the exact distance ties of this generated grid
+     * (measured 421 and 385 of 1190 px with two tie orders); a quarter is far from the red points'
+     * 0 and from a black box */
     CHECK(ta.red == 0);
-    CHECK(ta.dark > 0 && ta.white > ta.n / 3);
+    CHECK(ta.dark > 0 && ta.white > ta.n / 4);
     CHECK(tb.red >= tb.n * 99 / 100);
     CHECK(tb.dark == 0);
 
