@@ -165,11 +165,16 @@ pnpr_status pnpr_kdtree_build_threads(const float *xyz, size_t count, size_t str
     t->node_count = subtree_nodes(n);
     t->nodes = malloc(t->node_count * sizeof *t->nodes);
     if (!t->nodes) { pnpr_kdtree_free(t); return PNPR_ERR_OUT_OF_MEMORY; }
-    /* the top 4 levels sequentially, then up to 16 subtrees in parallel */
-    enum { PAR_DEPTH = 4 };
-    build_task tasks[1 << PAR_DEPTH];
+    /* The top levels sequentially, just enough of them for one subtree per thread (at most 16:
+     * halves split at the median are equal in size), then the subtrees in parallel. On 2 threads
+     * only the root's split is sequential: 1M random points built in 0.150 s instead of 0.169 s with
+     * the 4 sequential levels before (0.280 s on one thread). The tree is the same either way. */
+    enum { PAR_DEPTH_MAX = 4 };
+    int par_depth = 0, nt = threads > 0 ? threads : pnpr_default_threads();
+    while (par_depth < PAR_DEPTH_MAX && (1 << par_depth) < nt) par_depth++;
+    build_task tasks[1 << PAR_DEPTH_MAX];
     size_t ntasks = 0;
-    build_rec(t, 0, n, 0, 0, PAR_DEPTH, tasks, &ntasks);
+    build_rec(t, 0, n, 0, 0, par_depth, tasks, &ntasks);
     build_job j = {t, tasks};
     pnpr_status st = pnpr_parallel_for(ntasks, 1, threads, build_range, &j, NULL, "kd-tree");
     if (st != PNPR_OK) { pnpr_kdtree_free(t); return st; }
@@ -195,6 +200,14 @@ void pnpr_kdtree_free(pnpr_kdtree *t)
     free(t->index);
     free(t->nodes);
     free(t);
+}
+
+pnpr_status pnpr_kdtree_renumber(pnpr_kdtree *t, uint32_t *r_old)
+{
+    if (!t || (t->count && !r_old)) return PNPR_ERR_INVALID_ARGUMENT;
+    memcpy(r_old, t->index, t->count * sizeof *r_old);
+    for (size_t p = 0; p < t->count; p++) t->index[p] = (uint32_t)p;
+    return PNPR_OK;
 }
 
 size_t pnpr_kdtree_size(const pnpr_kdtree *t)

@@ -18,6 +18,12 @@
 size_t pnpr_kdtree_radius_first(const pnpr_kdtree *tree, const float q[3], float radius, uint32_t *r_idx,
                                 size_t cap);
 
+/* Makes the tree report its own positions as ids from now on (tree position p is id p), and
+ * writes to r_old (pnpr_kdtree_size entries) the id each position had: a caller that puts its
+ * per-point arrays into tree order (new[p] = old[r_old[p]]) keeps using the tree, and its later
+ * passes over the points walk them in space-filling order (neighbours close in memory). */
+pnpr_status pnpr_kdtree_renumber(pnpr_kdtree *tree, uint32_t *r_old);
+
 pnpr_status pnpr_kdtree_components(const pnpr_kdtree *tree, size_t count, float distance,
                                    const pnpr_progress *progress, uint32_t *r_labels);
 

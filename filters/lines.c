@@ -139,6 +139,7 @@ typedef struct lines_ctx {
     uint8_t *alive;            /* forest edge not pruned */
     chain *chains;
     uint32_t *chain_nodes;
+    uint32_t *at;      /* input point i is at c->pos[at[i]] (tree order: tree_order) */
     size_t n_chains;
 } lines_ctx;
 
@@ -146,27 +147,80 @@ static void lines_ctx_free(lines_ctx *c)
 {
     pnpr_kdtree_free(c->tree);
     free(c->pos); free(c->dir); free(c->npos); free(c->ndir); free(c->deg);
-    free(c->adj_off); free(c->adj); free(c->alive); free(c->edges); free(c->chains); free(c->chain_nodes);
+    free(c->adj_off); free(c->adj); free(c->alive); free(c->edges); free(c->chains); free(c->chain_nodes); free(c->at);
 }
 
-/* The valid input points (finite position, non-zero direction), directions normalised. */
+/* Input points [begin, end) copied, their directions normalised; an invalid one (non-finite
+ * position, zero or non-finite direction) gets a NaN position. */
+typedef struct collect_job { float *pos, *dir; const float *xyz, *d; } collect_job;
+
+static void collect_range(void *ctx, size_t begin, size_t end)
+{
+    const collect_job *j = ctx;
+    for (size_t i = begin; i < end; i++) {
+        const float *p = j->xyz + 3 * i, *d = j->d + 3 * i;
+        double l = sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
+        int ok = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]) && l > 0 && isfinite(l);
+        for (int a = 0; a < 3; a++) {
+            j->pos[3 * i + a] = ok ? p[a] : NAN;
+            j->dir[3 * i + a] = ok ? (float)(d[a] / l) : 0.0f;
+        }
+    }
+}
+
+/* The valid input points (finite position, non-zero direction), directions normalised, in input
+ * order (copied in parallel, then the invalid ones squeezed out). */
 static pnpr_status lines_collect(lines_ctx *c, const float *xyz_in, const float *dir_in, size_t m)
 {
     c->pos = malloc((m ? m : 1) * 3 * sizeof *c->pos);
     c->dir = malloc((m ? m : 1) * 3 * sizeof *c->dir);
     if (!c->pos || !c->dir) return PNPR_ERR_OUT_OF_MEMORY;
+    collect_job job = {c->pos, c->dir, xyz_in, dir_in};
+    pnpr_status st = pnpr_parallel_for(m, LINES_CHUNK, c->opts->threads, collect_range, &job, NULL, NULL);
+    if (st != PNPR_OK) return st;
     size_t n = 0;
     for (size_t i = 0; i < m; i++) {
-        const float *p = xyz_in + 3 * i, *d = dir_in + 3 * i;
-        double l = sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]) || !(l > 0) || !isfinite(l)) continue;
-        memcpy(c->pos + 3 * n, p, 3 * sizeof(float));
-        for (int a = 0; a < 3; a++) c->dir[3 * n + a] = (float)(d[a] / l);
+        if (isnan(c->pos[3 * i])) continue;
+        if (n != i) {
+            memcpy(c->pos + 3 * n, c->pos + 3 * i, 3 * sizeof *c->pos);
+            memcpy(c->dir + 3 * n, c->dir + 3 * i, 3 * sizeof *c->dir);
+        }
         n++;
     }
     c->n = n;
     c->stats->directional_points = n;
     return PNPR_OK;
+}
+
+/* Points and directions (n of each) put into the order of the kd-tree `tree` over them, which
+ * the tree then reports; r_at (may be NULL) receives where each point went. Later passes walk
+ * them in space-filling order, their neighbours close in memory, whatever order they came in. */
+typedef struct order_job { const uint32_t *old; const float *pos, *dir; float *p2, *d2; uint32_t *at; } order_job;
+
+static void order_range(void *ctx, size_t begin, size_t end)
+{
+    const order_job *j = ctx;
+    for (size_t p = begin; p < end; p++) {
+        size_t o = j->old[p];
+        memcpy(j->p2 + 3 * p, j->pos + 3 * o, 3 * sizeof *j->p2);
+        memcpy(j->d2 + 3 * p, j->dir + 3 * o, 3 * sizeof *j->d2);
+        if (j->at) j->at[o] = (uint32_t)p;
+    }
+}
+
+static pnpr_status tree_order(pnpr_kdtree *tree, float **pos, float **dir, size_t n, int threads, uint32_t *r_at)
+{
+    uint32_t *old = malloc((n ? n : 1) * sizeof *old);
+    float *p2 = malloc((n ? n : 1) * 3 * sizeof *p2), *d2 = malloc((n ? n : 1) * 3 * sizeof *d2);
+    pnpr_status st = old && p2 && d2 ? pnpr_kdtree_renumber(tree, old) : PNPR_ERR_OUT_OF_MEMORY;
+    order_job job = {old, *pos, *dir, p2, d2, r_at};
+    if (st == PNPR_OK) st = pnpr_parallel_for(n, LINES_CHUNK, threads, order_range, &job, NULL, NULL);
+    if (st == PNPR_OK) {
+        free(*pos); *pos = p2; p2 = NULL;
+        free(*dir); *dir = d2; d2 = NULL;
+    }
+    free(old); free(p2); free(d2);
+    return st;
 }
 
 /* A length option: its value, else its table default, a multiple of h (options.h). */
@@ -230,46 +284,55 @@ static pnpr_status lines_shift(lines_ctx *c)
     return PNPR_OK;
 }
 
-/* 2. merge points closer than tol_merge into nodes (npos, ndir); the tree then holds the nodes. */
+/* Node n_nodes from seed i and the points nb[0, got) within tol_merge of it not merged yet. */
+static void merge_node(lines_ctx *c, size_t i, const uint32_t *nb, size_t got, uint32_t *cluster, size_t n_nodes)
+{
+    const float *pos = c->pos, *dir = c->dir, *d0 = dir + 3 * i;
+    double m[3] = {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]}, dsum[3] = {d0[0], d0[1], d0[2]};
+    size_t cnt = 1;
+    cluster[i] = (uint32_t)n_nodes;
+    for (size_t r = 0; r < got; r++) {
+        uint32_t j = nb[r];
+        if (cluster[j] != PNPR_INDEX_NONE) continue; /* merged already (or i itself) */
+        cluster[j] = (uint32_t)n_nodes;
+        const float *dj = dir + 3 * (size_t)j;
+        double s = dj[0] * d0[0] + dj[1] * d0[1] + dj[2] * d0[2] < 0 ? -1.0 : 1.0;
+        for (int a = 0; a < 3; a++) { m[a] += pos[3 * (size_t)j + a]; dsum[a] += s * dj[a]; }
+        cnt++;
+    }
+    double dl = sqrt(dsum[0] * dsum[0] + dsum[1] * dsum[1] + dsum[2] * dsum[2]);
+    for (int a = 0; a < 3; a++) {
+        c->npos[3 * n_nodes + a] = (float)(m[a] / (double)cnt);
+        c->ndir[3 * n_nodes + a] = dl > 0 ? (float)(dsum[a] / dl) : d0[a];
+    }
+}
+
+/* 2. merge points closer than tol_merge into nodes (npos, ndir), greedily in input order (each
+ * point's node depends on the ones before: in tree order, which leaves each leaf's points
+ * unsorted, a line of points would be cut into nodes anew inside every leaf); the tree then
+ * holds the nodes, numbered in its order for the graph and the chains. */
 static pnpr_status lines_merge(lines_ctx *c)
 {
     uint32_t nb[RADIUS_CAP];
     const size_t n = c->n;
-    const float *pos = c->pos, *dir = c->dir;
     uint32_t *cluster = malloc(n * sizeof *cluster);
     c->ndir = malloc(n * 3 * sizeof *c->ndir);
     if (!cluster || !c->ndir) { free(cluster); return PNPR_ERR_OUT_OF_MEMORY; }
     for (size_t i = 0; i < n; i++) cluster[i] = PNPR_INDEX_NONE;
     size_t n_nodes = 0;
-    for (size_t i = 0; i < n; i++) {
+    for (size_t r = 0; r < n; r++) {
+        size_t i = c->at[r];
         if (cluster[i] != PNPR_INDEX_NONE) continue;
-        size_t got = pnpr_kdtree_radius_first(c->tree, pos + 3 * i, (float)c->tol_merge, nb, RADIUS_CAP);
-        const float *d0 = dir + 3 * i;
-        double m[3] = {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]}, dsum[3] = {d0[0], d0[1], d0[2]};
-        size_t cnt = 1;
-        cluster[i] = (uint32_t)n_nodes;
-        for (size_t r = 0; r < got; r++) {
-            uint32_t j = nb[r];
-            if (cluster[j] != PNPR_INDEX_NONE) continue; /* merged already (or i itself) */
-            cluster[j] = (uint32_t)n_nodes;
-            const float *dj = dir + 3 * (size_t)j;
-            double s = dj[0] * d0[0] + dj[1] * d0[1] + dj[2] * d0[2] < 0 ? -1.0 : 1.0;
-            for (int a = 0; a < 3; a++) { m[a] += pos[3 * (size_t)j + a]; dsum[a] += s * dj[a]; }
-            cnt++;
-        }
-        double dl = sqrt(dsum[0] * dsum[0] + dsum[1] * dsum[1] + dsum[2] * dsum[2]);
-        for (int a = 0; a < 3; a++) {
-            c->npos[3 * n_nodes + a] = (float)(m[a] / (double)cnt);
-            c->ndir[3 * n_nodes + a] = dl > 0 ? (float)(dsum[a] / dl) : d0[a];
-        }
-        n_nodes++;
+        size_t got = pnpr_kdtree_radius_first(c->tree, c->pos + 3 * i, (float)c->tol_merge, nb, RADIUS_CAP);
+        merge_node(c, i, nb, got, cluster, n_nodes++);
     }
     free(cluster);
     c->n_nodes = n_nodes;
     c->stats->merged_nodes = n_nodes;
     pnpr_kdtree_free(c->tree);
     c->tree = NULL;
-    return pnpr_kdtree_build_threads(c->npos, n_nodes, 0, c->opts->threads, &c->tree);
+    pnpr_status st = pnpr_kdtree_build_threads(c->npos, n_nodes, 0, c->opts->threads, &c->tree);
+    return st == PNPR_OK ? tree_order(c->tree, &c->npos, &c->ndir, n_nodes, c->opts->threads, NULL) : st;
 }
 
 /* The graph edges of nodes [begin, end): node a's in c->edges[a * GRAPH_SLOTS ...], their
@@ -322,8 +385,46 @@ static pnpr_status lines_graph(lines_ctx *c)
     return PNPR_OK;
 }
 
-/* Parts of an edge array sorted on their own (sort_edges). */
-typedef struct sort_job { edge *e; size_t n, parts; } sort_job;
+/* Merges the sorted runs a[0, na) and b[0, nb) into out (a first among equal edges). */
+static void merge_runs(const edge *a, size_t na, const edge *b, size_t nb, edge *out)
+{
+    size_t i = 0, j = 0;
+    while (i < na && j < nb) *out++ = cmp_edge(b + j, a + i) < 0 ? b[j++] : a[i++];
+    while (i < na) *out++ = a[i++];
+    while (j < nb) *out++ = b[j++];
+}
+
+/* How many of the first k edges merge_runs writes come from a: the least i with b[k-i-1] < a[i]. */
+static size_t co_rank(const edge *a, size_t na, const edge *b, size_t nb, size_t k)
+{
+    size_t lo = k > nb ? k - nb : 0, hi = k < na ? k : na;
+    while (lo < hi) {
+        size_t i = lo + (hi - lo) / 2, j = k - i;
+        if (j > 0 && i < na && cmp_edge(b + j - 1, a + i) >= 0) lo = i + 1;
+        else hi = i;
+    }
+    return lo;
+}
+
+/* One pass of pairwise merges of sorted parts (width w parts per run), each merge cut into `per`
+ * pieces of equal output that run in parallel: piece x of the merge of runs [lo, mid) and
+ * [mid, hi) writes dst[lo + len * q / per, lo + len * (q + 1) / per) from the inputs that co_rank
+ * finds, so the result is that of one merge whatever the threads. */
+typedef struct sort_job { edge *e; const edge *src; edge *dst; size_t n, parts, w, per; } sort_job;
+
+static void merge_pieces(void *ctx, size_t begin, size_t end)
+{
+    const sort_job *j = ctx;
+    for (size_t x = begin; x < end; x++) {
+        size_t p = x / j->per * 2 * j->w, q = x % j->per;
+        size_t mid = p + j->w < j->parts ? p + j->w : j->parts, pe = p + 2 * j->w < j->parts ? p + 2 * j->w : j->parts;
+        size_t lo = j->n * p / j->parts, m = j->n * mid / j->parts, hi = j->n * pe / j->parts, len = hi - lo;
+        const edge *a = j->src + lo, *b = j->src + m;
+        size_t na = m - lo, nb = hi - m, k0 = len * q / j->per, k1 = len * (q + 1) / j->per;
+        size_t i0 = co_rank(a, na, b, nb, k0), i1 = co_rank(a, na, b, nb, k1);
+        merge_runs(a + i0, i1 - i0, b + (k0 - i0), (k1 - i1) - (k0 - i0), j->dst + lo + k0);
+    }
+}
 
 static void sort_parts(void *ctx, size_t begin, size_t end)
 {
@@ -334,18 +435,9 @@ static void sort_parts(void *ctx, size_t begin, size_t end)
     }
 }
 
-/* Merges the sorted runs src[lo, mid) and src[mid, hi) into dst[lo, hi). */
-static void merge_runs(const edge *src, edge *dst, size_t lo, size_t mid, size_t hi)
-{
-    size_t a = lo, b = mid, o = lo;
-    while (a < mid && b < hi) dst[o++] = cmp_edge(src + b, src + a) < 0 ? src[b++] : src[a++];
-    while (a < mid) dst[o++] = src[a++];
-    while (b < hi) dst[o++] = src[b++];
-}
-
 /* The edges sorted by cmp_edge: up to 8 parts (a power of two, one per thread) sorted in
- * parallel, then merged pairwise. cmp_edge is a total order, so the result is that of one qsort
- * whatever the threads. */
+ * parallel, then merged pairwise, each merge in parallel pieces. cmp_edge is a total order, so
+ * the result is that of one qsort whatever the threads. */
 static pnpr_status sort_edges(edge *e, size_t n, int threads)
 {
     int t = threads > 0 ? threads : pnpr_default_threads();
@@ -353,19 +445,17 @@ static pnpr_status sort_edges(edge *e, size_t n, int threads)
     while (parts < 8 && parts * 2 <= (size_t)t && n / (parts * 2) >= 4096) parts *= 2;
     edge *tmp = parts > 1 ? malloc(n * sizeof *tmp) : NULL;
     if (!tmp) { qsort(e, n, sizeof *e, cmp_edge); return PNPR_OK; } /* one part, or no memory for two */
-    sort_job job = {e, n, parts};
+    sort_job job = {e, e, tmp, n, parts, 1, 1};
     pnpr_status st = pnpr_parallel_for(parts, 1, t, sort_parts, &job, NULL, NULL);
-    edge *src = e, *dst = tmp;
-    for (size_t w = 1; st == PNPR_OK && w < parts; w *= 2) {
-        for (size_t p = 0; p < parts; p += 2 * w) {
-            size_t mid = p + w < parts ? p + w : parts, end = p + 2 * w < parts ? p + 2 * w : parts;
-            merge_runs(src, dst, n * p / parts, n * mid / parts, n * end / parts);
-        }
-        edge *x = src;
-        src = dst;
-        dst = x;
+    for (; st == PNPR_OK && job.w < parts; job.w *= 2) {
+        size_t merges = (parts + 2 * job.w - 1) / (2 * job.w);
+        job.per = (size_t)t / merges > 1 ? (size_t)t / merges : 1;
+        st = pnpr_parallel_for(merges * job.per, 1, t, merge_pieces, &job, NULL, NULL);
+        edge *x = (edge *)job.src;
+        job.src = job.dst;
+        job.dst = x;
     }
-    if (st == PNPR_OK && src != e) memcpy(e, src, n * sizeof *e);
+    if (st == PNPR_OK && job.src != e) memcpy(e, job.src, n * sizeof *e);
     free(tmp);
     return st;
 }
@@ -778,6 +868,9 @@ pnpr_status pnpr_profile_lines_points(const float *xyz_in, const float *dir_in, 
     c.stats = r_stats;
     pnpr_status st = lines_collect(&c, xyz_in, dir_in, m);
     if (st == PNPR_OK && c.n >= 2) st = pnpr_kdtree_build_threads(c.pos, c.n, 0, opts->threads, &c.tree);
+    /* the points in tree order for the shifts; c.at keeps the input order for the merge */
+    if (st == PNPR_OK && c.n >= 2) st = (c.at = malloc(c.n * sizeof *c.at)) ? tree_order(c.tree, &c.pos, &c.dir, c.n, opts->threads, c.at)
+                                                                             : PNPR_ERR_OUT_OF_MEMORY;
     double h = 0;
     if (st == PNPR_OK && c.n >= 2) h = opts->spacing > 0 ? opts->spacing : pnpr_kdtree_median_spacing(c.tree, 0);
     if (st == PNPR_OK && h > 0) { /* else fewer than 2 points, or all coincide: no line */
