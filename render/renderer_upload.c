@@ -34,7 +34,6 @@ typedef struct upload_ctx {
     uint8_t *group;       /* point j's queue group */
     uint32_t *order;      /* the queue order: order[q] = j */
     size_t ngroups, starts[GROUP_MAX + 2];
-    pnpr_vertex *verts;   /* the vertices in queue order */
     uint8_t *flat;        /* labels: each point's segment mean colour */
     float *shade;         /* colourless: the key light's darkness ... */
     uint8_t *grey;        /* ... and the grey of each point */
@@ -105,10 +104,12 @@ static int cmp_degree(const void *a, const void *b)
 
 /* The painterly data (section 5.3): finite points sorted by feature_degree (non-finite = lowest)
  * and divided evenly into `bins` bins, each shuffled into a queue (pnpr_crq_order); the vertices
- * in that order (u->pverts, copies of the class-ordered u->verts) and, per pass L and point, the
+ * in that order (u->pverts, as fill_vertex makes them) and, per pass L and point, the
  * blended colour: the mean colour of the point's neighbours (among its nkk nearest, itself
  * included) within the pass's brush radius pnpr_paint_brush(L) * radius (u->pcol, level-major
  * RGBA8). */
+static void fill_vertex(const upload_ctx *u, size_t q, pnpr_vertex *v);
+
 static pnpr_status paint_data(upload_ctx *u)
 {
     size_t n = u->n, bins = u->nbins, kk = u->nkk;
@@ -130,12 +131,12 @@ static pnpr_status paint_data(upload_ctx *u)
     /* a seed of its own, so that the bins' order is not the class queues' */
     pnpr_status st = pnpr_crq_order(n, bin, (uint32_t)bins, u->o.seed ^ 0x9E3779B97F4A7C15ull, porder, u->pstarts);
     if (st != PNPR_OK) return st;
-    const pnpr_vertex *verts = u->verts;
     const uint32_t *nidx = u->nidx;
+    const uint8_t *rgb = u->cloud->rgb;
     for (size_t q = 0; q < n; q++) inv[u->order[q]] = (uint32_t)q;
     for (size_t q = 0; q < n; q++) {
         uint32_t j = porder[q];
-        pv[q] = verts[inv[j]];
+        fill_vertex(u, inv[j], pv + q);
         for (size_t L = 0; L < bins; L++) {
             double lim = (double)pnpr_paint_brush(L, bins) * u->radius[j];
             double sum[3] = {0, 0, 0};
@@ -143,7 +144,7 @@ static pnpr_status paint_data(upload_ctx *u)
             for (size_t t = 0; t < kk && nidx; t++) {
                 uint32_t m = nidx[j * kk + t];
                 if (m == PNPR_INDEX_NONE || !((double)u->nd2[j * kk + t] <= lim * lim)) continue;
-                for (int c = 0; c < 3; c++) sum[c] += verts[inv[m]].rgba[c]; /* colours, or the shaded greys */
+                for (int c = 0; c < 3; c++) sum[c] += rgb ? rgb[3 * (size_t)u->src[m] + c] : u->grey[m]; /* as fill_vertex */
                 cnt++;
             }
             uint8_t *o = col + 4 * (L * n + q);
@@ -151,6 +152,8 @@ static pnpr_status paint_data(upload_ctx *u)
             o[3] = 255;
         }
     }
+    free(u->nidx); free(u->nd2); /* served their turn: not held while GL copies the buffers */
+    u->nidx = NULL; u->nd2 = NULL;
     return PNPR_OK;
 }
 
@@ -263,9 +266,8 @@ static pnpr_status upload_finite(upload_ctx *u)
     u->radius = malloc(m * sizeof *u->radius);
     u->group = malloc(m);
     u->order = malloc(m * sizeof *u->order);
-    u->verts = malloc(m * sizeof *u->verts);
     u->flat = cloud->label ? malloc(m * 3) : NULL;
-    if (!u->src || !u->xyz || !u->radius || !u->group || !u->order || !u->verts || (cloud->label && !u->flat))
+    if (!u->src || !u->xyz || !u->radius || !u->group || !u->order || (cloud->label && !u->flat))
         return PNPR_ERR_OUT_OF_MEMORY;
     n = 0;
     for (size_t i = 0; i < cloud->count; i++) {
@@ -395,7 +397,6 @@ static pnpr_status brush_data(upload_ctx *u)
 static pnpr_status upload_vertices(upload_ctx *u)
 {
     size_t n = u->n;
-    for (size_t q = 0; q < n; q++) fill_vertex(u, q, u->verts + q);
     u->paint = u->pdeg && n > 0;
     if (u->paint) {
         pnpr_status st = paint_data(u);
@@ -416,6 +417,21 @@ static pnpr_status upload_vertices(upload_ctx *u)
     return brush_data(u);
 }
 
+/* The vertices into the bound GL_ARRAY_BUFFER, filled and written a chunk at a time, so that the
+ * upload never holds all of them beside the GL's own copy (40 bytes/point less at the peak). */
+static void upload_vertex_buffer(const upload_ctx *u)
+{
+    size_t n = u->n;
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof(pnpr_vertex)), NULL, GL_STATIC_DRAW);
+    enum { CHUNK = 1024 };
+    pnpr_vertex buf[CHUNK];
+    for (size_t q0 = 0; q0 < n; q0 += CHUNK) {
+        size_t c = n - q0 < CHUNK ? n - q0 : CHUNK;
+        for (size_t q = 0; q < c; q++) fill_vertex(u, q0 + q, buf + q);
+        glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(q0 * sizeof *buf), (GLsizeiptr)(c * sizeof *buf), buf);
+    }
+}
+
 /* The GL buffers: style bytes (zero), vertices, painterly vertices and colours. */
 static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
 {
@@ -428,7 +444,7 @@ static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_style_vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(paint ? n : 1), u->zeros, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof *u->verts), n ? u->verts : NULL, GL_STATIC_DRAW);
+    upload_vertex_buffer(u);
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_vbo);
     glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(n * sizeof *u->pverts) : 0, paint ? u->pverts : NULL, GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
@@ -471,7 +487,7 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
 
 static void upload_free(upload_ctx *u)
 {
-    free(u->src); free(u->xyz); free(u->radius); free(u->group); free(u->order); free(u->verts); free(u->flat);
+    free(u->src); free(u->xyz); free(u->radius); free(u->group); free(u->order); free(u->flat);
     free(u->nidx); free(u->nd2); free(u->porder); free(u->inv); free(u->pbin); free(u->pcol); free(u->pverts);
     free(u->vlabel); free(u->paint_src); free(u->zeros); free(u->shade); free(u->grey); free(u->bverts);
 }
