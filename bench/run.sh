@@ -96,3 +96,19 @@ echo "== segment-specific image-space effects: 1M labelled points at 1920x1080 (
 if [ -x "$build/bench/effects_scene" ] && [ -x "$build/pointnpr" ]; then
   bash bench/effects.sh "$build" "$out/effects" | tee "$out/effects.md"
 fi
+
+# On a machine with a GPU the headless context takes it (EGL's device platform, render.h): frames/s
+# per style at 1.4M and 50M points (issue 18). bench_render prints the GL renderer it drew with.
+echo "== renderer on a GPU: frames/s per style at 1.4M and 50M points (skipped on llvmpipe)" >&2
+probe=$("$build/render/bench_render" --points 1000 --frames 1 2>/dev/null | grep '^cloud:' || true)
+if [ -n "$probe" ] && ! grep -q llvmpipe <<< "$probe"; then
+  : > "$out/gpu.md"
+  for n in 1400000 50000000; do
+    "$build/render/bench_render" --points "$n" --frames 10 > "$out/gpu_$n.txt"
+    cat "$out/gpu_$n.txt" >> "$out/gpu.md"
+    { echo; echo "| style, $n points | frames/s |"; echo "|---|---:|"
+      awk -F'|' '/^\| [a-z]/ && $5 + 0 > 0 { printf "|%s| %.1f |\n", $2, 1000 / $5 }' "$out/gpu_$n.txt"; echo; } | tee -a "$out/gpu.md"
+  done
+else
+  echo "no GPU context (${probe:-no GL}): skipped" | tee "$out/gpu.md"
+fi

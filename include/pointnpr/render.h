@@ -337,13 +337,17 @@ PNPR_NODISCARD pnpr_status pnpr_renderer_effects(pnpr_renderer *renderer, const 
 
 typedef struct pnpr_gl_context pnpr_gl_context;
 
-/* An OpenGL 3.3+ core context without window system (EGL, EGL_MESA_platform_surfaceless), made
- * current on the calling thread. It has no default framebuffer: render into a pnpr_renderer (whose
- * frame is read back) or an FBO. PNPR_ERR_UNSUPPORTED with the reason when libEGL, the platform
- * or GL 3.3 is not available. */
+/* An OpenGL 3.3+ core context without window system, made current on the calling thread: on a GPU
+ * when EGL lists one (EGL_EXT_platform_device), else on Mesa's llvmpipe
+ * (EGL_MESA_platform_surfaceless). The environment variable PNPR_GL_DEVICE=software skips the
+ * GPUs; PNPR_GL_DEVICE=device takes the first device EGL lists even when it is a software one.
+ * It has no default framebuffer: render into a pnpr_renderer (whose frame is read back) or an FBO.
+ * PNPR_ERR_UNSUPPORTED with the reason when libEGL, the platform or GL 3.3 is not available. */
 PNPR_NODISCARD pnpr_status pnpr_gl_context_create(pnpr_gl_context **r_context, pnpr_error *err);
 PNPR_NODISCARD pnpr_status pnpr_gl_context_make_current(pnpr_gl_context *context);
 void pnpr_gl_context_destroy(pnpr_gl_context *context); /* releases it if current; NULL ok */
+/* "device" (EGL's device platform) or "surfaceless" (Mesa's); NULL for NULL. */
+const char *pnpr_gl_context_platform(const pnpr_gl_context *context);
 
 /* Writes RGBA8 pixels (top row first) as an 8-bit PNG, RGB or RGBA (alpha != 0). */
 /* Reads a PNG as grey bytes (any colour type, converted by libpng; row 0 at the top) into *r_grey
