@@ -38,11 +38,9 @@ typedef struct upload_ctx {
     float *shade;         /* colourless: the key light's darkness ... */
     uint8_t *grey;        /* ... and the grey of each point */
     uint32_t *nidx;       /* painterly: the nkk nearest of each point (itself included) */
-    float *nd2;
     size_t nkk;
     uint32_t *porder, *inv;  /* painterly order (porder[q] = j); inv[j] = queue position */
     uint8_t *pbin, *pcol;    /* each point's bin; the blended colours (level-major RGBA8) */
-    pnpr_vertex *pverts;     /* the vertices in painterly order */
     size_t pstarts[PAINT_MAX_BINS + 2];
     int paint;               /* painterly data built */
     int paint_skipped;       /* the cloud has them, pnpr_upload_options.skip_painterly left them out */
@@ -104,11 +102,26 @@ static int cmp_degree(const void *a, const void *b)
 
 /* The painterly data (section 5.3): finite points sorted by feature_degree (non-finite = lowest)
  * and divided evenly into `bins` bins, each shuffled into a queue (pnpr_crq_order); the vertices
- * in that order (u->pverts, as fill_vertex makes them) and, per pass L and point, the
+ * in that order (written to GL by upload_vertex_buffer) and, per pass L and point, the
  * blended colour: the mean colour of the point's neighbours (among its nkk nearest, itself
  * included) within the pass's brush radius pnpr_paint_brush(L) * radius (u->pcol, level-major
  * RGBA8). */
 static void fill_vertex(const upload_ctx *u, size_t q, pnpr_vertex *v);
+
+/* Channel c of finite point j's colour as its vertex has it (fill_vertex): the cloud's, or the
+ * shaded grey of a colourless cloud. */
+static uint8_t point_rgb(const upload_ctx *u, const uint8_t *rgb, uint32_t j, int c)
+{
+    return rgb ? rgb[3 * (size_t)u->src[j] + c] : u->grey[j];
+}
+
+/* The squared distance from b to a as the kd-tree computes it (knn.h), so that the brush radius
+ * test takes the same points as with the kNN's own distances. */
+static float dist2(const float *a, const float *b)
+{
+    float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return dx * dx + dy * dy + dz * dz;
+}
 
 static pnpr_status paint_data(upload_ctx *u)
 {
@@ -117,9 +130,7 @@ static pnpr_status paint_data(upload_ctx *u)
     uint8_t *bin = u->pbin = malloc(n);
     uint32_t *porder = u->porder = malloc(n * sizeof *porder);
     uint32_t *inv = u->inv = malloc(n * sizeof *inv);
-    uint8_t *col = u->pcol = malloc(bins * n * 4);
-    pnpr_vertex *pv = u->pverts = malloc(n * sizeof *pv);
-    if (!di || !bin || !porder || !inv || !col || !pv) { free(di); return PNPR_ERR_OUT_OF_MEMORY; }
+    if (!di || !bin || !porder || !inv) { free(di); return PNPR_ERR_OUT_OF_MEMORY; }
     for (size_t j = 0; j < n; j++) {
         double d = pnpr_type_get(u->pdeg->type, u->pdeg->data, u->src[j]);
         di[j].d = isfinite(d) ? (float)d : -FLT_MAX;
@@ -131,29 +142,31 @@ static pnpr_status paint_data(upload_ctx *u)
     /* a seed of its own, so that the bins' order is not the class queues' */
     pnpr_status st = pnpr_crq_order(n, bin, (uint32_t)bins, u->o.seed ^ 0x9E3779B97F4A7C15ull, porder, u->pstarts);
     if (st != PNPR_OK) return st;
+    uint8_t *col = u->pcol = malloc(bins * n * 4); /* after the sort's scratch is gone */
+    if (!col) return PNPR_ERR_OUT_OF_MEMORY;
     const uint32_t *nidx = u->nidx;
     const uint8_t *rgb = u->cloud->rgb;
     for (size_t q = 0; q < n; q++) inv[u->order[q]] = (uint32_t)q;
     for (size_t q = 0; q < n; q++) {
         uint32_t j = porder[q];
-        fill_vertex(u, inv[j], pv + q);
         for (size_t L = 0; L < bins; L++) {
             double lim = (double)pnpr_paint_brush(L, bins) * u->radius[j];
             double sum[3] = {0, 0, 0};
             size_t cnt = 0;
             for (size_t t = 0; t < kk && nidx; t++) {
                 uint32_t m = nidx[j * kk + t];
-                if (m == PNPR_INDEX_NONE || !((double)u->nd2[j * kk + t] <= lim * lim)) continue;
-                for (int c = 0; c < 3; c++) sum[c] += rgb ? rgb[3 * (size_t)u->src[m] + c] : u->grey[m]; /* as fill_vertex */
+                if (m == PNPR_INDEX_NONE || !((double)dist2(u->xyz + 3 * (size_t)m, u->xyz + 3 * (size_t)j) <= lim * lim))
+                    continue;
+                for (int c = 0; c < 3; c++) sum[c] += point_rgb(u, rgb, m, c);
                 cnt++;
             }
             uint8_t *o = col + 4 * (L * n + q);
-            for (int c = 0; c < 3; c++) o[c] = cnt ? (uint8_t)(sum[c] / (double)cnt + 0.5) : pv[q].rgba[c];
+            for (int c = 0; c < 3; c++) o[c] = cnt ? (uint8_t)(sum[c] / (double)cnt + 0.5) : point_rgb(u, rgb, j, c);
             o[3] = 255;
         }
     }
-    free(u->nidx); free(u->nd2); /* served their turn: not held while GL copies the buffers */
-    u->nidx = NULL; u->nd2 = NULL;
+    free(u->nidx); /* served its turn: not held while GL copies the buffers */
+    u->nidx = NULL;
     return PNPR_OK;
 }
 
@@ -312,7 +325,7 @@ static pnpr_status upload_order(upload_ctx *u)
         st = pnpr_point_spacing(u->xyz, n, u->k, u->o.threads, u->radius, &lists);
         if (st != PNPR_OK) return st;
         u->nidx = lists.idx;
-        u->nd2 = lists.d2;
+        free(lists.d2); /* paint_data computes the few distances it needs again (dist2) */
         u->nkk = lists.k;
     }
     u->ngroups = u->features ? GROUP_MAX : 1;
@@ -418,8 +431,10 @@ static pnpr_status upload_vertices(upload_ctx *u)
 }
 
 /* The vertices into the bound GL_ARRAY_BUFFER, filled and written a chunk at a time, so that the
- * upload never holds all of them beside the GL's own copy (40 bytes/point less at the peak). */
-static void upload_vertex_buffer(const upload_ctx *u)
+ * upload never holds all of them beside the GL's own copy (40 bytes/point less at the peak, twice
+ * for painterly): in queue order, or with porder in painterly order (vertex q of the buffer is
+ * the queue's u->inv[porder[q]]). */
+static void upload_vertex_buffer(const upload_ctx *u, const uint32_t *porder)
 {
     size_t n = u->n;
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof(pnpr_vertex)), NULL, GL_STATIC_DRAW);
@@ -427,7 +442,7 @@ static void upload_vertex_buffer(const upload_ctx *u)
     pnpr_vertex buf[CHUNK];
     for (size_t q0 = 0; q0 < n; q0 += CHUNK) {
         size_t c = n - q0 < CHUNK ? n - q0 : CHUNK;
-        for (size_t q = 0; q < c; q++) fill_vertex(u, q0 + q, buf + q);
+        for (size_t q = 0; q < c; q++) fill_vertex(u, porder ? u->inv[porder[q0 + q]] : q0 + q, buf + q);
         glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(q0 * sizeof *buf), (GLsizeiptr)(c * sizeof *buf), buf);
     }
 }
@@ -444,9 +459,10 @@ static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_style_vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(paint ? n : 1), u->zeros, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
-    upload_vertex_buffer(u);
+    upload_vertex_buffer(u, NULL);
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_vbo);
-    glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(n * sizeof *u->pverts) : 0, paint ? u->pverts : NULL, GL_STATIC_DRAW);
+    if (paint) upload_vertex_buffer(u, u->porder);
+    else glBufferData(GL_ARRAY_BUFFER, 0, NULL, GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
     glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(u->nbins * n * 4) : 0, paint ? u->pcol : NULL, GL_STATIC_DRAW);
     pnpr_brush_gl_upload(&r->brush, u->bverts, n);
@@ -488,7 +504,7 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
 static void upload_free(upload_ctx *u)
 {
     free(u->src); free(u->xyz); free(u->radius); free(u->group); free(u->order); free(u->flat);
-    free(u->nidx); free(u->nd2); free(u->porder); free(u->inv); free(u->pbin); free(u->pcol); free(u->pverts);
+    free(u->nidx); free(u->porder); free(u->inv); free(u->pbin); free(u->pcol);
     free(u->vlabel); free(u->paint_src); free(u->zeros); free(u->shade); free(u->grey); free(u->bverts);
 }
 
