@@ -27,9 +27,9 @@
 #define SEGMENTS_KEPT 4
 /* The renderer: the GL context and Mesa's llvmpipe (a one-point render: 92.5 MB above reading the
  * same file); per point by style, the upload (the vertices in the GL buffer, written to it a chunk
- * at a time, painterly's copy in its own order too; queue, style data; painterly's bins and
- * colours, its neighbour lists freed before the GL copies; the brush and hierarchy stages' data),
- * measured on the 1M-point farm with features; per pixel by style, the frame (colour,
+ * at a time, painterly's copy in its own order too; queue, style data; painterly's bins and RGB
+ * colours per pass, its neighbour lists freed before the GL copies; the brush and hierarchy
+ * stages' data), measured on the 1M-point farm with features; per pixel by style, the frame (colour,
  * depth-stencil, the surface info in RGBA32F, the outline and colour-area passes, the read-back and
  * the PNG rows), measured on the lion between 64x48 and 2048x1536. Images beyond RENDER_TILE px a
  * side are drawn in tiles of at most that: their other pixels cost the image and its rows alone. */
@@ -38,7 +38,7 @@
 #define RENDER_TILE ((size_t)8192)
 static const unsigned short render_cost[PNPR_STYLE_COUNT_][2] = {
     /* bytes per point, per pixel: points sketchy lines stipple cartoon painterly brush hierarchy */
-    {72, 52}, {72, 50}, {72, 88}, {72, 64}, {90, 105}, {157, 56}, {117, 86}, {193, 72}};
+    {72, 52}, {72, 50}, {72, 88}, {72, 64}, {90, 105}, {149, 56}, {117, 86}, {193, 72}};
 
 /* a * b + c, saturating at SIZE_MAX */
 static size_t mul_add(size_t a, size_t b, size_t c)

@@ -42,6 +42,10 @@ enum { STROKE_TEX_W = 128, STROKE_TEX_H = 32, STROKE_LAYERS = 4, STROKE_LAYER_HA
 #define HATCH_DIR 0.57735027f, 0.57735027f, 0.57735027f
 #define HATCH_DIR2 0.70710678f, -0.70710678f, 0.0f
 
+/* painterly: bytes per blended colour (RGB; the shader's attribute takes alpha 1), per pass and
+ * point in paint_col_vbo (level-major: vertex i's colour at pass L at (L * count + i) * this) */
+#define PAINT_COL_BYTES 3
+
 typedef struct pnpr_vertex {
     float pos[3];
     float radius;

@@ -97,7 +97,7 @@ static void draw_mask(pnpr_renderer *r, const pnpr_frame_ctx *f, const mask_spec
         pnpr_renderer_vertex_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
         if (m->color) { /* the coarsest pass's blended colours (level 0) */
             glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
-            glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, 4, (const void *)0);
+            glVertexAttribPointer(2, PAINT_COL_BYTES, GL_UNSIGNED_BYTE, GL_TRUE, PAINT_COL_BYTES, (const void *)0);
         }
         for (size_t b = 0; b < r->paint_bins; b++)
             if (f->pdraw[b]) glDrawArrays(GL_POINTS, (GLint)r->paint_start[b], (GLsizei)f->pdraw[b]);
@@ -289,7 +289,8 @@ static size_t draw_dabs(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter, G
         glUniform1f(r->up.radius_scale, f->point_scale * f->lod * brush);
         /* attribute 2 <- this pass's colour level (vertex i's colour at level L is at L*count + i) */
         glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
-        glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, 4, (const void *)(uintptr_t)(L * r->count * 4));
+        glVertexAttribPointer(2, PAINT_COL_BYTES, GL_UNSIGNED_BYTE, GL_TRUE, PAINT_COL_BYTES,
+                              (const void *)(uintptr_t)(L * r->count * PAINT_COL_BYTES));
         for (size_t b = L; b < nb; b++) {
             size_t m = d[b] < f->pdraw[b] ? d[b] : f->pdraw[b];
             if (!m) continue;

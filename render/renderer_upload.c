@@ -40,7 +40,7 @@ typedef struct upload_ctx {
     uint32_t *nidx;       /* painterly: the nkk nearest of each point (itself included) */
     size_t nkk;
     uint32_t *porder, *inv;  /* painterly order (porder[q] = j); inv[j] = queue position */
-    uint8_t *pbin, *pcol;    /* each point's bin; the blended colours (level-major RGBA8) */
+    uint8_t *pbin, *pcol;    /* each point's bin; the blended colours (level-major, PAINT_COL_BYTES) */
     size_t pstarts[PAINT_MAX_BINS + 2];
     int paint;               /* painterly data built */
     int paint_skipped;       /* the cloud has them, pnpr_upload_options.skip_painterly left them out */
@@ -105,7 +105,7 @@ static int cmp_degree(const void *a, const void *b)
  * in that order (written to GL by upload_vertex_buffer) and, per pass L and point, the
  * blended colour: the mean colour of the point's neighbours (among its nkk nearest, itself
  * included) within the pass's brush radius pnpr_paint_brush(L) * radius (u->pcol, level-major
- * RGBA8). */
+ * RGB8). */
 static void fill_vertex(const upload_ctx *u, size_t q, pnpr_vertex *v);
 
 /* Channel c of finite point j's colour as its vertex has it (fill_vertex): the cloud's, or the
@@ -142,7 +142,7 @@ static pnpr_status paint_data(upload_ctx *u)
     /* a seed of its own, so that the bins' order is not the class queues' */
     pnpr_status st = pnpr_crq_order(n, bin, (uint32_t)bins, u->o.seed ^ 0x9E3779B97F4A7C15ull, porder, u->pstarts);
     if (st != PNPR_OK) return st;
-    uint8_t *col = u->pcol = malloc(bins * n * 4); /* after the sort's scratch is gone */
+    uint8_t *col = u->pcol = malloc(bins * n * PAINT_COL_BYTES); /* after the sort's scratch is gone */
     if (!col) return PNPR_ERR_OUT_OF_MEMORY;
     const uint32_t *nidx = u->nidx;
     const uint8_t *rgb = u->cloud->rgb;
@@ -160,9 +160,8 @@ static pnpr_status paint_data(upload_ctx *u)
                 for (int c = 0; c < 3; c++) sum[c] += point_rgb(u, rgb, m, c);
                 cnt++;
             }
-            uint8_t *o = col + 4 * (L * n + q);
+            uint8_t *o = col + PAINT_COL_BYTES * (L * n + q);
             for (int c = 0; c < 3; c++) o[c] = cnt ? (uint8_t)(sum[c] / (double)cnt + 0.5) : point_rgb(u, rgb, j, c);
-            o[3] = 255;
         }
     }
     free(u->nidx); /* served its turn: not held while GL copies the buffers */
@@ -464,7 +463,7 @@ static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
     if (paint) upload_vertex_buffer(u, u->porder);
     else glBufferData(GL_ARRAY_BUFFER, 0, NULL, GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
-    glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(u->nbins * n * 4) : 0, paint ? u->pcol : NULL, GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(u->nbins * n * PAINT_COL_BYTES) : 0, paint ? u->pcol : NULL, GL_STATIC_DRAW);
     pnpr_brush_gl_upload(&r->brush, u->bverts, n);
     pnpr_gl_state_restore(&saved);
 }
