@@ -17,6 +17,15 @@ static inline void pnpr_cross3(const double a[3], const double b[3], double r[3]
 static inline int pnpr_finite3f(const float p[3]) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 static inline int pnpr_finite3d(const double p[3]) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
+/* The squared distance between float points x and q as the kd-tree computes it ((x - q) per axis,
+ * summed x, y, z in float): the spacing and painterly's brush test use it too, so that their
+ * distances equal the kNN's bit for bit. */
+static inline float pnpr_dist2f(const float x[3], const float q[3])
+{
+    float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
+    return dx * dx + dy * dy + dz * dz;
+}
+
 /* Scales v to unit length when its length is positive and finite; returns the length. */
 static inline double pnpr_normalize3(double v[3])
 {

@@ -309,9 +309,7 @@ static void knn_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], best *h
     const node *nd = &t->nodes[id];
     if (nd->right == 0) {
         for (uint32_t p = nd->begin; p < nd->end; p++) {
-            const float *x = t->pts + 3 * p;
-            float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
-            float d = dx * dx + dy * dy + dz * dz;
+            float d = pnpr_dist2f(t->pts + 3 * p, q);
             uint32_t pid = h->map ? h->map[p] : p;
             if (best_takes(h, d, pid)) best_offer(h, d, pid);
         }
@@ -366,9 +364,7 @@ static size_t radius_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], fl
     const node *nd = &t->nodes[id];
     if (nd->right == 0) {
         for (uint32_t p = nd->begin; p < nd->end; p++) {
-            const float *x = t->pts + 3 * p;
-            float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
-            if (dx * dx + dy * dy + dz * dz <= r2) {
+            if (pnpr_dist2f(t->pts + 3 * p, q) <= r2) {
                 if (found < cap) r_idx[found] = t->index[p];
                 found++;
             }
@@ -396,9 +392,7 @@ static size_t radius_first_rec(const pnpr_kdtree *t, uint32_t id, const float q[
     const node *nd = &t->nodes[id];
     if (nd->right == 0) {
         for (uint32_t p = nd->begin; p < nd->end && found < cap; p++) {
-            const float *x = t->pts + 3 * p;
-            float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
-            if (dx * dx + dy * dy + dz * dz <= r2) r_idx[found++] = t->index[p];
+            if (pnpr_dist2f(t->pts + 3 * p, q) <= r2) r_idx[found++] = t->index[p];
         }
         return found;
     }
@@ -574,9 +568,7 @@ static void cc_leaf(cc *c, uint32_t id, const float q[3], uint32_t p)
     const node *nd = &c->t->nodes[id];
     const float *pts = c->t->pts;
     for (uint32_t j = nd->begin; j < nd->end; j++) {
-        const float *x = pts + 3 * j;
-        float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
-        if (dx * dx + dy * dy + dz * dz <= c->r2) cc_union(c->parent, p, j);
+        if (pnpr_dist2f(pts + 3 * j, q) <= c->r2) cc_union(c->parent, p, j);
     }
     uint32_t root = cc_find(c->parent, nd->begin), same = 1;
     for (uint32_t j = nd->begin + 1; j < nd->end && same; j++) same = cc_find(c->parent, j) == root;

@@ -2,6 +2,7 @@
  * nearest other point, clamped to a band around the median. The renderer's disk radii and the
  * SVG outlines' surface buffer both take their disks from it, so the two draw the same surface. */
 #include "../core/internal.h"
+#include "../core/vec3.h"
 
 #include <pointnpr/knn.h>
 
@@ -38,9 +39,7 @@ void pnpr_spacing_from_lists(const float *xyz, size_t n, const uint32_t *idx, si
         for (size_t j = 0; j < kr; j++) {
             uint32_t nb = idx[i * kk + j];
             if (nb == PNPR_INDEX_NONE || nb >= n) continue;
-            const float *x = xyz + 3 * (size_t)nb;
-            float dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2]; /* as knn_rec (kdtree.c) */
-            float d = dx * dx + dy * dy + dz * dz;
+            float d = pnpr_dist2f(xyz + 3 * (size_t)nb, q); /* as knn_rec (kdtree.c) */
             if (d > best) best = d;
         }
         r_spacing[i] = sqrtf(best);

@@ -100,29 +100,19 @@ static int cmp_degree(const void *a, const void *b)
     return x->j < y->j ? -1 : x->j > y->j;
 }
 
+/* Channel c of finite point j's colour (its vertex's, and what painterly blends): the cloud's, or
+ * the shaded grey of a colourless cloud. */
+static uint8_t point_rgb(const upload_ctx *u, const uint8_t *rgb, uint32_t j, int c)
+{
+    return rgb ? rgb[3 * (size_t)u->src[j] + c] : u->grey[j];
+}
+
 /* The painterly data (section 5.3): finite points sorted by feature_degree (non-finite = lowest)
  * and divided evenly into `bins` bins, each shuffled into a queue (pnpr_crq_order); the vertices
  * in that order (written to GL by upload_vertex_buffer) and, per pass L and point, the
  * blended colour: the mean colour of the point's neighbours (among its nkk nearest, itself
  * included) within the pass's brush radius pnpr_paint_brush(L) * radius (u->pcol, level-major
  * RGB8). */
-static void fill_vertex(const upload_ctx *u, size_t q, pnpr_vertex *v);
-
-/* Channel c of finite point j's colour as its vertex has it (fill_vertex): the cloud's, or the
- * shaded grey of a colourless cloud. */
-static uint8_t point_rgb(const upload_ctx *u, const uint8_t *rgb, uint32_t j, int c)
-{
-    return rgb ? rgb[3 * (size_t)u->src[j] + c] : u->grey[j];
-}
-
-/* The squared distance from b to a as the kd-tree computes it (knn.h), so that the brush radius
- * test takes the same points as with the kNN's own distances. */
-static float dist2(const float *a, const float *b)
-{
-    float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-    return dx * dx + dy * dy + dz * dz;
-}
-
 static pnpr_status paint_data(upload_ctx *u)
 {
     size_t n = u->n, bins = u->nbins, kk = u->nkk;
@@ -155,7 +145,7 @@ static pnpr_status paint_data(upload_ctx *u)
             size_t cnt = 0;
             for (size_t t = 0; t < kk && nidx; t++) {
                 uint32_t m = nidx[j * kk + t];
-                if (m == PNPR_INDEX_NONE || !((double)dist2(u->xyz + 3 * (size_t)m, u->xyz + 3 * (size_t)j) <= lim * lim))
+                if (m == PNPR_INDEX_NONE || !((double)pnpr_dist2f(u->xyz + 3 * (size_t)m, u->xyz + 3 * (size_t)j) <= lim * lim))
                     continue;
                 for (int c = 0; c < 3; c++) sum[c] += point_rgb(u, rgb, m, c);
                 cnt++;
@@ -324,7 +314,7 @@ static pnpr_status upload_order(upload_ctx *u)
         st = pnpr_point_spacing(u->xyz, n, u->k, u->o.threads, u->radius, &lists);
         if (st != PNPR_OK) return st;
         u->nidx = lists.idx;
-        free(lists.d2); /* paint_data computes the few distances it needs again (dist2) */
+        free(lists.d2); /* paint_data computes the few distances it needs again (pnpr_dist2f) */
         u->nkk = lists.k;
     }
     u->ngroups = u->features ? GROUP_MAX : 1;
@@ -344,8 +334,7 @@ static void fill_vertex(const upload_ctx *u, size_t q, pnpr_vertex *v)
     size_t i = u->src[j];
     memcpy(v->pos, u->xyz + 3 * (size_t)j, sizeof v->pos);
     v->radius = u->radius[j];
-    if (cloud->rgb) memcpy(v->rgba, cloud->rgb + 3 * i, 3);
-    else v->rgba[0] = v->rgba[1] = v->rgba[2] = u->grey[j];
+    for (int c = 0; c < 3; c++) v->rgba[c] = point_rgb(u, cloud->rgb, j, c);
     v->rgba[3] = 255;
     if (cloud->label) memcpy(v->flat, u->flat + 3 * (size_t)j, 3);
     else if (!cloud->rgb) v->flat[0] = v->flat[1] = v->flat[2] = shade_band(u->shade[j]);
