@@ -4,12 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
+#include "../core/internal.h" /* pnpr_cmp_float */
 
 static float d2(const float *a, const float *b)
 {
@@ -83,7 +78,7 @@ static void test_self(size_t k)
     int bad = 0;
     for (int q = 0; q < N; q += 37) {
         for (int i = 0; i < N; i++) all[i] = d2(p + 3 * q, p + 3 * i);
-        qsort(all, N, sizeof(float), cmp_float);
+        qsort(all, N, sizeof(float), pnpr_cmp_float);
         bad += dd[0][q * k] != 0;
         for (size_t j = 0; j < k; j++)
             bad += dd[0][q * k + j] != all[j] || d2(p + 3 * q, p + 3 * idx[0][q * k + j]) != all[j];
