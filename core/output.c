@@ -124,7 +124,8 @@ static pnpr_status out_open_temporary(pnpr_output *o, pnpr_error *err)
         int n = snprintf(o->tmp, sizeof o->tmp, "%.*s.%.200s.%s.part", dir_len, o->target, base, hex);
         if (n < 0 || (size_t)n >= sizeof o->tmp)
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: path too long", o->path);
-        fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
+        /* read-write: a writer may map the temporary (pnpr_tile_merge places records by index) */
+        fd = open(o->tmp, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
         if (fd < 0 && errno != EEXIST)
             return pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot create a temporary file in its folder: %s", o->path,
                                   strerror(errno));

@@ -145,6 +145,7 @@ pnpr_status pnpr_read_file(const char *path, const pnpr_read_options *opts, pnpr
     if (o.format == PNPR_FORMAT_AUTO) o.format = pnpr_format_from_path(path);
     if (o.format == PNPR_FORMAT_AUTO && (st = io_sniff_file(path, &o.format, err)) != PNPR_OK)
         return st;
+    if (o.format != PNPR_FORMAT_PLY && (st = pnpr_io_no_filter(&o, err, path)) != PNPR_OK) return st;
     switch (o.format) {
     case PNPR_FORMAT_PLY: st = pnpr_read_ply_file(path, &o, cloud, err); break;
     case PNPR_FORMAT_LAS: st = pnpr_read_las_file(path, &o, cloud, err); break;

@@ -17,6 +17,16 @@
 pnpr_status pnpr_io_fail(pnpr_error *err, pnpr_status st, long line, long long offset, const char *fmt, ...)
     PNPR_IO_PRINTF(5, 6);
 
+/* The readers other than PLY's refuse a point filter (pnpr_read_options.keep): returns
+ * PNPR_ERR_UNSUPPORTED with a message naming `what` ("read las"), or PNPR_OK without one. */
+static inline pnpr_status pnpr_io_no_filter(const pnpr_read_options *opts, pnpr_error *err, const char *what)
+{
+    if (!opts || !opts->keep) return PNPR_OK;
+    return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, 0, -1,
+                        "%s: a point filter (a tile) reads binary PLY only (convert it: pointnpr convert IN OUT.ply)",
+                        what);
+}
+
 /* A cloud's stream writer (pnpr_write_ply_stream, pnpr_write_pcd_stream). */
 typedef pnpr_status (*pnpr_io_stream_writer)(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
                                             const pnpr_write_options *opts, pnpr_error *err);

@@ -302,6 +302,7 @@ pnpr_status pnpr_read_las_memory(const void *data, size_t size, const pnpr_read_
     if (!cloud || (!data && size))
         return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "pnpr_read_las_memory: NULL argument");
     pnpr_cloud_free(cloud);
+    if (pnpr_io_no_filter(opts, err, "read las") != PNPR_OK) return PNPR_ERR_UNSUPPORTED;
     if (!data) data = "";
     las_header h;
     memset(&h, 0, sizeof h);

@@ -509,6 +509,10 @@ extern "C" pnpr_status pnpr_read_mesh_file(const char *path, const pnpr_read_opt
     pnpr_file_format fmt = opts && opts->format != PNPR_FORMAT_AUTO ? opts->format : pnpr_format_from_path(path);
     if (fmt != PNPR_FORMAT_OBJ && fmt != PNPR_FORMAT_OFF)
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: not an OBJ or OFF file", path);
+    if (opts && opts->keep)
+        return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
+                              "%s: a point filter (a tile) reads binary PLY only (convert it: pointnpr convert IN OUT.ply)",
+                              path);
     struct stat sb;
     if (stat(path, &sb) != 0)
         return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, std::strerror(errno));

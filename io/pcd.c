@@ -872,6 +872,7 @@ pnpr_status pnpr_read_pcd_memory(const void *data, size_t size, const pnpr_read_
     if (!cloud || (!data && size))
         return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read pcd: NULL cloud or data");
     pnpr_cloud_free(cloud);
+    if (pnpr_io_no_filter(opts, err, "read pcd") != PNPR_OK) return PNPR_ERR_UNSUPPORTED;
     pcd_header h;
     pnpr_cloud c;
     memset(&h, 0, sizeof h);

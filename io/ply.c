@@ -653,6 +653,7 @@ typedef struct ply_reader {
     size_t index_cap;   /* capacity of c->faces.index */
     size_t nindex;      /* indices stored */
     int dry;            /* parse only to find the body's first error: nothing is stored */
+    const uint8_t *kept; /* the keep filter's bit per vertex (filter_vertices), or NULL = all */
 } ply_reader;
 
 /* Stores vertex property p of vertex i. f is meaningful for FLOAT32 properties only. */
@@ -748,20 +749,21 @@ static pnpr_status binary_fixed(ply_reader *r, const ply_elem *e, size_t *pos)
         for (size_t k = 0; k < e->nprops; k++)
             if (e->props[k].role != ROLE_SKIP) slots[ns++] = &e->props[k];
         tick_init(&t, n);
-        for (size_t i = 0; i < n; i++) {
+        for (size_t i = 0, j = 0; i < n; i++) {
             const uint8_t *rec = base + i * rs;
-            for (size_t k = 0; k < ns; k++) {
+            for (size_t k = 0; k < ns && (!r->kept || (r->kept[i >> 3] >> (i & 7) & 1)); k++) {
                 const ply_prop *p = slots[k];
                 if (p->role == ROLE_EXTRA) {
                     size_t sz = pnpr_type_size(p->type);
-                    copy_raw((uint8_t *)p->dst + i * sz, rec + p->offset, sz, r->swap);
+                    copy_raw((uint8_t *)p->dst + j * sz, rec + p->offset, sz, r->swap);
                 } else {
                     double v;
                     float f = 0.0f;
                     load_value(rec + p->offset, p->type, r->swap, &v, &f);
-                    store_vertex(r, p, i, v, f);
+                    store_vertex(r, p, j, v, f);
                 }
             }
+            j += !r->kept || (r->kept[i >> 3] >> (i & 7) & 1);
             if (tick(r, &t, i + 1, n)) return cancelled(r, i + 1, n);
         }
     }
@@ -1131,13 +1133,58 @@ static pnpr_status read_ascii(ply_reader *r)
 /* ------------------------------------------------------------------------------------------ */
 /* Reader entry points                                                                         */
 
-/* Allocates every cloud array the header asks for and points extra properties at their data. */
-static pnpr_status prepare_cloud(ply_reader *r, ply_header *h, pnpr_error *err)
+/* The keep filter (pnpr_read_options.keep): one pass over the vertex records' coordinates marks
+ * the kept vertices in a bit set (*r_bits, count/8 bytes: 25 MB for 2e8 points) and counts them.
+ * Only a binary body whose vertex records have a fixed size and start at a known byte. */
+static pnpr_status filter_vertices(ply_reader *r, const pnpr_read_options *o, uint8_t **r_bits, size_t *r_kept)
+{
+    const ply_header *h = r->h;
+    const ply_elem *v = h->vertex;
+    size_t pos = h->body;
+    for (size_t i = 0; i < h->nelems && &h->elems[i] != v; i++) {
+        if (h->elems[i].has_list) pos = SIZE_MAX;
+        else pos += (size_t)h->elems[i].count * h->elems[i].min_size; /* sizes checked by check_body_size */
+    }
+    if (h->encoding == PLY_ENC_ASCII || v->has_list || pos == SIZE_MAX)
+        return pnpr_io_fail(r->err, PNPR_ERR_UNSUPPORTED, 0, -1,
+                            "read ply: a point filter (a tile) needs a binary body whose vertex records have a fixed "
+                            "size and follow no list element (convert it: pointnpr convert IN OUT.ply)");
+    const ply_prop *xyz[3] = {NULL, NULL, NULL};
+    for (size_t k = 0; k < v->nprops; k++)
+        if (v->props[k].role >= ROLE_X && v->props[k].role <= ROLE_Z) xyz[v->props[k].role - ROLE_X] = &v->props[k];
+    const size_t n = (size_t)v->count, rs = v->min_size;
+    uint8_t *bits = calloc(n / 8 + 1, 1);
+    if (!bits) return pnpr_io_fail(r->err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "read ply: out of memory");
+    size_t kept = 0;
+    ply_tick t;
+    tick_init(&t, n);
+    for (size_t i = 0; i < n; i++) {
+        const uint8_t *rec = r->data + pos + i * rs;
+        double w[3];
+        float f;
+        for (int a = 0; a < 3; a++) load_value(rec + xyz[a]->offset, xyz[a]->type, r->swap, &w[a], &f);
+        if (o->keep(o->keep_user, i, w)) {
+            bits[i >> 3] |= (uint8_t)(1u << (i & 7));
+            kept++;
+        }
+        if (tick(r, &t, i + 1, n)) {
+            free(bits);
+            return cancelled(r, i + 1, n);
+        }
+    }
+    *r_bits = bits;
+    *r_kept = kept;
+    return PNPR_OK;
+}
+
+/* Allocates every cloud array the header asks for (count vertices) and points extra properties
+ * at their data. */
+static pnpr_status prepare_cloud(ply_reader *r, ply_header *h, size_t count, pnpr_error *err)
 {
     pnpr_cloud *c = r->c;
     ply_elem *v = h->vertex;
     int has_normal = 0, has_rgb = 0, has_label = 0;
-    pnpr_status st = pnpr_cloud_alloc(c, (size_t)v->count);
+    pnpr_status st = pnpr_cloud_alloc(c, count);
     for (size_t k = 0; st == PNPR_OK && k < v->nprops; k++) {
         ply_prop *p = &v->props[k];
         has_normal |= p->role == ROLE_NX;
@@ -1170,8 +1217,8 @@ static pnpr_status prepare_cloud(ply_reader *r, ply_header *h, pnpr_error *err)
             }
     }
     if (st != PNPR_OK)
-        return pnpr_io_fail(err, st, 0, -1, "read ply: cannot allocate %llu vertices (%s)",
-                       (unsigned long long)v->count, pnpr_status_string(st));
+        return pnpr_io_fail(err, st, 0, -1, "read ply: cannot allocate %zu vertices (%s)", count,
+                            pnpr_status_string(st));
     for (size_t k = 0, e = 0; k < v->nprops; k++)
         if (v->props[k].role == ROLE_EXTRA) v->props[k].dst = c->props[e++].data;
     return PNPR_OK;
@@ -1184,6 +1231,7 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
     ply_reader r;
     pnpr_cloud c;
     pnpr_status st;
+    uint8_t *kept = NULL;
 
     if (err) { err->message[0] = '\0'; err->line = 0; err->offset = -1; }
     if (!cloud || (!data && size))
@@ -1206,7 +1254,13 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
         r.swap = (h.encoding == PLY_ENC_LE) != host_is_little();
         r.progress = opts && !r.dry ? &opts->progress : NULL;
         r.err = err;
-        if (!r.dry) st = prepare_cloud(&r, &h, err);
+        size_t count = (size_t)h.vertex->count;
+        if (!r.dry && opts && opts->keep) {
+            st = filter_vertices(&r, opts, &kept, &count);
+            h.face = NULL; /* a tile has no faces */
+        }
+        if (!r.dry && st == PNPR_OK) st = prepare_cloud(&r, &h, count, err);
+        r.kept = kept;
     }
     if (st == PNPR_OK) st = h.encoding == PLY_ENC_ASCII ? read_ascii(&r) : read_binary(&r);
     if (st == PNPR_OK && r.dry) /* cannot pass (the bound is exact); if it did, the bound speaks */
@@ -1231,6 +1285,7 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
         if (!c.faces.index) st = pnpr_io_fail(err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "read ply: out of memory");
     }
     header_free(&h);
+    free(kept);
     if (st != PNPR_OK) {
         pnpr_cloud_free(&c);
         return st;

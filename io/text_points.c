@@ -44,6 +44,7 @@
 
 #include "../core/internal.h"
 #include "file_bytes.h"
+#include "io_util.h"
 #include "text_token.h"
 
 #include <float.h>
@@ -508,6 +509,7 @@ pnpr_status pnpr_read_text_memory(const void *data, size_t size, const pnpr_read
     if (err) { err->message[0] = '\0'; err->line = 0; err->offset = -1; }
     if (!cloud || (!data && size)) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "read text: NULL cloud or data");
     pnpr_cloud_free(cloud);
+    if (pnpr_io_no_filter(opts, err, "read text") != PNPR_OK) return PNPR_ERR_UNSUPPORTED;
     tx_rd *r = calloc(1, sizeof *r);
     if (!r) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "read text: out of memory");
     r->d = data ? data : "";

@@ -59,6 +59,14 @@ typedef struct pnpr_read_options {
      * ("x,y,z,nx,ny,nz,r,g,b,intensity,_"; io/text_points.c lists them). NULL = a header row
      * when the file has one, else the format's defaults. Ignored by the other formats. */
     const char *columns;
+    /* A point filter, for reading one tile of a cloud larger than memory (pointnpr/tiles.h).
+     * NULL = every point. Binary PLY only, whose vertex records have a fixed size and follow no
+     * element with lists (what pointnpr writes; other inputs are refused with
+     * PNPR_ERR_UNSUPPORTED). Called once per vertex, in file order, with its index and its
+     * coordinates as stored (NaN/Inf as read), before anything is allocated for the points; the
+     * vertices it returns nonzero for are kept, in file order, and faces are not read. */
+    int (*keep)(void *user, uint64_t index, const double position[3]);
+    void *keep_user;
 } pnpr_read_options;
 
 typedef struct pnpr_write_options {

@@ -16,6 +16,7 @@
  *   PNPR_PROP_BRUSH_CLUSTER       uint   stroke-based splatting: the colour cluster (brush.h)
  *   PNPR_PROP_INTENSITY           ushort LAS intensity (text clouds: as read)
  *   PNPR_PROP_CLASSIFICATION      uchar  LAS classification
+ *   PNPR_PROP_SOURCE_INDEX        uint   a tile's point: its index in the whole file (tiles.h)
  *
  * Segment labels (pnpr_cloud.label, uint) are written as PNPR_PROP_SEGMENT, or as
  * PNPR_PROP_LABEL when an extra property already uses that name; readers take either.
@@ -43,5 +44,7 @@
 
 #define PNPR_PROP_INTENSITY "intensity"
 #define PNPR_PROP_CLASSIFICATION "classification"
+
+#define PNPR_PROP_SOURCE_INDEX "source_index"
 
 #endif

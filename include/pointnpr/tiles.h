@@ -1,0 +1,101 @@
+/* pointnpr — tiles.h: clouds larger than memory, processed tile by tile (docs/tiles.md).
+ *
+ * A plan lays a grid of at most PNPR_TILE_GRID x PNPR_TILE_GRID cells over the cloud's x/y
+ * bounding box, counts the points per cell in one pass over the file, and splits the grid into
+ * tiles of at most `tile_points` points by halving cell ranges on their counts (a cell is never
+ * split, so a tile of one dense cell may hold more). Every point belongs to exactly one tile's
+ * core, by the cell its coordinates fall in (pnpr_tile_cell: the same arithmetic in the plan and
+ * in every job; points with NaN/Inf coordinates go to the first or last cell of their axis).
+ * A tile job reads its core plus a halo (the points within `halo` of the core's cells in x and y)
+ * through the reader's point filter, so that it holds only those; each point read carries its
+ * index in the file (PNPR_PROP_SOURCE_INDEX). The jobs are independent; a merge writes their
+ * results into one file in input order.
+ *
+ * Which results are equal to an in-memory run, and how a job checks it per point, is in
+ * docs/tiles.md (pnpr_tile_certify). Input: binary PLY with fixed-size vertex records (what
+ * pointnpr writes; `pointnpr convert` makes one from any input) and fewer than 2^32 points. */
+#ifndef POINTNPR_TILES_H
+#define POINTNPR_TILES_H
+
+#include "cloud.h"
+#include "io.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PNPR_TILE_GRID 256              /* cells along each axis, at most */
+#define PNPR_TILE_POINTS_DEFAULT 4000000 /* core points per tile when not given */
+#define PNPR_TILE_HALO_SPACINGS 24.0    /* automatic halo: this many point spacings (docs/tiles.md) */
+
+typedef struct pnpr_tile_grid {
+    double min[2];      /* the grid's corner in x and y (world units) */
+    double cell[2];     /* a cell's size in x and y (> 0) */
+    uint32_t cells[2];  /* cells along x and y (1..PNPR_TILE_GRID) */
+} pnpr_tile_grid;
+
+typedef struct pnpr_tile {
+    uint32_t lo[2], hi[2]; /* the core: cells lo <= c < hi along x and y */
+    uint64_t points;       /* core points, as counted by the plan */
+} pnpr_tile;
+
+typedef struct pnpr_tile_plan {
+    uint64_t points;       /* vertices in the file */
+    pnpr_tile_grid grid;
+    double spacing;        /* the point spacing estimated from the cell counts (0: none) */
+    double halo;           /* the halo used (world units) */
+    pnpr_tile *tiles;      /* count tiles; release with pnpr_tile_plan_free */
+    size_t count;
+} pnpr_tile_plan;
+
+/* Zero is the default everywhere. */
+typedef struct pnpr_tile_plan_options {
+    uint64_t tile_points;  /* 0 = PNPR_TILE_POINTS_DEFAULT */
+    double halo;           /* world units; 0 = PNPR_TILE_HALO_SPACINGS x the estimated spacing */
+    pnpr_progress progress; /* stages "plan: bounds", "plan: counts" */
+} pnpr_tile_plan_options;
+
+/* Plans the tiles of the PLY file at path (two passes over the file, nothing of the points kept).
+ * Errors name the file; a halo < 0 or NaN is PNPR_ERR_INVALID_ARGUMENT. */
+PNPR_NODISCARD pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *opts,
+                                               pnpr_tile_plan *r_plan, pnpr_error *err);
+void pnpr_tile_plan_free(pnpr_tile_plan *plan);
+
+/* The cell of a point (x, y of p), clamped into the grid; NaN goes to cell 0. */
+void pnpr_tile_cell(const pnpr_tile_grid *grid, const double p[3], uint32_t r_cell[2]);
+/* A tile's core box, and that box grown by halo, in world units (x0, y0, x1, y1). */
+void pnpr_tile_box(const pnpr_tile_grid *grid, const pnpr_tile *tile, double halo, double r_box[4]);
+/* Whether the grid and tile are usable: finite positive cells, 1..PNPR_TILE_GRID cells, lo < hi
+ * within the grid, halo finite and >= 0. PNPR_ERR_INVALID_ARGUMENT with a message otherwise. */
+PNPR_NODISCARD pnpr_status pnpr_tile_check(const pnpr_tile_grid *grid, const pnpr_tile *tile, double halo,
+                                           pnpr_error *err);
+
+/* Reads one tile of the PLY file at path: its core and halo points, in file order, with
+ * PNPR_PROP_SOURCE_INDEX; r_core[i] (malloc'ed, count bytes, release with free) is 1 for a core
+ * point, 0 for a halo point. opts: progress (and format) only. */
+PNPR_NODISCARD pnpr_status pnpr_tile_read(const char *path, const pnpr_tile_grid *grid, const pnpr_tile *tile,
+                                          double halo, const pnpr_read_options *opts, pnpr_cloud *r_cloud,
+                                          uint8_t **r_core, pnpr_error *err);
+
+/* After pnpr_compute_features on a tile (core and halo) with k neighbours: which core points
+ * have results equal to the in-memory run's (docs/tiles.md): their neighbourhoods, three hops
+ * deep, and, for feature points, their 2k nearest feature points, lie inside the tile's box
+ * grown by the halo (box: pnpr_tile_box), with every point that could change them exact itself.
+ * r_exact (count bytes, may be NULL) gets 1 for those; r_uncertain the core points that are not.
+ * Dithering points are chosen per tile (not compared); normals without a viewpoint are equal up
+ * to their sign. */
+PNPR_NODISCARD pnpr_status pnpr_tile_certify(const pnpr_cloud *cloud, const uint8_t *core, const double box[4],
+                                             uint32_t k, int threads, uint8_t *r_exact, size_t *r_uncertain);
+
+/* Writes the tile results at paths[0..count) (clouds with PNPR_PROP_SOURCE_INDEX, all with the
+ * same properties) as one binary PLY at out, each point at its source index, without that
+ * property. Every index of 0..points-1 must come exactly once: a missing, repeated or
+ * out-of-range index fails naming the tile and the index. Holds one tile at a time; out must be
+ * a regular file (or a new name): it is written as every output (output.h). */
+PNPR_NODISCARD pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t points, const char *out,
+                                           const pnpr_progress *progress, pnpr_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,259 @@
+/* Clouds in tiles (tiles.h) against the in-memory run, on a generated 2.5D scan with known
+ * features: a terrain of ridges and steps, colour regions, points in random order. Every tile's
+ * core points that it certifies must have exactly the in-memory results (bit for bit: normals
+ * with a viewpoint, degree, class, confidence, direction, spacing), every point must be certified
+ * with the automatic halo, and the merge must give the whole cloud back in input order. Also: the
+ * plan's partition, the merge's refusals, and the reader's filter on inputs it does not take. */
+#include "testutil.h"
+
+#include <pointnpr/features.h>
+#include <pointnpr/io.h>
+#include <pointnpr/options.h>
+#include <pointnpr/props.h>
+#include <pointnpr/tiles.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SIDE 190 /* SIDE^2 points over [0, 10]^2 */
+
+static double height(double x, double y)
+{
+    double ridge = 0.8 - 0.6 * fabs(x - 3.3);       /* a roof ridge along y at x = 3.3 */
+    double step = y > 6.1 ? 0.5 : 0;                /* a step across x */
+    return fmax(ridge, 0) + step + 0.05 * sin(x * 1.7) * cos(y * 1.3);
+}
+
+static void make_scene(pnpr_cloud *c)
+{
+    const size_t n = (size_t)SIDE * SIDE;
+    pnpr_test_rng rng = {12345};
+    CHECK_STATUS(pnpr_cloud_alloc(c, n), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_alloc_rgb(c), PNPR_OK);
+    size_t *order = malloc(n * sizeof *order);
+    for (size_t i = 0; i < n; i++) order[i] = i;
+    for (size_t i = n - 1; i > 0; i--) { /* random file order */
+        size_t j = (size_t)(pnpr_test_uniform(&rng) * (double)(i + 1));
+        size_t t = order[i]; order[i] = order[j]; order[j] = t;
+    }
+    for (size_t i = 0; i < n; i++) {
+        size_t g = order[i];
+        double x = 10.0 * ((double)(g % SIDE) + 0.4 * pnpr_test_uniform(&rng)) / SIDE;
+        double y = 10.0 * ((double)(g / SIDE) + 0.4 * pnpr_test_uniform(&rng)) / SIDE;
+        c->xyz[3 * i] = (float)x;
+        c->xyz[3 * i + 1] = (float)y;
+        c->xyz[3 * i + 2] = (float)height(x, y);
+        int red = (x - 7) * (x - 7) + (y - 3) * (y - 3) < 2.0; /* a red disc on grey */
+        c->rgb[3 * i] = red ? 200 : 120;
+        c->rgb[3 * i + 1] = red ? 40 : 120;
+        c->rgb[3 * i + 2] = red ? 40 : 120;
+    }
+    free(order);
+}
+
+static pnpr_features_options feature_options(void)
+{
+    pnpr_features_options fo = pnpr_features_defaults();
+    fo.threshold = 0.3f;
+    fo.has_viewpoint = 1;
+    fo.viewpoint[0] = 5;
+    fo.viewpoint[1] = 5;
+    fo.viewpoint[2] = 50;
+    fo.threads = 2;
+    return fo;
+}
+
+/* Point i of a against point j of b: every property bit for bit, dithering points as none. */
+static int same_point(const pnpr_cloud *a, size_t i, const pnpr_cloud *b, size_t j)
+{
+    if (memcmp(a->xyz + 3 * i, b->xyz + 3 * j, 12) || memcmp(a->normal + 3 * i, b->normal + 3 * j, 12)) return 0;
+    for (size_t p = 0; p < a->prop_count; p++) {
+        const pnpr_property *pa = &a->props[p], *pb = pnpr_cloud_find_property(b, pa->name);
+        if (!pb) return 0;
+        size_t sz = pnpr_type_size(pa->type);
+        const uint8_t *va = (const uint8_t *)pa->data + i * sz, *vb = (const uint8_t *)pb->data + j * sz;
+        if (!strcmp(pa->name, PNPR_PROP_FEATURE_CLASS)) {
+            if ((*va == PNPR_CLASS_DITHER ? 0 : *va) != (*vb == PNPR_CLASS_DITHER ? 0 : *vb)) return 0;
+        } else if (memcmp(va, vb, sz)) {
+            if (getenv("TILES_DEBUG")) fprintf(stderr, "%s differs\n", pa->name);
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static const char *scratch(const char *name, char *buf, size_t cap)
+{
+    snprintf(buf, cap, "%s/tiles_%s", PNPR_TEST_SCRATCH, name);
+    return buf;
+}
+
+/* Runs every tile of the plan as a job would, writing tile files; checks each tile's certified
+ * core points against the in-memory cloud `ref`; returns the points certified. */
+static size_t run_tiles(const char *in, const pnpr_tile_plan *plan, const pnpr_cloud *ref, char (*paths)[512])
+{
+    size_t certified = 0, wrong = 0;
+    for (size_t t = 0; t < plan->count; t++) {
+        pnpr_cloud c = {0};
+        uint8_t *core = NULL;
+        pnpr_error err = {0};
+        CHECK_STATUS(pnpr_tile_read(in, &plan->grid, &plan->tiles[t], plan->halo, NULL, &c, &core, &err), PNPR_OK);
+        pnpr_features_options fo = feature_options();
+        pnpr_features_stats stats;
+        CHECK_STATUS(pnpr_compute_features(&c, &fo, &stats), PNPR_OK);
+        double box[4];
+        pnpr_tile_box(&plan->grid, &plan->tiles[t], plan->halo, box);
+        uint8_t *exact = malloc(c.count + 1);
+        size_t uncertain = 99;
+        CHECK_STATUS(pnpr_tile_certify(&c, core, box, stats.k_used, 2, exact, &uncertain), PNPR_OK);
+        const uint32_t *src = pnpr_cloud_find_property(&c, PNPR_PROP_SOURCE_INDEX)->data;
+        size_t cores = 0, sure = 0;
+        for (size_t i = 0; i < c.count; i++) {
+            if (!core[i]) continue;
+            cores++;
+            if (!exact[i]) continue;
+            sure++;
+            wrong += !same_point(ref, src[i], &c, i);
+        }
+        certified += sure;
+        CHECK(cores == plan->tiles[t].points && uncertain == cores - sure);
+        CHECK_STATUS(pnpr_cloud_keep(&c, core, NULL), PNPR_OK);
+        snprintf(paths[t], sizeof paths[t], "%s/tiles_part%02zu.ply", PNPR_TEST_SCRATCH, t);
+        CHECK_STATUS(pnpr_write_file(paths[t], &c, NULL, &err), PNPR_OK);
+        free(exact);
+        free(core);
+        pnpr_cloud_free(&c);
+    }
+    CHECK_MSG(wrong == 0, "%zu certified points differ from the in-memory run", wrong);
+    return certified;
+}
+
+static void test_tiles_equal(void)
+{
+    char in[512], out[512];
+    pnpr_cloud scene = {0}, ref = {0}, merged = {0};
+    pnpr_error err = {0};
+    make_scene(&scene);
+    CHECK_STATUS(pnpr_write_file(scratch("scene.ply", in, sizeof in), &scene, NULL, &err), PNPR_OK);
+    CHECK_STATUS(pnpr_read_file(in, NULL, &ref, &err), PNPR_OK);
+    pnpr_features_options fo = feature_options();
+    CHECK_STATUS(pnpr_compute_features(&ref, &fo, NULL), PNPR_OK);
+
+    pnpr_tile_plan_options po = {0};
+    po.tile_points = 6000;
+    pnpr_tile_plan plan;
+    CHECK_STATUS(pnpr_tile_plan_make(in, &po, &plan, &err), PNPR_OK);
+    uint64_t sum = 0, most = 0;
+    for (size_t t = 0; t < plan.count; t++) {
+        sum += plan.tiles[t].points;
+        if (plan.tiles[t].points > most) most = plan.tiles[t].points;
+    }
+    CHECK(plan.points == scene.count && sum == scene.count);
+    CHECK_MSG(plan.count >= 6 && most <= 6000, "%zu tiles, largest %llu", plan.count, (unsigned long long)most);
+    /* spacing of a 190 x 190 jittered grid over 10 x 10: 10/190 */
+    CHECK_NEAR(plan.spacing, 10.0 / SIDE, 0.15 * 10.0 / SIDE);
+
+    char (*paths)[512] = calloc(plan.count, sizeof *paths);
+    size_t certified = run_tiles(in, &plan, &ref, paths);
+    CHECK_MSG(certified == scene.count, "%zu of %zu points certified with the automatic halo", certified, scene.count);
+
+    const char **list = malloc(plan.count * sizeof *list);
+    for (size_t t = 0; t < plan.count; t++) list[t] = paths[t];
+    CHECK_STATUS(pnpr_tile_merge(list, plan.count, plan.points, scratch("merged.ply", out, sizeof out), NULL, &err), PNPR_OK);
+    CHECK_STATUS(pnpr_read_file(out, NULL, &merged, &err), PNPR_OK);
+    size_t differ = merged.count == ref.count ? 0 : 1;
+    for (size_t i = 0; i < merged.count && i < ref.count; i++) differ += !same_point(&ref, i, &merged, i);
+    CHECK_MSG(differ == 0, "%zu merged points differ", differ);
+    CHECK(pnpr_cloud_find_property(&merged, PNPR_PROP_SOURCE_INDEX) == NULL);
+
+    /* a missing tile, a tile twice: refused, the result not written */
+    remove(out);
+    CHECK_STATUS(pnpr_tile_merge(list, plan.count - 1, plan.points, out, NULL, &err), PNPR_ERR_FORMAT);
+    CHECK(strstr(err.message, "is in no tile") != NULL);
+    list[1] = list[0];
+    CHECK_STATUS(pnpr_tile_merge(list, plan.count, plan.points, out, NULL, &err), PNPR_ERR_FORMAT);
+    CHECK(strstr(err.message, "comes twice") != NULL);
+    FILE *f = fopen(out, "rb");
+    CHECK(f == NULL);
+    if (f) fclose(f);
+    CHECK(pnpr_test_temporaries(PNPR_TEST_SCRATCH, "tiles_merged.ply") == 0);
+    free(list);
+    free(paths);
+    pnpr_tile_plan_free(&plan);
+    pnpr_cloud_free(&scene);
+    pnpr_cloud_free(&ref);
+    pnpr_cloud_free(&merged);
+}
+
+/* A halo of nothing: the points near a tile's edge cannot be certified, and are not. */
+static void test_small_halo(void)
+{
+    char in[512];
+    pnpr_error err = {0};
+    pnpr_tile_plan_options po = {0};
+    po.tile_points = 6000;
+    po.halo = 1e-9;
+    pnpr_tile_plan plan;
+    CHECK_STATUS(pnpr_tile_plan_make(scratch("scene.ply", in, sizeof in), &po, &plan, &err), PNPR_OK);
+    pnpr_cloud c = {0};
+    uint8_t *core = NULL;
+    CHECK_STATUS(pnpr_tile_read(in, &plan.grid, &plan.tiles[0], plan.halo, NULL, &c, &core, &err), PNPR_OK);
+    pnpr_features_options fo = feature_options();
+    pnpr_features_stats stats;
+    CHECK_STATUS(pnpr_compute_features(&c, &fo, &stats), PNPR_OK);
+    double box[4];
+    pnpr_tile_box(&plan.grid, &plan.tiles[0], plan.halo, box);
+    size_t uncertain = 0;
+    CHECK_STATUS(pnpr_tile_certify(&c, core, box, stats.k_used, 1, NULL, &uncertain), PNPR_OK);
+    /* at least the points within one spacing of the tile's inner edges */
+    CHECK_MSG(uncertain > plan.tiles[0].points / 20 && uncertain < plan.tiles[0].points,
+              "%zu of %llu uncertain", uncertain, (unsigned long long)plan.tiles[0].points);
+    free(core);
+    pnpr_cloud_free(&c);
+    pnpr_tile_plan_free(&plan);
+}
+
+static int keep_all(void *user, uint64_t index, const double p[3])
+{
+    (void)user;
+    (void)p;
+    return index % 2 == 0;
+}
+
+/* The filter on an ascii PLY and on other formats: refused with a message; on binary PLY the
+ * even points; an empty file plans one tile. */
+static void test_filter_inputs(void)
+{
+    char path[512];
+    pnpr_cloud c = {0}, r = {0};
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_test_plane(&c, 5, 4, 0.1, NULL), PNPR_OK);
+    pnpr_write_options wo = {0};
+    wo.encoding = PNPR_PLY_ASCII;
+    CHECK_STATUS(pnpr_write_file(scratch("ascii.ply", path, sizeof path), &c, &wo, &err), PNPR_OK);
+    pnpr_read_options ro = {0};
+    ro.keep = keep_all;
+    CHECK_STATUS(pnpr_read_file(path, &ro, &r, &err), PNPR_ERR_UNSUPPORTED);
+    CHECK(strstr(err.message, "binary") != NULL && r.count == 0);
+    CHECK_STATUS(pnpr_write_file(scratch("plane.pcd", path, sizeof path), &c, NULL, &err), PNPR_OK);
+    CHECK_STATUS(pnpr_read_file(path, &ro, &r, &err), PNPR_ERR_UNSUPPORTED);
+    CHECK_STATUS(pnpr_write_file(scratch("plane.ply", path, sizeof path), &c, NULL, &err), PNPR_OK);
+    CHECK_STATUS(pnpr_read_file(path, &ro, &r, &err), PNPR_OK);
+    CHECK(r.count == 10 && r.xyz[3] == c.xyz[6] && r.xyz[3 * 9 + 1] == c.xyz[3 * 18 + 1]);
+    pnpr_cloud_free(&r);
+    pnpr_cloud_free(&c);
+    pnpr_tile_plan plan;
+    CHECK_STATUS(pnpr_write_file(scratch("empty.ply", path, sizeof path), &c, NULL, &err), PNPR_OK);
+    CHECK_STATUS(pnpr_tile_plan_make(path, NULL, &plan, &err), PNPR_OK);
+    CHECK(plan.points == 0 && plan.count == 1 && plan.halo == 0);
+    pnpr_tile_plan_free(&plan);
+}
+
+int main(void)
+{
+    test_tiles_equal();
+    test_small_halo();
+    test_filter_inputs();
+    return pnpr_test_finish("test_tiles");
+}
