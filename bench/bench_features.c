@@ -1,6 +1,6 @@
 /* Benchmark of the feature pipeline: a generated scan-like scene of N points (ground plane,
  * boxes, spheres, a cylinder; colours with texture and noise), per-stage times and peak memory.
- *   bench_features --points N [--k K] [--write cloud.ply] [--threads T]
+ *   bench_features --points N [--k K] [--write cloud.ply [--write-only]] [--threads T]
  * Prints one markdown table row per stage and a summary; see bench/run.sh. */
 #include "../tests/testutil.h"
 #include <pointnpr/features.h>
@@ -57,11 +57,14 @@ int main(int argc, char **argv)
     uint32_t k = 16;
     int threads = 0;
     const char *write = NULL;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (!strcmp(argv[i], "--points")) n = (size_t)atol(argv[i + 1]);
-        else if (!strcmp(argv[i], "--k")) k = (uint32_t)atoi(argv[i + 1]);
-        else if (!strcmp(argv[i], "--threads")) threads = atoi(argv[i + 1]);
-        else if (!strcmp(argv[i], "--write")) write = argv[i + 1];
+    int write_only = 0; /* --write-only: generate the scene and write it, nothing else */
+    for (int i = 1; i < argc; i++) {
+        const char *v = i + 1 < argc ? argv[i + 1] : "0";
+        if (!strcmp(argv[i], "--write-only")) write_only = 1;
+        else if (!strcmp(argv[i], "--points")) n = (size_t)atol(v), i++;
+        else if (!strcmp(argv[i], "--k")) k = (uint32_t)atoi(v), i++;
+        else if (!strcmp(argv[i], "--threads")) threads = atoi(v), i++;
+        else if (!strcmp(argv[i], "--write")) write = v, i++;
     }
     pnpr_cloud c = {0};
     if (pnpr_cloud_alloc(&c, n) != PNPR_OK || pnpr_cloud_alloc_rgb(&c) != PNPR_OK) return 1;
@@ -76,6 +79,7 @@ int main(int argc, char **argv)
         pnpr_error err = {0};
         if (pnpr_write_file(write, &c, NULL, &err) != PNPR_OK) { fprintf(stderr, "%s\n", err.message); return 1; }
     }
+    if (write_only) { pnpr_cloud_free(&c); return 0; }
     long rss0 = peak_rss_kb();
     pnpr_features_options o = {0};
     o.k = k;

@@ -206,8 +206,17 @@ pnpr_status pnpr_cloud_set_world(pnpr_cloud *cloud, const double *world)
 {
     if (!cloud || (!world && cloud->count) || (cloud->count && !cloud->xyz))
         return PNPR_ERR_INVALID_ARGUMENT;
-    pnpr_status st = world_centre(world, cloud->count, cloud->origin);
-    if (st != PNPR_OK) return st;
+    double origin[3];
+    pnpr_status st = world_centre(world, cloud->count, origin);
+    return st == PNPR_OK ? pnpr_cloud_set_world_at(cloud, world, origin) : st;
+}
+
+pnpr_status pnpr_cloud_set_world_at(pnpr_cloud *cloud, const double *world, const double origin[3])
+{
+    if (!cloud || !origin || (!world && cloud->count) || (cloud->count && !cloud->xyz) || !isfinite(origin[0]) ||
+        !isfinite(origin[1]) || !isfinite(origin[2]))
+        return PNPR_ERR_INVALID_ARGUMENT;
+    memcpy(cloud->origin, origin, sizeof cloud->origin);
     for (size_t i = 0; i < 3 * cloud->count; i++)
         cloud->xyz[i] = (float)(world[i] - cloud->origin[i % 3]);
     return PNPR_OK;

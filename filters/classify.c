@@ -178,8 +178,27 @@ static void classify_range(void *ctx, size_t begin, size_t end)
     }
 }
 
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* The feature points' positions fid[0..nf) in input_index order (the kd-tree's ties follow it). */
+static int order_by_input(uint32_t *fid, size_t nf, const uint32_t *input_index)
+{
+    uint64_t *pair = malloc(nf * sizeof *pair);
+    if (!pair) return 0;
+    for (size_t f = 0; f < nf; f++) pair[f] = (uint64_t)input_index[fid[f]] << 32 | fid[f];
+    qsort(pair, nf, sizeof *pair, cmp_u64);
+    for (size_t f = 0; f < nf; f++) fid[f] = (uint32_t)pair[f];
+    free(pair);
+    return 1;
+}
+
 pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t count, size_t k,
                                    float threshold, float min_confidence, int threads,
+                                   const uint32_t *input_index,
                                    uint8_t *r_class, float *r_confidence, float *r_dir_x,
                                    float *r_dir_y, float *r_dir_z)
 {
@@ -202,13 +221,11 @@ pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t
     pnpr_status st = PNPR_ERR_OUT_OF_MEMORY;
     if (fxyz && fid) {
         size_t f = 0;
-        for (size_t i = 0; i < count; i++) {
-            const float *p = xyz + 3 * i;
-            if (!is_feature(p, degree[i], threshold)) continue;
-            fxyz[3 * f] = p[0]; fxyz[3 * f + 1] = p[1]; fxyz[3 * f + 2] = p[2];
-            fid[f++] = (uint32_t)i;
-        }
-        st = pnpr_kdtree_build(fxyz, nf, 0, &tree);
+        for (size_t i = 0; i < count; i++)
+            if (is_feature(xyz + 3 * i, degree[i], threshold)) fid[f++] = (uint32_t)i;
+        st = !input_index || order_by_input(fid, nf, input_index) ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+        for (f = 0; st == PNPR_OK && f < nf; f++) memcpy(fxyz + 3 * f, xyz + 3 * (size_t)fid[f], 3 * sizeof(float));
+        if (st == PNPR_OK) st = pnpr_kdtree_build(fxyz, nf, 0, &tree);
     }
     if (st == PNPR_OK) {
         classify_job j = {fxyz, fid, tree, k, min_confidence, r_class, r_confidence, {r_dir_x, r_dir_y, r_dir_z}};

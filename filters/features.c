@@ -262,7 +262,8 @@ static pnpr_status features_classes(feat_run *f)
     if (f->need_classify) {
         if (stage_begin(&f->r, PNPR_STAGE_CLASSIFY)) return PNPR_ERR_CANCELLED;
         st = stage_end(&f->r, pnpr_classify_features(f->xyz, f->out[0], m, 2 * k, stats->threshold_used, min_conf,
-                                                     o->threads, f->cls, f->out[1], f->out[2], f->out[3], f->out[4]));
+                                                     o->threads, f->perm, f->cls, f->out[1], f->out[2], f->out[3],
+                                                     f->out[4]));
         if (st != PNPR_OK) return st;
         for (size_t i = 0; i < m; i++) {
             stats->feature_points += f->cls[i] != PNPR_CLASS_NONE;

@@ -8,6 +8,7 @@
 #include <pointnpr/knn.h>
 
 #include "../core/internal.h"
+#include "kdtree_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -221,18 +222,25 @@ size_t pnpr_kdtree_size(const pnpr_kdtree *t)
  * benchmark cloud on one thread took 1.27 s instead of 1.61 s at k = 16, 4.4 s instead of 6.7 s at
  * k = 64 and 25.6 s instead of 28.9 s at k = 256. A larger k keeps a max-heap by distance (root =
  * the worst), whose O(log k) offer wins at some point beyond, and sorts it at the end.
- * Ties: the id order decides among the points the traversal meets at an equal distance, so on
- * exact grids (the generated test scenes) the k-th ring is cut the same way at the origin and at
- * 1e7; a far child at exactly the bound is still skipped (keeps clusters of exact duplicates
- * from visiting the whole tree). Results are deterministic either way. */
-enum { BEST_SORTED_MAX = 256 };
+ * Ties: the input index orders points at an equal distance, so on exact grids (the generated
+ * test scenes, quantised LAS coordinates) the k-th ring is cut the same way at the origin and at
+ * 1e7, and the same in a tile of the cloud as in the whole. Results are deterministic either way. */
+enum { BEST_SORTED_MAX = PNPR_KNN_SORTED_MAX };
 
 typedef struct best {
     float *d;
     uint32_t *i;
     size_t n, k;
     const uint32_t *map; /* tree position -> reported id; NULL = report tree positions */
+    const uint32_t *key; /* reported id -> its input index, for ties; NULL = the id is one */
 } best;
+
+/* Equal distances are ordered by input index whatever the ids are, so that a cloud and any subset
+ * of it in the same order (a tile, tiles.h) list tied neighbours alike. */
+static uint32_t tie_key(const best *h, uint32_t id)
+{
+    return h->key ? h->key[id] : id;
+}
 
 /* Puts (d, idx) at the root's place and sifts it down among the first h->n entries. */
 static void sift_down(best *h, float d, uint32_t idx)
@@ -267,7 +275,7 @@ static void best_offer(best *h, float d, uint32_t idx)
 {
     if (h->k > BEST_SORTED_MAX) { heap_offer(h, d, idx); return; }
     size_t c = h->n < h->k ? h->n++ : h->k - 1;
-    while (c > 0 && (h->d[c - 1] > d || (h->d[c - 1] == d && h->i[c - 1] > idx))) { /* (d, id) order */
+    while (c > 0 && (h->d[c - 1] > d || (h->d[c - 1] == d && tie_key(h, h->i[c - 1]) > tie_key(h, idx)))) {
         h->d[c] = h->d[c - 1]; h->i[c] = h->i[c - 1];
         c--;
     }
@@ -279,11 +287,11 @@ static float best_bound(const best *h)
     return h->n < h->k ? INFINITY : h->d[h->k > BEST_SORTED_MAX ? 0 : h->k - 1];
 }
 
-/* Whether (d, id) enters: nearer than the k-th, or (sorted list) as near with a smaller id. */
+/* Whether (d, id) enters: nearer than the k-th, or (sorted list) as near with a smaller input index. */
 static int best_takes(const best *h, float d, uint32_t id)
 {
     float b = best_bound(h);
-    return d < b || (d == b && h->k <= BEST_SORTED_MAX && id < h->i[h->k - 1]);
+    return d < b || (d == b && h->k <= BEST_SORTED_MAX && tie_key(h, id) < tie_key(h, h->i[h->k - 1]));
 }
 
 /* The heap's contents ascending (pop the worst to the end); a sorted list already is. */
@@ -321,9 +329,12 @@ static void knn_rec(const pnpr_kdtree *t, uint32_t id, const float q[3], best *h
     knn_rec(t, near_c, q, h, rd, off);
     float old = off[axis];
     float rd_far = rd - old * old + diff * diff;
-    /* strict: a far point at exactly the bound cannot improve the set (keeps clusters of exact
-     * duplicates from visiting the whole tree) */
-    if (rd_far < best_bound(h)) {
+    /* a far cell at exactly the bound may hold a tie with a smaller input index (sorted list):
+     * visited, so that the k-th place does not depend on the tree; but not at distance 0, where
+     * clusters of exact duplicates would visit each other's leaves (their cut stays the tree's:
+     * pnpr_tile_certify knows) */
+    float bound = best_bound(h);
+    if (rd_far < bound || (rd_far == bound && bound > 0 && h->k <= BEST_SORTED_MAX)) {
         off[axis] = diff;
         knn_rec(t, far_c, q, h, rd_far, off);
         off[axis] = old;
@@ -344,7 +355,7 @@ static size_t knn_query(const pnpr_kdtree *t, const float q[3], size_t k, uint32
     float stack_d[64];
     float *d = r_dist2 ? r_dist2 : (kk <= 64 ? stack_d : malloc(kk * sizeof(float)));
     if (!d) return 0;
-    best h = {d, r_idx, 0, kk, tree_order ? NULL : t->index};
+    best h = {d, r_idx, 0, kk, tree_order ? NULL : t->index, tree_order ? t->index : NULL};
     float off[3] = {0, 0, 0};
     knn_rec(t, 0, q, &h, 0.0f, off);
     best_finish(&h);

@@ -4,6 +4,10 @@
 
 #include <pointnpr/knn.h>
 
+/* Up to this k the kNN keeps its candidates in a sorted list whose ties follow the input index,
+ * the same in a tile as in the whole cloud (kdtree.c); beyond, a heap whose ties do not. */
+#define PNPR_KNN_SORTED_MAX 256
+
 /* Connected components of the tree's points at `distance` (two points are connected when their
  * distance is <= distance, tested exactly as pnpr_kdtree_radius does). r_labels (count entries:
  * the array the tree was built from) receives for every point the input index of one point of its

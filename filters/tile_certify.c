@@ -17,6 +17,7 @@
 
 #include "../core/internal.h"
 #include "../core/vec3.h"
+#include "kdtree_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -32,12 +33,21 @@ static double box_margin(const pnpr_cloud *c, size_t i, const double box[4])
     return m > 0 ? m : 0;
 }
 
-/* Radius of row i (kk entries): the distance to its last neighbour, or +inf when the row is not
- * full (the tile holds fewer points than the whole cloud may around it). */
-static double row_radius(const float *xyz, const uint32_t *row, size_t i, size_t kk)
+/* Radius of a row of kk entries (nearest first) around q: the distance to its last entry; +inf when
+ * the row is not full (the tile holds fewer points than the whole cloud may around it), or when
+ * ties may be cut otherwise than in the whole cloud: the kNN orders ties by input index, which a
+ * tile keeps, but leaves the cut among exact duplicates (distance 0) to its tree, and beyond 256
+ * neighbours any tie (knn.h). */
+static double row_radius(const float *xyz, const float *q, const uint32_t *row, size_t kk)
 {
     if (row[kk - 1] == PNPR_INDEX_NONE) return INFINITY;
-    return sqrt((double)pnpr_dist2f(xyz + 3 * i, xyz + 3 * (size_t)row[kk - 1]));
+    float last = -1;
+    for (size_t j = kk > PNPR_KNN_SORTED_MAX ? 0 : kk - 1; j < kk; j++) {
+        float d = pnpr_dist2f(q, xyz + 3 * (size_t)row[j]);
+        if (d == last) return INFINITY;
+        last = d;
+    }
+    return kk >= 2 && last == 0 ? INFINITY : sqrt((double)last);
 }
 
 /* lvl[i] = the hops (0..3) out to which point i's neighbourhoods are exact. */
@@ -52,7 +62,7 @@ static pnpr_status hop_levels(const pnpr_cloud *c, const double *margin, uint32_
     if (st == PNPR_OK) st = pnpr_knn_self(tree, n, kk, &ko, idx, NULL);
     pnpr_kdtree_free(tree);
     for (size_t i = 0; st == PNPR_OK && i < n; i++)
-        lvl[i] = isinf(margin[i]) ? 3 : row_radius(c->xyz, idx + i * kk, i, kk) < margin[i];
+        lvl[i] = isinf(margin[i]) ? 3 : row_radius(c->xyz, c->xyz + 3 * i, idx + i * kk, kk) < margin[i];
     for (uint8_t hop = 2; st == PNPR_OK && hop <= 3; hop++)
         for (size_t i = 0; i < n; i++) {
             if (lvl[i] != hop - 1) continue;
@@ -75,7 +85,7 @@ static pnpr_status check_classes(const pnpr_cloud *c, const uint8_t *core, const
     const pnpr_property *cls = pnpr_cloud_find_property(c, PNPR_PROP_FEATURE_CLASS);
     if (!cls || cls->type != PNPR_TYPE_UINT8) return PNPR_OK; /* no classes computed: nothing more to check */
     const uint8_t *cl = cls->data;
-    const size_t n = c->count, kk = 2 * (size_t)k;
+    const size_t n = c->count, kk = 2 * (size_t)k + 1; /* the classes' 2k, and the next for its ties */
     size_t nf = 0;
     for (size_t i = 0; i < n; i++) nf += cl[i] == PNPR_CLASS_NONDIRECTIONAL || cl[i] == PNPR_CLASS_DIRECTIONAL;
     float *fx = malloc((nf ? nf : 1) * 3 * sizeof *fx);
@@ -90,7 +100,7 @@ static pnpr_status check_classes(const pnpr_cloud *c, const uint8_t *core, const
             (cl[i] != PNPR_CLASS_NONDIRECTIONAL && cl[i] != PNPR_CLASS_DIRECTIONAL))
             continue;
         size_t got = pnpr_kdtree_knn(tree, c->xyz + 3 * i, kk, row, NULL);
-        double r = got < kk ? INFINITY : sqrt((double)pnpr_dist2f(c->xyz + 3 * i, fx + 3 * (size_t)row[kk - 1]));
+        double r = got < kk ? INFINITY : row_radius(fx, c->xyz + 3 * i, row, kk);
         exact[i] = r < margin[i] - (worst > 0 ? worst : 0);
     }
     pnpr_kdtree_free(tree);

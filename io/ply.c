@@ -1270,7 +1270,8 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
     if (st == PNPR_OK) {
         if (r.double_xyz) {
             c.src_coord_type = PNPR_TYPE_FLOAT64;
-            st = pnpr_cloud_set_world(&c, c.src_xyz);
+            st = opts && opts->origin ? pnpr_cloud_set_world_at(&c, c.src_xyz, opts->origin)
+                                      : pnpr_cloud_set_world(&c, c.src_xyz);
             if (st != PNPR_OK) pnpr_io_fail(err, st, 0, -1, "read ply: cannot set coordinates");
         } else {
             c.src_coord_type = PNPR_TYPE_FLOAT32;

@@ -1,6 +1,6 @@
 /* Clouds larger than memory in tiles (pointnpr/tiles.h): the plan, a tile's reading, the merge.
  * The certification of a tile's results is filters/tile_certify.c; docs/tiles.md has the why. */
-#include <pointnpr/output.h>
+#include <pointnpr/memory.h>
 #include <pointnpr/props.h>
 #include <pointnpr/tiles.h>
 
@@ -10,8 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <unistd.h>
+#include <sys/stat.h>
 
 /* ------------------------------------------------------------------------------------------ */
 /* The grid                                                                                    */
@@ -46,6 +45,8 @@ pnpr_status pnpr_tile_check(const pnpr_tile_grid *g, const pnpr_tile *t, double 
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT,
                                   "tile: the grid needs a finite corner, cells of finite positive size and 1..%d "
                                   "cells per axis", PNPR_TILE_GRID);
+        if (!isfinite(g->origin[a]) || !isfinite(g->origin[2]))
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "tile: the origin must be finite");
         if (t->lo[a] >= t->hi[a] || t->hi[a] > g->cells[a])
             return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "tile: cells %u..%u of axis %c are not inside 0..%u",
                                   t->lo[a], t->hi[a], "xy"[a], g->cells[a]);
@@ -61,6 +62,7 @@ pnpr_status pnpr_tile_check(const pnpr_tile_grid *g, const pnpr_tile *t, double 
 typedef struct plan_scan {
     pnpr_tile_grid g;
     double lo[2], hi[2]; /* the finite x/y bounds */
+    double lo3[3], hi3[3]; /* the box of the points with three finite coordinates */
     uint64_t points;
     uint64_t *counts;    /* cells[0] x cells[1], row-major in y; NULL during the bounds pass */
 } plan_scan;
@@ -75,6 +77,11 @@ static int scan_point(void *user, uint64_t index, const double p[3])
         s->counts[(size_t)c[1] * s->g.cells[0] + c[0]]++;
         return 0;
     }
+    if (isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))
+        for (int a = 0; a < 3; a++) {
+            if (p[a] < s->lo3[a]) s->lo3[a] = p[a];
+            if (p[a] > s->hi3[a]) s->hi3[a] = p[a];
+        }
     for (int a = 0; a < 2; a++)
         if (isfinite(p[a])) {
             if (p[a] < s->lo[a]) s->lo[a] = p[a];
@@ -92,6 +99,8 @@ static void plan_grid(plan_scan *s)
         double d = s->hi[a] - s->lo[a];
         if (d > side) side = d;
     }
+    for (int a = 0; a < 3; a++) /* as pnpr_cloud_set_world without far outliers */
+        s->g.origin[a] = s->lo3[a] <= s->hi3[a] ? 0.5 * s->lo3[a] + 0.5 * s->hi3[a] : 0.0;
     double cell = side / PNPR_TILE_GRID;
     if (!(cell > 0)) cell = 1;
     if (!isfinite(cell)) cell = DBL_MAX / PNPR_TILE_GRID;
@@ -181,6 +190,18 @@ static pnpr_status plan_tiles(const plan_scan *s, uint64_t max_points, pnpr_tile
     return PNPR_OK;
 }
 
+uint64_t pnpr_tile_points_for_memory(size_t limit, size_t record_bytes, uint32_t k)
+{
+    if (!k) k = 16;
+    const size_t probe = 1000000; /* the estimate is linear in the points: take it per point */
+    pnpr_memory_plan mp = {probe, k, 1, 0, 0, 0, 0};
+    pnpr_memory_estimate e;
+    pnpr_memory_estimate_plan(&mp, &e);
+    double per = (double)record_bytes + 5.0 + (double)e.total / (double)probe + 4.0 * (k + 1) + 9.0;
+    double n = (double)limit / (per * (1.0 + PNPR_TILE_HALO_SHARE));
+    return n >= 1000 ? (uint64_t)n : 0;
+}
+
 pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *opts, pnpr_tile_plan *r_plan,
                                 pnpr_error *err)
 {
@@ -192,8 +213,8 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
         return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: tile plan: the halo must be finite and >= 0", path);
     plan_scan s;
     memset(&s, 0, sizeof s);
-    s.lo[0] = s.lo[1] = INFINITY;
-    s.hi[0] = s.hi[1] = -INFINITY;
+    s.lo[0] = s.lo[1] = s.lo3[0] = s.lo3[1] = s.lo3[2] = INFINITY;
+    s.hi[0] = s.hi[1] = s.hi3[0] = s.hi3[1] = s.hi3[2] = -INFINITY;
     pnpr_read_options ro = {0};
     ro.format = PNPR_FORMAT_PLY;
     ro.keep = scan_point;
@@ -207,6 +228,15 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
     if (st != PNPR_OK) return st;
     plan_grid(&s);
     uint64_t points = s.points;
+    if (!o.tile_points && o.memory_limit) {
+        struct stat sb;
+        size_t rec = stat(path, &sb) == 0 && points ? (size_t)((uint64_t)sb.st_size / points) : 64;
+        if (!(o.tile_points = pnpr_tile_points_for_memory(o.memory_limit, rec, o.features_k))) {
+            char a[32];
+            return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: a memory limit of %s leaves no room for a tile", path,
+                                  pnpr_memory_text(o.memory_limit, a, sizeof a));
+        }
+    }
     s.counts = calloc((size_t)s.g.cells[0] * s.g.cells[1], sizeof *s.counts);
     if (!s.counts) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: tile plan: out of memory", path);
     ro.progress = o.progress;
@@ -286,6 +316,7 @@ pnpr_status pnpr_tile_read(const char *path, const pnpr_tile_grid *grid, const p
     if (opts) ro = *opts;
     ro.keep = keep_tile;
     ro.keep_user = &k;
+    ro.origin = grid->origin;
     st = pnpr_read_file(path, &ro, r_cloud, err);
     if (st == PNPR_OK && (k.failed || k.n != r_cloud->count))
         st = pnpr_error_set(err, k.failed ? PNPR_ERR_OUT_OF_MEMORY : PNPR_ERR_IO,

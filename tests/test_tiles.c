@@ -25,8 +25,13 @@ static double height(double x, double y)
     return fmax(ridge, 0) + step + 0.05 * sin(x * 1.7) * cos(y * 1.3);
 }
 
-static void make_scene(pnpr_cloud *c)
+enum { SCENE_JITTERED, SCENE_GEOREF, SCENE_LATTICE };
+
+/* GEOREF: world coordinates offset by (5e5, 4.2e6, 100), kept as doubles (written as double).
+ * LATTICE: no jitter: every neighbourhood has ties, which the kNN orders by input index. */
+static void make_scene(pnpr_cloud *c, int kind)
 {
+    const double jitter = kind == SCENE_LATTICE ? 0 : 0.4;
     const size_t n = (size_t)SIDE * SIDE;
     pnpr_test_rng rng = {12345};
     CHECK_STATUS(pnpr_cloud_alloc(c, n), PNPR_OK);
@@ -39,8 +44,8 @@ static void make_scene(pnpr_cloud *c)
     }
     for (size_t i = 0; i < n; i++) {
         size_t g = order[i];
-        double x = 10.0 * ((double)(g % SIDE) + 0.4 * pnpr_test_uniform(&rng)) / SIDE;
-        double y = 10.0 * ((double)(g / SIDE) + 0.4 * pnpr_test_uniform(&rng)) / SIDE;
+        double x = 10.0 * ((double)(g % SIDE) + jitter * pnpr_test_uniform(&rng)) / SIDE;
+        double y = 10.0 * ((double)(g / SIDE) + jitter * pnpr_test_uniform(&rng)) / SIDE;
         c->xyz[3 * i] = (float)x;
         c->xyz[3 * i + 1] = (float)y;
         c->xyz[3 * i + 2] = (float)height(x, y);
@@ -50,6 +55,15 @@ static void make_scene(pnpr_cloud *c)
         c->rgb[3 * i + 2] = red ? 40 : 120;
     }
     free(order);
+    if (kind != SCENE_GEOREF) return;
+    double *w = malloc(3 * n * sizeof *w);
+    const double off[3] = {5e5, 4.2e6, 100};
+    for (size_t i = 0; i < 3 * n; i++) w[i] = (double)c->xyz[i] + off[i % 3];
+    CHECK_STATUS(pnpr_cloud_alloc_src_xyz(c), PNPR_OK);
+    memcpy(c->src_xyz, w, 3 * n * sizeof *w);
+    c->src_coord_type = PNPR_TYPE_FLOAT64;
+    CHECK_STATUS(pnpr_cloud_set_world(c, w), PNPR_OK);
+    free(w);
 }
 
 static pnpr_features_options feature_options(void)
@@ -129,13 +143,15 @@ static size_t run_tiles(const char *in, const pnpr_tile_plan *plan, const pnpr_c
     return certified;
 }
 
-static void test_tiles_equal(void)
+static void test_tiles_equal(int kind)
 {
+    static const char *const names[] = {"scene.ply", "georef.ply", "lattice.ply"};
+    const int georef = kind == SCENE_GEOREF;
     char in[512], out[512];
     pnpr_cloud scene = {0}, ref = {0}, merged = {0};
     pnpr_error err = {0};
-    make_scene(&scene);
-    CHECK_STATUS(pnpr_write_file(scratch("scene.ply", in, sizeof in), &scene, NULL, &err), PNPR_OK);
+    make_scene(&scene, kind);
+    CHECK_STATUS(pnpr_write_file(scratch(names[kind], in, sizeof in), &scene, NULL, &err), PNPR_OK);
     CHECK_STATUS(pnpr_read_file(in, NULL, &ref, &err), PNPR_OK);
     pnpr_features_options fo = feature_options();
     CHECK_STATUS(pnpr_compute_features(&ref, &fo, NULL), PNPR_OK);
@@ -151,8 +167,10 @@ static void test_tiles_equal(void)
     }
     CHECK(plan.points == scene.count && sum == scene.count);
     CHECK_MSG(plan.count >= 6 && most <= 6000, "%zu tiles, largest %llu", plan.count, (unsigned long long)most);
-    /* spacing of a 190 x 190 jittered grid over 10 x 10: 10/190 */
+    /* spacing of a 190 x 190 jittered grid over 10 x 10: 10/190; the origin: the box's centre */
     CHECK_NEAR(plan.spacing, 10.0 / SIDE, 0.15 * 10.0 / SIDE);
+    for (int a = 0; a < 3 && georef; a++) CHECK(plan.grid.origin[a] == ref.origin[a]);
+    CHECK(georef ? ref.origin[1] > 4.2e6 : ref.origin[1] == 0); /* float files: no origin, floats as read */
 
     char (*paths)[512] = calloc(plan.count, sizeof *paths);
     size_t certified = run_tiles(in, &plan, &ref, paths);
@@ -184,6 +202,33 @@ static void test_tiles_equal(void)
     pnpr_cloud_free(&scene);
     pnpr_cloud_free(&ref);
     pnpr_cloud_free(&merged);
+}
+
+/* --tiles under a memory limit: tiles of at most pnpr_tile_points_for_memory points, which falls
+ * with the limit in proportion, and none below 1000 points. */
+static void test_memory_limit(void)
+{
+    char in[512];
+    pnpr_error err = {0};
+    const size_t limit = 2u << 20;
+    uint64_t per2m = pnpr_tile_points_for_memory(limit, 15, 16), per4m = pnpr_tile_points_for_memory(2 * limit, 15, 16);
+    /* a tile's job takes about 200 to 400 bytes a point (cloud, features, certification, halo) */
+    CHECK_MSG(per2m > limit / 400 && per2m < limit / 200, "%llu points in 2 MiB", (unsigned long long)per2m);
+    CHECK(per4m >= 2 * per2m - 1 && per4m <= 2 * per2m + 1);
+    CHECK(pnpr_tile_points_for_memory(100000, 15, 16) == 0);
+    pnpr_tile_plan_options po = {0};
+    po.memory_limit = limit;
+    pnpr_tile_plan plan;
+    CHECK_STATUS(pnpr_tile_plan_make(scratch("scene.ply", in, sizeof in), &po, &plan, &err), PNPR_OK);
+    uint64_t most = 0;
+    for (size_t t = 0; t < plan.count; t++) most = plan.tiles[t].points > most ? plan.tiles[t].points : most;
+    /* the scene's file: 15 bytes a point (float x y z, rgb) and its header */
+    CHECK_MSG(plan.count >= 4 && most <= per2m, "%zu tiles, largest %llu, at most %llu", plan.count,
+              (unsigned long long)most, (unsigned long long)per2m);
+    pnpr_tile_plan_free(&plan);
+    po.memory_limit = 50000;
+    CHECK_STATUS(pnpr_tile_plan_make(in, &po, &plan, &err), PNPR_ERR_OUT_OF_MEMORY);
+    CHECK(strstr(err.message, "leaves no room") != NULL);
 }
 
 /* A halo of nothing: the points near a tile's edge cannot be certified, and are not. */
@@ -252,7 +297,10 @@ static void test_filter_inputs(void)
 
 int main(void)
 {
-    test_tiles_equal();
+    test_tiles_equal(SCENE_JITTERED);
+    test_tiles_equal(SCENE_GEOREF);
+    test_tiles_equal(SCENE_LATTICE);
+    test_memory_limit();
     test_small_halo();
     test_filter_inputs();
     return pnpr_test_finish("test_tiles");

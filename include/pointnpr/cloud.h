@@ -103,6 +103,9 @@ void pnpr_cloud_world(const pnpr_cloud *cloud, size_t i, double r_world[3]);
  * offsets that overflow float (a coordinate of 1e308): stages treat such points as invalid.
  * Does not touch src_xyz. */
 PNPR_NODISCARD pnpr_status pnpr_cloud_set_world(pnpr_cloud *cloud, const double *world);
+/* The same with a given origin (finite): offsets (float)(world - origin), as set_world computes
+ * them; a tile of a cloud (tiles.h) takes the whole cloud's origin this way. */
+PNPR_NODISCARD pnpr_status pnpr_cloud_set_world_at(pnpr_cloud *cloud, const double *world, const double origin[3]);
 
 /* Appends all points of `src` to `dst` (re-expressing offsets in dst's origin, which is
  * chosen from the union's bounding box when dst is empty). Optional arrays and extra

@@ -155,9 +155,13 @@ float pnpr_auto_threshold(const float *degree, size_t count);
  * least-squares 3D line fit over their k nearest feature points: confidence =
  * 1 - 1.5 * (mu_0 + mu_1) / (mu_0 + mu_1 + mu_2) in [0,1] (mu = covariance eigenvalues);
  * direction = principal eigenvector (components in r_dir_x/y/z, each may be NULL).
- * Non-feature points get class NONE, confidence 0, direction 0. */
+ * Non-feature points get class NONE, confidence 0, direction 0. input_index (count entries, may
+ * be NULL = array order) orders feature points at equal distances, as the kNN does (knn.h): the
+ * feature stage passes each point's input index, so that a tile of a cloud (tiles.h) cuts ties
+ * as the whole cloud does. */
 PNPR_NODISCARD pnpr_status pnpr_classify_features(const float *xyz, const float *degree, size_t count, size_t k,
                                    float threshold, float min_confidence, int threads,
+                                   const uint32_t *input_index,
                                    uint8_t *r_class, float *r_confidence, float *r_dir_x,
                                    float *r_dir_y, float *r_dir_z);
 

@@ -67,6 +67,10 @@ typedef struct pnpr_read_options {
      * vertices it returns nonzero for are kept, in file order, and faces are not read. */
     int (*keep)(void *user, uint64_t index, const double position[3]);
     void *keep_user;
+    /* PLY with double (or int) coordinates: the origin of the float offsets (finite), instead of
+     * the centre of the points' own box (pnpr_cloud_set_world); NULL = that centre. Tiles take
+     * the whole file's origin this way, so that their floats are those of a run in memory. */
+    const double *origin;
 } pnpr_read_options;
 
 typedef struct pnpr_write_options {

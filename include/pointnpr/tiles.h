@@ -26,12 +26,15 @@ extern "C" {
 
 #define PNPR_TILE_GRID 256              /* cells along each axis, at most */
 #define PNPR_TILE_POINTS_DEFAULT 4000000 /* core points per tile when not given */
-#define PNPR_TILE_HALO_SPACINGS 24.0    /* automatic halo: this many point spacings (docs/tiles.md) */
+#define PNPR_TILE_HALO_SPACINGS 64      /* automatic halo: this many point spacings (docs/tiles.md) */
 
 typedef struct pnpr_tile_grid {
     double min[2];      /* the grid's corner in x and y (world units) */
     double cell[2];     /* a cell's size in x and y (> 0) */
     uint32_t cells[2];  /* cells along x and y (1..PNPR_TILE_GRID) */
+    double origin[3];   /* the origin of every tile's float offsets (files with double
+                         * coordinates): the centre of the finite box, as a run in memory takes
+                         * it when the cloud has no far outliers (docs/tiles.md) */
 } pnpr_tile_grid;
 
 typedef struct pnpr_tile {
@@ -50,7 +53,9 @@ typedef struct pnpr_tile_plan {
 
 /* Zero is the default everywhere. */
 typedef struct pnpr_tile_plan_options {
-    uint64_t tile_points;  /* 0 = PNPR_TILE_POINTS_DEFAULT */
+    uint64_t tile_points;  /* 0 = from memory_limit when set, else PNPR_TILE_POINTS_DEFAULT */
+    size_t memory_limit;   /* bytes a tile's feature job may take (pnpr_tile_points_for_memory) */
+    uint32_t features_k;   /* the jobs' k, for memory_limit (0 = 16) */
     double halo;           /* world units; 0 = PNPR_TILE_HALO_SPACINGS x the estimated spacing */
     pnpr_progress progress; /* stages "plan: bounds", "plan: counts" */
 } pnpr_tile_plan_options;
@@ -61,12 +66,19 @@ PNPR_NODISCARD pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile
                                                pnpr_tile_plan *r_plan, pnpr_error *err);
 void pnpr_tile_plan_free(pnpr_tile_plan *plan);
 
+/* The most core points a tile's feature job may hold within `limit` bytes: per point, the cloud as
+ * read (record_bytes, the file's bytes per point), its source index and core flag, the feature
+ * stage's estimate for k neighbours (memory.h) and the certification's neighbour lists, for the
+ * core and a halo of PNPR_TILE_HALO_SHARE as many points again. 0 when not even 1000 fit. */
+#define PNPR_TILE_HALO_SHARE 0.25
+uint64_t pnpr_tile_points_for_memory(size_t limit, size_t record_bytes, uint32_t k);
+
 /* The cell of a point (x, y of p), clamped into the grid; NaN goes to cell 0. */
 void pnpr_tile_cell(const pnpr_tile_grid *grid, const double p[3], uint32_t r_cell[2]);
 /* A tile's core box, and that box grown by halo, in world units (x0, y0, x1, y1). */
 void pnpr_tile_box(const pnpr_tile_grid *grid, const pnpr_tile *tile, double halo, double r_box[4]);
-/* Whether the grid and tile are usable: finite positive cells, 1..PNPR_TILE_GRID cells, lo < hi
- * within the grid, halo finite and >= 0. PNPR_ERR_INVALID_ARGUMENT with a message otherwise. */
+/* Whether the grid and tile are usable: finite corner and origin, finite positive cells,
+ * 1..PNPR_TILE_GRID cells, lo < hi within the grid, halo finite and >= 0. PNPR_ERR_INVALID_ARGUMENT with a message otherwise. */
 PNPR_NODISCARD pnpr_status pnpr_tile_check(const pnpr_tile_grid *grid, const pnpr_tile *tile, double halo,
                                            pnpr_error *err);
 

@@ -22,6 +22,7 @@ int cli_bench_quality(int argc, char **argv); /* `bench quality`, argv[1] = "qua
 int cli_explain(int argc, char **argv);
 int cli_animate(int argc, char **argv);
 int cli_options(int argc, char **argv);
+int cli_merge_tiles(int argc, char **argv);
 
 /* Progress on stderr; never cancels. user: a cli_progress_state (zeroed before first use).
  * On a terminal: one updating "\r<stage> 42%" line per stage; otherwise (logs, CI) one line
@@ -103,6 +104,12 @@ void cli_memory_usage(FILE *f);
  * (memory.h). Both return 0 after printing why (with the figures), 1 when it fits. */
 int cli_memory_check_file(const char *cmd, const char *in, size_t limit);
 int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const pnpr_memory_plan *plan);
+/* Reads IN for render and animate: a uniform sample of `share` of its points when 0 < share < 1
+ * (binary PLY); else whole when it fits (cli_memory_check_file), else, for a PLY, a uniform sample
+ * that fits `limit` (0: what is available) by the memory model of `mp` (its points are the
+ * file's), saying so unless quiet (cli_sample.c). Returns 0 after printing why. */
+int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
+                     size_t limit, double share, int quiet, pnpr_cloud *cloud);
 
 /* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
  * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */
@@ -138,5 +145,29 @@ void cli_columns_usage(FILE *f);
 void cli_report_error(const char *cmd, pnpr_status st, const pnpr_error *err);
 /* The same for work on the input IN: the message names IN (unless it does already). */
 void cli_report_error_in(const char *cmd, const char *in, pnpr_status st, const pnpr_error *err);
+
+/* Tiled runs of features (cmd_tiles.c, tiles.h): the options, parsed as cli_outlier_option. */
+typedef struct cli_tile_args {
+    double tile_points;  /* --tile-points N (0: not given) */
+    int tiled;           /* --tiles: as large as the memory allows */
+    double halo;         /* --halo H (0: the plan's automatic halo) */
+    const char *manifest; /* --manifest DIR */
+    double grid[9];      /* one tile's job: --tile-grid X,Y,CX,CY,NX,NY,OX,OY,OZ (NX 0: not given) */
+    double cells[4];     /* --tile X0,Y0,X1,Y1 */
+} cli_tile_args;
+int cli_tile_option(cli_tile_args *t, const char *cmd, int argc, char **argv, int *i);
+void cli_tile_usage(FILE *f);
+int cli_tile_wanted(const cli_tile_args *t); /* any of them given */
+struct pnpr_features_options;
+typedef struct cli_features_run {
+    const char *in, *out;
+    struct pnpr_features_options *fo;
+    const pnpr_write_options *wo;
+    pnpr_progress prog;
+    int quiet;
+} cli_features_run;
+/* One tile's job (--tile-grid), or the plan and then every tile in turn and the merge, or the plan
+ * and its manifest (--manifest; argv: the command's, repeated in every job). Returns the exit code. */
+int cli_features_tiles(const cli_features_run *r, const cli_tile_args *a, size_t memory_limit, int argc, char **argv);
 
 #endif

@@ -23,6 +23,7 @@ typedef struct cli_render_opts {
     int alpha, quiet, max_tile;
     int budget_all;               /* --budget all: every point (no --density either) */
     size_t memory_limit;          /* --memory-limit (0: what the machine has) */
+    double sample;                /* --sample S: the share of the points read (0: all, or what fits) */
     cli_outliers outliers;
     const char *columns;          /* --columns (text point clouds) */
     cli_view view;

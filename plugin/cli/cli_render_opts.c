@@ -159,6 +159,9 @@ static const cli_opt render_opts[] = {
      "at most N points per frame (default: no count, the screen-space budget --density only); all: every "
      "point, however dense the view"},
     R_OPT("--seed", CLI_CUSTOM, uopt.seed, parse_seed, "S", "continuous resolution queue seed (default 0)"),
+    {"--sample", NULL, CLI_NUMBER, offsetof(cli_render_opts, sample), 0, 1, 1, 0, NULL, NULL, "S",
+     "read a uniform sample of this share of a binary PLY's points, a preview of a cloud larger than memory "
+     "(default: every point, or the share that fits --memory-limit; docs/tiles.md)"},
     {"--tone", NULL, CLI_CHOICE, offsetof(cli_render_opts, tone.source), 0, 0, 0, 0, tone_sources, NULL, NULL,
      "what sets how dark a point is drawn (hatch and stipple density, the shading of colourless clouds): "
      "a key light on the normals, the colours, or both (default auto: both when IN has colours)"},
@@ -232,6 +235,7 @@ void cli_render_usage(FILE *f, int width, int height)
     draw_usage(f, "density", "D");
     cli_usage_more(f, "(negative: no limit, as --budget all)");
     opt_usage(f, "--seed");
+    opt_usage(f, "--sample");
     draw_usage(f, "point-scale", "F");
     draw_usage(f, "stroke-max", "PX");
     draw_usage(f, "line-width", "PX");
@@ -539,10 +543,10 @@ int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char 
     pnpr_read_options ro = {0};
     ro.progress = s->prog;
     ro.columns = o->columns;
-    pnpr_error err = {0};
-    if (!cli_memory_check_file(cmd, in, o->memory_limit)) return 0;
-    pnpr_status st = pnpr_read_file(in, &ro, &s->cloud, &err);
-    if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
+    pnpr_memory_plan mp = {0, 0, 0, 0, 0, o->view.width, o->view.height};
+    for (int st = 0; st < PNPR_STYLE_COUNT_; st++)
+        if (o->uses[st]) mp.styles |= 1u << st;
+    if (!cli_read_fitting(cmd, in, &ro, &mp, o->memory_limit, o->sample, o->quiet, &s->cloud)) return 0;
     return cli_outliers_apply(&o->outliers, cmd, in, &s->cloud, o->quiet, NULL) == 0;
 }
 

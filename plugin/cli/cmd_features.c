@@ -66,6 +66,8 @@ static void usage(FILE *f)
     cli_outlier_usage(f);
     cli_memory_usage(f);
     cli_columns_usage(f);
+    fprintf(f, "tiles (clouds larger than memory; binary PLY input; docs/tiles.md):\n");
+    cli_tile_usage(f);
 }
 
 /* --weights G,C: two values in the weight entries' range, not both 0. 0 after saying why. */
@@ -119,6 +121,8 @@ int cli_features(int argc, char **argv)
     cli_outliers outliers = {0, 0};
     const char *columns = NULL;
     size_t memory_limit = 0;
+    cli_tile_args tiles;
+    memset(&tiles, 0, sizeof tiles);
     size_t tn;
     const pnpr_option_desc *table = pnpr_features_option_table(&tn);
     for (int i = 1; i < argc; i++) {
@@ -126,6 +130,7 @@ int cli_features(int argc, char **argv)
         int oo = cli_outlier_option(&outliers, "features", argc, argv, &i);
         if (oo == 0) oo = cli_columns_option(&columns, "features", argc, argv, &i);
         if (oo == 0) oo = cli_memory_option(&memory_limit, "features", argc, argv, &i);
+        if (oo == 0) oo = cli_tile_option(&tiles, "features", argc, argv, &i);
         if (oo == 0) oo = cli_table_option(table, tn, table_names, fo, "features", argc, argv, &i);
         if (oo == 0) oo = cli_opts_parse(features_opts, CLI_COUNT(features_opts), &A, "features", argc, argv, &i);
         if (oo == 0) oo = cli_opts_parse(cli_common_opts, CLI_COUNT(cli_common_opts), &A.c, "features", argc, argv, &i);
@@ -148,6 +153,14 @@ int cli_features(int argc, char **argv)
     ro.progress = prog;
     fo->progress = prog;
     wo.progress = prog;
+    if (cli_tile_wanted(&tiles)) {
+        if (outliers.drop || columns) {
+            fprintf(stderr, "pointnpr features: tiles read binary PLY as it is: --drop-outliers and --columns do not apply\n");
+            return 2;
+        }
+        cli_features_run run = {in, out, fo, &wo, prog, quiet};
+        return cli_features_tiles(&run, &tiles, memory_limit, argc, argv);
+    }
     pnpr_cloud cloud = {0};
     pnpr_error err = {0};
     if (!cli_memory_check_file("features", in, memory_limit)) return 1;

@@ -66,6 +66,7 @@ static void usage(FILE *f)
             "  animate IN -o OUT.mp4|DIR/   a camera path (file, --orbit, --flyover) as frames and a video\n"
             "  lines IN -o OUT.obj          profile lines (polylines; OBJ, PLY or SVG)\n"
             "  segment IN -o OUT.ply        segments (jseg, components, rgbgrow, labels)\n"
+            "  merge-tiles -o OUT.ply ...   the tiles of a tiled features run as one cloud\n"
             "  bench accuracy [--out DIR]   error against run time of the feature analysis\n"
             "  explain [IN] --style S ...   which analysis stages an output needs, and why\n"
             "  options [--markdown]         every option's default and range (docs/options.md)\n"
@@ -90,6 +91,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "bench")) return cli_bench(argc - 1, argv + 1);
     if (!strcmp(cmd, "explain")) return cli_explain(argc - 1, argv + 1);
     if (!strcmp(cmd, "options")) return cli_options(argc - 1, argv + 1);
+    if (!strcmp(cmd, "merge-tiles")) return cli_merge_tiles(argc - 1, argv + 1);
     fprintf(stderr, "pointnpr: unknown command '%s'\n", cmd);
     usage(stderr);
     return 2;

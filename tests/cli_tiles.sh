@@ -1,0 +1,90 @@
+#!/bin/bash
+# Tiled features from the command line (docs/tiles.md): a generated 2.5D scan of 14 400 points,
+# in memory and in tiles (--tile-points, and the manifest's jobs run by a shell, then merge-tiles):
+# the bodies of the results are byte-identical and all but a few points are certified; --tiles
+# sizes tiles from --memory-limit; refusals name the file and the reason; render --sample draws a
+# uniform sample, the same at every run.
+# usage: cli_tiles.sh POINTNPR SCRATCH
+bin=$1
+dir=$2/cli_tiles
+source "$(dirname "$0")/lib_cli.sh"
+rm -rf "$dir" && mkdir -p "$dir/bin" || exit 1
+ln -s "$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")" "$dir/bin/pointnpr"
+export PATH="$dir/bin:$PATH"
+
+# a terrain: a ridge along y, a step across x, jitter; ascii, then binary
+awk 'BEGIN { srand(7); m = 120; print "ply\nformat ascii 1.0\nelement vertex " m * m
+  print "property float x\nproperty float y\nproperty float z\nend_header"
+  for (i = 0; i < m; i++) for (j = 0; j < m; j++) {
+    x = (i + 0.4 * rand()) / 12; y = (j + 0.4 * rand()) / 12
+    r = 0.8 - 0.6 * (x > 3.3 ? x - 3.3 : 3.3 - x); if (r < 0) r = 0
+    printf "%.6f %.6f %.6f\n", x, y, r + (y > 6.1 ? 0.5 : 0) }}' > "$dir/ascii.ply"
+pointnpr convert "$dir/ascii.ply" -o "$dir/in.ply" --quiet || { echo "FAILED: convert"; exit 1; }
+opts=(--threshold 0.3 --viewpoint 5,5,50)
+
+# body_same A B: the two PLY files' bodies (after end_header) are byte-identical
+body_same() {
+  local a b
+  a=$(grep -abo -m1 end_header "$1" | cut -d: -f1) b=$(grep -abo -m1 end_header "$2" | cut -d: -f1)
+  [ -n "$a" ] && [ -n "$b" ] && cmp -s -i "$((a + 11)):$((b + 11))" "$1" "$2"
+}
+
+pointnpr features "$dir/in.ply" -o "$dir/mem.ply" "${opts[@]}" --quiet
+pointnpr features "$dir/in.ply" -o "$dir/tiled.ply" "${opts[@]}" --tile-points 5000 2> "$dir/tiled.log"
+check '[ $? -eq 0 ]' "features --tile-points exits 0"
+ntiles=$(sed -n 's/.*points in \([0-9]*\) tiles.*/\1/p' "$dir/tiled.log")
+check '[ "${ntiles:-0}" -ge 3 ]' "at most 5000 points a tile: at least 3 tiles (got '${ntiles}')"
+unsure=$(sed -n "s/.*14400 points from $ntiles tiles; \([0-9]*\) not certain.*/\1/p" "$dir/tiled.log")
+check '[ -n "$unsure" ] && [ "$unsure" -lt 20 ]' "at most a few points not certified (got '$unsure')"
+check 'body_same "$dir/mem.ply" "$dir/tiled.ply"' "tiled result equals the in-memory one"
+check '[ $(ls -a "$dir" | grep -c tiles\\.) -eq 0 ]' "the work folder is removed"
+
+# --tiles sizes them from --memory-limit (beyond what the process holds): all in one tile under a
+# large limit, none under a limit the process itself exceeds (test_tiles checks the sizes)
+pointnpr features "$dir/in.ply" -o "$dir/big.ply" "${opts[@]}" --tiles --memory-limit 8G 2> "$dir/big.log"
+check '[ $? -eq 0 ] && grep -q "14400 points in 1 tiles" "$dir/big.log" && body_same "$dir/mem.ply" "$dir/big.ply"' \
+  "--tiles under 8G: one tile, the same result"
+pointnpr features "$dir/in.ply" -o "$dir/bad.ply" --tiles --memory-limit 1M 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "in.ply: a memory limit of .* leaves no room for a tile" "$dir/err.log"' \
+  "--tiles under 1M: refused with the reason"
+
+# the manifest: independent jobs, then the merge
+pointnpr features "$dir/in.ply" -o "$dir/manifest.ply" "${opts[@]}" --tile-points 4000 --manifest "$dir/jobs" --quiet
+check '[ -f "$dir/jobs/jobs.txt" ] && [ -f "$dir/jobs/merge.txt" ]' "--manifest writes jobs.txt and merge.txt"
+njobs=$(wc -l < "$dir/jobs/jobs.txt")
+check '[ "$njobs" -ge 4 ]' "at most 4000 points a tile: at least 4 jobs (got $njobs)"
+check '[ ! -e "$dir/manifest.ply" ]' "--manifest runs nothing"
+(cd "$dir" && while read -r job; do eval "$job --quiet" || exit 1; done < jobs/jobs.txt)
+check '[ $? -eq 0 ]' "every job of jobs.txt runs"
+bash "$dir/jobs/merge.txt" 2> "$dir/merge.log"
+check '[ $? -eq 0 ]' "merge.txt runs"
+check 'body_same "$dir/mem.ply" "$dir/manifest.ply"' "merged jobs equal the in-memory result"
+
+# refusals
+tiles=("$dir"/jobs/tile_*.ply)
+pointnpr merge-tiles --points 14400 -o "$dir/bad.ply" "${tiles[@]:1}" 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "is in no tile" "$dir/err.log" && [ ! -e "$dir/bad.ply" ]' "a missing tile is refused, nothing written"
+pointnpr merge-tiles --points 14400 -o "$dir/bad.ply" "${tiles[@]}" "${tiles[0]}" 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "comes twice" "$dir/err.log"' "a tile twice is refused"
+pointnpr merge-tiles --points 14400 -o "$dir/bad.ply" "$dir/in.ply" 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "in.ply: no uint property source_index" "$dir/err.log"' "a cloud that is no tile is refused"
+pointnpr features "$dir/ascii.ply" -o "$dir/bad.ply" --tiles 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "ascii.ply.*binary" "$dir/err.log"' "an ascii PLY is refused, naming the file"
+pointnpr features "$dir/in.ply" -o "$dir/bad.ply" --tile-grid 0,0,1,1,9999,1,0,0,0 --tile 0,0,1,1 2> "$dir/err.log"
+check '[ $? -eq 2 ] && grep -q "tile-grid" "$dir/err.log"' "a bogus tile is a usage error"
+pointnpr features "$dir/in.ply" -o - --tiles > /dev/null 2> "$dir/err.log"
+check '[ $? -eq 2 ] && grep -q "must be a file" "$dir/err.log"' "tiles refuse standard output"
+
+# render --sample: a uniform share of the points, the same at every run (the automatic share under
+# --memory-limit takes the same path)
+if built_with_render "$bin"; then
+  pointnpr render "$dir/mem.ply" -o "$dir/sample.png" --size 160x120 --sample 0.25 2> "$dir/sample.log"
+  check '[ $? -eq 0 ] && [ -s "$dir/sample.png" ]' "render --sample draws"
+  kept=$(sed -n 's/.*uniform sample of \([0-9]*\) of 14400 points.*/\1/p' "$dir/sample.log")
+  check '[ "${kept:-0}" -gt 3240 ] && [ "${kept:-0}" -lt 3960 ]' "--sample 0.25 keeps about 3600 of 14400 points (got '$kept')"
+  pointnpr render "$dir/mem.ply" -o "$dir/sample2.png" --size 160x120 --sample 0.25 --quiet
+  check 'cmp -s "$dir/sample.png" "$dir/sample2.png"' "the same sample at every run"
+  pointnpr render "$dir/ascii.ply" -o "$dir/bad.png" --size 160x120 --sample 0.25 2> "$dir/err.log"
+  check '[ $? -eq 1 ] && grep -q "binary" "$dir/err.log"' "--sample of an ascii PLY is refused"
+fi
+exit $fail
