@@ -1,4 +1,5 @@
 /* Input files as one read-only byte range (io/file_bytes.h): mapped when regular, read otherwise. */
+#define _DEFAULT_SOURCE /* madvise(MADV_DONTNEED): POSIX's posix_madvise ignores DONTNEED on glibc */
 #include "file_bytes.h"
 #include "../core/internal.h"
 
@@ -81,6 +82,15 @@ pnpr_status pnpr_file_bytes_open(const char *path, pnpr_file_bytes *fb, pnpr_err
     close(fd);
     if (st != PNPR_OK) memset(fb, 0, sizeof *fb);
     return st;
+}
+
+void pnpr_file_bytes_drop(pnpr_file_bytes *fb, size_t upto)
+{
+    const size_t step = (size_t)64 << 20;
+    if (!fb || !fb->map || upto > fb->size || upto < fb->dropped + step) return;
+    size_t page = (size_t)sysconf(_SC_PAGESIZE), end = upto / page * page; /* the map starts on a page */
+    if (end > fb->dropped && madvise((unsigned char *)fb->map + fb->dropped, end - fb->dropped, MADV_DONTNEED) == 0)
+        fb->dropped = end; /* a private read-only mapping: the pages come back from the file */
 }
 
 void pnpr_file_bytes_close(pnpr_file_bytes *fb)

@@ -166,6 +166,25 @@ pnpr_status pnpr_read_file(const char *path, const pnpr_read_options *opts, pnpr
     return st;
 }
 
+int pnpr_mem_sink_write(void *user, const void *data, size_t size)
+{
+    pnpr_mem_sink *m = user;
+    if (size > m->cap - m->size) {
+        size_t cap = m->cap ? m->cap : 65536;
+        while (cap - m->size < size) {
+            if (cap > SIZE_MAX / 2) return 1;
+            cap *= 2;
+        }
+        unsigned char *g = realloc(m->data, cap);
+        if (!g) return 1;
+        m->data = g;
+        m->cap = cap;
+    }
+    if (size) memcpy(m->data + m->size, data, size);
+    m->size += size;
+    return 0;
+}
+
 pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *cloud, const pnpr_write_options *opts,
                             pnpr_error *err)
 {

@@ -654,6 +654,7 @@ typedef struct ply_reader {
     size_t nindex;      /* indices stored */
     int dry;            /* parse only to find the body's first error: nothing is stored */
     const uint8_t *kept; /* the keep filter's bit per vertex (filter_vertices), or NULL = all */
+    pnpr_file_bytes *fb; /* the mapped file (pages behind the decoding handed back), or NULL */
 } ply_reader;
 
 /* Stores vertex property p of vertex i. f is meaningful for FLOAT32 properties only. */
@@ -764,6 +765,7 @@ static pnpr_status binary_fixed(ply_reader *r, const ply_elem *e, size_t *pos)
                 }
             }
             j += !r->kept || (r->kept[i >> 3] >> (i & 7) & 1);
+            if ((i & 0xFFFF) == 0) pnpr_file_bytes_drop(r->fb, *pos + i * rs);
             if (tick(r, &t, i + 1, n)) return cancelled(r, i + 1, n);
         }
     }
@@ -1167,6 +1169,7 @@ static pnpr_status filter_vertices(ply_reader *r, const pnpr_read_options *o, ui
             bits[i >> 3] |= (uint8_t)(1u << (i & 7));
             kept++;
         }
+        if ((i & 0xFFFF) == 0) pnpr_file_bytes_drop(r->fb, pos + i * rs);
         if (tick(r, &t, i + 1, n)) {
             free(bits);
             return cancelled(r, i + 1, n);
@@ -1224,8 +1227,18 @@ static pnpr_status prepare_cloud(ply_reader *r, ply_header *h, size_t count, pnp
     return PNPR_OK;
 }
 
+static pnpr_status ply_read(const void *data, size_t size, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                            pnpr_error *err, pnpr_file_bytes *fb);
+
 pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_options *opts,
                                  pnpr_cloud *cloud, pnpr_error *err)
+{
+    return ply_read(data, size, opts, cloud, err, NULL);
+}
+
+/* fb: the mapped file data lies in, or NULL. */
+static pnpr_status ply_read(const void *data, size_t size, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                            pnpr_error *err, pnpr_file_bytes *fb)
 {
     ply_header h;
     ply_reader r;
@@ -1254,6 +1267,7 @@ pnpr_status pnpr_read_ply_memory(const void *data, size_t size, const pnpr_read_
         r.swap = (h.encoding == PLY_ENC_LE) != host_is_little();
         r.progress = opts && !r.dry ? &opts->progress : NULL;
         r.err = err;
+        r.fb = fb;
         size_t count = (size_t)h.vertex->count;
         if (!r.dry && opts && opts->keep) {
             st = filter_vertices(&r, opts, &kept, &count);
@@ -1300,7 +1314,14 @@ pnpr_status pnpr_read_ply_file(const char *path, const pnpr_read_options *opts, 
 {
     if (!path || !cloud)
         return pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read ply: NULL path or cloud");
-    return pnpr_file_bytes_read(path, pnpr_read_ply_memory, opts, cloud, err);
+    pnpr_cloud_free(cloud);
+    pnpr_file_bytes fb; /* as pnpr_file_bytes_read, with the mapping passed on */
+    pnpr_status st = pnpr_file_bytes_open(path, &fb, err);
+    if (st != PNPR_OK) return st;
+    st = ply_read(fb.data, fb.size, opts, cloud, err, &fb);
+    pnpr_file_bytes_close(&fb);
+    if (st != PNPR_OK) pnpr_error_prefix_path(err, path);
+    return st;
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -2,9 +2,10 @@
  *
  * Every tile is serialised as binary PLY in memory (one tile at a time: the bound of the run);
  * its records have a fixed size, so record i of the result lies at header + index * size. The
- * result's temporary (output.h) is sized once and mapped, and each record is copied to its place:
- * the kernel writes the pages back, so the process holds a tile and its serialised copy, never
- * the whole result. */
+ * result's temporary (output.h) is sized once and mapped, and each record is copied to its place;
+ * after each tile the mapping's pages are handed back to the kernel, which writes them to the
+ * file, so the process holds a tile and its serialised copy, never the whole result. */
+#define _DEFAULT_SOURCE /* madvise(MADV_DONTNEED) */
 #include <pointnpr/output.h>
 #include <pointnpr/props.h>
 #include <pointnpr/tiles.h>
@@ -18,33 +19,9 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-typedef struct mem_sink {
-    unsigned char *data;
-    size_t size, cap;
-} mem_sink;
-
-static int mem_write(void *user, const void *data, size_t size)
-{
-    mem_sink *m = user;
-    if (size > m->cap - m->size) {
-        size_t cap = m->cap ? m->cap : 65536;
-        while (cap - m->size < size) {
-            if (cap > SIZE_MAX / 2) return 1;
-            cap *= 2;
-        }
-        unsigned char *g = realloc(m->data, cap);
-        if (!g) return 1;
-        m->data = g;
-        m->cap = cap;
-    }
-    memcpy(m->data + m->size, data, size);
-    m->size += size;
-    return 0;
-}
-
 /* The header of a serialised tile: its length, and its text without comments and with the vertex
  * count left out (the layout every tile must share) in sig. 0 when it has no end. */
-static size_t header_layout(const mem_sink *m, char *sig, size_t cap)
+static size_t header_layout(const pnpr_mem_sink *m, char *sig, size_t cap)
 {
     const char *s = (const char *)m->data, *end = s + m->size;
     size_t n = 0;
@@ -76,7 +53,7 @@ typedef struct merge_run {
 } merge_run;
 
 /* The result's temporary sized and mapped, its header written: from the first tile. */
-static pnpr_status merge_start(merge_run *r, const mem_sink *m, size_t head, size_t rec, pnpr_error *err)
+static pnpr_status merge_start(merge_run *r, const pnpr_mem_sink *m, size_t head, size_t rec, pnpr_error *err)
 {
     char line[64];
     int ln = snprintf(line, sizeof line, "element vertex %llu\n", (unsigned long long)r->points);
@@ -105,7 +82,7 @@ static pnpr_status merge_start(merge_run *r, const mem_sink *m, size_t head, siz
 static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
 {
     pnpr_cloud c = {0};
-    mem_sink m = {0};
+    pnpr_mem_sink m = {0};
     uint32_t *idx = NULL;
     pnpr_status st = pnpr_read_file(path, NULL, &c, err);
     pnpr_property *si = st == PNPR_OK ? pnpr_cloud_find_property(&c, PNPR_PROP_SOURCE_INDEX) : NULL;
@@ -123,7 +100,7 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
     }
     pnpr_write_options wo = {0};
     if (st == PNPR_OK && (st = pnpr_cloud_remove_property(&c, PNPR_PROP_SOURCE_INDEX)) == PNPR_OK)
-        st = pnpr_write_ply_stream(mem_write, &m, &c, &wo, err);
+        st = pnpr_write_ply_stream(pnpr_mem_sink_write, &m, &c, &wo, err);
     char sig[sizeof r->sig];
     size_t head = st == PNPR_OK ? header_layout(&m, sig, sizeof sig) : 0;
     if (st == PNPR_OK && !head) st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: merge: a header too long", path);
@@ -138,6 +115,9 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
     }
     for (size_t i = 0; st == PNPR_OK && i < c.count; i++)
         memcpy(r->map + r->head + (size_t)idx[i] * rec, m.data + head + i * rec, rec);
+    /* a shared mapping: the records stay in the page cache for the kernel to write back; the
+     * process stops holding them, or the whole result would count as its own by the end */
+    if (st == PNPR_OK && r->map) (void)madvise(r->map, r->map_size, MADV_DONTNEED);
     free(idx);
     free(m.data);
     pnpr_cloud_free(&c);

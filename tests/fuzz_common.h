@@ -11,27 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct fuzz_sink {
-    unsigned char *data;
-    size_t size, cap;
-} fuzz_sink;
-
-static int fuzz_write(void *user, const void *data, size_t size)
-{
-    fuzz_sink *m = user;
-    if (size > SIZE_MAX - m->size) return 1;
-    if (m->size + size > m->cap) {
-        size_t cap = m->cap ? m->cap : 4096;
-        while (cap < m->size + size) cap *= 2;
-        unsigned char *g = realloc(m->data, cap);
-        if (!g) return 1;
-        m->data = g;
-        m->cap = cap;
-    }
-    memcpy(m->data + m->size, data, size);
-    m->size += size;
-    return 0;
-}
+typedef pnpr_mem_sink fuzz_sink;      /* the library's memory sink */
+#define fuzz_write pnpr_mem_sink_write
 
 static int fuzz_same_double(double a, double b)
 {

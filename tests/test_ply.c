@@ -19,31 +19,20 @@ pnpr_status pnpr_write_ply_file(const char *path, const pnpr_cloud *cloud,
 /* ---- helpers ---------------------------------------------------------------------------- */
 
 typedef struct mem_sink {
-    unsigned char *data;
-    size_t size, cap;
+    pnpr_mem_sink s;   /* the library's memory sink */
     size_t fail_after; /* 0 = never fail */
 } mem_sink;
 
 static int mem_write(void *user, const void *data, size_t size)
 {
     mem_sink *m = user;
-    if (m->fail_after && m->size + size > m->fail_after) return 1;
-    if (m->size + size > m->cap) {
-        size_t cap = m->cap ? m->cap : 4096;
-        while (cap < m->size + size) cap *= 2;
-        unsigned char *g = realloc(m->data, cap);
-        if (!g) return 1;
-        m->data = g;
-        m->cap = cap;
-    }
-    memcpy(m->data + m->size, data, size);
-    m->size += size;
-    return 0;
+    if (m->fail_after && m->s.size + size > m->fail_after) return 1;
+    return pnpr_mem_sink_write(&m->s, data, size);
 }
 
 static void mem_free(mem_sink *m)
 {
-    free(m->data);
+    free(m->s.data);
     memset(m, 0, sizeof *m);
 }
 
@@ -75,7 +64,7 @@ static pnpr_status round_trip(const pnpr_cloud *c, pnpr_ply_encoding enc, int fo
     pnpr_status st = pnpr_write_ply_stream(mem_write, &m, c, &wo, &e);
     CHECK_MSG(st == PNPR_OK, "write: %s", e.message);
     if (st == PNPR_OK) {
-        st = pnpr_read_ply_memory(m.data, m.size, NULL, out, &e);
+        st = pnpr_read_ply_memory(m.s.data, m.s.size, NULL, out, &e);
         CHECK_MSG(st == PNPR_OK, "read back (encoding %d): %s", (int)enc, e.message);
     }
     mem_free(&m);
@@ -260,8 +249,8 @@ static void test_write_unknown_type_keeps_precision(void)
     c.xyz[3] = -0.375f;
     mem_sink m = {0};
     CHECK_STATUS(pnpr_write_ply_stream(mem_write, &m, &c, NULL, NULL), PNPR_OK);
-    CHECK(m.data && contains((const char *)m.data, "property double x"));
-    CHECK_STATUS(pnpr_read_ply_memory(m.data, m.size, NULL, &r, NULL), PNPR_OK);
+    CHECK(m.s.data && contains((const char *)m.s.data, "property double x"));
+    CHECK_STATUS(pnpr_read_ply_memory(m.s.data, m.s.size, NULL, &r, NULL), PNPR_OK);
     double w[3];
     pnpr_cloud_world(&r, 0, w);
     CHECK(w[0] == 5000000.125);
@@ -272,7 +261,7 @@ static void test_write_unknown_type_keeps_precision(void)
     /* the same cloud at origin 0 is written as float */
     c.origin[0] = 0;
     CHECK_STATUS(pnpr_write_ply_stream(mem_write, &m, &c, NULL, NULL), PNPR_OK);
-    CHECK(m.data && contains((const char *)m.data, "property float x"));
+    CHECK(m.s.data && contains((const char *)m.s.data, "property float x"));
     mem_free(&m);
     pnpr_cloud_free(&c);
 }
@@ -593,8 +582,8 @@ static void test_wide_faces(void)
         pnpr_write_options wo = {0};
         wo.encoding = (pnpr_ply_encoding)enc;
         CHECK_STATUS(pnpr_write_ply_stream(mem_write, &m, &c, &wo, NULL), PNPR_OK);
-        CHECK(m.data && contains((const char *)m.data, "property list uint uint vertex_indices"));
-        CHECK_STATUS(pnpr_read_ply_memory(m.data, m.size, NULL, &r, NULL), PNPR_OK);
+        CHECK(m.s.data && contains((const char *)m.s.data, "property list uint uint vertex_indices"));
+        CHECK_STATUS(pnpr_read_ply_memory(m.s.data, m.s.size, NULL, &r, NULL), PNPR_OK);
         CHECK(r.faces.count == 1 && r.faces.offset[1] == 300 && r.faces.index[0] == 299 && r.faces.index[299] == 0);
         pnpr_cloud_free(&r);
         mem_free(&m);
@@ -705,8 +694,8 @@ static void test_ascii_float_sweep(void)
         memcpy(s.xyz, v, sizeof v);
         CHECK_STATUS(pnpr_write_ply_stream(mem_write, &m, &s, &wo, NULL), PNPR_OK);
         CHECK(mem_write(&m, "", 1) == 0);
-        CHECK_MSG(m.data && contains((const char *)m.data, "end_header\n0.5 -0.25 1.00000001e-07\n123456.75 3.00000006e+20 -1.49938936e-42\n"),
-                  "%s", m.data ? (const char *)m.data : "");
+        CHECK_MSG(m.s.data && contains((const char *)m.s.data, "end_header\n0.5 -0.25 1.00000001e-07\n123456.75 3.00000006e+20 -1.49938936e-42\n"),
+                  "%s", m.s.data ? (const char *)m.s.data : "");
         mem_free(&m);
         pnpr_cloud_free(&s);
     }
@@ -769,8 +758,8 @@ static void test_ascii_double_sweep(void)
         s.src_xyz[2] = -0.015625;
         CHECK_STATUS(pnpr_write_ply_stream(mem_write, &m, &s, &wo, NULL), PNPR_OK);
         CHECK(mem_write(&m, "", 1) == 0);
-        CHECK_MSG(m.data && contains((const char *)m.data, "end_header\n5000000.123 0.30000000000000004 -0.015625\n"),
-                  "%s", m.data ? (const char *)m.data : "");
+        CHECK_MSG(m.s.data && contains((const char *)m.s.data, "end_header\n5000000.123 0.30000000000000004 -0.015625\n"),
+                  "%s", m.s.data ? (const char *)m.s.data : "");
         mem_free(&m);
         pnpr_cloud_free(&s);
     }
@@ -1111,7 +1100,7 @@ static void test_progress_and_cancel(void)
         pnpr_read_options ro = {0};
         ro.progress.fn = progress_cb;
         ro.progress.user = &rl;
-        CHECK_STATUS(pnpr_read_ply_memory(m.data, m.size, &ro, &r, NULL), PNPR_OK);
+        CHECK_STATUS(pnpr_read_ply_memory(m.s.data, m.s.size, &ro, &r, NULL), PNPR_OK);
         CHECK(r.count == n);
         CHECK(rl.calls >= 50 && rl.calls <= 210 && rl.monotonic && rl.last == 1.0);
         CHECK(strcmp(rl.stage, "read ply") == 0);
@@ -1121,7 +1110,7 @@ static void test_progress_and_cancel(void)
         progress_log cl = {0, 50, 0.0, 1, ""};
         pnpr_error e;
         ro.progress.user = &cl;
-        CHECK_STATUS(pnpr_read_ply_memory(m.data, m.size, &ro, &r, &e), PNPR_ERR_CANCELLED);
+        CHECK_STATUS(pnpr_read_ply_memory(m.s.data, m.s.size, &ro, &r, &e), PNPR_ERR_CANCELLED);
         CHECK(cloud_is_zero(&r));
         CHECK(cl.calls == 50);
         CHECK(contains(e.message, "cancelled"));
@@ -1180,12 +1169,12 @@ static void test_writer_arguments(void)
     CHECK_STATUS(pnpr_cloud_alloc_labels(&c), PNPR_OK);
     c.label[1] = 5;
     CHECK_STATUS(pnpr_cloud_add_property(&c, "segment", PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
-    m.size = 0;
+    m.s.size = 0;
     wo.encoding = PNPR_PLY_ASCII;
     CHECK_STATUS(pnpr_write_ply_stream(mem_write, &m, &c, &wo, &e), PNPR_OK);
-    CHECK(m.data && contains((const char *)m.data, "property uint label\nproperty float segment\n"));
+    CHECK(m.s.data && contains((const char *)m.s.data, "property uint label\nproperty float segment\n"));
     pnpr_cloud r = {0};
-    CHECK_STATUS(pnpr_read_ply_memory(m.data, m.size, NULL, &r, &e), PNPR_OK);
+    CHECK_STATUS(pnpr_read_ply_memory(m.s.data, m.s.size, NULL, &r, &e), PNPR_OK);
     CHECK(r.label && r.label[1] == 5 && r.prop_count == 1);
     pnpr_cloud_free(&r);
     mem_free(&m);

@@ -110,6 +110,15 @@ PNPR_NODISCARD pnpr_status pnpr_write_file(const char *path, const pnpr_cloud *c
 
 /* Writes PLY to a caller-provided sink (fn returns 0 on success). */
 typedef int (*pnpr_write_fn)(void *user, const void *data, size_t size);
+
+/* A sink that collects the bytes in memory: pass pnpr_mem_sink_write and a zeroed pnpr_mem_sink;
+ * data (size bytes) grows by doubling; release it with free(). Fails (returns 1) only when memory
+ * runs out, keeping what it had. */
+typedef struct pnpr_mem_sink {
+    unsigned char *data;
+    size_t size, cap;
+} pnpr_mem_sink;
+int pnpr_mem_sink_write(void *user, const void *data, size_t size);
 PNPR_NODISCARD pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, const pnpr_cloud *cloud,
                                   const pnpr_write_options *opts, pnpr_error *err);
 
