@@ -50,7 +50,85 @@ typedef struct merge_run {
     size_t map_size, head, rec;
     char sig[16384];
     uint8_t *seen;       /* a bit per source index */
+    int seams;           /* normals oriented per tile: make them agree across seams (pnpr_tile_merge) */
+    long nx_off;         /* byte of nx in a record, -1: none (or not little-endian floats) */
+    double top_z;        /* the highest core point so far, and its source index */
+    uint32_t top;
+    int have_top;
 } merge_run;
+
+static size_t ply_type_size(const char *t, size_t n)
+{
+    static const char *const names[][2] = {{"char", "int8"}, {"uchar", "uint8"}, {"short", "int16"}, {"ushort", "uint16"},
+                                           {"int", "int32"}, {"uint", "uint32"}, {"float", "float32"}, {"double", "float64"}};
+    static const size_t sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+    for (int k = 0; k < 8; k++)
+        for (int a = 0; a < 2; a++)
+            if (strlen(names[k][a]) == n && !strncmp(t, names[k][a], n)) return sizes[k];
+    return 0;
+}
+
+/* The byte of "property float nx" in a vertex record of the layout sig (header_layout), -1 when
+ * there is none or the floats are not little-endian as this machine's. */
+static long normal_offset(const char *sig)
+{
+    const unsigned one = 1;
+    if (!strstr(sig, "format binary_little_endian") || *(const unsigned char *)&one != 1) return -1;
+    const char *s = strstr(sig, "element vertex "); /* its count cut off: the properties follow at once */
+    long off = 0;
+    for (s = s ? s + 15 : NULL; s && !strncmp(s, "property ", 9); s = strchr(s, '\n') ? strchr(s, '\n') + 1 : NULL) {
+        const char *t = s + 9, *sp = strchr(t, ' ');
+        if (!sp) return -1;
+        if (!strncmp(sp + 1, "nx\n", 3)) return !strncmp(t, "float ", 6) ? off : -1;
+        size_t z = ply_type_size(t, (size_t)(sp - t));
+        if (!z) return -1;
+        off += (long)z;
+    }
+    return -1;
+}
+
+/* The placed normal of source index i. */
+static void placed_normal(const merge_run *r, uint32_t i, float n[3])
+{
+    memcpy(n, r->map + r->head + (size_t)i * r->rec + (size_t)r->nx_off, 3 * sizeof(float));
+}
+
+/* Seams: a tile oriented by its own propagation agrees with the tiles already placed over its
+ * halo, or its normals are turned; returns whether they were. */
+static int orient_tile(merge_run *r, pnpr_cloud *c, const uint32_t *idx, const uint8_t *core)
+{
+    if (!r->seams || !r->map || r->nx_off < 0 || !c->normal) return 0;
+    size_t agree = 0, differ = 0;
+    for (size_t i = 0; i < c->count; i++) {
+        if (core[i] || !(r->seen[idx[i] >> 3] >> (idx[i] & 7) & 1)) continue;
+        float n[3];
+        placed_normal(r, idx[i], n);
+        float d = n[0] * c->normal[3 * i] + n[1] * c->normal[3 * i + 1] + n[2] * c->normal[3 * i + 2];
+        agree += d > 0;
+        differ += d < 0;
+    }
+    if (differ <= agree) return 0;
+    for (size_t i = 0; i < 3 * c->count; i++) c->normal[i] = -c->normal[i];
+    return 1;
+}
+
+/* Seams, at the end: the highest point's normal faces up (the propagation's rule for the whole
+ * cloud, orient.c), else every normal of the result turns. */
+static void orient_result(merge_run *r)
+{
+    if (!r->seams || !r->map || r->nx_off < 0 || !r->have_top) return;
+    float n[3];
+    placed_normal(r, r->top, n);
+    if (!(n[2] < 0)) return;
+    for (uint64_t i = 0; i < r->points; i++) {
+        unsigned char *p = r->map + r->head + (size_t)i * r->rec + (size_t)r->nx_off;
+        float v[3];
+        memcpy(v, p, sizeof v);
+        for (int a = 0; a < 3; a++) v[a] = -v[a];
+        memcpy(p, v, sizeof v);
+        if ((i & 0xFFFFF) == 0xFFFFF) (void)madvise(r->map, r->map_size, MADV_DONTNEED);
+    }
+}
 
 /* The result's temporary sized and mapped, its header written: from the first tile. */
 static pnpr_status merge_start(merge_run *r, const pnpr_mem_sink *m, size_t head, size_t rec, pnpr_error *err)
@@ -72,31 +150,47 @@ static pnpr_status merge_start(merge_run *r, const pnpr_mem_sink *m, size_t head
     void *p = mmap(NULL, r->map_size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
     if (p == MAP_FAILED) return pnpr_error_set(err, PNPR_ERR_IO, "%s: cannot map the result: %s", r->out, strerror(errno));
     r->map = p;
+    r->nx_off = normal_offset(r->sig);
     memcpy(r->map, m->data, before);
     memcpy(r->map + before, line, (size_t)ln);
     memcpy(r->map + before + ln, ve + 1, after);
     return PNPR_OK;
 }
 
-/* One tile: read, checked, serialised without its source index, records placed. */
+/* One tile: read, its halo compared (seams), its core checked, serialised without its source
+ * index and core flags, records placed. */
 static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
 {
     pnpr_cloud c = {0};
     pnpr_mem_sink m = {0};
     uint32_t *idx = NULL;
+    uint8_t *core = NULL;
     pnpr_status st = pnpr_read_file(path, NULL, &c, err);
     pnpr_property *si = st == PNPR_OK ? pnpr_cloud_find_property(&c, PNPR_PROP_SOURCE_INDEX) : NULL;
-    if (st == PNPR_OK && (!si || si->type != PNPR_TYPE_UINT32))
+    pnpr_property *tc = st == PNPR_OK ? pnpr_cloud_find_property(&c, PNPR_PROP_TILE_CORE) : NULL;
+    if (st == PNPR_OK && (!si || si->type != PNPR_TYPE_UINT32 || (tc && tc->type != PNPR_TYPE_UINT8)))
         st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: no uint property %s: not a tile's result", path, PNPR_PROP_SOURCE_INDEX);
-    if (st == PNPR_OK && !(idx = malloc((c.count ? c.count : 1) * sizeof *idx))) st = PNPR_ERR_OUT_OF_MEMORY;
+    if (st == PNPR_OK && (!(idx = malloc((c.count ? c.count : 1) * sizeof *idx)) || !(core = malloc(c.count + 1))))
+        st = PNPR_ERR_OUT_OF_MEMORY;
     if (st == PNPR_OK) {
         memcpy(idx, si->data, c.count * sizeof *idx);
-        for (size_t i = 0; i < c.count && st == PNPR_OK; i++) {
-            if (idx[i] >= r->points || (r->seen[idx[i] >> 3] >> (idx[i] & 7) & 1))
-                st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: point %zu: source index %u %s", path, i, idx[i],
-                                    idx[i] >= r->points ? "beyond the file's points" : "comes twice (tiles overlap)");
-            else r->seen[idx[i] >> 3] |= (uint8_t)(1u << (idx[i] & 7));
+        for (size_t i = 0; i < c.count; i++) core[i] = !tc || ((const uint8_t *)tc->data)[i] != 0;
+        orient_tile(r, &c, idx, core);
+        size_t n = 0;
+        for (size_t i = 0; i < c.count; i++)
+            if (core[i]) idx[n++] = idx[i];
+        if (tc && (st = pnpr_cloud_keep(&c, core, NULL)) == PNPR_OK) st = pnpr_cloud_remove_property(&c, PNPR_PROP_TILE_CORE);
+    }
+    for (size_t i = 0; i < c.count && st == PNPR_OK; i++) {
+        if (idx[i] >= r->points || (r->seen[idx[i] >> 3] >> (idx[i] & 7) & 1)) {
+            st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: point %zu: source index %u %s", path, i, idx[i],
+                                idx[i] >= r->points ? "beyond the file's points" : "comes twice (tiles overlap)");
+            break;
         }
+        r->seen[idx[i] >> 3] |= (uint8_t)(1u << (idx[i] & 7));
+        double w[3];
+        pnpr_cloud_world(&c, i, w);
+        if (w[2] == w[2] && (!r->have_top || w[2] > r->top_z)) { r->top_z = w[2]; r->top = idx[i]; r->have_top = 1; }
     }
     pnpr_write_options wo = {0};
     if (st == PNPR_OK && (st = pnpr_cloud_remove_property(&c, PNPR_PROP_SOURCE_INDEX)) == PNPR_OK)
@@ -119,13 +213,14 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
      * process stops holding them, or the whole result would count as its own by the end */
     if (st == PNPR_OK && r->map) (void)madvise(r->map, r->map_size, MADV_DONTNEED);
     free(idx);
+    free(core);
     free(m.data);
     pnpr_cloud_free(&c);
     if (st == PNPR_ERR_OUT_OF_MEMORY && !err->message[0]) pnpr_error_set(err, st, "%s: merge: out of memory", path);
     return st;
 }
 
-pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t points, const char *out,
+pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t points, int seams, const char *out,
                             const pnpr_progress *progress, pnpr_error *err)
 {
     pnpr_error local = {0};
@@ -137,6 +232,8 @@ pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t poi
     memset(&r, 0, sizeof r);
     r.out = out;
     r.points = points;
+    r.seams = seams;
+    r.nx_off = -1;
     if (!(r.seen = calloc((size_t)points / 8 + 1, 1))) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: merge: out of memory", out);
     pnpr_status st = pnpr_output_open(&r.o, out, err);
     for (size_t t = 0; st == PNPR_OK && t < count; t++) {
@@ -149,6 +246,7 @@ pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t poi
             st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: merge: point %llu of %llu is in no tile (a tile missing?)", out,
                                 (unsigned long long)i, (unsigned long long)points);
     if (st == PNPR_OK && !r.map) st = pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: merge: no tiles", out);
+    if (st == PNPR_OK) orient_result(&r);
     if (r.map && munmap(r.map, r.map_size) != 0 && st == PNPR_OK)
         st = pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", out, strerror(errno));
     free(r.seen);

@@ -60,6 +60,14 @@ bash "$dir/jobs/merge.txt" 2> "$dir/merge.log"
 check '[ $? -eq 0 ]' "merge.txt runs"
 check 'body_same "$dir/mem.ply" "$dir/manifest.ply"' "merged jobs equal the in-memory result"
 
+# without --viewpoint each tile orients its own normals; the merge makes them agree (--seams)
+pointnpr features "$dir/in.ply" -o "$dir/mem_nv.ply" --threshold 0.3 --quiet
+pointnpr features "$dir/in.ply" -o "$dir/tiled_nv.ply" --threshold 0.3 --tile-points 5000 --quiet
+check 'body_same "$dir/mem_nv.ply" "$dir/tiled_nv.ply"' "without a viewpoint: tiled equals in memory"
+pointnpr features "$dir/in.ply" -o "$dir/nv.ply" --threshold 0.3 --tile-points 5000 --manifest "$dir/jobs_nv" --quiet
+check 'grep -q "merge-tiles --points 14400 --seams" "$dir/jobs_nv/merge.txt"' "merge.txt asks for the seams without a viewpoint"
+check '! grep -q -- "--seams" "$dir/jobs/merge.txt"' "and not with one"
+
 # refusals
 tiles=("$dir"/jobs/tile_*.ply)
 pointnpr merge-tiles --points 14400 -o "$dir/bad.ply" "${tiles[@]:1}" 2> "$dir/err.log"

@@ -66,11 +66,11 @@ static void make_scene(pnpr_cloud *c, int kind)
     free(w);
 }
 
-static pnpr_features_options feature_options(void)
+static pnpr_features_options feature_options(int viewpoint)
 {
     pnpr_features_options fo = pnpr_features_defaults();
     fo.threshold = 0.3f;
-    fo.has_viewpoint = 1;
+    fo.has_viewpoint = viewpoint;
     fo.viewpoint[0] = 5;
     fo.viewpoint[1] = 5;
     fo.viewpoint[2] = 50;
@@ -78,10 +78,14 @@ static pnpr_features_options feature_options(void)
     return fo;
 }
 
-/* Point i of a against point j of b: every property bit for bit, dithering points as none. */
-static int same_point(const pnpr_cloud *a, size_t i, const pnpr_cloud *b, size_t j)
+/* Point i of a against point j of b: every property bit for bit, dithering points as none;
+ * normals too when `normals` (else up to their sign). */
+static int same_point(const pnpr_cloud *a, size_t i, const pnpr_cloud *b, size_t j, int normals)
 {
-    if (memcmp(a->xyz + 3 * i, b->xyz + 3 * j, 12) || memcmp(a->normal + 3 * i, b->normal + 3 * j, 12)) return 0;
+    float flip[3] = {-b->normal[3 * j], -b->normal[3 * j + 1], -b->normal[3 * j + 2]};
+    if (memcmp(a->xyz + 3 * i, b->xyz + 3 * j, 12) ||
+        (memcmp(a->normal + 3 * i, b->normal + 3 * j, 12) && (normals || memcmp(a->normal + 3 * i, flip, 12))))
+        return 0;
     for (size_t p = 0; p < a->prop_count; p++) {
         const pnpr_property *pa = &a->props[p], *pb = pnpr_cloud_find_property(b, pa->name);
         if (!pb) return 0;
@@ -105,7 +109,7 @@ static const char *scratch(const char *name, char *buf, size_t cap)
 
 /* Runs every tile of the plan as a job would, writing tile files; checks each tile's certified
  * core points against the in-memory cloud `ref`; returns the points certified. */
-static size_t run_tiles(const char *in, const pnpr_tile_plan *plan, const pnpr_cloud *ref, char (*paths)[512])
+static size_t run_tiles(const char *in, const pnpr_tile_plan *plan, const pnpr_cloud *ref, char (*paths)[512], int seams)
 {
     size_t certified = 0, wrong = 0;
     for (size_t t = 0; t < plan->count; t++) {
@@ -113,7 +117,7 @@ static size_t run_tiles(const char *in, const pnpr_tile_plan *plan, const pnpr_c
         uint8_t *core = NULL;
         pnpr_error err = {0};
         CHECK_STATUS(pnpr_tile_read(in, &plan->grid, &plan->tiles[t], plan->halo, NULL, &c, &core, &err), PNPR_OK);
-        pnpr_features_options fo = feature_options();
+        pnpr_features_options fo = feature_options(!seams);
         pnpr_features_stats stats;
         CHECK_STATUS(pnpr_compute_features(&c, &fo, &stats), PNPR_OK);
         double box[4];
@@ -128,11 +132,17 @@ static size_t run_tiles(const char *in, const pnpr_tile_plan *plan, const pnpr_c
             cores++;
             if (!exact[i]) continue;
             sure++;
-            wrong += !same_point(ref, src[i], &c, i);
+            wrong += !same_point(ref, src[i], &c, i, !seams);
         }
         certified += sure;
         CHECK(cores == plan->tiles[t].points && uncertain == cores - sure);
-        CHECK_STATUS(pnpr_cloud_keep(&c, core, NULL), PNPR_OK);
+        if (seams) { /* the halo stays, marked, for the merge's seams */
+            pnpr_property *tc = NULL;
+            CHECK_STATUS(pnpr_cloud_add_property(&c, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, &tc), PNPR_OK);
+            memcpy(tc->data, core, c.count);
+        } else {
+            CHECK_STATUS(pnpr_cloud_keep(&c, core, NULL), PNPR_OK);
+        }
         snprintf(paths[t], sizeof paths[t], "%s/tiles_part%02zu.ply", PNPR_TEST_SCRATCH, t);
         CHECK_STATUS(pnpr_write_file(paths[t], &c, NULL, &err), PNPR_OK);
         free(exact);
@@ -143,7 +153,9 @@ static size_t run_tiles(const char *in, const pnpr_tile_plan *plan, const pnpr_c
     return certified;
 }
 
-static void test_tiles_equal(int kind)
+/* seams: without a viewpoint: each tile orients its normals by its own propagation and the merge
+ * makes them agree (their halos kept); the merged normals must still equal the run in memory. */
+static void test_tiles_equal(int kind, int seams)
 {
     static const char *const names[] = {"scene.ply", "georef.ply", "lattice.ply"};
     const int georef = kind == SCENE_GEOREF;
@@ -153,7 +165,7 @@ static void test_tiles_equal(int kind)
     make_scene(&scene, kind);
     CHECK_STATUS(pnpr_write_file(scratch(names[kind], in, sizeof in), &scene, NULL, &err), PNPR_OK);
     CHECK_STATUS(pnpr_read_file(in, NULL, &ref, &err), PNPR_OK);
-    pnpr_features_options fo = feature_options();
+    pnpr_features_options fo = feature_options(!seams);
     CHECK_STATUS(pnpr_compute_features(&ref, &fo, NULL), PNPR_OK);
 
     pnpr_tile_plan_options po = {0};
@@ -173,24 +185,42 @@ static void test_tiles_equal(int kind)
     CHECK(georef ? ref.origin[1] > 4.2e6 : ref.origin[1] == 0); /* float files: no origin, floats as read */
 
     char (*paths)[512] = calloc(plan.count, sizeof *paths);
-    size_t certified = run_tiles(in, &plan, &ref, paths);
+    size_t certified = run_tiles(in, &plan, &ref, paths, seams);
     CHECK_MSG(certified == scene.count, "%zu of %zu points certified with the automatic halo", certified, scene.count);
 
     const char **list = malloc(plan.count * sizeof *list);
     for (size_t t = 0; t < plan.count; t++) list[t] = paths[t];
-    CHECK_STATUS(pnpr_tile_merge(list, plan.count, plan.points, scratch("merged.ply", out, sizeof out), NULL, &err), PNPR_OK);
+    if (seams) { /* tile 2 as if its propagation had chosen the other sign: the seams turn it back */
+        pnpr_cloud t2 = {0};
+        CHECK_STATUS(pnpr_read_file(paths[2], NULL, &t2, &err), PNPR_OK);
+        for (size_t i = 0; i < 3 * t2.count; i++) t2.normal[i] = -t2.normal[i];
+        CHECK_STATUS(pnpr_write_file(paths[2], &t2, NULL, &err), PNPR_OK);
+        pnpr_cloud_free(&t2);
+        CHECK_STATUS(pnpr_tile_merge(list, plan.count, plan.points, 0, scratch("unseamed.ply", out, sizeof out), NULL, &err),
+                     PNPR_OK);
+        CHECK_STATUS(pnpr_read_file(out, NULL, &merged, &err), PNPR_OK);
+        size_t turned = 0;
+        for (size_t i = 0; i < merged.count && i < ref.count; i++) turned += !same_point(&ref, i, &merged, i, 1);
+        CHECK_MSG(turned == plan.tiles[2].points, "without seams: %zu points turned, tile 2 has %llu", turned,
+                  (unsigned long long)plan.tiles[2].points);
+        pnpr_cloud_free(&merged);
+    }
+    CHECK_STATUS(pnpr_tile_merge(list, plan.count, plan.points, seams, scratch("merged.ply", out, sizeof out), NULL, &err),
+                 PNPR_OK);
     CHECK_STATUS(pnpr_read_file(out, NULL, &merged, &err), PNPR_OK);
     size_t differ = merged.count == ref.count ? 0 : 1;
-    for (size_t i = 0; i < merged.count && i < ref.count; i++) differ += !same_point(&ref, i, &merged, i);
-    CHECK_MSG(differ == 0, "%zu merged points differ", differ);
+    for (size_t i = 0; i < merged.count && i < ref.count; i++) differ += !same_point(&ref, i, &merged, i, 1);
+    size_t signs = 0;
+    for (size_t i = 0; i < merged.count && i < ref.count; i++) signs += !same_point(&ref, i, &merged, i, 0);
+    CHECK_MSG(differ == 0, "%zu merged points differ (seams %d; %zu also up to sign)", differ, seams, signs);
     CHECK(pnpr_cloud_find_property(&merged, PNPR_PROP_SOURCE_INDEX) == NULL);
 
     /* a missing tile, a tile twice: refused, the result not written */
     remove(out);
-    CHECK_STATUS(pnpr_tile_merge(list, plan.count - 1, plan.points, out, NULL, &err), PNPR_ERR_FORMAT);
+    CHECK_STATUS(pnpr_tile_merge(list, plan.count - 1, plan.points, seams, out, NULL, &err), PNPR_ERR_FORMAT);
     CHECK(strstr(err.message, "is in no tile") != NULL);
     list[1] = list[0];
-    CHECK_STATUS(pnpr_tile_merge(list, plan.count, plan.points, out, NULL, &err), PNPR_ERR_FORMAT);
+    CHECK_STATUS(pnpr_tile_merge(list, plan.count, plan.points, seams, out, NULL, &err), PNPR_ERR_FORMAT);
     CHECK(strstr(err.message, "comes twice") != NULL);
     FILE *f = fopen(out, "rb");
     CHECK(f == NULL);
@@ -244,7 +274,7 @@ static void test_small_halo(void)
     pnpr_cloud c = {0};
     uint8_t *core = NULL;
     CHECK_STATUS(pnpr_tile_read(in, &plan.grid, &plan.tiles[0], plan.halo, NULL, &c, &core, &err), PNPR_OK);
-    pnpr_features_options fo = feature_options();
+    pnpr_features_options fo = feature_options(1);
     pnpr_features_stats stats;
     CHECK_STATUS(pnpr_compute_features(&c, &fo, &stats), PNPR_OK);
     double box[4];
@@ -297,9 +327,10 @@ static void test_filter_inputs(void)
 
 int main(void)
 {
-    test_tiles_equal(SCENE_JITTERED);
-    test_tiles_equal(SCENE_GEOREF);
-    test_tiles_equal(SCENE_LATTICE);
+    test_tiles_equal(SCENE_JITTERED, 0);
+    test_tiles_equal(SCENE_GEOREF, 0);
+    test_tiles_equal(SCENE_LATTICE, 0);
+    test_tiles_equal(SCENE_JITTERED, 1);
     test_memory_limit();
     test_small_halo();
     test_filter_inputs();

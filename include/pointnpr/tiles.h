@@ -100,12 +100,16 @@ PNPR_NODISCARD pnpr_status pnpr_tile_certify(const pnpr_cloud *cloud, const uint
                                              uint32_t k, int threads, uint8_t *r_exact, size_t *r_uncertain);
 
 /* Writes the tile results at paths[0..count) (clouds with PNPR_PROP_SOURCE_INDEX, all with the
- * same properties) as one binary PLY at out, each point at its source index, without that
- * property. Every index of 0..points-1 must come exactly once: a missing, repeated or
- * out-of-range index fails naming the tile and the index. Holds one tile at a time; out must be
- * a regular file (or a new name): it is written as every output (output.h). */
-PNPR_NODISCARD pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t points, const char *out,
-                                           const pnpr_progress *progress, pnpr_error *err);
+ * same properties; with PNPR_PROP_TILE_CORE, only the points marked 1 are the tile's, the others
+ * its halo) as one binary PLY at out, each point at its source index, without those properties.
+ * Every index of 0..points-1 must be a core point exactly once: a missing, repeated or
+ * out-of-range index fails naming the tile and the index. seams: the tiles' normals were
+ * oriented each by its own propagation (no viewpoint): a tile whose halo normals disagree with
+ * those already placed for the same points, more often than they agree, has its normals turned,
+ * and at the end the highest point's normal faces up (orient.c's rule), else all turn. Holds one
+ * tile at a time; out must be a regular file (or a new name): it is written as every output. */
+PNPR_NODISCARD pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t points, int seams,
+                                           const char *out, const pnpr_progress *progress, pnpr_error *err);
 
 #ifdef __cplusplus
 }

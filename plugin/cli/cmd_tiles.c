@@ -6,6 +6,7 @@
 
 #include <pointnpr/features.h>
 #include <pointnpr/output.h>
+#include <pointnpr/props.h>
 #include <pointnpr/tiles.h>
 
 #include <errno.h>
@@ -74,6 +75,17 @@ static int job_tile(const cli_tile_args *a, pnpr_tile_grid *g, pnpr_tile *t)
     return 0;
 }
 
+/* What a tile's result keeps: its core; without a viewpoint also its halo, marked by
+ * PNPR_PROP_TILE_CORE, over which the merge makes the tiles' orientations agree. */
+static pnpr_status keep_for_merge(pnpr_cloud *c, const uint8_t *core, int halo)
+{
+    if (!halo) return pnpr_cloud_keep(c, core, NULL);
+    pnpr_property *p = NULL;
+    pnpr_status st = pnpr_cloud_add_property(c, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, &p);
+    if (st == PNPR_OK && c->count) memcpy(p->data, core, c->count);
+    return st;
+}
+
 /* One tile: read with its halo, features, certification, the core written. */
 static int tile_job(const cli_features_run *r, const char *out, const pnpr_tile_grid *g, const pnpr_tile *t,
                     double halo, size_t *r_uncertain)
@@ -93,7 +105,7 @@ static int tile_job(const cli_features_run *r, const char *out, const pnpr_tile_
     double box[4];
     pnpr_tile_box(g, t, halo, box);
     if (st == PNPR_OK) st = pnpr_tile_certify(&c, core, box, stats.k_used, r->fo->threads, NULL, &uncertain);
-    if (st == PNPR_OK) st = pnpr_cloud_keep(&c, core, NULL);
+    st = st == PNPR_OK ? keep_for_merge(&c, core, !r->fo->has_viewpoint) : st;
     free(core);
     if (st == PNPR_OK) {
         char comment[256];
@@ -107,7 +119,8 @@ static int tile_job(const cli_features_run *r, const char *out, const pnpr_tile_
     }
     if (st == PNPR_OK && !r->quiet)
         fprintf(stderr, "tile %u,%u..%u,%u: %zu points and %zu in the halo, %zu not certain to equal a run in memory\n",
-                t->lo[0], t->lo[1], t->hi[0], t->hi[1], c.count, halo_points, uncertain);
+                t->lo[0], t->lo[1], t->hi[0], t->hi[1], c.count - (r->fo->has_viewpoint ? 0 : halo_points), halo_points,
+                uncertain);
     pnpr_cloud_free(&c);
     if (st != PNPR_OK) { cli_report_error("features", st, &err); return 1; }
     *r_uncertain += uncertain;
@@ -155,7 +168,9 @@ static int write_manifest(FILE *f, const void *user)
     const manifest_ctx *m = user;
     const pnpr_tile_grid *g = &m->plan->grid;
     char path[PNPR_OUTPUT_PATH_MAX];
-    if (m->merge) fprintf(f, "pointnpr merge-tiles --points %llu -o ", (unsigned long long)m->plan->points);
+    if (m->merge)
+        fprintf(f, "pointnpr merge-tiles --points %llu%s -o ", (unsigned long long)m->plan->points,
+                m->r->fo->has_viewpoint ? "" : " --seams");
     if (m->merge) shell_word(f, m->r->out);
     for (size_t t = 0; t < m->plan->count; t++) {
         const pnpr_tile *tl = &m->plan->tiles[t];
@@ -236,7 +251,8 @@ static int run_tiles(const cli_features_run *r, const pnpr_tile_plan *plan)
         rc = tile_job(&job, paths[done], &plan->grid, &plan->tiles[done], plan->halo, &uncertain);
     }
     pnpr_error err = {0};
-    pnpr_status st = rc ? PNPR_OK : pnpr_tile_merge(list, plan->count, plan->points, r->out, &r->prog, &err);
+    pnpr_status st = rc ? PNPR_OK : pnpr_tile_merge(list, plan->count, plan->points, !r->fo->has_viewpoint, r->out,
+                                                    &r->prog, &err);
     if (st != PNPR_OK) { cli_report_error("features", st, &err); rc = 1; }
     for (size_t t = 0; t < done; t++) remove(paths[t]);
     rmdir(dir);
@@ -287,22 +303,30 @@ int cli_features_tiles(const cli_features_run *r, const cli_tile_args *a, size_t
     return rc;
 }
 
-/* pointnpr merge-tiles --points N -o OUT.ply TILE.ply... */
+typedef struct merge_args {
+    double points;
+    int seams;
+} merge_args;
+
+/* pointnpr merge-tiles --points N [--seams] -o OUT.ply TILE.ply... */
 int cli_merge_tiles(int argc, char **argv)
 {
     cli_common c = {0};
-    double points = -1;
+    merge_args a = {-1, 0};
     static const cli_opt opts[] = {
-        {"--points", NULL, CLI_NUMBER, 0, 0, 4294967294.0, 0, 0, NULL, NULL, "N", "the points of the tiled file"},
+        {"--points", NULL, CLI_NUMBER, offsetof(merge_args, points), 0, 4294967294.0, 0, 0, NULL, NULL, "N",
+         "the points of the tiled file"},
+        {"--seams", NULL, CLI_FLAG, offsetof(merge_args, seams), 0, 0, 0, 0, NULL, NULL, NULL,
+         "the jobs oriented normals without --viewpoint: make them agree across tiles"},
     };
     const char **tiles = calloc((size_t)argc, sizeof *tiles);
     size_t n = 0;
     for (int i = 1; tiles && i < argc; i++) {
-        int oo = cli_opts_parse(opts, 1, &points, "merge-tiles", argc, argv, &i);
+        int oo = cli_opts_parse(opts, CLI_COUNT(opts), &a, "merge-tiles", argc, argv, &i);
         if (oo == 0) oo = cli_opts_parse(cli_common_opts, CLI_COUNT(cli_common_opts), &c, "merge-tiles", argc, argv, &i);
         if (oo < 0) { free(tiles); return 2; }
         if (c.help) {
-            printf("usage: pointnpr merge-tiles --points N -o OUT.ply TILE.ply...\n"
+            printf("usage: pointnpr merge-tiles --points N [--seams] -o OUT.ply TILE.ply...\n"
                    "  Writes the tiles of a tiled `pointnpr features` run (--manifest) as one cloud, each\n"
                    "  point at its index in the tiled file; every index must come exactly once.\n");
             free(tiles);
@@ -310,6 +334,7 @@ int cli_merge_tiles(int argc, char **argv)
         }
         if (oo == 0) tiles[n++] = argv[i];
     }
+    double points = a.points;
     if (!tiles || !c.out || points < 0 || n == 0 || points != floor(points)) {
         fprintf(stderr, "pointnpr merge-tiles: wants --points N, -o OUT.ply and the tiles (pointnpr merge-tiles --help)\n");
         free(tiles);
@@ -319,7 +344,7 @@ int cli_merge_tiles(int argc, char **argv)
     cli_progress_state ps = {{0}, 0, 0};
     pnpr_progress prog = {c.quiet ? NULL : cli_progress_stderr, &ps};
     pnpr_error err = {0};
-    pnpr_status st = rc ? PNPR_OK : pnpr_tile_merge(tiles, n, (uint64_t)points, c.out, &prog, &err);
+    pnpr_status st = rc ? PNPR_OK : pnpr_tile_merge(tiles, n, (uint64_t)points, a.seams, c.out, &prog, &err);
     if (st != PNPR_OK) { cli_report_error("merge-tiles", st, &err); rc = 1; }
     if (rc == 0 && !c.quiet) fprintf(stderr, "wrote %s (%.0f points from %zu tiles)\n", c.out, points, n);
     free(tiles);
