@@ -84,13 +84,11 @@ pnpr_status pnpr_file_bytes_open(const char *path, pnpr_file_bytes *fb, pnpr_err
     return st;
 }
 
-void pnpr_file_bytes_drop(pnpr_file_bytes *fb, size_t upto)
+void pnpr_file_bytes_drop(const pnpr_file_bytes *fb, size_t from, size_t upto)
 {
-    const size_t step = (size_t)64 << 20;
-    if (!fb || !fb->map || upto > fb->size || upto < fb->dropped + step) return;
-    size_t page = (size_t)sysconf(_SC_PAGESIZE), end = upto / page * page; /* the map starts on a page */
-    if (end > fb->dropped && madvise((unsigned char *)fb->map + fb->dropped, end - fb->dropped, MADV_DONTNEED) == 0)
-        fb->dropped = end; /* a private read-only mapping: the pages come back from the file */
+    if (!fb || !fb->map || upto > fb->size) return;
+    size_t page = (size_t)sysconf(_SC_PAGESIZE), lo = (from + page - 1) / page * page, hi = upto / page * page;
+    if (hi > lo) (void)madvise((unsigned char *)fb->map + lo, hi - lo, MADV_DONTNEED); /* private, read-only */
 }
 
 void pnpr_file_bytes_close(pnpr_file_bytes *fb)

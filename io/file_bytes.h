@@ -22,17 +22,17 @@ typedef struct pnpr_file_bytes {
     size_t size;
     void *map;                 /* the mapping (unmapped by close), or NULL */
     unsigned char *copy;       /* the heap copy (freed by close), or NULL */
-    size_t dropped;            /* the first bytes whose pages were handed back (pnpr_file_bytes_drop) */
 } pnpr_file_bytes;
 
 /* Opens path and makes its bytes available; errors name the path (PNPR_ERR_IO with the system's
  * reason, PNPR_ERR_OUT_OF_MEMORY). On error *fb is zeroed and nothing needs closing. */
 pnpr_status pnpr_file_bytes_open(const char *path, pnpr_file_bytes *fb, pnpr_error *err);
 
-/* A mapped file: hands back the pages before byte `upto` once 64 MiB more have been passed, so that
- * a reader going through a file larger than memory (a tile's filter pass, tiles.h) holds only the
- * part it is in; pages touched again come back from the file. No-op for a heap copy or NULL. */
-void pnpr_file_bytes_drop(pnpr_file_bytes *fb, size_t upto);
+/* A mapped file: hands back the pages of bytes [from, upto) (whole pages inside the range), so
+ * that a reader going through a file larger than memory (a tile's filter pass, tiles.h) holds
+ * only the part it is in; pages touched again come back from the file. No-op for a heap copy or
+ * NULL. */
+void pnpr_file_bytes_drop(const pnpr_file_bytes *fb, size_t from, size_t upto);
 
 /* Releases what open took; safe on a zeroed struct. */
 void pnpr_file_bytes_close(pnpr_file_bytes *fb);

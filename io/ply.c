@@ -655,7 +655,19 @@ typedef struct ply_reader {
     int dry;            /* parse only to find the body's first error: nothing is stored */
     const uint8_t *kept; /* the keep filter's bit per vertex (filter_vertices), or NULL = all */
     pnpr_file_bytes *fb; /* the mapped file (pages behind the decoding handed back), or NULL */
+    size_t dropped;      /* the pass over the records handed back the pages before this byte */
 } ply_reader;
+
+/* A pass over the records of a mapped file hands back the pages behind it every 64 MiB
+ * (pnpr_file_bytes_drop); start: the pass begins at `at`. */
+static void drop_behind(ply_reader *r, size_t at, int start)
+{
+    if (start) r->dropped = at;
+    else if (at >= r->dropped + ((size_t)64 << 20)) {
+        pnpr_file_bytes_drop(r->fb, r->dropped, at);
+        r->dropped = at;
+    }
+}
 
 /* Stores vertex property p of vertex i. f is meaningful for FLOAT32 properties only. */
 static void store_vertex(ply_reader *r, const ply_prop *p, size_t i, double v, float f)
@@ -765,7 +777,7 @@ static pnpr_status binary_fixed(ply_reader *r, const ply_elem *e, size_t *pos)
                 }
             }
             j += !r->kept || (r->kept[i >> 3] >> (i & 7) & 1);
-            if ((i & 0xFFFF) == 0) pnpr_file_bytes_drop(r->fb, *pos + i * rs);
+            if ((i & 0xFFFF) == 0) drop_behind(r, *pos + i * rs, i == 0);
             if (tick(r, &t, i + 1, n)) return cancelled(r, i + 1, n);
         }
     }
@@ -1169,7 +1181,7 @@ static pnpr_status filter_vertices(ply_reader *r, const pnpr_read_options *o, ui
             bits[i >> 3] |= (uint8_t)(1u << (i & 7));
             kept++;
         }
-        if ((i & 0xFFFF) == 0) pnpr_file_bytes_drop(r->fb, pos + i * rs);
+        if ((i & 0xFFFF) == 0) drop_behind(r, pos + i * rs, i == 0);
         if (tick(r, &t, i + 1, n)) {
             free(bits);
             return cancelled(r, i + 1, n);

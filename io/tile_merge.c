@@ -2,9 +2,9 @@
  *
  * Every tile is serialised as binary PLY in memory (one tile at a time: the bound of the run);
  * its records have a fixed size, so record i of the result lies at header + index * size. The
- * result's temporary (output.h) is sized once and mapped, and each record is copied to its place;
- * after each tile the mapping's pages are handed back to the kernel, which writes them to the
- * file, so the process holds a tile and its serialised copy, never the whole result. */
+ * result's temporary (output.h) is sized once and mapped, and each record is copied to its place,
+ * a 64 MiB window at a time, whose pages are then handed back to the kernel (which writes them to
+ * the file), so the process holds a tile and its serialised copy, never the whole result. */
 #define _DEFAULT_SOURCE /* madvise(MADV_DONTNEED) */
 #include <pointnpr/output.h>
 #include <pointnpr/props.h>
@@ -157,6 +157,35 @@ static pnpr_status merge_start(merge_run *r, const pnpr_mem_sink *m, size_t head
     return PNPR_OK;
 }
 
+/* The tile's n records (src) at their source indices, a window of the result at a time: a tile
+ * of a file in scan order has points all over it, and placing them in file order would make the
+ * whole result resident. Each window's pages are handed back once it is written (a shared
+ * mapping: they stay in the page cache for the kernel to write to the file). */
+static pnpr_status place_records(merge_run *r, const uint32_t *idx, size_t n, const unsigned char *src)
+{
+    const size_t rec = r->rec, per = ((size_t)64 << 20) / rec + 1, nwin = (size_t)(r->points / per) + 1;
+    size_t *start = calloc(nwin + 1, sizeof *start);
+    uint32_t *order = malloc(n * sizeof *order);
+    if (!start || !order) {
+        free(start);
+        free(order);
+        return PNPR_ERR_OUT_OF_MEMORY;
+    }
+    for (size_t i = 0; i < n; i++) start[idx[i] / per + 1]++; /* counting sort by window */
+    for (size_t w = 0; w < nwin; w++) start[w + 1] += start[w];
+    for (size_t i = 0; i < n; i++) order[start[idx[i] / per]++] = (uint32_t)i;
+    const size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    for (size_t w = 0, b = 0; w < nwin; b = start[w++]) {
+        for (size_t j = b; j < start[w]; j++)
+            memcpy(r->map + r->head + (size_t)idx[order[j]] * rec, src + (size_t)order[j] * rec, rec);
+        size_t lo = (r->head + w * per * rec) / page * page, hi = r->head + (w + 1) * per * rec;
+        if (start[w] > b) (void)madvise(r->map + lo, (hi < r->map_size ? hi : r->map_size) - lo, MADV_DONTNEED);
+    }
+    free(start);
+    free(order);
+    return PNPR_OK;
+}
+
 /* One tile: read, its halo compared (seams), its core checked, serialised without its source
  * index and core flags, records placed. */
 static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
@@ -207,10 +236,7 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
     } else if (st == PNPR_OK && r->map && (strcmp(sig, r->sig) || (c.count && rec != r->rec))) {
         st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: its properties differ from the first tile's", path);
     }
-    for (size_t i = 0; st == PNPR_OK && i < c.count; i++)
-        memcpy(r->map + r->head + (size_t)idx[i] * rec, m.data + head + i * rec, rec);
-    /* a shared mapping: the records stay in the page cache for the kernel to write back; the
-     * process stops holding them, or the whole result would count as its own by the end */
+    if (st == PNPR_OK && c.count) st = place_records(r, idx, c.count, m.data + head);
     if (st == PNPR_OK && r->map) (void)madvise(r->map, r->map_size, MADV_DONTNEED);
     free(idx);
     free(core);

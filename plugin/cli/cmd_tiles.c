@@ -127,15 +127,26 @@ static int tile_job(const cli_features_run *r, const char *out, const pnpr_tile_
     return 0;
 }
 
-/* A word for a POSIX shell: in single quotes, each ' as '\''. */
-static void shell_word(FILE *f, const char *s)
+/* A word for a POSIX shell: in single quotes, each ' as '\''; a relative path (abs) is written
+ * from the current folder, so that the jobs run from anywhere. */
+static void shell_word_at(FILE *f, const char *s, int abs)
 {
+    char cwd[PNPR_OUTPUT_PATH_MAX];
+    if (abs && s[0] != '/' && getcwd(cwd, sizeof cwd)) { /* 'cwd'/'s' */
+        shell_word_at(f, cwd, 0);
+        fputc('/', f);
+    }
     fputc('\'', f);
     for (; *s; s++) {
         if (*s == '\'') fputs("'\\''", f);
         else fputc(*s, f);
     }
     fputc('\'', f);
+}
+
+static void shell_word(FILE *f, const char *s)
+{
+    shell_word_at(f, s, 0);
 }
 
 /* The options of the command line that every job repeats: all but IN, the output and the planning
@@ -171,22 +182,22 @@ static int write_manifest(FILE *f, const void *user)
     if (m->merge)
         fprintf(f, "pointnpr merge-tiles --points %llu%s -o ", (unsigned long long)m->plan->points,
                 m->r->fo->has_viewpoint ? "" : " --seams");
-    if (m->merge) shell_word(f, m->r->out);
+    if (m->merge) shell_word_at(f, m->r->out, 1);
     for (size_t t = 0; t < m->plan->count; t++) {
         const pnpr_tile *tl = &m->plan->tiles[t];
         snprintf(path, sizeof path, "%s/tile_%05zu.ply", m->dir, t);
         if (m->merge) {
             fputc(' ', f);
-            shell_word(f, path);
+            shell_word_at(f, path, 1);
             continue;
         }
         fputs("pointnpr features ", f);
-        shell_word(f, m->r->in);
+        shell_word_at(f, m->r->in, 1);
         job_options(f, m->argc, m->argv, m->r->in);
         fprintf(f, " --tile-grid %.17g,%.17g,%.17g,%.17g,%u,%u,%.17g,%.17g,%.17g --tile %u,%u,%u,%u --halo %.17g -o ",
                 g->min[0], g->min[1], g->cell[0], g->cell[1], g->cells[0], g->cells[1], g->origin[0], g->origin[1],
                 g->origin[2], tl->lo[0], tl->lo[1], tl->hi[0], tl->hi[1], m->plan->halo);
-        shell_word(f, path);
+        shell_word_at(f, path, 1);
         fputc('\n', f);
     }
     if (m->merge) fputc('\n', f);
@@ -234,6 +245,7 @@ static int run_tiles(const cli_features_run *r, const pnpr_tile_plan *plan)
 {
     char dir[PNPR_OUTPUT_PATH_MAX - 32]; /* room for "/tile_NNNNN.ply" */
     if (!work_folder(r->out, dir, sizeof dir)) return 1;
+    if (!r->quiet) fprintf(stderr, "the tiles go to %s until they are merged\n", dir);
     char (*paths)[PNPR_OUTPUT_PATH_MAX] = calloc(plan->count ? plan->count : 1, sizeof *paths);
     const char **list = calloc(plan->count ? plan->count : 1, sizeof *list);
     int rc = paths && list ? 0 : 1;
