@@ -65,12 +65,22 @@ typedef struct plan_scan {
     double lo3[3], hi3[3]; /* the box of the points with three finite coordinates */
     uint64_t points;
     uint64_t *counts;    /* cells[0] x cells[1], row-major in y; NULL during the bounds pass */
+    uint64_t *hist;      /* PLAN_BINS per axis over [lo, hi] (narrow_bounds), or NULL */
 } plan_scan;
+
+#define PLAN_BINS 4096
 
 static int scan_point(void *user, uint64_t index, const double p[3])
 {
     plan_scan *s = user;
     s->points = index + 1;
+    if (s->hist) {
+        for (int a = 0; a < 2; a++) {
+            double b = (p[a] - s->lo[a]) / (s->hi[a] - s->lo[a]) * PLAN_BINS;
+            if (b >= 0 && b <= PLAN_BINS) s->hist[a * PLAN_BINS + (b < PLAN_BINS ? (size_t)b : PLAN_BINS - 1)]++;
+        }
+        return 0;
+    }
     if (s->counts) {
         uint32_t c[2];
         pnpr_tile_cell(&s->g, p, c);
@@ -88,6 +98,60 @@ static int scan_point(void *user, uint64_t index, const double p[3])
             if (p[a] > s->hi[a]) s->hi[a] = p[a];
         }
     return 0;
+}
+
+/* The bins of one axis' histogram that hold the cloud without its far outliers: from the
+ * 0.1% to the 99.9% quantile, grown over every occupied bin closer to it than its own width
+ * (a cloud in one piece keeps all of its bins; a point 1e7 away is left out). */
+static void axis_core(const uint64_t *h, uint64_t total, size_t *r_lo, size_t *r_hi)
+{
+    uint64_t cut = total / 1000, sum = 0;
+    size_t b0 = 0, b1 = PLAN_BINS - 1;
+    while (b0 < PLAN_BINS - 1 && (sum += h[b0]) <= cut) b0++;
+    for (sum = 0; b1 > b0 && (sum += h[b1]) <= cut; b1--) {}
+    size_t gap = b1 - b0 + 1;
+    for (size_t b = b0; b-- > 0 && b0 - b <= gap;)
+        if (h[b]) b0 = b;
+    for (size_t b = b1 + 1; b < PLAN_BINS && b - b1 <= gap; b++)
+        if (h[b]) b1 = b;
+    *r_lo = b0;
+    *r_hi = b1;
+}
+
+/* Far outliers would stretch the grid until the cloud fills one cell (which is never split): the
+ * x/y bounds shrink to the part that holds the cloud (axis_core), a histogram pass at a time while
+ * that takes off more than 15/16 of a side (at most 3 passes; usually one, which changes nothing).
+ * The points left outside go to the edge cells, and their tiles do not certify them. */
+static pnpr_status narrow_bounds(plan_scan *s, const char *path, pnpr_read_options *ro, pnpr_error *err)
+{
+    uint64_t *hist = malloc(2 * PLAN_BINS * sizeof *hist);
+    if (!hist) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: tile plan: out of memory", path);
+    pnpr_status st = PNPR_OK;
+    for (int pass = 0, narrowed = 1; pass < 3 && narrowed && st == PNPR_OK; pass++) {
+        if (!(s->lo[0] < s->hi[0]) || !(s->lo[1] < s->hi[1]) || !isfinite(s->hi[0] - s->lo[0]) ||
+            !isfinite(s->hi[1] - s->lo[1]))
+            break;
+        memset(hist, 0, 2 * PLAN_BINS * sizeof *hist);
+        s->hist = hist;
+        pnpr_cloud none = {0};
+        st = pnpr_read_file(path, ro, &none, err);
+        pnpr_cloud_free(&none);
+        s->hist = NULL;
+        narrowed = 0;
+        for (int a = 0; a < 2 && st == PNPR_OK; a++) {
+            uint64_t total = 0;
+            for (size_t b = 0; b < PLAN_BINS; b++) total += hist[a * PLAN_BINS + b];
+            size_t b0, b1;
+            axis_core(hist + a * PLAN_BINS, total, &b0, &b1);
+            if (!total || 16 * (b1 - b0 + 1) > PLAN_BINS) continue;
+            double w = (s->hi[a] - s->lo[a]) / PLAN_BINS, lo = s->lo[a];
+            s->lo[a] = lo + (double)b0 * w;
+            s->hi[a] = fmin(lo + (double)(b1 + 1) * w, s->hi[a]);
+            narrowed = 1;
+        }
+    }
+    free(hist);
+    return st;
 }
 
 /* Square cells over the finite bounds: PNPR_TILE_GRID along the longer side. */
@@ -225,6 +289,7 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
     if (st == PNPR_OK && s.points >= UINT32_MAX)
         st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: %llu points: tiles take fewer than 2^32", path,
                             (unsigned long long)s.points);
+    if (st == PNPR_OK) st = narrow_bounds(&s, path, &ro, err);
     if (st != PNPR_OK) return st;
     plan_grid(&s);
     uint64_t points = s.points;
@@ -248,7 +313,8 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
     if (st == PNPR_OK) {
         r_plan->points = points;
         r_plan->grid = s.g;
-        if (plan_tiles(&s, o.tile_points ? o.tile_points : PNPR_TILE_POINTS_DEFAULT, r_plan) != PNPR_OK)
+        r_plan->tile_points = o.tile_points ? o.tile_points : PNPR_TILE_POINTS_DEFAULT;
+        if (plan_tiles(&s, r_plan->tile_points, r_plan) != PNPR_OK)
             st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: tile plan: out of memory", path);
         r_plan->halo = o.halo > 0 ? o.halo : PNPR_TILE_HALO_SPACINGS * r_plan->spacing;
     }

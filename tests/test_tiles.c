@@ -253,12 +253,40 @@ static void test_memory_limit(void)
     uint64_t most = 0;
     for (size_t t = 0; t < plan.count; t++) most = plan.tiles[t].points > most ? plan.tiles[t].points : most;
     /* the scene's file: 15 bytes a point (float x y z, rgb) and its header */
+    CHECK(plan.tile_points == per2m);
     CHECK_MSG(plan.count >= 4 && most <= per2m, "%zu tiles, largest %llu, at most %llu", plan.count,
               (unsigned long long)most, (unsigned long long)per2m);
     pnpr_tile_plan_free(&plan);
     po.memory_limit = 50000;
     CHECK_STATUS(pnpr_tile_plan_make(in, &po, &plan, &err), PNPR_ERR_OUT_OF_MEMORY);
     CHECK(strstr(err.message, "leaves no room") != NULL);
+}
+
+/* One point at 1e7 beside the 10 x 10 scene: the plan's grid still covers the scene (cells under a
+ * tenth of a unit, not 1e7 / 256), so the tiles keep their size; the far point goes to an edge
+ * tile, which does not certify it. */
+static void test_far_outlier(void)
+{
+    char in[512];
+    pnpr_cloud scene = {0}, c = {0};
+    pnpr_error err = {0};
+    make_scene(&scene, SCENE_JITTERED);
+    CHECK_STATUS(pnpr_cloud_alloc(&c, scene.count + 1), PNPR_OK);
+    memcpy(c.xyz, scene.xyz, 3 * scene.count * sizeof(float));
+    c.xyz[3 * scene.count] = c.xyz[3 * scene.count + 1] = 1e7f;
+    CHECK_STATUS(pnpr_write_file(scratch("far.ply", in, sizeof in), &c, NULL, &err), PNPR_OK);
+    pnpr_tile_plan_options po = {0};
+    po.tile_points = 6000;
+    pnpr_tile_plan plan;
+    CHECK_STATUS(pnpr_tile_plan_make(in, &po, &plan, &err), PNPR_OK);
+    uint64_t most = 0;
+    for (size_t t = 0; t < plan.count; t++) most = plan.tiles[t].points > most ? plan.tiles[t].points : most;
+    CHECK_MSG(plan.grid.cell[0] < 0.1 && plan.count >= 6 && most <= 6000, "cell %g, %zu tiles, largest %llu",
+              plan.grid.cell[0], plan.count, (unsigned long long)most);
+    CHECK_NEAR(plan.spacing, 10.0 / SIDE, 0.15 * 10.0 / SIDE);
+    pnpr_tile_plan_free(&plan);
+    pnpr_cloud_free(&scene);
+    pnpr_cloud_free(&c);
 }
 
 /* A halo of nothing: the points near a tile's edge cannot be certified, and are not. */
@@ -332,6 +360,7 @@ int main(void)
     test_tiles_equal(SCENE_LATTICE, 0);
     test_tiles_equal(SCENE_JITTERED, 1);
     test_memory_limit();
+    test_far_outlier();
     test_small_halo();
     test_filter_inputs();
     return pnpr_test_finish("test_tiles");

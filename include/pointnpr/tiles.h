@@ -47,6 +47,7 @@ typedef struct pnpr_tile_plan {
     pnpr_tile_grid grid;
     double spacing;        /* the point spacing estimated from the cell counts (0: none) */
     double halo;           /* the halo used (world units) */
+    uint64_t tile_points;  /* the size asked (or from the memory limit); a tile of one cell may be larger */
     pnpr_tile *tiles;      /* count tiles; release with pnpr_tile_plan_free */
     size_t count;
 } pnpr_tile_plan;

@@ -5,6 +5,7 @@
 #include "cli_opts.h"
 
 #include <pointnpr/features.h>
+#include <pointnpr/options.h>
 #include <pointnpr/output.h>
 #include <pointnpr/props.h>
 #include <pointnpr/tiles.h>
@@ -104,7 +105,9 @@ static int tile_job(const cli_features_run *r, const char *out, const pnpr_tile_
     if (st == PNPR_OK) st = pnpr_compute_features(&c, r->fo, &stats);
     double box[4];
     pnpr_tile_box(g, t, halo, box);
-    if (st == PNPR_OK) st = pnpr_tile_certify(&c, core, box, stats.k_used, r->fo->threads, NULL, &uncertain);
+    /* the whole cloud's k: a tile of fewer points (or fewer valid ones) computes with less */
+    uint32_t k = r->fo->k ? r->fo->k : pnpr_features_defaults().k;
+    if (st == PNPR_OK) st = pnpr_tile_certify(&c, core, box, k, r->fo->threads, NULL, &uncertain);
     st = st == PNPR_OK ? keep_for_merge(&c, core, !r->fo->has_viewpoint) : st;
     free(core);
     if (st == PNPR_OK) {
@@ -306,6 +309,12 @@ int cli_features_tiles(const cli_features_run *r, const cli_tile_args *a, size_t
         fprintf(stderr, "%s: %llu points in %zu tiles (a grid of %ux%u cells of %.6g), halo %.6g (point spacing %.4g)\n",
                 r->in, (unsigned long long)plan.points, plan.count, plan.grid.cells[0], plan.grid.cells[1],
                 plan.grid.cell[0], plan.halo, plan.spacing);
+        uint64_t most = 0;
+        for (size_t t = 0; t < plan.count; t++) most = plan.tiles[t].points > most ? plan.tiles[t].points : most;
+        if (most > plan.tile_points)
+            fprintf(stderr, "pointnpr features: warning: a tile holds %llu points, more than the %llu asked: one grid cell "
+                            "(1/%d of the cloud's side) holds them all\n", (unsigned long long)most,
+                    (unsigned long long)plan.tile_points, PNPR_TILE_GRID);
         if (!(r->fo->threshold > 0))
             fprintf(stderr, "pointnpr features: note: each tile picks its own automatic threshold; --threshold T makes "
                             "the tiles equal to a run in memory with that threshold\n");
