@@ -1155,11 +1155,12 @@ static pnpr_status filter_vertices(ply_reader *r, const pnpr_read_options *o, ui
     const ply_header *h = r->h;
     const ply_elem *v = h->vertex;
     size_t pos = h->body;
+    int lists = 0; /* an element with lists before the vertices: their start is not known */
     for (size_t i = 0; i < h->nelems && &h->elems[i] != v; i++) {
-        if (h->elems[i].has_list) pos = SIZE_MAX;
-        else pos += (size_t)h->elems[i].count * h->elems[i].min_size; /* sizes checked by check_body_size */
+        lists |= h->elems[i].has_list;
+        if (!lists) pos += (size_t)h->elems[i].count * h->elems[i].min_size; /* sizes checked by check_body_size */
     }
-    if (h->encoding == PLY_ENC_ASCII || v->has_list || pos == SIZE_MAX)
+    if (h->encoding == PLY_ENC_ASCII || v->has_list || lists)
         return pnpr_io_fail(r->err, PNPR_ERR_UNSUPPORTED, 0, -1,
                             "read ply: a point filter (a tile) needs a binary body whose vertex records have a fixed "
                             "size and follow no list element (convert it: pointnpr convert IN OUT.ply)");

@@ -100,7 +100,7 @@ static int orient_tile(merge_run *r, pnpr_cloud *c, const uint32_t *idx, const u
     if (!r->seams || !r->map || r->nx_off < 0 || !c->normal) return 0;
     size_t agree = 0, differ = 0;
     for (size_t i = 0; i < c->count; i++) {
-        if (core[i] || !(r->seen[idx[i] >> 3] >> (idx[i] & 7) & 1)) continue;
+        if (core[i] || idx[i] >= r->points || !(r->seen[idx[i] >> 3] >> (idx[i] & 7) & 1)) continue;
         float n[3];
         placed_normal(r, idx[i], n);
         float d = n[0] * c->normal[3 * i] + n[1] * c->normal[3 * i + 1] + n[2] * c->normal[3 * i + 2];
@@ -108,7 +108,10 @@ static int orient_tile(merge_run *r, pnpr_cloud *c, const uint32_t *idx, const u
         differ += d < 0;
     }
     if (differ <= agree) return 0;
-    for (size_t i = 0; i < 3 * c->count; i++) c->normal[i] = -c->normal[i];
+    for (size_t i = 0; i < c->count; i++) { /* zero normals stay as they are (orient.c) */
+        float *n = c->normal + 3 * i;
+        if (n[0] != 0 || n[1] != 0 || n[2] != 0) { n[0] = -n[0]; n[1] = -n[1]; n[2] = -n[2]; }
+    }
     return 1;
 }
 
@@ -119,11 +122,12 @@ static void orient_result(merge_run *r)
     if (!r->seams || !r->map || r->nx_off < 0 || !r->have_top) return;
     float n[3];
     placed_normal(r, r->top, n);
-    if (!(n[2] < 0)) return;
+    if (!(n[2] < -1e-6f)) return; /* a horizontal one (orient.c: away from the centre) keeps the first tile's sign */
     for (uint64_t i = 0; i < r->points; i++) {
         unsigned char *p = r->map + r->head + (size_t)i * r->rec + (size_t)r->nx_off;
         float v[3];
         memcpy(v, p, sizeof v);
+        if (v[0] == 0 && v[1] == 0 && v[2] == 0) continue;
         for (int a = 0; a < 3; a++) v[a] = -v[a];
         memcpy(p, v, sizeof v);
         if ((i & 0xFFFFF) == 0xFFFFF) (void)madvise(r->map, r->map_size, MADV_DONTNEED);
@@ -212,7 +216,7 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
     }
     for (size_t i = 0; i < c.count && st == PNPR_OK; i++) {
         if (idx[i] >= r->points || (r->seen[idx[i] >> 3] >> (idx[i] & 7) & 1)) {
-            st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: point %zu: source index %u %s", path, i, idx[i],
+            st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: core point %zu: source index %u %s", path, i, idx[i],
                                 idx[i] >= r->points ? "beyond the file's points" : "comes twice (tiles overlap)");
             break;
         }

@@ -82,6 +82,16 @@ pointnpr features "$dir/in.ply" -o "$dir/bad.ply" --tile-grid 0,0,1,1,9999,1,0,0
 check '[ $? -eq 2 ] && grep -q "tile-grid" "$dir/err.log"' "a bogus tile is a usage error"
 pointnpr features "$dir/in.ply" -o - --tiles > /dev/null 2> "$dir/err.log"
 check '[ $? -eq 2 ] && grep -q "must be a file" "$dir/err.log"' "tiles refuse standard output"
+pointnpr features "$dir/in.ply" -o "$dir/bad.pcd" --tile-points 5000 2> "$dir/err.log"
+check '[ $? -eq 2 ] && grep -q "must end in .ply" "$dir/err.log" && [ ! -e "$dir/bad.pcd" ]' "tiles refuse a PCD output"
+pointnpr features "$dir/in.ply" -o "$dir/bad.ply" --tile-grid 0,0,1,1,2,2,0,0,0 --tile 0,0,-1,1 2> "$dir/err.log"
+check '[ $? -eq 2 ]' "a tile with negative cells is a usage error"
+
+# an empty cloud: one tile, no halo; its manifest's jobs run
+printf 'ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n' > "$dir/empty.ply"
+pointnpr features "$dir/empty.ply" -o "$dir/empty_f.ply" --tile-points 5000 --manifest "$dir/jobs_empty" --quiet
+(while read -r job; do eval "$job --quiet" || exit 1; done < "$dir/jobs_empty/jobs.txt") && bash "$dir/jobs_empty/merge.txt" 2> /dev/null
+check '[ $? -eq 0 ] && [ -f "$dir/empty_f.ply" ]' "an empty cloud's manifest runs and merges"
 
 # render --sample: a uniform share of the points, the same at every run (the automatic share under
 # --memory-limit takes the same path)

@@ -346,6 +346,15 @@ static void test_filter_inputs(void)
     CHECK(r.count == 10 && r.xyz[3] == c.xyz[6] && r.xyz[3 * 9 + 1] == c.xyz[3 * 18 + 1]);
     pnpr_cloud_free(&r);
     pnpr_cloud_free(&c);
+    /* lists before the vertices (then a fixed element): where the vertices start is not known */
+    static const char lists_first[] = "ply\nformat binary_little_endian 1.0\nelement face 1\n"
+                                      "property list uchar int vertex_indices\nelement extra 1\nproperty uchar a\n"
+                                      "element vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                                      "\1\0\0\0\0\7\0\0\200\77\0\0\0\100\0\0\100\100";
+    CHECK_STATUS(pnpr_read_ply_memory(lists_first, sizeof lists_first - 1, NULL, &r, &err), PNPR_OK);
+    CHECK(r.count == 1 && r.xyz[0] == 1 && r.xyz[1] == 2 && r.xyz[2] == 3);
+    pnpr_cloud_free(&r);
+    CHECK_STATUS(pnpr_read_ply_memory(lists_first, sizeof lists_first - 1, &ro, &r, &err), PNPR_ERR_UNSUPPORTED);
     pnpr_tile_plan plan;
     CHECK_STATUS(pnpr_write_file(scratch("empty.ply", path, sizeof path), &c, NULL, &err), PNPR_OK);
     CHECK_STATUS(pnpr_tile_plan_make(path, NULL, &plan, &err), PNPR_OK);

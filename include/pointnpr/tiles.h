@@ -58,10 +58,11 @@ typedef struct pnpr_tile_plan_options {
     size_t memory_limit;   /* bytes a tile's feature job may take (pnpr_tile_points_for_memory) */
     uint32_t features_k;   /* the jobs' k, for memory_limit (0 = 16) */
     double halo;           /* world units; 0 = PNPR_TILE_HALO_SPACINGS x the estimated spacing */
-    pnpr_progress progress; /* stages "plan: bounds", "plan: counts" */
+    pnpr_progress progress; /* the reader's, during the last pass (the counts) */
 } pnpr_tile_plan_options;
 
-/* Plans the tiles of the PLY file at path (two passes over the file, nothing of the points kept).
+/* Plans the tiles of the PLY file at path (three to five passes over the file: bounds, one to three
+ * that keep far outliers off the grid, counts; nothing of the points kept).
  * Errors name the file; a halo < 0 or NaN is PNPR_ERR_INVALID_ARGUMENT. */
 PNPR_NODISCARD pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *opts,
                                                pnpr_tile_plan *r_plan, pnpr_error *err);

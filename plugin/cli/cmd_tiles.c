@@ -26,8 +26,8 @@ static const cli_opt tile_opts[] = {
      "run in tiles of at most N points each (docs/tiles.md)"},
     {"--tiles", NULL, CLI_FLAG, offsetof(cli_tile_args, tiled), 0, 0, 0, 0, NULL, NULL, NULL,
      "run in tiles as large as --memory-limit (or the memory available) allows"},
-    {"--halo", NULL, CLI_NUMBER, offsetof(cli_tile_args, halo), 0, CLI_UNBOUNDED, 1, 0, NULL, NULL, "H",
-     "a tile's halo in x and y, world units (default: " STR(PNPR_TILE_HALO_SPACINGS) " point spacings)"},
+    {"--halo", NULL, CLI_NUMBER, offsetof(cli_tile_args, halo), 0, CLI_UNBOUNDED, 0, 0, NULL, NULL, "H",
+     "a tile's halo in x and y, world units (default or 0: " STR(PNPR_TILE_HALO_SPACINGS) " point spacings)"},
     {"--manifest", NULL, CLI_TEXT, offsetof(cli_tile_args, manifest), 0, 0, 0, 0, NULL, NULL, "DIR",
      "write the tiles' jobs (DIR/jobs.txt) and their merge (DIR/merge.txt) instead of running them"},
     {"--tile-grid", NULL, CLI_LIST, offsetof(cli_tile_args, grid), 0, 0, 0, 9, NULL, NULL, "X,Y,CX,CY,NX,NY,OX,OY,OZ",
@@ -62,9 +62,10 @@ static int job_tile(const cli_tile_args *a, pnpr_tile_grid *g, pnpr_tile *t)
         g->cell[k] = a->grid[2 + k];
         g->origin[k] = a->grid[6 + k];
         g->origin[2] = a->grid[8];
-        whole &= a->grid[4 + k] == floor(a->grid[4 + k]) && a->cells[k] == floor(a->cells[k]) &&
-                 a->cells[2 + k] == floor(a->cells[2 + k]) && a->grid[4 + k] >= 0 && a->grid[4 + k] <= PNPR_TILE_GRID &&
-                 a->cells[k] >= 0 && a->cells[2 + k] <= PNPR_TILE_GRID;
+        for (int j = 0; j < 2; j++) /* whole numbers in 0..PNPR_TILE_GRID before any cast */
+            whole &= a->cells[2 * j + k] == floor(a->cells[2 * j + k]) && a->cells[2 * j + k] >= 0 &&
+                     a->cells[2 * j + k] <= PNPR_TILE_GRID;
+        whole &= a->grid[4 + k] == floor(a->grid[4 + k]) && a->grid[4 + k] >= 1 && a->grid[4 + k] <= PNPR_TILE_GRID;
         g->cells[k] = whole ? (uint32_t)a->grid[4 + k] : 0;
         t->lo[k] = whole ? (uint32_t)a->cells[k] : 0;
         t->hi[k] = whole ? (uint32_t)a->cells[2 + k] : 0;
@@ -114,7 +115,8 @@ static int tile_job(const cli_features_run *r, const char *out, const pnpr_tile_
         char comment[256];
         snprintf(comment, sizeof comment, "pointnpr features k=%u threshold=%.4f tile %u,%u,%u,%u", stats.k_used,
                  stats.threshold_used, t->lo[0], t->lo[1], t->hi[0], t->hi[1]);
-        pnpr_write_options wo = *r->wo;
+        pnpr_write_options wo = {0}; /* a tile is binary PLY, whatever OUT is: the merge places its records */
+        wo.format = PNPR_FORMAT_PLY;
         wo.comment = comment;
         st = pnpr_write_file(out, &c, &wo, &err);
     } else if (!err.message[0]) {
@@ -252,6 +254,7 @@ static int run_tiles(const cli_features_run *r, const pnpr_tile_plan *plan)
     char (*paths)[PNPR_OUTPUT_PATH_MAX] = calloc(plan->count ? plan->count : 1, sizeof *paths);
     const char **list = calloc(plan->count ? plan->count : 1, sizeof *list);
     int rc = paths && list ? 0 : 1;
+    if (rc) fprintf(stderr, "pointnpr features: out of memory for %zu tiles\n", plan->count);
     size_t uncertain = 0, done = 0;
     for (; rc == 0 && done < plan->count; done++) {
         snprintf(paths[done], sizeof paths[done], "%s/tile_%05zu.ply", dir, done);
@@ -282,6 +285,11 @@ static int run_tiles(const cli_features_run *r, const pnpr_tile_plan *plan)
 
 int cli_features_tiles(const cli_features_run *r, const cli_tile_args *a, size_t memory_limit, int argc, char **argv)
 {
+    if (r->wo->format != PNPR_FORMAT_PLY || r->wo->encoding != PNPR_PLY_BINARY_LE) {
+        fprintf(stderr, "pointnpr features: a tiled run writes binary PLY (records of one size): %s must end in .ply, "
+                        "without --ascii\n", r->out);
+        return 2;
+    }
     if (a->grid[4] > 0) {
         pnpr_tile_grid g;
         pnpr_tile t;
@@ -358,6 +366,11 @@ int cli_merge_tiles(int argc, char **argv)
     double points = a.points;
     if (!tiles || !c.out || points < 0 || n == 0 || points != floor(points)) {
         fprintf(stderr, "pointnpr merge-tiles: wants --points N, -o OUT.ply and the tiles (pointnpr merge-tiles --help)\n");
+        free(tiles);
+        return 2;
+    }
+    if (pnpr_format_from_path(c.out) != PNPR_FORMAT_PLY) {
+        fprintf(stderr, "pointnpr merge-tiles: writes binary PLY: %s must end in .ply\n", c.out);
         free(tiles);
         return 2;
     }
