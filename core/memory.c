@@ -38,7 +38,7 @@
 #define RENDER_TILE ((size_t)8192)
 static const unsigned short render_cost[PNPR_STYLE_COUNT_][2] = {
     /* bytes per point, per pixel: points sketchy lines stipple cartoon painterly brush hierarchy */
-    {72, 52}, {72, 50}, {72, 88}, {72, 64}, {90, 105}, {149, 56}, {117, 86}, {193, 72}};
+    {72, 52}, {72, 50}, {72, 88}, {72, 64}, {90, 105}, {149, 56}, {117, 86}, {152, 72}};
 
 /* a * b + c, saturating at SIZE_MAX */
 static size_t mul_add(size_t a, size_t b, size_t c)

@@ -115,7 +115,7 @@ pnpr_status pnpr_sphere_assign(const pnpr_cloud *c, const pnpr_kdtree *leaf_tree
     for (size_t i = 0; i < c->count; i++) {
         uint32_t l = b->point_leaf[i];
         if (l == PNPR_INDEX_NONE) continue;
-        pnpr_sphere_node *nd = &b->nodes[l];
+        sphere_work *nd = &b->nodes[l];
         const float *p = c->xyz + 3 * i;
         float d[3] = {p[0] - nd->centre[0], p[1] - nd->centre[1], p[2] - nd->centre[2]};
         float r = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -130,13 +130,13 @@ pnpr_status pnpr_sphere_assign(const pnpr_cloud *c, const pnpr_kdtree *leaf_tree
 }
 
 /* Step 3 for one leaf from its kNN row. */
-static void leaf_pca(pnpr_sphere_node *nodes, size_t l, const uint32_t *row, size_t k)
+static void leaf_pca(sphere_work *nodes, size_t l, const uint32_t *row, size_t k)
 {
     double m[3] = {0, 0, 0}, cov[3][3] = {{0}};
     size_t n = 0;
     for (size_t t = 0; t < k && row[t] != PNPR_INDEX_NONE; t++, n++)
         for (int a = 0; a < 3; a++) m[a] += nodes[row[t]].centre[a];
-    pnpr_sphere_node *nd = &nodes[l];
+    sphere_work *nd = &nodes[l];
     if (n < 3) return; /* normal, direction unknown (0), curvature 0 */
     for (int a = 0; a < 3; a++) m[a] /= (double)n;
     for (size_t t = 0; t < n; t++) {
@@ -156,7 +156,7 @@ static void leaf_pca(pnpr_sphere_node *nodes, size_t l, const uint32_t *row, siz
 }
 
 typedef struct pca_job {
-    pnpr_sphere_node *nodes;
+    sphere_work *nodes;
     const uint32_t *knn;
     size_t k;
 } pca_job;
@@ -168,7 +168,7 @@ static void pca_range(void *ctx, size_t begin, size_t end)
 }
 
 /* The curvature above which a leaf is a feature leaf (the top `fraction`). */
-static float feature_bound(const pnpr_sphere_node *nodes, size_t leaves, float fraction)
+static float feature_bound(const sphere_work *nodes, size_t leaves, float fraction)
 {
     float *c = malloc((leaves ? leaves : 1) * sizeof *c);
     if (!c) return 0.0f;
@@ -181,7 +181,7 @@ static float feature_bound(const pnpr_sphere_node *nodes, size_t leaves, float f
 }
 
 typedef struct rbf_job {
-    pnpr_sphere_node *nodes;
+    sphere_work *nodes;
     const pnpr_kdtree *ftree;
     const uint32_t *feature; /* feature leaf of each ftree index */
     const uint8_t *is_feature;
@@ -191,7 +191,7 @@ typedef struct rbf_job {
 /* Step 4 for one non-feature leaf. */
 static void rbf_leaf(const rbf_job *j, size_t l)
 {
-    pnpr_sphere_node *nd = &j->nodes[l];
+    sphere_work *nd = &j->nodes[l];
     uint32_t idx[RBF_K];
     float d2[RBF_K];
     size_t found = pnpr_kdtree_knn(j->ftree, nd->centre, RBF_K, idx, d2);

@@ -271,7 +271,9 @@ static void paint(trav *s, const draw_node *d, const pnpr_sphere_node *R)
         memcpy(n, s->back, sizeof n);
     }
     float dir[3];
-    for (int k = 0; k < 3; k++) dir[k] = (float)(s->p.node_direction || s->p.fine_layer ? d->d[k] : R->dir[k]);
+    pnpr_sphere_dir(R, dir);
+    if (s->p.node_direction || s->p.fine_layer)
+        for (int k = 0; k < 3; k++) dir[k] = (float)d->d[k];
     stroke_axes(s, d, n, dir, t, b);
     double shade = known ? fmax(0.0, pnpr_dot3(n, s->light)) : 0.8;
     double tone = (1.0 - shade) * (PNPR_TAM_TONES - 1), fade = 1.0; /* between two layers: blended */
@@ -283,7 +285,7 @@ static void paint(trav *s, const draw_node *d, const pnpr_sphere_node *R)
         double dark = (s->t->has_rgb ? 0.35 : 0.6) * (1.0 - shade);
         double jit = s->p.noise_colour > 0 ? s->p.noise_colour * d->noise : 0;
         for (int k = 0; k < 3; k++) {
-            double base = s->p.node_colour || s->p.fine_layer ? d->col[k] : R->colour[k];
+            double base = s->p.node_colour || s->p.fine_layer ? d->col[k] : (double)R->colour[k];
             col[k] = base / 255.0 * (1.0 - dark) * (1.0 + jit);
         }
     }
@@ -299,16 +301,19 @@ static void paint(trav *s, const draw_node *d, const pnpr_sphere_node *R)
 
 /* ---- the walk --------------------------------------------------------------------------------- */
 
-static void from_node(const pnpr_sphere_node *n, draw_node *d)
+static void from_node(const pnpr_sphere_tree *t, const pnpr_sphere_node *n, draw_node *d)
 {
+    float nn[3], dd[3];
+    pnpr_sphere_normal(n, nn);
+    pnpr_sphere_dir(n, dd);
     for (int k = 0; k < 3; k++) {
         d->c[k] = n->centre[k];
-        d->n[k] = n->normal[k];
-        d->d[k] = n->dir[k];
+        d->n[k] = nn[k];
+        d->d[k] = dd[k];
         d->col[k] = n->colour[k];
     }
     d->r = n->extent;
-    d->noise = n->noise;
+    d->noise = pnpr_sphere_noise(t, n);
     d->alpha = 1.0;
 }
 
@@ -330,28 +335,33 @@ static int is_g(const pnpr_sphere_tree *t, uint32_t ni)
 /* Node ni drawn at size sn below threshold T (the smooth transition towards its parent). */
 static void interpolate(const trav *s, uint32_t ni, double sn, double T, draw_node *d)
 {
-    const pnpr_sphere_node *n = &s->t->nodes[ni], *p = &s->t->nodes[n->parent];
-    from_node(n, d);
-    double sp = screen_size(s, p->centre, p->extent);
+    const pnpr_sphere_node *n = &s->t->nodes[ni];
+    draw_node p;
+    from_node(s->t, n, d);
+    from_node(s->t, &s->t->nodes[n->parent], &p);
+    double sp = screen_size(s, s->t->nodes[n->parent].centre, p.r);
     double u = sp > sn ? (T - sn) / (sp - sn) : 0;
     u = u < 0 ? 0 : u > 1 ? 1 : u;
-    double sn_ = pnpr_dot3(d->n, (double[3]){p->normal[0], p->normal[1], p->normal[2]}) < 0 ? -1 : 1;
-    double sd = pnpr_dot3(d->d, (double[3]){p->dir[0], p->dir[1], p->dir[2]}) < 0 ? -1 : 1;
+    double sn_ = pnpr_dot3(d->n, p.n) < 0 ? -1 : 1;
+    double sd = pnpr_dot3(d->d, p.d) < 0 ? -1 : 1;
     for (int k = 0; k < 3; k++) {
-        d->c[k] += u * (p->centre[k] - d->c[k]);
-        d->n[k] += u * (sn_ * p->normal[k] - d->n[k]);
-        d->d[k] += u * (sd * p->dir[k] - d->d[k]);
-        d->col[k] += u * (p->colour[k] - d->col[k]);
+        d->c[k] += u * (p.c[k] - d->c[k]);
+        d->n[k] += u * (sn_ * p.n[k] - d->n[k]);
+        d->d[k] += u * (sd * p.d[k] - d->d[k]);
+        d->col[k] += u * (p.col[k] - d->col[k]);
     }
-    d->r += u * (p->extent - d->r);
-    d->noise += u * (p->noise - d->noise);
+    d->r += u * (p.r - d->r);
+    d->noise += u * (p.noise - d->noise);
     d->alpha = is_g(s->t, ni) ? 1.0 : 1.0 - u;
 }
 
 /* The fine layer's test: curvature or colour difference to the region (sec. 5.1's classes). */
 static int detailed(const pnpr_sphere_node *n, const pnpr_sphere_node *R)
 {
-    return n->curvature > 0.05f || pnpr_sphere_colour_distance(n->colour, R->colour) > 12.0;
+    float a[3], b[3];
+    pnpr_sphere_colour(n, a);
+    pnpr_sphere_colour(R, b);
+    return pnpr_sphere_curvature(n) > 0.05f || pnpr_sphere_colour_distance(a, b) > 12.0;
 }
 
 static void emit(trav *s, uint32_t ni, uint32_t ri, double sn, double T)
@@ -360,7 +370,7 @@ static void emit(trav *s, uint32_t ni, uint32_t ri, double sn, double T)
     if (s->p.fine_layer && !detailed(n, R)) return;
     draw_node d;
     if (!s->p.no_smooth && s->p.stroke_radius <= 0 && ni != ri) interpolate(s, ni, sn, T, &d);
-    else from_node(n, &d);
+    else from_node(s->t, n, &d);
     if (d.alpha > 0) paint(s, &d, R);
 }
 
@@ -419,7 +429,9 @@ static uint32_t find_root(uint32_t *par, uint32_t i)
 
 static void border_stroke(trav *s, const pnpr_sphere_node *a, const pnpr_sphere_node *b)
 {
-    double c[3], d[3], n[3] = {a->normal[0], a->normal[1], a->normal[2]}, t[3], w[3], u[3], v[3];
+    float nf[3];
+    pnpr_sphere_normal(a, nf);
+    double c[3], d[3], n[3] = {nf[0], nf[1], nf[2]}, t[3], w[3], u[3], v[3];
     for (int k = 0; k < 3; k++) {
         c[k] = 0.5 * ((double)a->centre[k] + b->centre[k]);
         d[k] = (double)b->centre[k] - a->centre[k];
@@ -450,7 +462,7 @@ static pnpr_status borders(trav *s)
     uint32_t *par = malloc(ids * sizeof *par);
     if (!par) return PNPR_ERR_OUT_OF_MEMORY;
     for (size_t i = 0; i < ids; i++) par[i] = (uint32_t)i;
-    for (size_t m = t->merge_first; m < t->node_count && t->nodes[m].level <= s->p.border_level; m++)
+    for (size_t m = t->merge_first; m < t->node_count && t->merge_level[m - t->merge_first] <= s->p.border_level; m++)
         for (int c = 0; c < 2; c++) par[t->nodes[t->nodes[m].child[c]].region] = t->nodes[m].region;
     for (size_t i = 0; i < t->border_count; i++) {
         const pnpr_sphere_node *a = &t->nodes[t->leaves[t->border[2 * i]]], *b = &t->nodes[t->leaves[t->border[2 * i + 1]]];

@@ -27,7 +27,7 @@
 
 static uint32_t new_node(sphere_build *b)
 {
-    pnpr_sphere_node *n = &b->nodes[b->count];
+    sphere_work *n = &b->nodes[b->count];
     memset(n, 0, sizeof *n);
     n->parent = n->child[0] = n->child[1] = PNPR_INDEX_NONE;
     return (uint32_t)b->count++;
@@ -41,8 +41,8 @@ static double vdist(const float a[3], const float b[3])
 
 /* p's centre: the centroid of its leaves (children weighted by their leaf counts); its radius: the
  * smallest sphere around it holding both children's spheres, grown by a rounding margin. */
-static void bound_spheres(const pnpr_sphere_node *a, const pnpr_sphere_node *b, double wa, double wb,
-                          pnpr_sphere_node *p)
+static void bound_spheres(const sphere_work *a, const sphere_work *b, double wa, double wb,
+                          sphere_work *p)
 {
     for (int k = 0; k < 3; k++) p->centre[k] = (float)((wa * a->centre[k] + wb * b->centre[k]) / (wa + wb));
     double r = fmax(vdist(p->centre, a->centre) + a->radius, vdist(p->centre, b->centre) + b->radius);
@@ -77,9 +77,9 @@ static double folded_angle(const float a[3], const float b[3])
 }
 
 /* Node p's attributes from its two children. */
-static void aggregate(pnpr_sphere_node *nodes, uint32_t pi)
+static void aggregate(sphere_work *nodes, uint32_t pi)
 {
-    pnpr_sphere_node *p = &nodes[pi], *a = &nodes[p->child[0]], *b = &nodes[p->child[1]];
+    sphere_work *p = &nodes[pi], *a = &nodes[p->child[0]], *b = &nodes[p->child[1]];
     double wa = a->leaf_end - a->leaf_begin, wb = b->leaf_end - b->leaf_begin, w = wa + wb;
     bound_spheres(a, b, wa, wb, p);
     for (int k = 0; k < 3; k++) p->colour[k] = (float)((wa * a->colour[k] + wb * b->colour[k]) / w);
@@ -90,7 +90,7 @@ static void aggregate(pnpr_sphere_node *nodes, uint32_t pi)
     for (int k = 0; k < 3; k++) p->normal[k] = (float)n[k];
     double cone = 0;
     for (int i = 0; i < 2; i++) {
-        const pnpr_sphere_node *c = i ? b : a;
+        const sphere_work *c = i ? b : a;
         double ang = pnpr_dot3(n, n) > 0 && c->normal[0] * c->normal[0] + c->normal[1] * c->normal[1] + c->normal[2] * c->normal[2] > 0
                          ? folded_angle(p->normal, c->normal) + c->cone
                          : 1.5707963;
@@ -107,7 +107,7 @@ static void aggregate(pnpr_sphere_node *nodes, uint32_t pi)
 static uint32_t make_parent(sphere_build *b, uint32_t c0, uint32_t c1, uint8_t kind)
 {
     uint32_t p = new_node(b);
-    pnpr_sphere_node *n = &b->nodes[p];
+    sphere_work *n = &b->nodes[p];
     n->child[0] = c0;
     n->child[1] = c1;
     n->kind = kind;
@@ -221,15 +221,15 @@ enum { EXTENT_EXACT_MAX = 4096 };
 
 /* Every node's extent: exact over its leaves up to EXTENT_EXACT_MAX of them (the stroke nodes),
  * from its children's above (nodes near the root, drawn only at very coarse settings). */
-static void extents(pnpr_sphere_node *nodes, size_t count, const uint32_t *leaves)
+static void extents(sphere_work *nodes, size_t count, const uint32_t *leaves)
 {
     for (size_t i = 0; i < count; i++) {
-        pnpr_sphere_node *n = &nodes[i];
+        sphere_work *n = &nodes[i];
         if (n->child[0] == PNPR_INDEX_NONE) { n->extent = n->radius; continue; }
         double e = 0;
         if (n->leaf_end - n->leaf_begin <= EXTENT_EXACT_MAX) {
             for (uint32_t l = n->leaf_begin; l < n->leaf_end; l++) {
-                const pnpr_sphere_node *f = &nodes[leaves[l]];
+                const sphere_work *f = &nodes[leaves[l]];
                 e = fmax(e, vdist(n->centre, f->centre) + f->radius);
             }
         } else {
@@ -249,7 +249,7 @@ static pnpr_status order_leaves(const sphere_build *b, uint32_t root, uint32_t *
     stack[top++] = root;
     while (top) {
         uint32_t i = stack[--top];
-        pnpr_sphere_node *n = &b->nodes[i];
+        sphere_work *n = &b->nodes[i];
         if (n->child[0] == PNPR_INDEX_NONE) {
             r_rank[i] = next;
             leaves[next++] = i;
@@ -261,7 +261,7 @@ static pnpr_status order_leaves(const sphere_build *b, uint32_t root, uint32_t *
     free(stack);
     /* ranges bottom-up: children are created before their parents */
     for (size_t i = 0; i < b->count; i++) {
-        pnpr_sphere_node *n = &b->nodes[i];
+        sphere_work *n = &b->nodes[i];
         if (n->child[0] == PNPR_INDEX_NONE) {
             n->leaf_begin = i < b->leaves ? r_rank[i] : 0;
             n->leaf_end = n->leaf_begin + 1;
@@ -367,7 +367,7 @@ static pnpr_status build_leaves(const pnpr_cloud *c, const pnpr_sphere_tree_opti
     *r_knn = knn;
     if (!b->nodes || !lxyz || !knn) return PNPR_ERR_OUT_OF_MEMORY;
     for (size_t l = 0; l < L; l++) {
-        pnpr_sphere_node *n = &b->nodes[new_node(b)];
+        sphere_work *n = &b->nodes[new_node(b)];
         memcpy(n->centre, c->xyz + 3 * (size_t)seed[l], sizeof n->centre);
         memcpy(lxyz + 3 * l, n->centre, sizeof n->centre);
         n->radius = 0.5f * b->spacing;
@@ -418,15 +418,107 @@ static pnpr_status build_above(const pnpr_cloud *c, const pnpr_sphere_tree_optio
     return st;
 }
 
-static void add_noise(pnpr_sphere_tree *t)
+float pnpr_sphere_noise(const pnpr_sphere_tree *t, const pnpr_sphere_node *n)
 {
-    /* features of about ten leaves across: the stroke jitter drifts over a region instead of
-     * flickering from stroke to stroke (Perlin's noise is band-limited to its lattice) */
     double f = 1.0 / (10.0 * (t->spacing > 0 ? t->spacing : 1.0f));
-    for (size_t i = 0; i < t->node_count; i++) {
-        const float *c = t->nodes[i].centre;
-        t->nodes[i].noise = pnpr_perlin3(c[0] * f, c[1] * f, c[2] * f);
+    return pnpr_perlin3(n->centre[0] * f, n->centre[1] * f, n->centre[2] * f);
+}
+
+static int16_t pack_unit(float x)
+{
+    float v = x * PNPR_SPHERE_UNIT;
+    return (int16_t)lrintf(v > PNPR_SPHERE_UNIT ? PNPR_SPHERE_UNIT : v < -PNPR_SPHERE_UNIT ? -PNPR_SPHERE_UNIT : v);
+}
+
+/* x in [0, top] as a fraction in 1/65535 of top, rounded (up: never below x) */
+static uint16_t pack_fraction(double x, double top, int up)
+{
+    double v = x / top * 65535.0;
+    v = up ? ceil(v) : floor(v + 0.5);
+    return (uint16_t)(v > 65535 ? 65535 : v < 0 ? 0 : v);
+}
+
+/* w packed into r. r may lie over w's own bytes or earlier nodes' (in place, first to last). */
+static void pack_node(const sphere_work *w, pnpr_sphere_node *r)
+{
+    sphere_work c = *w;
+    pnpr_sphere_node p;
+    memcpy(p.centre, c.centre, sizeof p.centre);
+    p.radius = c.radius;
+    p.extent = c.extent;
+    p.dissimilarity = c.dissimilarity;
+    for (int k = 0; k < 3; k++) {
+        p.normal[k] = pack_unit(c.normal[k]);
+        p.dir[k] = pack_unit(c.dir[k]);
+        p.colour[k] = (uint8_t)lrintf(fminf(fmaxf(c.colour[k], 0.0f), 255.0f));
     }
+    p.cone = pack_fraction(c.cone, 1.5707963267948966, 1);
+    p.curvature = pack_fraction(c.curvature, 1.0, 0);
+    p.kind = c.kind;
+    p.parent = c.parent;
+    p.child[0] = c.child[0];
+    p.child[1] = c.child[1];
+    p.leaf_begin = c.leaf_begin;
+    p.region = c.region;
+    memcpy(r, &p, sizeof p);
+}
+
+/* The built nodes packed in place (a packed node is smaller: node i's bytes lie over work nodes
+ * 0 .. i only, read already), the merges' levels kept beside them. */
+_Static_assert(sizeof(pnpr_sphere_node) == 64 && sizeof(pnpr_sphere_node) <= sizeof(sphere_work), "the packed node");
+
+static pnpr_status pack_tree(sphere_build *b, pnpr_sphere_tree *t)
+{
+    size_t merges = b->count > t->merge_first ? b->count - t->merge_first : 0;
+    if (!(t->merge_level = malloc((merges ? merges : 1) * sizeof *t->merge_level))) return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t m = 0; m < merges; m++) t->merge_level[m] = b->nodes[t->merge_first + m].level;
+    pnpr_sphere_node *packed = (pnpr_sphere_node *)(void *)b->nodes;
+    for (size_t i = 0; i < b->count; i++) pack_node(&b->nodes[i], &packed[i]);
+    void *shrunk = realloc(b->nodes, (b->count ? b->count : 1) * sizeof *packed);
+    t->nodes = shrunk ? shrunk : packed; /* a failed shrink keeps the larger block */
+    b->nodes = NULL;
+    t->node_count = b->count;
+    return PNPR_OK;
+}
+
+/* a packed unit vector as floats, unit length again (0 stays 0) */
+static void unpack_unit(const int16_t v[3], float r[3])
+{
+    double d[3] = {v[0], v[1], v[2]};
+    pnpr_normalize3(d);
+    for (int k = 0; k < 3; k++) r[k] = (float)d[k];
+}
+
+void pnpr_sphere_normal(const pnpr_sphere_node *n, float r[3])
+{
+    unpack_unit(n->normal, r);
+}
+
+void pnpr_sphere_dir(const pnpr_sphere_node *n, float r[3])
+{
+    unpack_unit(n->dir, r);
+}
+
+void pnpr_sphere_colour(const pnpr_sphere_node *n, float r[3])
+{
+    for (int k = 0; k < 3; k++) r[k] = n->colour[k];
+}
+
+float pnpr_sphere_cone(const pnpr_sphere_node *n)
+{
+    return (float)(n->cone * (1.5707963267948966 / 65535.0));
+}
+
+float pnpr_sphere_curvature(const pnpr_sphere_node *n)
+{
+    return n->curvature / 65535.0f;
+}
+
+uint32_t pnpr_sphere_leaf_end(const pnpr_sphere_tree *t, uint32_t i)
+{
+    if (!t || i >= t->node_count) return 0;
+    for (size_t depth = 0; t->nodes[i].child[1] != PNPR_INDEX_NONE && depth < t->node_count; depth++) i = t->nodes[i].child[1];
+    return t->nodes[i].leaf_begin + 1;
 }
 
 pnpr_status pnpr_sphere_tree_build(const pnpr_cloud *cloud, const pnpr_sphere_tree_options *opts,
@@ -458,17 +550,16 @@ pnpr_status pnpr_sphere_tree_build(const pnpr_cloud *cloud, const pnpr_sphere_tr
     if (st == PNPR_OK && b.leaves == 0)
         for (size_t i = 0; i < cloud->count; i++) b.point_leaf[i] = PNPR_INDEX_NONE;
     free(seed); free(lxyz); free(knn);
-    r_tree->nodes = b.nodes;
-    r_tree->node_count = b.count;
     r_tree->point_leaf = b.point_leaf;
     r_tree->point_count = cloud->count;
+    if (st == PNPR_OK) st = pack_tree(&b, r_tree);
+    free(b.nodes); /* only after a failure: the packed nodes are the tree's */
     if (st != PNPR_OK) {
         pnpr_sphere_tree_free(r_tree);
         r_tree->root = PNPR_INDEX_NONE;
         if (err && !err->message[0]) pnpr_error_set(err, st, "hierarchy: %s", pnpr_status_string(st));
         return st;
     }
-    add_noise(r_tree);
     pnpr_progress_report(&o.progress, "tree", 1.0);
     if (r_stats) {
         r_stats->leaves = r_tree->leaf_count;
@@ -483,7 +574,7 @@ pnpr_status pnpr_sphere_tree_build(const pnpr_cloud *cloud, const pnpr_sphere_tr
 void pnpr_sphere_tree_free(pnpr_sphere_tree *t)
 {
     if (!t) return;
-    free(t->nodes); free(t->leaves); free(t->point_leaf); free(t->border);
+    free(t->nodes); free(t->leaves); free(t->point_leaf); free(t->border); free(t->merge_level);
     memset(t, 0, sizeof *t);
     t->root = PNPR_INDEX_NONE;
 }

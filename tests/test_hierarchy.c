@@ -1,6 +1,6 @@
 /* Chi & Lee's sphere hierarchy without GL (include/pointnpr/hierarchy.h), known answers: the tree's
  * invariants (children inside their parents' spheres, every point in exactly one leaf and inside
- * it, leaf ranges, eq. 5 at every node, normal cones), the region levels equal to the region
+ * it, leaf ranges, eq. 5 at every node, normal cones), the packed nodes, the region levels equal to the region
  * adjacency graph's cut at each level, degenerate clouds; the traversal: screen-space density
  * kept within 20% when the camera distance doubles, the smooth transition's continuity against
  * plain level switching, silhouettes on a sphere's outline, region borders on a colour border,
@@ -9,6 +9,8 @@
 
 #include <pointnpr/hierarchy.h>
 #include <pointnpr/options.h>
+
+#include "../filters/sphere_internal.h" /* pnpr_sphere_noise, pnpr_perlin3 */
 
 #include <math.h>
 #include <stdlib.h>
@@ -59,11 +61,11 @@ static void check_invariants(const pnpr_sphere_tree *t, const pnpr_cloud *c)
     size_t bad_extent = 0, bad_inside = 0, bad_range = 0, bad_s = 0, bad_cone = 0, leaves = 0;
     for (size_t i = 0; i < t->node_count; i++) {
         const pnpr_sphere_node *n = &t->nodes[i];
+        uint32_t end = pnpr_sphere_leaf_end(t, (uint32_t)i);
         bad_extent += !(n->extent <= n->radius);
-        for (uint32_t l = n->leaf_begin; l < n->leaf_end && l < t->leaf_count; l++) {
+        for (uint32_t l = n->leaf_begin; l < end && l < t->leaf_count; l++) {
             const pnpr_sphere_node *f = &t->nodes[t->leaves[l]];
-            bad_extent += dist3(n->centre, f->centre) + f->radius > n->extent * (1 + 1e-5) + 1e-6 &&
-                          n->leaf_end - n->leaf_begin <= 4096;
+            bad_extent += dist3(n->centre, f->centre) + f->radius > n->extent * (1 + 1e-5) + 1e-6 && end - n->leaf_begin <= 4096;
         }
         if (n->child[0] == PNPR_INDEX_NONE) {
             leaves++;
@@ -76,14 +78,17 @@ static void check_invariants(const pnpr_sphere_tree *t, const pnpr_cloud *c)
             CHECK(ch->parent == i);
             bad_inside += dist3(n->centre, ch->centre) + ch->radius > n->radius * (1 + 1e-5) + 1e-6;
             s += ch->dissimilarity;
-            double nn = (double)n->normal[0] * ch->normal[0] + (double)n->normal[1] * ch->normal[1] +
-                        (double)n->normal[2] * ch->normal[2];
-            if (ch->normal[0] != 0 || ch->normal[1] != 0 || ch->normal[2] != 0)
-                bad_cone += acos(fmin(1.0, fabs(nn))) > n->cone + 1e-3; /* float normals */
+            float pn[3], cn[3];
+            pnpr_sphere_normal(n, pn);
+            pnpr_sphere_normal(ch, cn);
+            double nn = (double)pn[0] * cn[0] + (double)pn[1] * cn[1] + (double)pn[2] * cn[2];
+            if (cn[0] != 0 || cn[1] != 0 || cn[2] != 0) /* 16-bit normals: 1e-4 radians */
+                bad_cone += acos(fmin(1.0, fabs(nn))) > pnpr_sphere_cone(n) + 1e-3;
         }
         bad_s += !(n->dissimilarity >= s - 1e-3 * (1 + s)); /* S includes the children's S */
-        bad_range += n->leaf_begin != t->nodes[n->child[0]].leaf_begin || t->nodes[n->child[0]].leaf_end != t->nodes[n->child[1]].leaf_begin ||
-                     n->leaf_end != t->nodes[n->child[1]].leaf_end;
+        bad_range += n->leaf_begin != t->nodes[n->child[0]].leaf_begin ||
+                     pnpr_sphere_leaf_end(t, n->child[0]) != t->nodes[n->child[1]].leaf_begin ||
+                     end != pnpr_sphere_leaf_end(t, n->child[1]) || end <= n->leaf_begin;
     }
     CHECK_MSG(bad_extent == 0, "%zu extents miss a leaf", bad_extent);
     CHECK_MSG(bad_inside == 0, "%zu children stick out of their parents", bad_inside);
@@ -91,13 +96,14 @@ static void check_invariants(const pnpr_sphere_tree *t, const pnpr_cloud *c)
     CHECK_MSG(bad_s == 0, "%zu nodes break eq. 5", bad_s);
     CHECK_MSG(bad_cone == 0, "%zu normal cones miss a child", bad_cone);
     CHECK(leaves == t->leaf_count);
-    CHECK(t->nodes[t->root].leaf_begin == 0 && t->nodes[t->root].leaf_end == t->leaf_count);
+    CHECK(t->nodes[t->root].leaf_begin == 0 && pnpr_sphere_leaf_end(t, t->root) == t->leaf_count);
+    CHECK(pnpr_sphere_leaf_end(t, (uint32_t)t->node_count) == 0 && pnpr_sphere_leaf_end(NULL, 0) == 0);
     CHECK(t->node_count == 2 * t->leaf_count - 1);
     /* leaves: a permutation of the leaf nodes, each holding its rank */
     size_t bad_leaf = 0, bad_point = 0;
     for (size_t l = 0; l < t->leaf_count; l++) {
         const pnpr_sphere_node *n = &t->nodes[t->leaves[l]];
-        bad_leaf += n->child[0] != PNPR_INDEX_NONE || n->leaf_begin != l || n->leaf_end != l + 1;
+        bad_leaf += n->child[0] != PNPR_INDEX_NONE || n->leaf_begin != l || pnpr_sphere_leaf_end(t, t->leaves[l]) != l + 1;
     }
     /* every point in exactly one leaf (point_leaf is a function) and inside its sphere */
     for (size_t i = 0; i < c->count; i++) {
@@ -118,7 +124,7 @@ static void tree_cut(const pnpr_sphere_tree *t, float th, uint32_t *r_labels)
     for (size_t l = 0; l < t->leaf_count; l++) {
         uint32_t i = t->leaves[l];
         for (uint32_t p = t->nodes[i].parent; p != PNPR_INDEX_NONE; p = t->nodes[p].parent) {
-            if (p >= t->merge_first && t->nodes[p].level > th) break;
+            if (p >= t->merge_first && t->merge_level[p - t->merge_first] > th) break;
             i = p;
         }
         r_labels[l] = i;
@@ -152,7 +158,7 @@ static void test_region_levels(void)
     for (size_t l = 0; l < L; l++) {
         const pnpr_sphere_node *n = &t.nodes[t.leaves[l]];
         memcpy(xyz + 3 * l, n->centre, 3 * sizeof(float));
-        for (int k = 0; k < 3; k++) rgb[3 * l + k] = (uint8_t)lrintf(n->colour[k]);
+        memcpy(rgb + 3 * l, n->colour, 3);
         seg[l] = n->region;
     }
     /* the tree's regions are a partition consistent with its leaves' segment ids */
@@ -207,11 +213,14 @@ static void test_sphere_tree(void)
     for (size_t l = 0; l < t.leaf_count; l++) {
         const pnpr_sphere_node *n = &t.nodes[t.leaves[l]];
         double r = sqrt(n->centre[0] * n->centre[0] + n->centre[1] * n->centre[1] + n->centre[2] * n->centre[2]);
-        double d = fabs(n->normal[0] * n->centre[0] + n->normal[1] * n->centre[1] + n->normal[2] * n->centre[2]) / r;
+        float nn[3], nd[3];
+        pnpr_sphere_normal(n, nn);
+        pnpr_sphere_dir(n, nd);
+        double d = fabs(nn[0] * n->centre[0] + nn[1] * n->centre[1] + nn[2] * n->centre[2]) / r;
         bad_n += d < 0.95;
-        /* directions: unit and tangent */
-        double dd = n->dir[0] * n->dir[0] + n->dir[1] * n->dir[1] + n->dir[2] * n->dir[2];
-        double dn = n->dir[0] * n->normal[0] + n->dir[1] * n->normal[1] + n->dir[2] * n->normal[2];
+        /* directions: unit and tangent (16-bit: within 1e-4) */
+        double dd = nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2];
+        double dn = nd[0] * nn[0] + nd[1] * nn[1] + nd[2] * nn[2];
         bad_n += fabs(dd - 1) > 1e-3 || fabs(dn) > 1e-3;
     }
     CHECK_MSG(bad_n < t.leaf_count / 100, "%zu leaves with a bad normal or direction", bad_n);
@@ -219,6 +228,48 @@ static void test_sphere_tree(void)
     CHECK(t.nodes[t.root].dissimilarity > 0);
     pnpr_sphere_tree_free(&t);
     CHECK(t.nodes == NULL && t.root == PNPR_INDEX_NONE);
+    pnpr_cloud_free(&c);
+}
+
+/* The packed nodes (64 bytes) against known answers: a flat plane of one colour, z = 0. Its
+ * normals are (0, 0, +-1) exactly, its cones and curvatures 0, every colour the plane's bytes; the
+ * float readers give unit vectors; a leaf's noise is the Perlin noise at its centre. */
+static void test_packed(void)
+{
+    CHECK(sizeof(pnpr_sphere_node) == 64);
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_test_plane(&c, 80, 80, 0.01, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_alloc_rgb(&c), PNPR_OK);
+    for (size_t i = 0; i < c.count; i++) {
+        c.rgb[3 * i] = 10;
+        c.rgb[3 * i + 1] = 201;
+        c.rgb[3 * i + 2] = 99;
+    }
+    pnpr_sphere_tree t;
+    CHECK_STATUS(pnpr_sphere_tree_build(&c, NULL, &t, NULL, NULL), PNPR_OK);
+    size_t bad_normal = 0, bad_colour = 0, bad_flat = 0, bad_unit = 0;
+    for (size_t i = 0; i < t.node_count; i++) {
+        const pnpr_sphere_node *n = &t.nodes[i];
+        bad_normal += n->normal[0] != 0 || n->normal[1] != 0 || abs(n->normal[2]) != PNPR_SPHERE_UNIT;
+        bad_colour += n->colour[0] != 10 || n->colour[1] != 201 || n->colour[2] != 99;
+        bad_flat += n->cone > 1 || n->curvature > 1 || pnpr_sphere_cone(n) > 1e-4f || pnpr_sphere_curvature(n) > 1e-4f;
+        float nf[3], df[3], col[3];
+        pnpr_sphere_normal(n, nf);
+        pnpr_sphere_dir(n, df);
+        pnpr_sphere_colour(n, col);
+        bad_unit += fabsf(nf[2]) != 1.0f || fabs(sqrt((double)df[0] * df[0] + (double)df[1] * df[1] + (double)df[2] * df[2]) - 1) > 1e-6 ||
+                    fabsf(df[2]) > 1e-4f || col[1] != 201.0f;
+    }
+    CHECK_MSG(bad_normal == 0 && bad_colour == 0 && bad_flat == 0 && bad_unit == 0,
+              "packed: %zu normals, %zu colours, %zu cones or curvatures, %zu read back wrong", bad_normal, bad_colour,
+              bad_flat, bad_unit);
+    /* the noise is a function of the centre alone, in -1..1, and not constant over the plane */
+    const pnpr_sphere_node *a = &t.nodes[t.leaves[0]], *b = &t.nodes[t.leaves[t.leaf_count - 1]];
+    double f = 1.0 / (10.0 * t.spacing);
+    CHECK(pnpr_sphere_noise(&t, a) == pnpr_perlin3(a->centre[0] * f, a->centre[1] * f, a->centre[2] * f));
+    CHECK(pnpr_sphere_noise(&t, a) != pnpr_sphere_noise(&t, b) && fabsf(pnpr_sphere_noise(&t, b)) <= 1.0f);
+    pnpr_sphere_tree_free(&t);
+    CHECK(t.merge_level == NULL);
     pnpr_cloud_free(&c);
 }
 
@@ -502,6 +553,7 @@ int main(void)
 {
     test_sphere_tree();
     test_region_levels();
+    test_packed();
     test_degenerate();
     test_density();
     test_smooth_transition();

@@ -31,6 +31,10 @@ enum {
     PNPR_SPHERE_REGION = 2  /* a JSEG region's top node or a merge of the region adjacency graph */
 };
 
+/* A node, packed into 64 bytes (the renderer holds about one node per point beside its vertex
+ * buffers; docs/hierarchy.md "Memory"): directions as signed 16-bit fractions of 1, colours as
+ * bytes, the cone and curvature as unsigned 16-bit fractions. pnpr_sphere_normal and the functions
+ * beside it give them as floats. */
 typedef struct pnpr_sphere_node {
     float centre[3];      /* offset from the tree's origin: the centroid of its leaves */
     float radius;         /* bounding sphere around centre: holds the children's spheres (leaves:
@@ -38,24 +42,27 @@ typedef struct pnpr_sphere_node {
     float extent;         /* the sphere around centre that holds its leaves' spheres (<= radius):
                            * the size of its stroke (the bounding spheres of bounding spheres grow
                            * level by level; docs/hierarchy.md) */
-    float normal[3];      /* unit, unsigned (a fitted normal); 0 when unknown */
-    float cone;           /* half-angle (radians) of the cone around `normal` holding the children's
-                           * cones (unsigned normals: angles folded into 0..pi/2) */
-    float colour[3];      /* mean RGB of the points below, 0..255 */
-    float curvature;      /* mean surface variation lambda0 / (lambda0 + lambda1 + lambda2) */
-    float dir[3];         /* unit tangent direction (sec. 3.1): feature leaves' principal direction,
-                           * interpolated across the others, averaged upwards; 0 = none */
     float dissimilarity;  /* S of eq. 5 over colours (CIE76 delta E), 0 for leaves */
-    float noise;          /* Perlin noise at the centre, -1..1 (stroke jitter of sec. 4.3) */
-    float level;          /* region nodes: the merge level (monotone from the regions to the root,
-                           * pnpr_segment_merge.level); 0 below the regions */
+    int16_t normal[3];    /* unit, unsigned (a fitted normal) x PNPR_SPHERE_UNIT; 0 when unknown */
+    int16_t dir[3];       /* unit tangent direction (sec. 3.1) x PNPR_SPHERE_UNIT: feature leaves'
+                           * principal direction, interpolated across the others, averaged
+                           * upwards; 0 = none */
+    uint16_t cone;        /* half-angle of the cone around `normal` holding the children's cones
+                           * (unsigned normals: angles folded into 0..pi/2), in (pi/2)/65535,
+                           * rounded up so that it still holds them */
+    uint16_t curvature;   /* mean surface variation lambda0 / (lambda0 + lambda1 + lambda2), in
+                           * 1/65535 */
+    uint8_t colour[3];    /* mean RGB of the points below, rounded */
+    uint8_t kind;         /* PNPR_SPHERE_* */
     uint32_t parent;      /* PNPR_INDEX_NONE for the root */
     uint32_t child[2];    /* PNPR_INDEX_NONE for leaves */
-    uint32_t leaf_begin, leaf_end; /* its leaves: tree->leaves[leaf_begin .. leaf_end - 1] */
+    uint32_t leaf_begin;  /* its leaves: tree->leaves[leaf_begin .. pnpr_sphere_leaf_end - 1] */
     uint32_t region;      /* the hierarchy node (segment id < region_count, merges above) this node
                            * belongs to: inside a region its segment, region nodes their own id */
-    uint8_t kind;         /* PNPR_SPHERE_* */
 } pnpr_sphere_node;
+
+/* The scale of pnpr_sphere_node.normal and .dir. */
+#define PNPR_SPHERE_UNIT 32767
 
 typedef struct pnpr_sphere_tree {
     double origin[3];          /* the cloud's origin: world = origin + centre */
@@ -70,6 +77,8 @@ typedef struct pnpr_sphere_tree {
                                 * PNPR_INDEX_NONE for points with a non-finite coordinate */
     uint32_t merge_first;      /* the merges of the region adjacency graph are nodes merge_first ..
                                 * node_count - 1, in merge order (their levels never decrease) */
+    float *merge_level;        /* node_count - merge_first entries: merge m's level (monotone,
+                                * pnpr_segment_merge.level); the region nodes below are level 0 */
     uint32_t region_count;     /* S: the JSEG regions of the leaves (segment ids 0 .. S-1) */
     size_t border_count;       /* leaf pairs adjacent across two regions (kNN of the leaves) */
     uint32_t *border;          /* 2 x border_count leaf indices */
@@ -109,6 +118,17 @@ PNPR_NODISCARD pnpr_status pnpr_sphere_tree_build(const pnpr_cloud *cloud, const
                                                   pnpr_sphere_tree *r_tree, pnpr_sphere_tree_stats *r_stats,
                                                   pnpr_error *err);
 void pnpr_sphere_tree_free(pnpr_sphere_tree *tree); /* leaves a zeroed tree; NULL ok */
+
+/* A packed node's fields as floats: the unit normal and direction (unit length again; 0 when
+ * unknown), the colour 0..255, the cone in radians, the curvature. */
+void pnpr_sphere_normal(const pnpr_sphere_node *n, float r_normal[3]);
+void pnpr_sphere_dir(const pnpr_sphere_node *n, float r_dir[3]);
+void pnpr_sphere_colour(const pnpr_sphere_node *n, float r_rgb[3]);
+float pnpr_sphere_cone(const pnpr_sphere_node *n);
+float pnpr_sphere_curvature(const pnpr_sphere_node *n);
+/* The end of node i's leaf range (one past its last leaf in tree->leaves): its rightmost leaf's
+ * leaf_begin + 1, found by descending (the tree's depth); 0 for an index out of range. */
+uint32_t pnpr_sphere_leaf_end(const pnpr_sphere_tree *tree, uint32_t i);
 
 struct pnpr_camera_matrices; /* camera.h */
 
