@@ -2,8 +2,8 @@
 # Tiled features from the command line (docs/tiles.md): a generated 2.5D scan of 14 400 points,
 # in memory and in tiles (--tile-points, and the manifest's jobs run by a shell, then merge-tiles):
 # the bodies of the results are byte-identical and all but a few points are certified; --tiles
-# sizes tiles from --memory-limit; refusals name the file and the reason; render --sample draws a
-# uniform sample, the same at every run.
+# sizes tiles from --memory-limit; refusals name the file and the reason; a folder of tiles joined
+# one at a time; render --sample draws a uniform sample, the same at every run.
 # usage: cli_tiles.sh POINTNPR SCRATCH
 bin=$1
 dir=$2/cli_tiles
@@ -92,6 +92,23 @@ printf 'ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x
 pointnpr features "$dir/empty.ply" -o "$dir/empty_f.ply" --tile-points 5000 --manifest "$dir/jobs_empty" --quiet
 (while read -r job; do eval "$job --quiet" || exit 1; done < "$dir/jobs_empty/jobs.txt") && bash "$dir/jobs_empty/merge.txt" 2> /dev/null
 check '[ $? -eq 0 ] && [ -f "$dir/empty_f.ply" ]' "an empty cloud's manifest runs and merges"
+
+# a folder of tiles: convert joins them one at a time when they would not fit together (here a
+# 1 KiB limit) or with --stream; the records are those of the join in memory; then features runs
+# in tiles on the joined file as on any other
+mkdir -p "$dir/folder" && cp "$dir/in.ply" "$dir/folder/a.ply"
+pointnpr convert "$dir/in.ply" "$dir/in.ply" "$dir/in.ply" -o "$dir/joined_mem.ply" --quiet
+pointnpr convert "$dir/in.ply" "$dir/in.ply" "$dir/in.ply" -o "$dir/joined.ply" --memory-limit 1K 2> "$dir/join.log"
+check '[ $? -eq 0 ] && grep -q "one at a time" "$dir/join.log"' "convert joins one at a time when the inputs do not fit"
+check 'body_same "$dir/joined_mem.ply" "$dir/joined.ply"' "the join's records equal the join in memory"
+check '[ "$(head -c 300 "$dir/joined.ply" | grep -a -c "element vertex 43200")" -eq 1 ]' "the joined count is written"
+pointnpr convert "$dir/in.ply" "$dir/mem.ply" -o "$dir/joined.ply" --stream 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "mem.ply: its points have other properties" "$dir/err.log" && body_same "$dir/joined_mem.ply" "$dir/joined.ply"' \
+  "inputs of other properties are refused, naming the file, the output kept"
+pointnpr convert "$dir/in.ply" "$dir/in.ply" -o - --stream > /dev/null 2> "$dir/err.log"
+check '[ $? -eq 2 ] && grep -q "writes a .ply file" "$dir/err.log"' "--stream to standard output is a usage error"
+pointnpr render "$dir/folder" -o "$dir/folder.png" 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "pointnpr convert" "$dir/err.log"' "render of a folder says how to join it"
 
 # render --sample: a uniform share of the points, the same at every run (the automatic share under
 # --memory-limit takes the same path)

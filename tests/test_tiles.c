@@ -3,7 +3,8 @@
  * core points that it certifies must have exactly the in-memory results (bit for bit: normals
  * with a viewpoint, degree, class, confidence, direction, spacing), every point must be certified
  * with the automatic halo, and the merge must give the whole cloud back in input order. Also: the
- * plan's partition, the merge's refusals, and the reader's filter on inputs it does not take. */
+ * plan's partition, the merge's refusals, the reader's filter on inputs it does not take, and a
+ * folder of tiles joined one at a time. */
 #include "testutil.h"
 
 #include <pointnpr/features.h>
@@ -362,6 +363,123 @@ static void test_filter_inputs(void)
     pnpr_tile_plan_free(&plan);
 }
 
+/* ---- a folder of tiles joined one at a time (pnpr_join_ply) ---------------------------------- */
+
+typedef struct index_range { uint64_t begin, end; } index_range;
+
+static int keep_range(void *user, uint64_t index, const double p[3])
+{
+    (void)p;
+    const index_range *r = user;
+    return index >= r->begin && index < r->end;
+}
+
+static unsigned char *file_bytes(const char *path, size_t *r_size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    pnpr_mem_sink m = {0};
+    unsigned char buf[65536];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0) CHECK(pnpr_mem_sink_write(&m, buf, n) == 0);
+    fclose(f);
+    *r_size = m.size;
+    return m.data;
+}
+
+static size_t header_end(const unsigned char *b, size_t n)
+{
+    for (size_t i = 0; i + 11 <= n; i++)
+        if (!memcmp(b + i, "end_header\n", 11)) return i + 11;
+    return 0;
+}
+
+/* Three parts of the georeferenced scene (one empty) joined: the records equal those of the parts
+ * joined in memory and written, the header has the padding line more, the world coordinates read
+ * back are the scene's. Refused, naming the input, with the target left as it was: other
+ * properties, faces, an unreadable input; a device as the output. */
+static void test_join(void)
+{
+    char whole[512], parts[3][512], out[512], other[512], mesh[512];
+    pnpr_cloud c = {0}, part = {0}, joined = {0}, back = {0};
+    pnpr_error err = {0};
+    make_scene(&c, SCENE_GEOREF);
+    CHECK_STATUS(pnpr_write_file(scratch("join_whole.ply", whole, sizeof whole), &c, NULL, &err), PNPR_OK);
+    const index_range ranges[3] = {{0, 12000}, {12000, 12000}, {12000, c.count}};
+    const char *inputs[4];
+    for (int i = 0; i < 3; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "join_part%d.ply", i);
+        pnpr_read_options ro = {0};
+        ro.keep = keep_range;
+        ro.keep_user = (void *)&ranges[i];
+        CHECK_STATUS(pnpr_read_file(whole, &ro, &part, &err), PNPR_OK);
+        CHECK(part.count == ranges[i].end - ranges[i].begin);
+        CHECK_STATUS(pnpr_write_file(scratch(name, parts[i], sizeof parts[i]), &part, NULL, &err), PNPR_OK);
+        CHECK_STATUS(pnpr_cloud_append(&joined, &part), PNPR_OK);
+        pnpr_cloud_free(&part);
+        inputs[i] = parts[i];
+    }
+    pnpr_mem_sink mem = {0};
+    CHECK_STATUS(pnpr_write_ply_stream(pnpr_mem_sink_write, &mem, &joined, NULL, &err), PNPR_OK);
+    uint64_t points = 0;
+    CHECK_STATUS(pnpr_join_ply(inputs, 3, scratch("join_out.ply", out, sizeof out), NULL, &points, &err), PNPR_OK);
+    size_t n = 0;
+    unsigned char *b = file_bytes(out, &n);
+    size_t hm = header_end(mem.data, mem.size), hj = b ? header_end(b, n) : 0;
+    CHECK(points == c.count && hm > 0 && hj > hm);
+    CHECK_MSG(b && n - hj == mem.size - hm && !memcmp(b + hj, mem.data + hm, n - hj), "joined records differ from in memory");
+    /* the header: the in-memory one with the padding comment before the element */
+    const char *pad = b ? strstr((const char *)b, "comment joined: room for the count") : NULL;
+    CHECK(pad != NULL && (size_t)(pad - (const char *)b) < hj);
+    if (pad) {
+        size_t at = (size_t)(pad - (const char *)b), len = (size_t)(strchr(pad, '\n') + 1 - pad);
+        CHECK(hj - len == hm && !memcmp(b, mem.data, at) && !memcmp(b + at + len, mem.data + at, hm - at));
+    }
+    CHECK_STATUS(pnpr_read_file(out, NULL, &back, &err), PNPR_OK);
+    size_t off = 0;
+    for (size_t i = 0; i < c.count && back.count == c.count; i++) {
+        double w[3], v[3];
+        pnpr_cloud_world(&c, i, w);
+        pnpr_cloud_world(&back, i, v);
+        off += memcmp(w, v, sizeof w) != 0;
+    }
+    CHECK_MSG(back.count == c.count && off == 0, "%zu of %zu points moved", off, back.count);
+    pnpr_cloud_free(&back);
+    /* refusals: the target keeps its bytes and nothing else is left */
+    pnpr_cloud plane = {0};
+    CHECK_STATUS(pnpr_test_plane(&plane, 4, 4, 0.1, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_alloc_normals(&plane), PNPR_OK);
+    CHECK_STATUS(pnpr_write_file(scratch("join_other.ply", other, sizeof other), &plane, NULL, &err), PNPR_OK);
+    FILE *f = fopen(scratch("join_mesh.ply", mesh, sizeof mesh), "w");
+    CHECK(f != NULL);
+    if (f) {
+        fputs("ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+              "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
+              "property list uchar int vertex_indices\nend_header\n0 0 0 1 2 3\n1 0 0 1 2 3\n0 1 0 1 2 3\n3 0 1 2\n", f);
+        fclose(f);
+    }
+    const char *bad[3][2] = {{parts[0], other}, {parts[0], mesh}, {parts[0], "/nonexistent/tile.ply"}};
+    for (int k = 0; k < 3; k++) {
+        err.message[0] = '\0';
+        CHECK_STATUS(pnpr_join_ply(bad[k], 2, out, NULL, &points, &err), k == 2 ? PNPR_ERR_IO : PNPR_ERR_UNSUPPORTED);
+        CHECK_MSG(strstr(err.message, bad[k][1]) != NULL, "the message names %s: %s", bad[k][1], err.message);
+        size_t n2 = 0;
+        unsigned char *b2 = file_bytes(out, &n2);
+        CHECK(b2 && n2 == n && !memcmp(b2, b, n) && points == 0);
+        free(b2);
+    }
+    CHECK_STATUS(pnpr_join_ply(inputs, 3, "/dev/null", NULL, NULL, &err), PNPR_ERR_UNSUPPORTED);
+    CHECK(strstr(err.message, "regular file") != NULL);
+    CHECK_STATUS(pnpr_join_ply(inputs, 0, out, NULL, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_join_ply(NULL, 2, out, NULL, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
+    free(b);
+    free(mem.data);
+    pnpr_cloud_free(&plane);
+    pnpr_cloud_free(&joined);
+    pnpr_cloud_free(&c);
+}
+
 int main(void)
 {
     test_tiles_equal(SCENE_JITTERED, 0);
@@ -372,5 +490,6 @@ int main(void)
     test_far_outlier();
     test_small_halo();
     test_filter_inputs();
+    test_join();
     return pnpr_test_finish("test_tiles");
 }

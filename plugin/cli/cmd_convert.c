@@ -1,14 +1,19 @@
 /* pointnpr convert IN... -o OUT.ply|OUT.pcd: reads every input (PLY, LAS, OBJ, OFF, PCD; a directory
  * stands for the supported files in it, sorted by name), merges them into one cloud and writes PLY
- * (or binary PCD for a .pcd name).
+ * (or binary PCD for a .pcd name). Inputs that would not fit in memory together are joined one at
+ * a time (pnpr_join_ply; --stream asks for it).
  * Nothing is written unless every input was read; the output is written as every output is
  * (pointnpr/output.h: a temporary renamed over OUT when complete; "-" is standard output). */
 #include "cli.h"
 #include "cli_opts.h"
 
+#include <pointnpr/memory.h>
+
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +26,7 @@ typedef struct convert_args {
     const char *out;
     pnpr_ply_encoding encoding;
     int encoding_set;
+    int stream;
 } convert_args;
 
 static int parse_output(void *a, const char *cmd, const char *v)
@@ -51,6 +57,9 @@ static const cli_opt convert_opts[] = {
     {"--binary", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_binary, NULL, "binary little endian PLY (default)"},
     {"--ascii", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_ascii, NULL, "ascii PLY"},
     {"--big-endian", NULL, CLI_FLAG_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_big, NULL, "binary big endian PLY"},
+    {"--stream", NULL, CLI_FLAG, offsetof(convert_args, stream), 0, 0, 0, 0, NULL, NULL, NULL,
+     "PLY: join the inputs one at a time (memory: one input), as when they would not fit in memory "
+     "together; they must have the same properties and no faces (docs/tiles.md)"},
 };
 
 static void usage(FILE *f)
@@ -64,6 +73,7 @@ static void usage(FILE *f)
             "options:\n");
     cli_opts_usage(f, convert_opts, CLI_COUNT(convert_opts));
     cli_opts_usage(f, cli_common_opts + 1, 1); /* --quiet */
+    cli_memory_usage(f);
     cli_columns_usage(f);
 }
 
@@ -149,17 +159,60 @@ static int expand_dir(const char *dir, path_list *out)
     return ok;
 }
 
+/* Whether the inputs joined in memory would not fit (their bytes twice: an input read whole and
+ * the joined cloud growing; --memory-limit or the memory available) while a streamed join can
+ * write OUT (a .ply file). Says so when it streams. */
+static int must_stream(const path_list *inputs, const char *out, size_t limit, int quiet)
+{
+    if (pnpr_format_from_path(out) != PNPR_FORMAT_PLY || cli_output_is_stream(out)) return 0;
+    size_t bytes = 0;
+    for (size_t i = 0; i < inputs->count; i++) {
+        struct stat sb;
+        if (stat(inputs->items[i], &sb) == 0 && S_ISREG(sb.st_mode))
+            bytes = (size_t)sb.st_size > SIZE_MAX / 2 - bytes ? SIZE_MAX / 2 : bytes + (size_t)sb.st_size;
+    }
+    pnpr_error err = {0};
+    if (pnpr_memory_check(2 * bytes, limit, "joining the inputs in memory", &err) == PNPR_OK) return 0;
+    if (!quiet) fprintf(stderr, "convert: %s; joining them one at a time (--stream)\n", err.message);
+    return 1;
+}
+
+/* The inputs joined one at a time into OUT (pnpr_join_ply). */
+static int convert_streamed(const path_list *inputs, const char *out, const char *columns, const pnpr_write_options *wo,
+                            int quiet)
+{
+    pnpr_join_options jo = {0};
+    jo.read.columns = columns;
+    jo.write = *wo;
+    jo.write.comment = "pointnpr convert";
+    cli_progress_state ps = {{0}, 0, 0};
+    jo.progress.fn = quiet ? NULL : cli_progress_stderr;
+    jo.progress.user = &ps;
+    uint64_t points = 0;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_join_ply((const char *const *)inputs->items, inputs->count, out, &jo, &points, &err);
+    if (st != PNPR_OK) {
+        cli_report_error("convert", st, &err);
+        fprintf(stderr, "pointnpr convert: nothing written\n");
+        return 1;
+    }
+    if (!quiet) fprintf(stderr, "wrote %s: %llu points from %zu inputs, one at a time\n", out, (unsigned long long)points, inputs->count);
+    return 0;
+}
+
 int cli_convert(int argc, char **argv)
 {
     convert_args A;
     memset(&A, 0, sizeof A);
     const char *columns = NULL;
+    size_t memory_limit = 0;
     path_list args = {0};
     int rc = 0;
     for (int i = 1; i < argc && rc == 0; i++) {
         int r = cli_opts_parse(convert_opts, CLI_COUNT(convert_opts), &A, "convert", argc, argv, &i);
         if (r == 0) r = cli_opts_parse(cli_common_opts + 1, 2, &A.c, "convert", argc, argv, &i); /* --quiet, --help */
         if (r == 0) r = cli_columns_option(&columns, "convert", argc, argv, &i);
+        if (r == 0) r = cli_memory_option(&memory_limit, "convert", argc, argv, &i);
         if (r < 0) rc = 2;
         else if (A.c.help) { usage(stdout); list_free(&args); return 0; }
         else if (r > 0) continue;
@@ -190,6 +243,9 @@ int cli_convert(int argc, char **argv)
         } else if (of == PNPR_FORMAT_PCD && wo.encoding != PNPR_PLY_BINARY_LE) {
             fprintf(stderr, "pointnpr convert: %s: PCD is written binary only (--ascii and --big-endian are for PLY)\n", out);
             rc = 2;
+        } else if (A.stream && (of != PNPR_FORMAT_PLY || cli_output_is_stream(out))) {
+            fprintf(stderr, "pointnpr convert: %s: --stream writes a .ply file (its count is written last)\n", out);
+            rc = 2;
         }
     }
     if (rc == 2) usage(stderr);
@@ -210,6 +266,11 @@ int cli_convert(int argc, char **argv)
     /* fail early (before reading what may be many inputs) when the output cannot be written */
     if (rc == 0 && !cli_check_output("convert", out, (const char *const *)inputs.items, inputs.count, 1)) rc = 1;
     if (rc != 0) { list_free(&inputs); return rc; }
+    if (inputs.count > 1 && (A.stream || must_stream(&inputs, out, memory_limit, quiet))) {
+        rc = convert_streamed(&inputs, out, columns, &wo, quiet);
+        list_free(&inputs);
+        return rc;
+    }
 
     pnpr_cloud merged = {0}, one = {0};
     pnpr_error err = {0};

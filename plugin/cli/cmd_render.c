@@ -56,7 +56,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: pointnpr render IN -o OUT.png|OUT.svg|OUT.pdf [options]\n"
-            "  Renders IN (PLY, LAS, OBJ, OFF or a folder of tiles) headless into a PNG, or draws the\n"
+            "  Renders IN (PLY, LAS, OBJ, OFF, PCD, text) headless into a PNG, or draws the\n"
             "  frame's strokes, dots, lines and outlines as vector paths (SVG, PDF; styles sketchy,\n"
             "  stipple, lines, cartoon), or filters its segments in image space (--effects FILE, PNG).\n"
             "options:\n");
