@@ -39,6 +39,13 @@
 static const unsigned short render_cost[PNPR_STYLE_COUNT_][2] = {
     /* bytes per point, per pixel: points sketchy lines stipple cartoon painterly brush hierarchy */
     {72, 52}, {72, 50}, {72, 88}, {72, 64}, {90, 105}, {149, 56}, {117, 86}, {152, 72}};
+/* What drawing costs beyond that: Mesa's llvmpipe bins every primitive of a frame before it
+ * rasterises, so the peak grows with the points a frame draws, up to the scenes it keeps (the
+ * growth slows down and stops). Per style: bytes per drawn point (the slope from 10k to 250k
+ * drawn) and the most it reaches (MiB, at 1M drawn), measured with --budget on the 1M-point farm
+ * at 1024x768 (docs/benchmarks.md "Memory of drawing"). */
+static const unsigned short drawn_cost[PNPR_STYLE_COUNT_][2] = {
+    {286, 138}, {287, 137}, {236, 138}, {287, 137}, {342, 205}, {364, 191}, {402, 236}, {216, 115}};
 
 /* a * b + c, saturating at SIZE_MAX */
 static size_t mul_add(size_t a, size_t b, size_t c)
@@ -69,16 +76,20 @@ void pnpr_memory_estimate_plan(const pnpr_memory_plan *p, pnpr_memory_estimate *
     }
     if (p->styles) {
         unsigned per_point = 0, per_pixel = 0;
+        size_t drawn = p->drawn && p->drawn < n ? p->drawn : n, scene = 0;
         for (int s = 0; s < PNPR_STYLE_COUNT_; s++) {
             if (!((p->styles >> s) & 1u)) continue;
             if (render_cost[s][0] > per_point) per_point = render_cost[s][0];
             if (render_cost[s][1] > per_pixel) per_pixel = render_cost[s][1];
+            size_t d = mul_add(drawn, drawn_cost[s][0], 0), cap = (size_t)drawn_cost[s][1] << 20;
+            d = d < cap ? d : cap;
+            if (d > scene) scene = d;
         }
         size_t w = p->width > 0 ? (size_t)p->width : 0, h = p->height > 0 ? (size_t)p->height : 0;
         size_t pixels = h && w > SIZE_MAX / h ? SIZE_MAX : w * h;
         size_t tw = w < RENDER_TILE ? w : RENDER_TILE, th = h < RENDER_TILE ? h : RENDER_TILE;
         size_t frame = add(mul_add(tw * th, per_pixel - RENDER_PER_IMAGE_PIXEL, 0), mul_add(pixels, RENDER_PER_IMAGE_PIXEL, 0));
-        r->render = add(add(RENDER_CONTEXT, mul_add(n, per_point, 0)), frame);
+        r->render = add(add(add(RENDER_CONTEXT, mul_add(n, per_point, 0)), frame), scene);
     }
     r->total = add(r->kept, r->stages > r->render ? r->stages : r->render);
 }

@@ -258,7 +258,7 @@ uint64_t pnpr_tile_points_for_memory(size_t limit, size_t record_bytes, uint32_t
 {
     if (!k) k = 16;
     const size_t probe = 1000000; /* the estimate is linear in the points: take it per point */
-    pnpr_memory_plan mp = {probe, k, 1, 0, 0, 0, 0};
+    pnpr_memory_plan mp = {probe, k, 1, 0, 0, 0, 0, 0};
     pnpr_memory_estimate e;
     pnpr_memory_estimate_plan(&mp, &e);
     double per = (double)record_bytes + 5.0 + (double)e.total / (double)probe + 4.0 * (k + 1) + 9.0;

@@ -119,6 +119,15 @@ if built_with_render "$bin"; then
   check '[ "${kept:-0}" -gt 3240 ] && [ "${kept:-0}" -lt 3960 ]' "--sample 0.25 keeps about 3600 of 14400 points (got '$kept')"
   pointnpr render "$dir/mem.ply" -o "$dir/sample2.png" --size 160x120 --sample 0.25 --quiet
   check 'cmp -s "$dir/sample.png" "$dir/sample2.png"' "the same sample at every run"
+  # by the view: a camera 6 above (6, 5) looking down keeps the points in its cone (the diagonal's
+  # half-angle, 15 % wider) and, asked for more than those, all of them: counted here from the text
+  pointnpr render "$dir/mem.ply" -o "$dir/view.png" --size 160x120 --sample 0.9 --eye 6,5,6 --target 6,5,0 2> "$dir/view.log"
+  kept=$(sed -n 's/.*sample by the view .* of \([0-9]*\) of 14400 points.*/\1/p' "$dir/view.log")
+  want=$(awk 'BEGIN { ty = sin(3.14159265358979 / 8) / cos(3.14159265358979 / 8); tx = ty * 160 / 120
+    t2 = 1.15 * 1.15 * (tx * tx + ty * ty) } NR > 7 { d = 6 - $3; r2 = ($1 - 6) ^ 2 + ($2 - 5) ^ 2
+    if (d > 0 && r2 <= d * d * t2) n++ } END { print n }' "$dir/ascii.ply")
+  check '[ -n "$kept" ] && [ "$kept" -ge $((want - 2)) ] && [ "$kept" -le $((want + 2)) ] && [ "$want" -lt 14000 ]' \
+    "the sample by the view keeps the $want points in view (got '$kept')"
   pointnpr render "$dir/ascii.ply" -o "$dir/bad.png" --size 160x120 --sample 0.25 2> "$dir/err.log"
   check '[ $? -eq 1 ] && grep -q "binary" "$dir/err.log"' "--sample of an ascii PLY is refused"
 fi

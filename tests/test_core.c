@@ -171,7 +171,7 @@ static void test_memory(void)
     CHECK(!strcmp(pnpr_memory_text((size_t)1 << 30, buf, sizeof buf), "1.0 GiB"));
 
     pnpr_memory_estimate e;
-    pnpr_memory_plan p = {1000000, 16, 1, 0, 0, 0, 0};
+    pnpr_memory_plan p = {1000000, 16, 1, 0, 0, 0, 0, 0};
     pnpr_memory_estimate_plan(&p, &e);
     CHECK(e.render == 0 && e.stages > 0 && e.total == e.kept + e.stages);
     pnpr_memory_plan p32 = p;
@@ -180,13 +180,28 @@ static void test_memory(void)
     pnpr_memory_estimate_plan(&p32, &e32);
     CHECK_MSG(e32.stages - e.stages == (size_t)16 * 4 * 1000000, "k 32 vs 16: %zu more", e32.stages - e.stages);
     /* a frame of 16384 x 16384 is drawn in tiles of 8192: its pixels beyond one tile cost 8 bytes */
-    pnpr_memory_plan r1 = {1000, 0, 0, 0, 1u << PNPR_STYLE_POINTS, 8192, 8192}, r2 = r1;
+    pnpr_memory_plan r1 = {1000, 0, 0, 0, 1u << PNPR_STYLE_POINTS, 8192, 8192, 0}, r2 = r1;
     r2.width = r2.height = 16384;
     pnpr_memory_estimate a, b;
     pnpr_memory_estimate_plan(&r1, &a);
     pnpr_memory_estimate_plan(&r2, &b);
     CHECK_MSG(b.render - a.render == (size_t)8 * (16384ull * 16384 - 8192ull * 8192), "tiles: %zu", b.render - a.render);
-    pnpr_memory_plan huge = {SIZE_MAX / 2, 1024, 1, 1, ~0u, 1 << 30, 1 << 30};
+    /* drawing: 286 bytes a drawn point (points style) up to 138 MiB; drawn 0 = every point */
+    pnpr_memory_plan d0 = {100000, 0, 0, 0, 1u << PNPR_STYLE_POINTS, 64, 48, 10000}, d1 = d0, d2 = d0;
+    d1.drawn = 20000;
+    d2.drawn = 0;
+    pnpr_memory_estimate_plan(&d0, &a);
+    pnpr_memory_estimate_plan(&d1, &b);
+    CHECK_MSG(b.render - a.render == (size_t)286 * 10000, "10000 drawn points more: %zu", b.render - a.render);
+    pnpr_memory_estimate_plan(&d2, &b);
+    CHECK_MSG(b.render - a.render == (size_t)286 * 90000, "every point drawn: %zu", b.render - a.render);
+    d1.points = d1.drawn = 10000000;
+    d2 = d1;
+    d2.drawn = 20000000; /* past the cap (138 MiB at 482k drawn): no more */
+    pnpr_memory_estimate_plan(&d1, &a);
+    pnpr_memory_estimate_plan(&d2, &b);
+    CHECK(a.render == b.render && a.render - (size_t)72 * 10000000 - ((size_t)96 << 20) - 64 * 48 * 52 == (size_t)138 << 20);
+    pnpr_memory_plan huge = {SIZE_MAX / 2, 1024, 1, 1, ~0u, 1 << 30, 1 << 30, 0};
     pnpr_memory_estimate_plan(&huge, &e);
     CHECK(e.total == SIZE_MAX && e.render == SIZE_MAX);
 

@@ -3,6 +3,8 @@
  * of a frame's budget is exact. */
 #include "testutil.h"
 
+#include <math.h>
+
 #include <pointnpr/crq.h>
 
 #include <stdlib.h>
@@ -18,6 +20,54 @@ static int is_permutation(const uint32_t *o, size_t n)
     }
     free(seen);
     return ok;
+}
+
+/* The view's sample against known answers: a camera at the origin looking down +x (fov 90, a
+ * square image: the cone's half-angle atan(1.15 x sqrt 2)), 1000 points at depth 10 and 1000 at
+ * depth 100 on the axis, 500 behind the eye, 500 beside it out of the cone. Asking 1100 points:
+ * c / 10^2 >= 1, so 1000 + 1000 c / 100^2 = 1100, c = 1000: share 1 at depth 10, 0.1 at 100
+ * (exact: no bin holds depths on both sides of where the share reaches 1). */
+static void test_view_sample(void)
+{
+    static pnpr_view_sample v; /* 48 KiB of histogram */
+    const double eye[3] = {0, 0, 0}, target[3] = {1, 0, 0};
+    CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 90, 100, 100), PNPR_OK);
+    const double near[3] = {10, 0.5, 0}, far[3] = {100, -3, 2}, behind[3] = {-5, 0, 0}, beside[3] = {1, 2, 0};
+    const double edge_in[3] = {10, 16.2, 0}, edge_out[3] = {10, 16.4, 0}; /* tan 1.15 sqrt 2 = 1.626 */
+    const double nan[3] = {NAN, 0, 0}, inf[3] = {INFINITY, 0, 0};
+    for (int i = 0; i < 1000; i++) {
+        pnpr_view_sample_add(&v, near);
+        pnpr_view_sample_add(&v, far);
+    }
+    for (int i = 0; i < 500; i++) {
+        pnpr_view_sample_add(&v, behind);
+        pnpr_view_sample_add(&v, beside);
+    }
+    pnpr_view_sample_add(&v, nan);
+    pnpr_view_sample_add(&v, inf);
+    CHECK_MSG(v.visible == 2000, "%llu points in view", (unsigned long long)v.visible);
+    CHECK(pnpr_view_sample_depth(&v, near) == 10 && pnpr_view_sample_depth(&v, behind) == 0 &&
+          pnpr_view_sample_depth(&v, beside) == 0 && pnpr_view_sample_depth(&v, nan) == 0);
+    CHECK(pnpr_view_sample_depth(&v, edge_in) == 10 && pnpr_view_sample_depth(&v, edge_out) == 0);
+    pnpr_view_sample_solve(&v, 1100);
+    double s_near = pnpr_view_sample_share(&v, near), s_far = pnpr_view_sample_share(&v, far);
+    CHECK_MSG(s_near == 1 && fabs(s_far - 0.1) < 1e-9 && fabs(v.c - 1000) < 1e-6, "shares %g %g, c %g", s_near, s_far, v.c);
+    CHECK(pnpr_view_sample_share(&v, behind) == 0 && pnpr_view_sample_share(&v, beside) == 0);
+    /* asking for more than is in view: every point in view, whole */
+    pnpr_view_sample_solve(&v, 2000);
+    CHECK(pnpr_view_sample_share(&v, far) == 1 && pnpr_view_sample_share(&v, behind) == 0);
+    /* a far-only scene: asking a tenth gives every point a tenth */
+    CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 90, 100, 100), PNPR_OK);
+    for (int i = 0; i < 1000; i++) pnpr_view_sample_add(&v, far);
+    pnpr_view_sample_solve(&v, 100);
+    CHECK(fabs(pnpr_view_sample_share(&v, far) - 0.1) < 1e-9);
+    /* bad views */
+    CHECK_STATUS(pnpr_view_sample_init(&v, eye, eye, 90, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 0, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 180, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 45, 0, 100), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_view_sample_init(&v, nan, target, 45, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_view_sample_init(NULL, eye, target, 45, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
 }
 
 int main(void)
@@ -90,5 +140,6 @@ int main(void)
     CHECK(a[0] == 0);
 
     free(a); free(b); free(c); free(group);
+    test_view_sample();
     return pnpr_test_finish("test_crq");
 }

@@ -28,6 +28,41 @@ PNPR_NODISCARD pnpr_status pnpr_crq_order(size_t count, const uint8_t *group, ui
  * that the counts sum to min(total, sum of sizes) exactly. */
 void pnpr_crq_split(const size_t *group_size, size_t group_count, size_t total, size_t *r_draw);
 
+/* ---- a sample for one view (view/view_sample.c) --------------------------------------------
+ * A cloud larger than memory drawn from one camera: read a sample that the view needs instead of
+ * a uniform one. Points outside the view's cone (the half-angle of its diagonal, widened by
+ * PNPR_VIEW_SAMPLE_MARGIN: disks reach in from outside) or behind the eye get the share 0; the
+ * others min(1, c / z^2) at eye depth z, so that surfaces near and far keep about as many points
+ * per pixel (the queue above thins all depths alike). c comes from a histogram of the depths
+ * (PNPR_VIEW_SAMPLE_BINS bins of 1/16 octave from 2^-64, each with its count and its sum of 1/z^2,
+ * exact but in the one or two bins where the share reaches 1) so that the expected count is
+ * `want`.
+ * Use: init, add every point (a pass over the coordinates), solve, then keep each point with its
+ * share (e.g. by a hash of its index). World coordinates throughout. */
+#define PNPR_VIEW_SAMPLE_BINS 2048
+#define PNPR_VIEW_SAMPLE_MARGIN 1.15
+
+typedef struct pnpr_view_sample {
+    double eye[3], forward[3]; /* forward: unit */
+    double tan_cone;           /* tangent of the kept cone's half-angle */
+    double c;                  /* share = min(1, c / z^2); 0 until solved, HUGE_VAL: every point seen */
+    uint64_t visible;          /* points added that are in view */
+    uint64_t count[PNPR_VIEW_SAMPLE_BINS];
+    double inv_z2[PNPR_VIEW_SAMPLE_BINS]; /* sum of 1/z^2 over the bin's points */
+} pnpr_view_sample;
+
+/* A look-at view: eye and target apart and finite, fov_deg in (0, 180), width and height > 0;
+ * PNPR_ERR_INVALID_ARGUMENT otherwise. */
+PNPR_NODISCARD pnpr_status pnpr_view_sample_init(pnpr_view_sample *v, const double eye[3], const double target[3],
+                                                 double fov_deg, int width, int height);
+/* The eye depth of p when it is in view, else 0 (also for NaN and Inf). */
+double pnpr_view_sample_depth(const pnpr_view_sample *v, const double p[3]);
+void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3]);
+/* c for an expected count of `want` points (every point in view when fewer were added). */
+void pnpr_view_sample_solve(pnpr_view_sample *v, double want);
+/* The share of p once solved: 0 out of view, else min(1, c / z^2). */
+double pnpr_view_sample_share(const pnpr_view_sample *v, const double p[3]);
+
 #ifdef __cplusplus
 }
 #endif

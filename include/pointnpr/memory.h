@@ -24,6 +24,7 @@ typedef struct pnpr_memory_plan {
     int segments;         /* the JSEG segmentation runs */
     uint32_t styles;      /* bits 1u << pnpr_style the renderer uploads for (0: no renderer) */
     int width, height;    /* the image in pixels, with a renderer */
+    size_t drawn;         /* the most points a frame draws (the screen-space budget); 0 = all */
 } pnpr_memory_plan;
 
 /* The estimate, in bytes beyond what the process holds when it is made (the cloud as read); each

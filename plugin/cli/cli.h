@@ -107,9 +107,13 @@ int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const p
 /* Reads IN for render and animate: a uniform sample of `share` of its points when 0 < share < 1
  * (binary PLY); else whole when it fits (cli_memory_check_file), else, for a PLY, a uniform sample
  * that fits `limit` (0: what is available) by the memory model of `mp` (its points are the
- * file's), saying so unless quiet (cli_sample.c). Returns 0 after printing why. */
+ * file's), saying so unless quiet (cli_sample.c). `view` (NULL: none) with its eye and target
+ * given: the sample follows that view instead (near points kept, far ones thinned, unseen ones
+ * left out), of at most frame_points (the frame's budget; 0: none) unless `share` is asked.
+ * Returns 0 after printing why. */
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
-                     size_t limit, double share, int quiet, pnpr_cloud *cloud);
+                     size_t limit, double share, const cli_view *view, double frame_points, int quiet,
+                     pnpr_cloud *cloud);
 
 /* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
  * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */

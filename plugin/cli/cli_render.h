@@ -60,8 +60,9 @@ typedef struct cli_render_session {
     pnpr_sphere_tree tree;        /* the hierarchy style's tree (when the plan builds it) */
 } cli_render_session;
 
-/* Reads IN and applies the outlier options. Returns 1, or 0 after printing why. */
-int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in);
+/* Reads IN and applies the outlier options; by_view: a sample of a cloud that does not fit follows
+ * the view of --eye/--target (a single frame: render). Returns 1, or 0 after printing why. */
+int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in, int by_view);
 /* The key light's "above" is tone_up (the camera's up); then the stage plan, the GL context, the
  * renderer with the cloud (and the profile lines), the pixel buffer. Returns 1, or 0 after
  * printing why. */

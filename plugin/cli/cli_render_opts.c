@@ -160,8 +160,9 @@ static const cli_opt render_opts[] = {
      "point, however dense the view"},
     R_OPT("--seed", CLI_CUSTOM, uopt.seed, parse_seed, "S", "continuous resolution queue seed (default 0)"),
     {"--sample", NULL, CLI_NUMBER, offsetof(cli_render_opts, sample), 0, 1, 1, 0, NULL, NULL, "S",
-     "read a uniform sample of this share of a binary PLY's points, a preview of a cloud larger than memory "
-     "(default: every point, or the share that fits --memory-limit; docs/tiles.md)"},
+     "read a sample of this share of a binary PLY's points, a preview of a cloud larger than memory: uniform, "
+     "or by the view with --eye/--target (render: near points kept, far and unseen ones thinned) (default: every "
+     "point, or the share that fits --memory-limit; docs/tiles.md)"},
     {"--tone", NULL, CLI_CHOICE, offsetof(cli_render_opts, tone.source), 0, 0, 0, 0, tone_sources, NULL, NULL,
      "what sets how dark a point is drawn (hatch and stipple density, the shading of colourless clouds): "
      "a key light on the normals, the colours, or both (default auto: both when IN has colours)"},
@@ -332,6 +333,19 @@ static int read_effects(const char *cmd, const char *path, pnpr_effect_pipeline 
     return st == PNPR_OK;
 }
 
+/* The most points a frame draws: the screen-space budget (--density x the image's pixels, at most
+ * --budget); 0 = every point. */
+static size_t frame_points(const cli_render_opts *o)
+{
+    size_t dn;
+    const pnpr_option_desc *dt = pnpr_draw_option_table(&dn);
+    pnpr_draw_options d = o->dopt;
+    pnpr_option_fill_defaults(dt, dn, &d);
+    double frame = d.density < 0 ? 0 : (double)d.density * o->view.width * o->view.height;
+    if (d.budget > 0 && (frame == 0 || (double)d.budget < frame)) frame = (double)d.budget;
+    return frame >= 1e18 ? (size_t)1e18 : (size_t)frame;
+}
+
 #ifdef PNPR_HAVE_RENDER
 /* Progress of a tiled snapshot: one line per tile (single-frame images print nothing). */
 static int tile_progress(void *user, const char *stage, double fraction)
@@ -358,7 +372,7 @@ static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, pnpr_sph
     if (st == PNPR_OK) { /* what is left to do must fit (memory.h), before any of it */
         pnpr_memory_plan mp = {cloud->count, plan.want ? pnpr_features_defaults().k : 0,
                                plan.want && !cloud->normal, plan.segments == PNPR_PLAN_SEGMENTS_JSEG, req.styles,
-                               o->view.width, o->view.height};
+                               o->view.width, o->view.height, frame_points(o)};
         if (!cli_memory_check_plan(cmd, in, o->memory_limit, &mp)) return 0;
     }
     if (st == PNPR_OK && plan.want) {
@@ -535,7 +549,7 @@ void cli_render_opts_free(cli_render_opts *o)
     pnpr_effect_pipeline_free(&o->fx);
 }
 
-int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in)
+int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in, int by_view)
 {
     memset(s, 0, sizeof *s);
     s->prog.fn = o->quiet ? NULL : cli_progress_stderr;
@@ -543,10 +557,13 @@ int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char 
     pnpr_read_options ro = {0};
     ro.progress = s->prog;
     ro.columns = o->columns;
-    pnpr_memory_plan mp = {0, 0, 0, 0, 0, o->view.width, o->view.height};
+    pnpr_memory_plan mp = {0, 0, 0, 0, 0, o->view.width, o->view.height, 0};
     for (int st = 0; st < PNPR_STYLE_COUNT_; st++)
         if (o->uses[st]) mp.styles |= 1u << st;
-    if (!cli_read_fitting(cmd, in, &ro, &mp, o->memory_limit, o->sample, o->quiet, &s->cloud)) return 0;
+    const cli_view *view = by_view && o->view.have_eye && o->view.have_target ? &o->view : NULL;
+    mp.drawn = frame_points(o);
+    if (!cli_read_fitting(cmd, in, &ro, &mp, o->memory_limit, o->sample, view, (double)mp.drawn, o->quiet, &s->cloud))
+        return 0;
     return cli_outliers_apply(&o->outliers, cmd, in, &s->cloud, o->quiet, NULL) == 0;
 }
 

@@ -1,4 +1,4 @@
-/* render and animate on a cloud larger than memory: a uniform sample that fits (docs/tiles.md).
+/* render and animate on a cloud larger than memory: a sample that fits (docs/tiles.md).
  *
  * A 4K frame has 8.3M pixels and the screen-space budget (--density) draws a few points per
  * pixel at most, so a 200M-point cloud is drawn from a small part of its points anyway. When the
@@ -6,9 +6,12 @@
  * a binary PLY is read through the reader's point filter keeping each point with the probability
  * that fits, decided by a hash of its index (the same points at every run and every size), and
  * the stored point spacing (the disk radii) grows by 1/sqrt of that share, as the spacing of a
- * uniformly thinned surface does. --sample asks for a share itself (a quick preview). */
+ * uniformly thinned surface does. --sample asks for a share itself (a quick preview). With a
+ * camera given (render --eye/--target or --camera), the share follows the view instead: near
+ * points kept, far ones thinned, unseen ones left out (below). */
 #include "cli.h"
 
+#include <pointnpr/crq.h>
 #include <pointnpr/memory.h>
 #include <pointnpr/props.h>
 
@@ -38,64 +41,129 @@ static int keep_sample(void *user, uint64_t index, const double p[3])
     return s->below == UINT64_MAX || mix64(index) < s->below;
 }
 
-/* The share of the file's points that fits, 1 when all do; 0 when it cannot tell (not a PLY). */
-static double fitting_share(const char *in, const pnpr_memory_plan *mp, size_t limit, uint64_t *r_points)
+/* The most points of `rec` bytes each (the cloud as read) that fit in `room` with the estimate of
+ * `mp` for them (memory.h: the same figures as the check after reading); at most `points`. */
+static double fitting_count(const pnpr_memory_plan *mp, double rec, double room, uint64_t points)
+{
+    uint64_t lo = 0, hi = points;
+    while (lo < hi) {
+        uint64_t mid = lo + (hi - lo + 1) / 2;
+        pnpr_memory_plan p = *mp;
+        p.points = (size_t)mid;
+        pnpr_memory_estimate e;
+        pnpr_memory_estimate_plan(&p, &e);
+        if ((double)e.total + rec * (double)mid <= room) lo = mid;
+        else hi = mid - 1;
+    }
+    return (double)lo;
+}
+
+/* The share of the file's points that fits, 1 when all do (decided from its size alone, without a
+ * pass unless need_pass); 0 when it cannot tell (not a PLY). The pass over the coordinates calls
+ * `keep` (which keeps nothing: it counts, and makes the view's histogram) with `user`; *r_points:
+ * the points seen (*seen after the pass). */
+static double fitting_share(const char *in, const pnpr_memory_plan *mp, size_t limit,
+                            int (*keep)(void *, uint64_t, const double *), void *user, const uint64_t *seen,
+                            int need_pass, uint64_t *r_points)
 {
     struct stat sb;
     if (pnpr_format_from_path(in) != PNPR_FORMAT_PLY || stat(in, &sb) != 0 || !S_ISREG(sb.st_mode)) return 0;
-    pnpr_memory_plan one = *mp, none = *mp;
-    one.points = 1000000;
-    none.points = 0;
-    pnpr_memory_estimate e1, e0;
-    pnpr_memory_estimate_plan(&one, &e1);
-    pnpr_memory_estimate_plan(&none, &e0);
-    double per = (double)(e1.total - e0.total) / 1e6, avail = limit ? (double)limit : (double)pnpr_memory_available();
-    avail -= (double)pnpr_memory_resident() + (double)e0.total;
-    if ((double)sb.st_size * (1.0 + per / 12.0) < avail) return 1; /* 12 bytes a point at least: fits */
-    sample_keep count = {0, 0};
+    double room = (limit ? (double)limit : (double)pnpr_memory_available()) - (double)pnpr_memory_resident();
+    uint64_t most = (uint64_t)sb.st_size / 12; /* 12 bytes a point at least: at most this many */
+    if (!need_pass && fitting_count(mp, 12.0 + 8.0, room - (double)sb.st_size, most) >= (double)most) return 1;
     pnpr_read_options ro = {0};
-    ro.keep = keep_sample;
-    ro.keep_user = &count;
+    ro.keep = keep;
+    ro.keep_user = user;
     pnpr_cloud none_read = {0};
     pnpr_error err = {0};
     if (pnpr_read_file(in, &ro, &none_read, &err) != PNPR_OK) return 0; /* the real read says why */
     pnpr_cloud_free(&none_read);
-    *r_points = count.seen;
-    double rec = count.seen ? (double)sb.st_size / (double)count.seen + 8.0 : 0, fit = avail / (rec + per);
-    return fit >= (double)count.seen ? 1 : fit > 0 ? 0.9 * fit / (double)count.seen : 0;
+    *r_points = *seen;
+    if (!*seen) return 1;
+    double rec = (double)sb.st_size / (double)*seen + 8.0, fit = fitting_count(mp, rec, room, *seen);
+    return fit >= (double)*seen ? 1 : fit > 0 ? 0.9 * fit / (double)*seen : 0;
+}
+
+/* ---- the view's sample: a camera given (render --eye/--target, --camera; crq.h) ------------- */
+
+typedef struct view_keep {
+    uint64_t seen;
+    int solved;           /* 0: the histogram pass (keeps nothing) */
+    pnpr_view_sample v;
+} view_keep;
+
+static int keep_view(void *user, uint64_t index, const double p[3])
+{
+    view_keep *k = user;
+    k->seen = index + 1;
+    if (!k->solved) { pnpr_view_sample_add(&k->v, p); return 0; }
+    double s = pnpr_view_sample_share(&k->v, p);
+    return s >= 1 || (s > 0 && mix64(index) < (uint64_t)(s * 18446744073709551616.0));
+}
+
+/* The stored point spacing (the disk radii) grown by 1/sqrt of each point's share, as the spacing
+ * of a thinned surface grows: `uniform`, or the view's share of the point. */
+static void grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double uniform)
+{
+    pnpr_property *sp = pnpr_cloud_find_property(cloud, PNPR_PROP_POINT_SPACING);
+    if (!sp || sp->type != PNPR_TYPE_FLOAT32) return;
+    for (size_t i = 0; i < cloud->count; i++) {
+        double share = uniform;
+        if (v) {
+            double w[3];
+            pnpr_cloud_world(cloud, i, w);
+            share = pnpr_view_sample_share(v, w);
+        }
+        if (share > 0 && share < 1) ((float *)sp->data)[i] /= (float)sqrt(share);
+    }
 }
 
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
-                     size_t limit, double share, int quiet, pnpr_cloud *cloud)
+                     size_t limit, double share, const cli_view *view, double frame_points, int quiet, pnpr_cloud *cloud)
 {
     pnpr_read_options ro = *opts;
     pnpr_error err = {0};
     uint64_t points = 0;
     const int asked = share > 0 && share < 1;
-    if (!asked) share = fitting_share(in, mp, limit, &points);
+    view_keep vk = {0};
+    const int by_view = view && pnpr_format_from_path(in) == PNPR_FORMAT_PLY &&
+                        pnpr_view_sample_init(&vk.v, view->eye, view->target, view->fov, view->width, view->height) == PNPR_OK;
+    if (by_view) {
+        double fit = fitting_share(in, mp, limit, keep_view, &vk, &vk.seen, asked, &points);
+        share = asked ? share : fit;
+        /* not more than a frame draws: the screen-space budget thins uniformly (the paper's random
+         * prefix), which would thin the near surfaces as much as the far ones */
+        double want = share * (double)points;
+        if (!asked && frame_points > 0 && frame_points < want) want = frame_points;
+        pnpr_view_sample_solve(&vk.v, want);
+        vk.solved = 1;
+    } else if (!asked) {
+        sample_keep count = {0, 0};
+        share = fitting_share(in, mp, limit, keep_sample, &count, &count.seen, 0, &points);
+    }
     sample_keep keep = {0, UINT64_MAX};
     if (share > 0 && share < 1) {
         keep.below = (uint64_t)(share * 18446744073709551616.0);
-        ro.keep = keep_sample;
-        ro.keep_user = &keep;
+        ro.keep = by_view ? keep_view : keep_sample;
+        ro.keep_user = by_view ? (void *)&vk : (void *)&keep;
     } else if (!cli_memory_check_file(cmd, in, limit)) {
         return 0;
     }
     pnpr_status st = pnpr_read_file(in, &ro, cloud, &err);
     if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
     if (!ro.keep) return 1;
-    points = keep.seen;
+    points = by_view ? vk.seen : keep.seen;
     double kept = points ? (double)cloud->count / (double)points : 1;
-    pnpr_property *sp = pnpr_cloud_find_property(cloud, PNPR_PROP_POINT_SPACING);
-    if (sp && sp->type == PNPR_TYPE_FLOAT32 && kept > 0)
-        for (size_t i = 0; i < cloud->count; i++) ((float *)sp->data)[i] /= (float)sqrt(kept);
+    grow_spacing(cloud, by_view ? &vk.v : NULL, kept);
     char a[32];
+    const char *what = by_view ? "a sample by the view (points near the camera kept, far and unseen ones thinned)"
+                               : "a uniform sample";
     if (!quiet && asked)
-        fprintf(stderr, "%s: drawing a uniform sample of %zu of %llu points (%.1f%%, --sample)\n", in, cloud->count,
+        fprintf(stderr, "%s: drawing %s of %zu of %llu points (%.1f%%, --sample)\n", in, what, cloud->count,
                 (unsigned long long)points, 100.0 * kept);
     else if (!quiet)
-        fprintf(stderr, "%s: %llu points do not fit in %s: drawing a uniform sample of %zu (%.1f%%; docs/tiles.md)\n", in,
-                (unsigned long long)points, pnpr_memory_text(limit ? limit : pnpr_memory_available(), a, sizeof a),
+        fprintf(stderr, "%s: %llu points do not fit in %s: drawing %s of %zu (%.1f%%; docs/tiles.md)\n", in,
+                (unsigned long long)points, pnpr_memory_text(limit ? limit : pnpr_memory_available(), a, sizeof a), what,
                 cloud->count, 100.0 * kept);
     return 1;
 }

@@ -431,7 +431,7 @@ static int save_path_only(cli_render_opts *o, anim_args *r)
 {
     cli_render_session s;
     memset(&s, 0, sizeof s);
-    int ok = (r->path_file || cli_render_load(&s, o, "animate", r->in)) && make_path(r, o, &s.cloud);
+    int ok = (r->path_file || cli_render_load(&s, o, "animate", r->in, 0)) && make_path(r, o, &s.cloud);
     cli_render_end(&s);
     if (ok && !o->quiet) fprintf(stderr, "wrote %s\n", r->save_path);
     return ok ? 0 : 1;
@@ -465,7 +465,7 @@ int cli_animate(int argc, char **argv)
                         "(Debian: apt-get install ffmpeg)\n", r.dir, r.out);
     cli_render_session s;
     long n = 0;
-    rc = cli_render_load(&s, &o, "animate", r.in) && animate(&s, &o, &r, argc, argv, &n) ? 0 : 1;
+    rc = cli_render_load(&s, &o, "animate", r.in, 0) && animate(&s, &o, &r, argc, argv, &n) ? 0 : 1;
     cli_render_end(&s);
     if (rc == 0 && r.video && !make_video(&r, n, o.quiet)) rc = 1;
     pnpr_camera_path_free(&r.path);

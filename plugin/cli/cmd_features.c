@@ -167,7 +167,7 @@ int cli_features(int argc, char **argv)
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("features", st, &err); return 1; }
     if (cli_outliers_apply(&outliers, "features", in, &cloud, quiet, NULL)) { pnpr_cloud_free(&cloud); return 1; }
-    pnpr_memory_plan mp = {cloud.count, fo->k ? fo->k : pnpr_features_defaults().k, cloud.normal == NULL, 0, 0, 0, 0};
+    pnpr_memory_plan mp = {cloud.count, fo->k ? fo->k : pnpr_features_defaults().k, cloud.normal == NULL, 0, 0, 0, 0, 0};
     if (!cli_memory_check_plan("features", in, memory_limit, &mp)) { pnpr_cloud_free(&cloud); return 1; }
 
     pnpr_features_stats stats;

@@ -168,7 +168,7 @@ int cli_render(int argc, char **argv)
     pnpr_camera cam;
     const pnpr_camera *camp = NULL;
     double tone_up[3] = {0, 0, 0};
-    if (!cli_render_load(&s, &o, "render", r.in)) goto done;
+    if (!cli_render_load(&s, &o, "render", r.in, 1)) goto done;
     /* the camera first: its up vector is the tone's "above" (the key light comes from there) */
     if (r.camera_path) { /* the path's first up is the key light's above, as in `animate` */
         memcpy(tone_up, r.path.keys[0].up, sizeof tone_up);
