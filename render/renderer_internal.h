@@ -92,6 +92,7 @@ struct pnpr_renderer {
     GLint max_size;      /* min of GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS */
     float max_radius;    /* largest disk radius of the uploaded cloud (tile guard bands) */
     float mean_radius;   /* mean disk radius (the lines' depth tolerance) */
+    float tone_radius;   /* the tone hatches' length in radii: pnpr_upload_options.tone_radius or the mean */
     /* the uploaded cloud */
     size_t count;
     size_t group_start[GROUP_MAX + 2];

@@ -169,7 +169,7 @@ static size_t draw_sketchy(pnpr_renderer *r, const pnpr_frame_ctx *f)
         glUniform1f(r->ut.layer, directional ? (float)o->stroke_texture : (float)STROKE_LAYER_HATCH);
         glUniform1f(r->ut.length, directional ? stroke_length : 0.5f * stroke_length);
         glUniform1i(r->ut.thin, g == GROUP_DITHER);
-        glUniform1f(r->ut.tone_radius, g == GROUP_DITHER ? r->mean_radius : 0.0f);
+        glUniform1f(r->ut.tone_radius, g == GROUP_DITHER ? r->tone_radius : 0.0f);
         glUniform4fv(r->ut.ink, 1, g == GROUP_DITHER ? tone_ink : ink);
         glUniform1f(r->ut.queue_end, (float)f->gdraw[g]);
         glUniform1f(r->ut.queue_fade, pnpr_queue_fade_length(f->gdraw[g], r->group_start[g + 1] - r->group_start[g], o->queue_fade));

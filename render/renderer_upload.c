@@ -482,6 +482,7 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
         rsum += u->radius[j];
     }
     r->mean_radius = n ? (float)(rsum / (double)n) : 0;
+    r->tone_radius = u->o.tone_radius > 0 && isfinite(u->o.tone_radius) ? u->o.tone_radius : r->mean_radius;
     memcpy(r->origin, cloud->origin, sizeof r->origin);
     if (pnpr_cloud_inlier_bounds(cloud, r->bmin, r->bmax) == 0) { /* far outliers do not stretch it */
         memset(r->bmin, 0, sizeof r->bmin);

@@ -405,7 +405,7 @@ static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instan
         }
     }
     double rr = (double)v->radius * rec->point_scale;
-    double rl = thin ? (double)c->r->mean_radius * rec->point_scale : rr; /* tone hatches: the mean length */
+    double rl = thin ? (double)c->r->tone_radius * rec->point_scale : rr; /* tone hatches: the mean length */
     double half_len = fmax(fmin(0.5 * length * rl * fc->pixels_per_unit / w, (double)pnpr_stroke_half_max(&c->rec->o)), 1.5);
     double half_wid = 0.5 * rec->o.stroke_width;
     if (thin) {

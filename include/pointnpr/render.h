@@ -81,6 +81,10 @@ typedef struct pnpr_upload_options {
                               * property, e.g. one value per MeshLab layer for a style per layer,
                               * while cartoon's fills keep following the segment labels. A missing
                               * property: PNPR_ERR_NOT_FOUND; another type: PNPR_ERR_INVALID_ARGUMENT */
+    float tone_radius;       /* > 0 (finite): the tone hatches' length in disk radii of this size
+                              * instead of the mean disk radius. A sample of a larger cloud gives
+                              * the whole cloud's mean spacing: its grown radii would lengthen the
+                              * hatches (docs/tiles.md "A sample by the view"). 0 = the mean */
 } pnpr_upload_options;
 
 /* pnpr_style_map_entry and its file format: style.h. */

@@ -110,10 +110,11 @@ int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const p
  * file's), saying so unless quiet (cli_sample.c). `view` (NULL: none) with its eye and target
  * given: the sample follows that view instead (near points kept, far ones thinned, unseen ones
  * left out), of at most frame_points (the frame's budget; 0: none) unless `share` is asked.
- * Returns 0 after printing why. */
+ * *r_tone_radius: for a sample, the whole cloud's mean spacing as it estimates it (0: none; the
+ * renderer's tone_radius). Returns 0 after printing why. */
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
                      size_t limit, double share, const cli_view *view, double frame_points, int quiet,
-                     pnpr_cloud *cloud);
+                     pnpr_cloud *cloud, float *r_tone_radius);
 
 /* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
  * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */

@@ -58,6 +58,7 @@ typedef struct cli_render_session {
     pnpr_progress prog;
     uint8_t *pixels;              /* view.width x view.height RGBA */
     pnpr_sphere_tree tree;        /* the hierarchy style's tree (when the plan builds it) */
+    float tone_radius;            /* a sample's estimate of the whole cloud's mean spacing (0: none) */
 } cli_render_session;
 
 /* Reads IN and applies the outlier options; by_view: a sample of a cloud that does not fit follows

@@ -562,7 +562,8 @@ int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char 
         if (o->uses[st]) mp.styles |= 1u << st;
     const cli_view *view = by_view && o->view.have_eye && o->view.have_target ? &o->view : NULL;
     mp.drawn = frame_points(o);
-    if (!cli_read_fitting(cmd, in, &ro, &mp, o->memory_limit, o->sample, view, (double)mp.drawn, o->quiet, &s->cloud))
+    if (!cli_read_fitting(cmd, in, &ro, &mp, o->memory_limit, o->sample, view, (double)mp.drawn, o->quiet, &s->cloud,
+                          &s->tone_radius))
         return 0;
     return cli_outliers_apply(&o->outliers, cmd, in, &s->cloud, o->quiet, NULL) == 0;
 }
@@ -573,6 +574,7 @@ int cli_render_start(cli_render_session *s, cli_render_opts *o, const char *cmd,
     if (tone_up) memcpy(o->tone.up, tone_up, sizeof o->tone.up);
     o->uopt.tone = o->tone;
     o->uopt.skip_painterly = !o->uses[PNPR_STYLE_PAINTERLY]; /* only what the frames need */
+    o->uopt.tone_radius = s->tone_radius;
     if (!run_plan(cmd, in, &s->cloud, &s->tree, o, o->quiet, s->prog)) return 0;
     pnpr_error err = {0};
     pnpr_status st = pnpr_gl_context_create(&s->ctx, &err);

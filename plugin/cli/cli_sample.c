@@ -102,11 +102,15 @@ static int keep_view(void *user, uint64_t index, const double p[3])
 }
 
 /* The stored point spacing (the disk radii) grown by 1/sqrt of each point's share, as the spacing
- * of a thinned surface grows: `uniform`, or the view's share of the point. */
-static void grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double uniform)
+ * of a thinned surface grows: `uniform`, or the view's share of the point. Returns the whole
+ * cloud's mean spacing as the sample estimates it (each point standing for 1/share of them, with
+ * its spacing before growing), 0 without a stored spacing: the tone hatches' length, which the
+ * grown spacing would stretch (pnpr_upload_options.tone_radius). */
+static float grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double uniform)
 {
     pnpr_property *sp = pnpr_cloud_find_property(cloud, PNPR_PROP_POINT_SPACING);
-    if (!sp || sp->type != PNPR_TYPE_FLOAT32) return;
+    if (!sp || sp->type != PNPR_TYPE_FLOAT32) return 0;
+    double sum = 0, weight = 0;
     for (size_t i = 0; i < cloud->count; i++) {
         double share = uniform;
         if (v) {
@@ -114,13 +118,22 @@ static void grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double un
             pnpr_cloud_world(cloud, i, w);
             share = pnpr_view_sample_share(v, w);
         }
-        if (share > 0 && share < 1) ((float *)sp->data)[i] /= (float)sqrt(share);
+        if (!(share > 0) || share > 1) share = 1;
+        float *s = (float *)sp->data + i;
+        if (isfinite(*s) && *s >= 0) {
+            sum += *s / share;
+            weight += 1 / share;
+        }
+        if (share < 1) *s /= (float)sqrt(share);
     }
+    return weight > 0 ? (float)(sum / weight) : 0;
 }
 
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
-                     size_t limit, double share, const cli_view *view, double frame_points, int quiet, pnpr_cloud *cloud)
+                     size_t limit, double share, const cli_view *view, double frame_points, int quiet, pnpr_cloud *cloud,
+                     float *r_tone_radius)
 {
+    *r_tone_radius = 0;
     pnpr_read_options ro = *opts;
     pnpr_error err = {0};
     uint64_t points = 0;
@@ -154,7 +167,7 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     if (!ro.keep) return 1;
     points = by_view ? vk.seen : keep.seen;
     double kept = points ? (double)cloud->count / (double)points : 1;
-    grow_spacing(cloud, by_view ? &vk.v : NULL, kept);
+    *r_tone_radius = grow_spacing(cloud, by_view ? &vk.v : NULL, kept);
     char a[32];
     const char *what = by_view ? "a sample by the view (points near the camera kept, far and unseen ones thinned)"
                                : "a uniform sample";

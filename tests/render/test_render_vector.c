@@ -490,6 +490,43 @@ static void check_plot(pnpr_renderer *r, const pnpr_camera *cam)
     CHECK_STATUS(pnpr_renderer_drawing(r, cam, &o, 0, H, &d, &err), PNPR_ERR_INVALID_ARGUMENT);
 }
 
+/* The upload's tone_radius sets the tone hatches' length (a sample of a larger cloud gives the
+ * whole cloud's mean spacing, docs/tiles.md): twice the radius, hatches twice as long on the
+ * drawing's tone layer, fewer kept, about the same ink. */
+static void check_tone_radius(pnpr_renderer *r, const pnpr_cloud *c, const pnpr_camera *cam)
+{
+    const pnpr_property *sp = pnpr_cloud_find_property(c, PNPR_PROP_POINT_SPACING);
+    CHECK(sp != NULL);
+    if (!sp) return;
+    double mean = 0;
+    for (size_t i = 0; i < c->count; i++) mean += ((const float *)sp->data)[i];
+    mean /= (double)c->count;
+    double count[2], ink[2];
+    for (int k = 0; k < 2; k++) {
+        pnpr_upload_options uo = pnpr_upload_defaults();
+        uo.tone_radius = (float)(mean * (k + 1));
+        pnpr_error err = {0};
+        CHECK_STATUS(pnpr_renderer_set_cloud(r, c, &uo, &err), PNPR_OK);
+        pnpr_draw_options o;
+        memset(&o, 0, sizeof o);
+        o.style = PNPR_STYLE_SKETCHY;
+        pnpr_drawing d = {0};
+        CHECK_STATUS(pnpr_renderer_drawing(r, cam, &o, W, H, &d, &err), PNPR_OK);
+        count[k] = 0;
+        for (size_t i = 0; i < d.count; i++) count[k] += d.layer[i] == PNPR_LAYER_TONE;
+        ink[k] = pnpr_drawing_ink_length(&d, PNPR_LAYER_TONE);
+        pnpr_drawing_free(&d);
+    }
+    double len_ratio = count[0] > 0 && count[1] > 0 ? (ink[1] / count[1]) / (ink[0] / count[0]) : 0;
+    printf("tone radius x2: %.0f -> %.0f tone hatches, mean length x%.2f, ink x%.2f\n", count[0], count[1], len_ratio,
+           ink[0] > 0 ? ink[1] / ink[0] : 0);
+    CHECK_MSG(count[0] > 100 && len_ratio > 1.7 && len_ratio < 2.3, "tone hatches %.0f, length x%.2f", count[0], len_ratio);
+    /* fewer kept (a hatch whose point's sample area exceeds its quad is kept whatever its length,
+     * so not half), the ink within a third (683 -> 460 hatches, ink x1.19 when written) */
+    CHECK_MSG(count[1] > 0.4 * count[0] && count[1] < 0.8 * count[0] && ink[1] > 0.75 * ink[0] && ink[1] < 1.33 * ink[0],
+              "tone hatches %.0f -> %.0f, ink %.0f -> %.0f px", count[0], count[1], ink[0], ink[1]);
+}
+
 int main(void)
 {
     if (system("rsvg-convert --version > /dev/null 2>&1") != 0 || system("pdfinfo -v > /dev/null 2>&1") != 0) {
@@ -531,6 +568,7 @@ int main(void)
         check_style(r, &cam, PNPR_STYLE_CARTOON, -1, 0.02);
         check_style(r, &cam, PNPR_STYLE_CARTOON, 0, 0.02);
         check_plot(r, &cam);
+        check_tone_radius(r, &c, &cam);
     }
     pnpr_lines_free(&lines);
     pnpr_cloud_free(&c);
