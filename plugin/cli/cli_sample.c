@@ -150,6 +150,9 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
         if (!asked && frame_points > 0 && frame_points < want) want = frame_points;
         pnpr_view_sample_solve(&vk.v, want);
         vk.solved = 1;
+        if (points && !vk.v.visible)
+            fprintf(stderr, "%s: warning: none of its %llu points is in the view of --eye/--target (they lie behind "
+                            "the eye or outside the field of view)\n", in, (unsigned long long)points);
     } else if (!asked) {
         sample_keep count = {0, 0};
         share = fitting_share(in, mp, limit, keep_sample, &count, &count.seen, 0, &points);
