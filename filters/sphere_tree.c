@@ -427,6 +427,7 @@ float pnpr_sphere_noise(const pnpr_sphere_tree *t, const pnpr_sphere_node *n)
 static int16_t pack_unit(float x)
 {
     float v = x * PNPR_SPHERE_UNIT;
+    if (!(v == v)) return 0; /* NaN: unknown, as zero */
     return (int16_t)lrintf(v > PNPR_SPHERE_UNIT ? PNPR_SPHERE_UNIT : v < -PNPR_SPHERE_UNIT ? -PNPR_SPHERE_UNIT : v);
 }
 
@@ -435,7 +436,7 @@ static uint16_t pack_fraction(double x, double top, int up)
 {
     double v = x / top * 65535.0;
     v = up ? ceil(v) : floor(v + 0.5);
-    return (uint16_t)(v > 65535 ? 65535 : v < 0 ? 0 : v);
+    return (uint16_t)(v > 65535 ? 65535 : v >= 0 ? v : 0); /* NaN: 0 */
 }
 
 /* w packed into r. r may lie over w's own bytes or earlier nodes' (in place, first to last). */

@@ -7,7 +7,8 @@
  *    fits in the same bytes: the header is written again over itself then;
  *  - every later input's header must equal the first's but for the count (the same properties,
  *    types and encoding); only its records go on;
- *  - faces cannot follow vertices of later inputs: an input with faces is refused.
+ *  - faces cannot follow vertices of later inputs: an input with faces is refused;
+ *  - an input without points is skipped (a text file without points has no columns to compare).
  * The records are what writing the joined cloud in memory gives (pointnpr convert without
  * --stream): the writer puts a record's bytes from that point alone, and double coordinates are
  * the exact world values. The header differs by the padding line.
@@ -35,6 +36,7 @@ typedef struct join_sink {
     size_t first_len;
     int mismatch;          /* a later header differs from the first's */
     int too_long;
+    int no_memory;         /* collecting or comparing a header ran out of memory */
 } join_sink;
 
 /* h (len bytes, ending in "end_header\n") with its vertex count replaced by "0": a new string,
@@ -78,7 +80,7 @@ static int header_done(join_sink *j)
 {
     char *z = zero_count(j->head.data, j->head.size);
     j->head.size = 0;
-    if (!z) { j->mismatch = 1; return 1; }
+    if (!z) { j->no_memory = 1; return 1; } /* the writer always writes "element vertex N" */
     if (!j->first) {
         j->first = z;
         j->first_len = strlen(z);
@@ -95,12 +97,13 @@ static int join_write(void *user, const void *data, size_t size)
     const unsigned char *p = data;
     while (size && !j->in_records) {
         /* the writer gives the header in pieces: collect up to its end */
-        if (pnpr_mem_sink_write(&j->head, p, 1)) return 1;
+        if (pnpr_mem_sink_write(&j->head, p, 1)) { j->no_memory = 1; return 1; }
         p++;
         size--;
         size_t n = j->head.size;
         if (n > JOIN_HEADER_MAX) { j->too_long = 1; return 1; }
-        if (n >= 11 && !memcmp(j->head.data + n - 11, "end_header\n", 11)) {
+        /* a line of its own: "property float end_header" ends in the same 11 bytes */
+        if (n >= 12 && !memcmp(j->head.data + n - 12, "\nend_header\n", 12)) {
             if (header_done(j)) return 1;
             j->in_records = 1;
         }
@@ -108,13 +111,19 @@ static int join_write(void *user, const void *data, size_t size)
     return size ? pnpr_output_sink(j->out, p, size) : 0;
 }
 
-/* One input read and passed on; *r_points grows by its count. */
-static pnpr_status join_one(join_sink *j, const char *path, const pnpr_join_options *o, uint64_t *r_points,
+/* One input read and passed on; *r_points grows by its count. An empty input is skipped (a text
+ * file without points has no columns to compare), unless it is the last and none had points:
+ * then its header is the output's. */
+static pnpr_status join_one(join_sink *j, const char *path, const pnpr_join_options *o, int last, uint64_t *r_points,
                             pnpr_error *err)
 {
     pnpr_cloud c = {0};
     pnpr_status st = pnpr_read_file(path, &o->read, &c, err);
     if (st != PNPR_OK) return st;
+    if (c.count == 0 && (j->first || !last)) {
+        pnpr_cloud_free(&c);
+        return PNPR_OK;
+    }
     if (c.faces.count) {
         pnpr_cloud_free(&c);
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: has faces; a mesh is joined in memory (pointnpr convert without --stream)",
@@ -127,12 +136,18 @@ static pnpr_status join_one(join_sink *j, const char *path, const pnpr_join_opti
     st = pnpr_write_ply_stream(join_write, j, &c, &wo, err);
     *r_points += c.count;
     pnpr_cloud_free(&c);
+    if (j->no_memory) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory for its PLY header", path);
     if (j->mismatch)
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
                               "%s: its points have other properties or types than the first input's (pointnpr info shows "
                               "them); join such files in memory (pointnpr convert without --stream) or convert them apart",
                               path);
     if (j->too_long) return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: a PLY header longer than 1 MiB", path);
+    if (st != PNPR_OK && err && !strstr(err->message, path)) { /* the writer's message names no input */
+        char m[sizeof err->message];
+        snprintf(m, sizeof m, "%s", err->message);
+        pnpr_error_set(err, st, "%s: %s", path, m);
+    }
     return st;
 }
 
@@ -166,15 +181,16 @@ pnpr_status pnpr_join_ply(const char *const *inputs, size_t count, const char *p
                               "%s: a join writes its vertex count last, into a regular file (not a device, pipe or "
                               "standard output)", path);
     }
-    join_sink j = {&out, {0}, 0, NULL, 0, 0, 0};
+    join_sink j = {&out, {0}, 0, NULL, 0, 0, 0, 0};
     uint64_t points = 0;
     for (size_t i = 0; st == PNPR_OK && i < count; i++) {
-        if (pnpr_progress_report(&o.progress, "join", (double)i / (double)count)) st = PNPR_ERR_CANCELLED;
-        else st = join_one(&j, inputs[i], &o, &points, err);
+        if (pnpr_progress_report(&o.progress, "join", (double)i / (double)count))
+            st = pnpr_error_set(err, PNPR_ERR_CANCELLED, "%s: cancelled; nothing written", path);
+        else st = join_one(&j, inputs[i], &o, i + 1 == count, &points, err);
+        if (st == PNPR_OK && points > UINT32_MAX)
+            st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: %llu points after %s, more than one cloud holds (%u: 32-bit "
+                                "indices)", path, (unsigned long long)points, inputs[i], UINT32_MAX);
     }
-    if (st == PNPR_OK && (points > UINT32_MAX))
-        st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: %llu points, more than one cloud holds (%u: 32-bit indices)",
-                            path, (unsigned long long)points, UINT32_MAX);
     if (st == PNPR_OK && (fflush(out.f) != 0 || fseek(out.f, 0, SEEK_SET) != 0 || put_header(&j, points)))
         st = PNPR_ERR_IO;
     if (st == PNPR_OK) pnpr_progress_report(&o.progress, "join", 1.0);

@@ -61,6 +61,20 @@ static void test_view_sample(void)
     for (int i = 0; i < 1000; i++) pnpr_view_sample_add(&v, far);
     pnpr_view_sample_solve(&v, 100);
     CHECK(fabs(pnpr_view_sample_share(&v, far) - 0.1) < 1e-9);
+    /* nothing asked (0, negative, NaN): nothing kept */
+    pnpr_view_sample_solve(&v, 0);
+    CHECK(pnpr_view_sample_share(&v, far) == 0);
+    pnpr_view_sample_solve(&v, NAN);
+    CHECK(pnpr_view_sample_share(&v, far) == 0);
+    /* depths far from 1: 1000 points at 1e70 and at 1e-70, a tenth asked of each scene */
+    const double deep[3] = {1e70, 0, 0}, shallow[3] = {1e-70, 0, 0};
+    for (int s = 0; s < 2; s++) {
+        CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 90, 100, 100), PNPR_OK);
+        for (int i = 0; i < 1000; i++) pnpr_view_sample_add(&v, s ? shallow : deep);
+        pnpr_view_sample_solve(&v, 100);
+        double share = pnpr_view_sample_share(&v, s ? shallow : deep);
+        CHECK_MSG(fabs(share - 0.1) < 1e-6, "depth %g: share %g", s ? 1e-70 : 1e70, share);
+    }
     /* bad views */
     CHECK_STATUS(pnpr_view_sample_init(&v, eye, eye, 90, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 0, 100, 100), PNPR_ERR_INVALID_ARGUMENT);

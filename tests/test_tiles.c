@@ -469,6 +469,51 @@ static void test_join(void)
         CHECK(b2 && n2 == n && !memcmp(b2, b, n) && points == 0);
         free(b2);
     }
+    /* a property named end_header (its line ends as the header does) and one after it */
+    char prop_parts[2][512];
+    const char *prop_inputs[2] = {prop_parts[0], prop_parts[1]};
+    pnpr_cloud pj = {0};
+    for (int i = 0; i < 2; i++) {
+        pnpr_cloud pc = {0};
+        CHECK_STATUS(pnpr_test_plane(&pc, 3 + i, 3, 0.1, NULL), PNPR_OK);
+        CHECK_STATUS(pnpr_cloud_add_property(&pc, "end_header", PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
+        CHECK_STATUS(pnpr_cloud_add_property(&pc, "q", PNPR_TYPE_UINT8, NULL), PNPR_OK);
+        pnpr_property *q = pnpr_cloud_find_property(&pc, "q");
+        for (size_t k = 0; q && k < pc.count; k++) ((uint8_t *)q->data)[k] = (uint8_t)(10 * i + k);
+        char name[32];
+        snprintf(name, sizeof name, "join_prop%d.ply", i);
+        CHECK_STATUS(pnpr_write_file(scratch(name, prop_parts[i], sizeof prop_parts[i]), &pc, NULL, &err), PNPR_OK);
+        CHECK_STATUS(pnpr_cloud_append(&pj, &pc), PNPR_OK);
+        pnpr_cloud_free(&pc);
+    }
+    pnpr_mem_sink pm = {0};
+    CHECK_STATUS(pnpr_write_ply_stream(pnpr_mem_sink_write, &pm, &pj, NULL, &err), PNPR_OK);
+    CHECK_STATUS(pnpr_join_ply(prop_inputs, 2, out, NULL, &points, &err), PNPR_OK);
+    size_t np = 0;
+    unsigned char *bp = file_bytes(out, &np);
+    size_t hp = bp ? header_end(bp, np) : 0, hpm = header_end(pm.data, pm.size);
+    CHECK_MSG(points == 21 && bp && np - hp == pm.size - hpm && !memcmp(bp + hp, pm.data + hpm, np - hp),
+              "a property named end_header: %llu points", (unsigned long long)points);
+    free(bp);
+    free(pm.data);
+    pnpr_cloud_free(&pj);
+    /* an input without points (a text file has no columns then) is skipped */
+    char empty_xyz[512], normals_xyz[512];
+    f = fopen(scratch("join_empty.xyz", empty_xyz, sizeof empty_xyz), "w");
+    if (f) fclose(f);
+    f = fopen(scratch("join_normals.xyz", normals_xyz, sizeof normals_xyz), "w");
+    if (f) {
+        fputs("0 0 0 0 0 1\n1 0 0 0 0 1\n", f);
+        fclose(f);
+    }
+    const char *with_empty[2] = {empty_xyz, normals_xyz};
+    pnpr_join_options jo = {0};
+    jo.read.columns = "x,y,z,nx,ny,nz";
+    CHECK_STATUS(pnpr_join_ply(with_empty, 2, out, &jo, &points, &err), PNPR_OK);
+    CHECK(points == 2);
+    CHECK_STATUS(pnpr_read_file(out, NULL, &back, &err), PNPR_OK);
+    CHECK(back.count == 2 && back.normal && back.normal[2] == 1);
+    pnpr_cloud_free(&back);
     CHECK_STATUS(pnpr_join_ply(inputs, 3, "/dev/null", NULL, NULL, &err), PNPR_ERR_UNSUPPORTED);
     CHECK(strstr(err.message, "regular file") != NULL);
     CHECK_STATUS(pnpr_join_ply(inputs, 0, out, NULL, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);

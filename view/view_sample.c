@@ -44,6 +44,8 @@ void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3])
     double z = pnpr_view_sample_depth(v, p);
     if (z == 0) return;
     int b = depth_bin(z);
+    if (!v->visible || z < v->z_min) v->z_min = z;
+    if (!v->visible || z > v->z_max) v->z_max = z;
     v->count[b]++;
     v->inv_z2[b] += 1.0 / (z * z);
     v->visible++;
@@ -63,8 +65,10 @@ static double expected(const pnpr_view_sample *v, double c)
 
 void pnpr_view_sample_solve(pnpr_view_sample *v, double want)
 {
+    if (!(want > 0)) { v->c = 0; return; } /* nothing (NaN too) */
     if (!((double)v->visible > want)) { v->c = HUGE_VAL; return; }
-    double lo = -400, hi = 400; /* log2 c: the depths' range squared, and more */
+    /* log2 c between the depths squared: shares from 2^-80 at the nearest to 1 at the farthest */
+    double lo = 2.0 * log2(v->z_min) - 80.0, hi = 2.0 * log2(v->z_max) + 1.0;
     for (int it = 0; it < 200; it++) {
         double mid = 0.5 * (lo + hi);
         if (expected(v, exp2(mid)) > want) hi = mid;

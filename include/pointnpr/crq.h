@@ -47,6 +47,7 @@ typedef struct pnpr_view_sample {
     double tan_cone;           /* tangent of the kept cone's half-angle */
     double c;                  /* share = min(1, c / z^2); 0 until solved, HUGE_VAL: every point seen */
     uint64_t visible;          /* points added that are in view */
+    double z_min, z_max;       /* their depths' range (the solve's bounds) */
     uint64_t count[PNPR_VIEW_SAMPLE_BINS];
     double inv_z2[PNPR_VIEW_SAMPLE_BINS]; /* sum of 1/z^2 over the bin's points */
 } pnpr_view_sample;
@@ -58,7 +59,8 @@ PNPR_NODISCARD pnpr_status pnpr_view_sample_init(pnpr_view_sample *v, const doub
 /* The eye depth of p when it is in view, else 0 (also for NaN and Inf). */
 double pnpr_view_sample_depth(const pnpr_view_sample *v, const double p[3]);
 void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3]);
-/* c for an expected count of `want` points (every point in view when fewer were added). */
+/* c for an expected count of `want` points (every point in view when fewer were added; none
+ * when want is not positive). Depths beyond 1e150 are out of view (their squares overflow). */
 void pnpr_view_sample_solve(pnpr_view_sample *v, double want);
 /* The share of p once solved: 0 out of view, else min(1, c / z^2). */
 double pnpr_view_sample_share(const pnpr_view_sample *v, const double p[3]);

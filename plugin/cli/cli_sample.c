@@ -139,11 +139,15 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     uint64_t points = 0;
     const int asked = share > 0 && share < 1;
     view_keep vk = {0};
-    const int by_view = view && pnpr_format_from_path(in) == PNPR_FORMAT_PLY &&
-                        pnpr_view_sample_init(&vk.v, view->eye, view->target, view->fov, view->width, view->height) == PNPR_OK;
+    int by_view = view && pnpr_format_from_path(in) == PNPR_FORMAT_PLY &&
+                  pnpr_view_sample_init(&vk.v, view->eye, view->target, view->fov, view->width, view->height) == PNPR_OK;
+    double fit = 0;
     if (by_view) {
-        double fit = fitting_share(in, mp, limit, keep_view, &vk, &vk.seen, asked, &points);
-        share = asked ? share : fit;
+        fit = fitting_share(in, mp, limit, keep_view, &vk, &vk.seen, asked, &points);
+        if (asked && !points) by_view = 0; /* no pass (not a regular file): the uniform share asked */
+    }
+    if (by_view) {
+        if (!asked) share = fit;
         /* not more than a frame draws: the screen-space budget thins uniformly (the paper's random
          * prefix), which would thin the near surfaces as much as the far ones */
         double want = share * (double)points;
