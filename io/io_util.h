@@ -23,7 +23,7 @@ static inline pnpr_status pnpr_io_no_filter(const pnpr_read_options *opts, pnpr_
 {
     if (!opts || !opts->keep) return PNPR_OK;
     return pnpr_io_fail(err, PNPR_ERR_UNSUPPORTED, 0, -1,
-                        "%s: a point filter (a tile) reads binary PLY only (convert it: pointnpr convert IN OUT.ply)",
+                        "%s: a point filter (a tile) reads binary PLY only (convert it: pointnpr convert IN -o OUT.ply)",
                         what);
 }
 

@@ -1163,7 +1163,7 @@ static pnpr_status filter_vertices(ply_reader *r, const pnpr_read_options *o, ui
     if (h->encoding == PLY_ENC_ASCII || v->has_list || lists)
         return pnpr_io_fail(r->err, PNPR_ERR_UNSUPPORTED, 0, -1,
                             "read ply: a point filter (a tile) needs a binary body whose vertex records have a fixed "
-                            "size and follow no list element (convert it: pointnpr convert IN OUT.ply)");
+                            "size and follow no list element (convert it: pointnpr convert IN -o OUT.ply)");
     const ply_prop *xyz[3] = {NULL, NULL, NULL};
     for (size_t k = 0; k < v->nprops; k++)
         if (v->props[k].role >= ROLE_X && v->props[k].role <= ROLE_Z) xyz[v->props[k].role - ROLE_X] = &v->props[k];

@@ -346,6 +346,35 @@ static size_t frame_points(const cli_render_opts *o)
     return frame >= 1e18 ? (size_t)1e18 : (size_t)frame;
 }
 
+/* The stage plan of the styles this frame draws for `cloud` (the features it lacks, the cartoon's
+ * segments) and the memory plan of what is left to do once it is read (memory.h). */
+static pnpr_status memory_plan(const cli_render_opts *o, const pnpr_cloud *cloud, pnpr_plan *r_plan,
+                               pnpr_memory_plan *r_mp)
+{
+    pnpr_plan_request req = {0};
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
+        if (o->uses[s]) req.styles |= 1u << s;
+    req.sketch_variant = o->dopt.sketch_variant;
+    req.outline = o->dopt.outline;
+    pnpr_status st = pnpr_plan_make(&req, cloud, r_plan);
+    *r_mp = (pnpr_memory_plan){cloud->count, r_plan->want ? pnpr_features_defaults().k : 0,
+                               r_plan->want && !cloud->normal, r_plan->segments == PNPR_PLAN_SEGMENTS_JSEG,
+                               req.styles, o->view.width, o->view.height, frame_points(o)};
+    return st;
+}
+
+/* cli_plan_fn for cli_read_fitting: the stages a sample of the file will run, from its header's
+ * properties (a read that keeps no point). */
+static void sample_plan(const pnpr_cloud *header, void *user, pnpr_memory_plan *mp)
+{
+    pnpr_plan plan;
+    pnpr_memory_plan m;
+    if (memory_plan(user, header, &plan, &m) != PNPR_OK) return;
+    mp->features_k = m.features_k;
+    mp->normals_stored = m.normals_stored;
+    mp->segments = m.segments;
+}
+
 #ifdef PNPR_HAVE_RENDER
 /* Progress of a tiled snapshot: one line per tile (single-frame images print nothing). */
 static int tile_progress(void *user, const char *stage, double fraction)
@@ -361,20 +390,11 @@ static int tile_progress(void *user, const char *stage, double fraction)
 static int run_plan(const char *cmd, const char *in, pnpr_cloud *cloud, pnpr_sphere_tree *tree, const cli_render_opts *o, int quiet,
                     pnpr_progress prog)
 {
-    const pnpr_draw_options *dopt = &o->dopt;
-    pnpr_plan_request req = {0};
-    for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
-        if (o->uses[s]) req.styles |= 1u << s;
-    req.sketch_variant = dopt->sketch_variant;
-    req.outline = dopt->outline;
     pnpr_plan plan;
-    pnpr_status st = pnpr_plan_make(&req, cloud, &plan);
-    if (st == PNPR_OK) { /* what is left to do must fit (memory.h), before any of it */
-        pnpr_memory_plan mp = {cloud->count, plan.want ? pnpr_features_defaults().k : 0,
-                               plan.want && !cloud->normal, plan.segments == PNPR_PLAN_SEGMENTS_JSEG, req.styles,
-                               o->view.width, o->view.height, frame_points(o)};
-        if (!cli_memory_check_plan(cmd, in, o->memory_limit, &mp)) return 0;
-    }
+    pnpr_memory_plan mp;
+    pnpr_status st = memory_plan(o, cloud, &plan, &mp);
+    /* what is left to do must fit (memory.h), before any of it */
+    if (st == PNPR_OK && !cli_memory_check_plan(cmd, in, o->memory_limit, &mp)) return 0;
     if (st == PNPR_OK && plan.want) {
         if (!quiet) fprintf(stderr, "%s: computing %s (pointnpr explain shows the plan; pointnpr features saves them)\n", in,
                             (plan.want & ~(uint32_t)(PNPR_WANT_NORMALS | PNPR_WANT_NORMALS_ANY)) ? "features" : "normals");
@@ -562,8 +582,8 @@ int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char 
         if (o->uses[st]) mp.styles |= 1u << st;
     const cli_view *view = by_view && o->view.have_eye && o->view.have_target ? &o->view : NULL;
     mp.drawn = frame_points(o);
-    if (!cli_read_fitting(cmd, in, &ro, &mp, o->memory_limit, o->sample, view, (double)mp.drawn, o->quiet, &s->cloud,
-                          &s->tone_radius))
+    if (!cli_read_fitting(cmd, in, &ro, &mp, sample_plan, (void *)o, o->memory_limit, o->sample, view, (double)mp.drawn,
+                          o->quiet, &s->cloud, &s->tone_radius))
         return 0;
     return cli_outliers_apply(&o->outliers, cmd, in, &s->cloud, o->quiet, NULL) == 0;
 }
