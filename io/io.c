@@ -107,8 +107,9 @@ static pnpr_status io_check_input(const char *path, pnpr_error *err)
         return pnpr_error_set(err, PNPR_ERR_IO, "%s: %s", path, strerror(errno));
     if (S_ISDIR(sb.st_mode))
         return pnpr_error_set(err, PNPR_ERR_IO,
-                              "%s: %s; a folder of tiles is read as one file once joined (pointnpr convert %s -o ALL.ply: "
-                              "one tile in memory at a time, docs/tiles.md)", path, strerror(EISDIR), path);
+                              "%s: %s; a folder of tiles is read as one file once joined (pointnpr convert %s -o ALL.ply, "
+                              "one tile at a time when they do not fit together: docs/tiles.md)", path, strerror(EISDIR),
+                              path);
     return PNPR_OK;
 }
 

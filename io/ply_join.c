@@ -20,7 +20,6 @@
 #include <pointnpr/io.h>
 #include <pointnpr/output.h>
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,7 +32,6 @@ typedef struct join_sink {
     pnpr_mem_sink head;    /* this input's header while it is collected */
     int in_records;        /* the header is done: records pass through */
     char *first;           /* the first input's header, count "0", no padding (NUL-terminated) */
-    size_t first_len;
     int mismatch;          /* a later header differs from the first's */
     int too_long;
     int no_memory;         /* collecting or comparing a header ran out of memory */
@@ -83,7 +81,6 @@ static int header_done(join_sink *j)
     if (!z) { j->no_memory = 1; return 1; } /* the writer always writes "element vertex N" */
     if (!j->first) {
         j->first = z;
-        j->first_len = strlen(z);
         return put_header(j, 0);
     }
     j->mismatch = strcmp(z, j->first) != 0;
@@ -181,7 +178,7 @@ pnpr_status pnpr_join_ply(const char *const *inputs, size_t count, const char *p
                               "%s: a join writes its vertex count last, into a regular file (not a device, pipe or "
                               "standard output)", path);
     }
-    join_sink j = {&out, {0}, 0, NULL, 0, 0, 0, 0};
+    join_sink j = {&out, {0}, 0, NULL, 0, 0, 0};
     uint64_t points = 0;
     for (size_t i = 0; st == PNPR_OK && i < count; i++) {
         if (pnpr_progress_report(&o.progress, "join", (double)i / (double)count))

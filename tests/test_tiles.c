@@ -387,10 +387,12 @@ static unsigned char *file_bytes(const char *path, size_t *r_size)
     return m.data;
 }
 
+/* Where a PLY's body starts: after "end_header" on a line of its own (a property line may end in
+ * "end_header" too). */
 static size_t header_end(const unsigned char *b, size_t n)
 {
-    for (size_t i = 0; i + 11 <= n; i++)
-        if (!memcmp(b + i, "end_header\n", 11)) return i + 11;
+    for (size_t i = 0; i + 12 <= n; i++)
+        if (!memcmp(b + i, "\nend_header\n", 12)) return i + 12;
     return 0;
 }
 

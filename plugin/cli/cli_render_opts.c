@@ -346,14 +346,22 @@ static size_t frame_points(const cli_render_opts *o)
     return frame >= 1e18 ? (size_t)1e18 : (size_t)frame;
 }
 
+/* The styles of the frame (the pipeline's, or the style and its map) as bits 1u << style. */
+static uint32_t style_bits(const cli_render_opts *o)
+{
+    uint32_t bits = 0;
+    for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
+        if (o->uses[s]) bits |= 1u << s;
+    return bits;
+}
+
 /* The stage plan of the styles this frame draws for `cloud` (the features it lacks, the cartoon's
  * segments) and the memory plan of what is left to do once it is read (memory.h). */
 static pnpr_status memory_plan(const cli_render_opts *o, const pnpr_cloud *cloud, pnpr_plan *r_plan,
                                pnpr_memory_plan *r_mp)
 {
     pnpr_plan_request req = {0};
-    for (int s = 0; s < PNPR_STYLE_COUNT_; s++)
-        if (o->uses[s]) req.styles |= 1u << s;
+    req.styles = style_bits(o);
     req.sketch_variant = o->dopt.sketch_variant;
     req.outline = o->dopt.outline;
     pnpr_status st = pnpr_plan_make(&req, cloud, r_plan);
@@ -577,9 +585,7 @@ int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char 
     pnpr_read_options ro = {0};
     ro.progress = s->prog;
     ro.columns = o->columns;
-    pnpr_memory_plan mp = {0, 0, 0, 0, 0, o->view.width, o->view.height, 0};
-    for (int st = 0; st < PNPR_STYLE_COUNT_; st++)
-        if (o->uses[st]) mp.styles |= 1u << st;
+    pnpr_memory_plan mp = {0, 0, 0, 0, style_bits(o), o->view.width, o->view.height, 0};
     const cli_view *view = by_view && o->view.have_eye && o->view.have_target ? &o->view : NULL;
     mp.drawn = frame_points(o);
     if (!cli_read_fitting(cmd, in, &ro, &mp, sample_plan, (void *)o, o->memory_limit, o->sample, view, (double)mp.drawn,
