@@ -170,6 +170,8 @@ pnpr_status pnpr_join_ply(const char *const *inputs, size_t count, const char *p
     pnpr_status st = check_join(inputs, count, path, &o, err);
     if (st != PNPR_OK) return st;
     if (!count) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "%s: no inputs to join", path);
+    /* the output is none of the inputs (also through links): the rename at the end would replace it */
+    if ((st = pnpr_output_check(path, inputs, count, err)) != PNPR_OK) return st;
     pnpr_output out;
     if ((st = pnpr_output_open(&out, path, err)) != PNPR_OK) return st;
     if (out.mode != PNPR_OUTPUT_REPLACE) {

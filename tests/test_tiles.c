@@ -518,6 +518,14 @@ static void test_join(void)
     pnpr_cloud_free(&back);
     CHECK_STATUS(pnpr_join_ply(inputs, 3, "/dev/null", NULL, NULL, &err), PNPR_ERR_UNSUPPORTED);
     CHECK(strstr(err.message, "regular file") != NULL);
+    /* an input as the output: refused before anything is read, the input as it was */
+    size_t n0 = 0, n1 = 0;
+    unsigned char *b0 = file_bytes(parts[2], &n0);
+    CHECK(pnpr_join_ply(inputs, 3, parts[2], NULL, NULL, &err) != PNPR_OK && strstr(err.message, parts[2]) != NULL);
+    unsigned char *b1 = file_bytes(parts[2], &n1);
+    CHECK(b0 && b1 && n0 == n1 && !memcmp(b0, b1, n0));
+    free(b0);
+    free(b1);
     CHECK_STATUS(pnpr_join_ply(inputs, 0, out, NULL, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(pnpr_join_ply(NULL, 2, out, NULL, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
     free(b);

@@ -127,9 +127,9 @@ PNPR_NODISCARD pnpr_status pnpr_write_ply_stream(pnpr_write_fn fn, void *user, c
  * same properties and types; inputs without points are skipped), and none may have faces; the
  * records are those of the inputs joined in memory and written (pnpr_cloud_append,
  * pnpr_write_file), the header has one padding comment line more (room for the count, written
- * last). The output is a regular file or a new name, written as every output is (output.h); a
- * device, pipe or "-" is refused (PNPR_ERR_UNSUPPORTED), as is an input that does not fit, naming
- * it. r_points (may be NULL): the points written. */
+ * last). The output is a regular file or a new name, none of the inputs (pnpr_output_check),
+ * written as every output is (output.h); a device, pipe or "-" is refused (PNPR_ERR_UNSUPPORTED),
+ * as is an input that does not fit, naming it. r_points (may be NULL): the points written. */
 typedef struct pnpr_join_options {
     pnpr_read_options read;   /* how each input is read (columns of text inputs); no keep or origin */
     pnpr_write_options write; /* encoding, comment, force_double (format: PLY) */
