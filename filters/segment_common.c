@@ -4,6 +4,7 @@
  *
  * Everything works on arbitrary uint32 labels by sorting (no assumption on the label range), so
  * O(n log n) time and 8 bytes per point of scratch. */
+#include <pointnpr/props.h>
 #include <pointnpr/segment.h>
 
 #include <math.h>
@@ -149,6 +150,23 @@ pnpr_status pnpr_segment_mean_colors(const uint8_t *rgb, const uint32_t *labels,
         if (r_sizes) r_sizes[l] = (uint32_t)s[3];
     }
     free(sum);
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_segment_add_colors(pnpr_cloud *cloud, const float *mean_rgb, uint32_t segment_count)
+{
+    if (!cloud || (cloud->count && (!cloud->label || (segment_count && !mean_rgb)))) return PNPR_ERR_INVALID_ARGUMENT;
+    static const char *const names[3] = {PNPR_PROP_SEG_RED, PNPR_PROP_SEG_GREEN, PNPR_PROP_SEG_BLUE};
+    for (int c = 0; c < 3; c++) {
+        pnpr_property *p = NULL;
+        pnpr_status st = pnpr_cloud_add_property(cloud, names[c], PNPR_TYPE_UINT8, &p);
+        if (st != PNPR_OK) return st;
+        uint8_t *d = p->data;
+        for (size_t i = 0; i < cloud->count; i++) {
+            uint32_t l = cloud->label[i];
+            d[i] = l < segment_count ? (uint8_t)(mean_rgb[3 * (size_t)l + c] + 0.5f) : 0;
+        }
+    }
     return PNPR_OK;
 }
 

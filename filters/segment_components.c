@@ -20,26 +20,42 @@
 #include <string.h>
 #include "../core/vec3.h"
 
-#define NN_SAMPLE 10000
-
+/* The distance from p to its nearest distinct point among its 8 nearest (the tree's points,
+ * itself included); 0 when all 8 coincide with it. One rule for the cloud in memory and in
+ * tiles (segment_tiles.c). */
+float pnpr_segment_nn_distinct(const pnpr_kdtree *tree, const float p[3], float *r_eighth)
+{
+    uint32_t idx[8];
+    float dist2[8];
+    size_t n = pnpr_kdtree_knn(tree, p, 8, idx, dist2);
+    if (r_eighth) *r_eighth = n == 8 ? sqrtf(dist2[7]) : INFINITY;
+    for (size_t r = 0; r < n; r++)
+        if (dist2[r] > 0) return sqrtf(dist2[r]);
+    return 0;
+}
 
 float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, size_t count)
 {
-    size_t step = count / NN_SAMPLE + 1, m = 0;
+    size_t step = count / PNPR_SEGMENT_SPACING_SAMPLE + 1, m = 0;
     float *d = malloc((count / step + 1) * sizeof *d);
     if (!d) return 0;
     for (size_t i = 0; i < count; i += step) {
         if (!pnpr_finite3f(xyz + 3 * i)) continue;
-        uint32_t idx[8];
-        float dist2[8];
-        size_t n = pnpr_kdtree_knn(tree, xyz + 3 * i, 8, idx, dist2);
-        for (size_t r = 0; r < n; r++)
-            if (dist2[r] > 0) { d[m++] = sqrtf(dist2[r]); break; }
+        float nn = pnpr_segment_nn_distinct(tree, xyz + 3 * i, NULL);
+        if (nn > 0) d[m++] = nn;
     }
     float med = 0;
     if (m) med = pnpr_median_float(d, m);
     free(d);
     return med;
+}
+
+float pnpr_components_distance(const pnpr_components_options *opts, float median_spacing)
+{
+    if (opts && opts->distance > 0) return opts->distance;
+    size_t n;
+    const pnpr_option_desc *table = pnpr_components_option_table(&n);
+    return (float)pnpr_option_find(table, n, "radius")->auto_scale * median_spacing;
 }
 
 pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_components_options *opts,
@@ -56,11 +72,7 @@ pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_c
     float *kept_xyz = NULL;
     pnpr_status st = pnpr_kdtree_build_threads(xyz, count, 0, o.threads, &tree);
     if (st != PNPR_OK) return st;
-    size_t table_count;
-    const pnpr_option_desc *table = pnpr_components_option_table(&table_count);
-    float dist = o.distance > 0 ? o.distance
-                                : (float)pnpr_option_find(table, table_count, "radius")->auto_scale *
-                                      pnpr_segment_median_spacing(tree, xyz, count);
+    float dist = pnpr_components_distance(&o, o.distance > 0 ? 0 : pnpr_segment_median_spacing(tree, xyz, count));
     size = calloc(count, sizeof *size);
     if (!size) { st = PNPR_ERR_OUT_OF_MEMORY; goto done; }
     if ((st = pnpr_kdtree_components(tree, count, dist, &o.progress, r_labels)) != PNPR_OK) goto done;

@@ -11,6 +11,7 @@
 #include <pointnpr/tiles.h>
 
 #include "../core/internal.h"
+#include "tile_merge.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -55,6 +56,9 @@ typedef struct merge_run {
     double top_z;        /* the highest core point so far, and its source index */
     uint32_t top;
     int have_top;
+    pnpr_tile_merge_hook hook; /* called on every tile as read, or NULL */
+    void *hook_user;
+    size_t tile;               /* the tile being merged */
 } merge_run;
 
 static size_t ply_type_size(const char *t, size_t n)
@@ -208,11 +212,13 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
     if (st == PNPR_OK) {
         memcpy(idx, si->data, c.count * sizeof *idx);
         for (size_t i = 0; i < c.count; i++) core[i] = !tc || ((const uint8_t *)tc->data)[i] != 0;
+        if (r->hook) st = r->hook(r->hook_user, r->tile, &c, idx, core, err);
         orient_tile(r, &c, idx, core);
         size_t n = 0;
         for (size_t i = 0; i < c.count; i++)
             if (core[i]) idx[n++] = idx[i];
-        if (tc && (st = pnpr_cloud_keep(&c, core, NULL)) == PNPR_OK) st = pnpr_cloud_remove_property(&c, PNPR_PROP_TILE_CORE);
+        if (st == PNPR_OK && tc && (st = pnpr_cloud_keep(&c, core, NULL)) == PNPR_OK)
+            st = pnpr_cloud_remove_property(&c, PNPR_PROP_TILE_CORE);
     }
     for (size_t i = 0; i < c.count && st == PNPR_OK; i++) {
         if (idx[i] >= r->points || (r->seen[idx[i] >> 3] >> (idx[i] & 7) & 1)) {
@@ -253,6 +259,12 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
 pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t points, int seams, const char *out,
                             const pnpr_progress *progress, pnpr_error *err)
 {
+    return pnpr_tile_merge_with(paths, count, points, seams, out, progress, NULL, NULL, err);
+}
+
+pnpr_status pnpr_tile_merge_with(const char *const *paths, size_t count, uint64_t points, int seams, const char *out,
+                                 const pnpr_progress *progress, pnpr_tile_merge_hook hook, void *user, pnpr_error *err)
+{
     pnpr_error local = {0};
     if (!err) err = &local;
     err->message[0] = '\0';
@@ -264,9 +276,12 @@ pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t poi
     r.points = points;
     r.seams = seams;
     r.nx_off = -1;
+    r.hook = hook;
+    r.hook_user = user;
     if (!(r.seen = calloc((size_t)points / 8 + 1, 1))) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: merge: out of memory", out);
     pnpr_status st = pnpr_output_open(&r.o, out, err);
     for (size_t t = 0; st == PNPR_OK && t < count; t++) {
+        r.tile = t;
         st = merge_tile(&r, paths[t], err);
         if (st == PNPR_OK && pnpr_progress_report(progress, "merge", (double)(t + 1) / (double)count))
             st = pnpr_error_set(err, PNPR_ERR_CANCELLED, "%s: merge cancelled", out);

@@ -42,6 +42,9 @@
 
 #define PNPR_PROP_SEGMENT "segment"
 #define PNPR_PROP_LABEL "label"
+#define PNPR_PROP_SEG_RED "seg_red"     /* a segment's mean colour (pnpr_segment_add_colors) */
+#define PNPR_PROP_SEG_GREEN "seg_green"
+#define PNPR_PROP_SEG_BLUE "seg_blue"
 
 #define PNPR_PROP_INTENSITY "intensity"
 #define PNPR_PROP_CLASSIFICATION "classification"

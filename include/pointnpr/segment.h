@@ -181,10 +181,21 @@ typedef struct pnpr_components_options {
 PNPR_NODISCARD pnpr_status pnpr_segment_components(const float *xyz, size_t count, const pnpr_components_options *opts,
                                     uint32_t *r_labels, pnpr_segment_info *r_info);
 
-/* Median distance from a point to its nearest distinct neighbour, over a stride sample of at most
- * 10000 of the tree's points (xyz/count: the array the tree was built from); 0 when all points
- * coincide. The default distances of components and rgbgrow are a multiple of this (options.h). */
+/* Median distance from a point to its nearest distinct neighbour, over a stride sample of the
+ * tree's points (every (count / PNPR_SEGMENT_SPACING_SAMPLE + 1)-th of the array xyz/count the tree
+ * was built from, from the first; points whose 8 nearest all coincide with them count no
+ * distance); 0 when all points coincide. The default distances of components and rgbgrow are a
+ * multiple of this (options.h). pnpr_tile_components_distance (tiles.h) gives the same value for
+ * a file larger than memory. */
+#define PNPR_SEGMENT_SPACING_SAMPLE 10000
 float pnpr_segment_median_spacing(const pnpr_kdtree *tree, const float *xyz, size_t count);
+/* One point's term of that median: the distance from p to the nearest of its 8 nearest points that
+ * does not coincide with it (0: all 8 coincide); *r_eighth (may be NULL) gets the 8th's distance
+ * (INFINITY when the tree has fewer than 8 points). */
+float pnpr_segment_nn_distinct(const pnpr_kdtree *tree, const float p[3], float *r_eighth);
+/* The distance components connect at: opts->distance when > 0, else the options table's multiple
+ * of median_spacing (pnpr_segment_median_spacing). */
+float pnpr_components_distance(const pnpr_components_options *opts, float median_spacing);
 
 /* ---- colour region growing (Zhan et al.) -------------------------------------------------- */
 
@@ -229,6 +240,13 @@ PNPR_NODISCARD pnpr_status pnpr_segment_compact(uint32_t *io_labels, size_t coun
  * NULL. */
 PNPR_NODISCARD pnpr_status pnpr_segment_mean_colors(const uint8_t *rgb, const uint32_t *labels, size_t count,
                                      uint32_t segment_count, float *r_rgb, uint32_t *r_sizes);
+
+/* The segments' mean colours as properties of the cloud: seg_red, seg_green, seg_blue (uchar;
+ * PNPR_PROP_SEG_RED..., an existing one is replaced in place), each point's the mean of its label
+ * (cloud->label, required; mean_rgb: 3 floats per segment as pnpr_segment_mean_colors gives them)
+ * rounded to the nearest byte; labels >= segment_count get 0. What `pointnpr segment` writes, in
+ * memory and in tiles. */
+PNPR_NODISCARD pnpr_status pnpr_segment_add_colors(pnpr_cloud *cloud, const float *mean_rgb, uint32_t segment_count);
 
 /* sRGB (8 bit, D65) to CIE L*a*b*. */
 void pnpr_rgb_to_lab(const uint8_t rgb[3], float r_lab[3]);

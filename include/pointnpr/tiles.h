@@ -113,6 +113,36 @@ PNPR_NODISCARD pnpr_status pnpr_tile_certify(const pnpr_cloud *cloud, const uint
 PNPR_NODISCARD pnpr_status pnpr_tile_merge(const char *const *paths, size_t count, uint64_t points, int seams,
                                            const char *out, const pnpr_progress *progress, pnpr_error *err);
 
+/* ---- connected components in tiles (filters/segment_tiles.c) ------------------------------
+ * `pointnpr segment --method components` on a file larger than memory: each tile's job runs
+ * pnpr_segment_components at one distance on its core and a halo of pnpr_tile_components_halo,
+ * keeps both (PNPR_PROP_TILE_CORE) with its own labels, and pnpr_tile_merge_segments joins the
+ * tiles' components over the points several tiles read. Labels, their numbering and the mean
+ * colours equal a run in memory (docs/tiles.md). Components smaller than a minimum size are not
+ * joined to others in tiles (their nearest kept point may lie anywhere). */
+struct pnpr_components_options;
+
+/* The distance the components connect at: opts->distance when > 0, else as
+ * pnpr_segment_components takes it (a multiple of pnpr_segment_median_spacing over the whole
+ * file), found with passes that read the sample and the points near it only (REACH, in the .c).
+ * Errors name the file; when the sample's points are too crowded to read their neighbourhoods
+ * (more than 64M points), PNPR_ERR_OUT_OF_MEMORY says to give the distance. */
+PNPR_NODISCARD pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan *plan,
+                                                         const struct pnpr_components_options *opts,
+                                                         float *r_distance, pnpr_error *err);
+/* The halo that holds every point within `distance` of a tile's core, with a margin for the
+ * rounding of the float offsets. */
+double pnpr_tile_components_halo(const pnpr_tile_grid *grid, float distance);
+/* Writes the tiles' results (clouds with PNPR_PROP_SOURCE_INDEX, PNPR_PROP_TILE_CORE and labels,
+ * all with the same properties) as one binary PLY at out, in input order, each point's label the
+ * whole cloud's component (numbered by first appearance; points with a non-finite coordinate the
+ * last) and, when the tiles have colours, the components' mean colours (pnpr_segment_add_colors).
+ * Reads each tile three times; holds one tile, 4 bytes per point of the file and 44 bytes per
+ * component of a tile. Every index must be a core point exactly once. */
+PNPR_NODISCARD pnpr_status pnpr_tile_merge_segments(const char *const *paths, size_t count, uint64_t points,
+                                                    const char *out, const pnpr_progress *progress,
+                                                    uint32_t *r_segment_count, pnpr_error *err);
+
 #ifdef __cplusplus
 }
 #endif

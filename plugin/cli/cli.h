@@ -164,7 +164,7 @@ typedef struct cli_tile_args {
     double cells[4];     /* --tile X0,Y0,X1,Y1 */
 } cli_tile_args;
 int cli_tile_option(cli_tile_args *t, const char *cmd, int argc, char **argv, int *i);
-void cli_tile_usage(FILE *f);
+void cli_tile_usage(FILE *f, int halo); /* halo: with --halo (features; segment derives it) */
 int cli_tile_wanted(const cli_tile_args *t); /* any of them given */
 struct pnpr_features_options;
 typedef struct cli_features_run {
@@ -177,5 +177,32 @@ typedef struct cli_features_run {
 /* One tile's job (--tile-grid), or the plan and then every tile in turn and the merge, or the plan
  * and its manifest (--manifest; argv: the command's, repeated in every job). Returns the exit code. */
 int cli_features_tiles(const cli_features_run *r, const cli_tile_args *a, size_t memory_limit, int argc, char **argv);
+
+/* What a tiled run of a command needs besides the plan (cmd_tiles.c; features and segment). */
+struct pnpr_tile_grid;
+struct pnpr_tile;
+struct pnpr_tile_plan;
+typedef struct cli_tile_cmd {
+    const char *cmd, *in, *out;
+    int quiet;
+    pnpr_progress prog;       /* the plan's and the merge's */
+    const char *job_extra;    /* written into every job after the command's options ("" for none) */
+    const char *merge_flag;   /* merge-tiles' option for this command, or NULL */
+    int certifies;            /* the jobs count points not certain to equal a run in memory */
+    /* one tile into out (its halo given); adds its uncertain points; returns an exit code */
+    int (*job)(const void *ctx, const char *out, const struct pnpr_tile_grid *g, const struct pnpr_tile *t,
+               double halo, size_t *r_uncertain);
+    pnpr_status (*merge)(const void *ctx, const char *const *paths, size_t n, uint64_t points, const char *out,
+                         const pnpr_progress *prog, pnpr_error *err);
+    const void *ctx;
+} cli_tile_cmd;
+/* The grid and tile of one job from --tile-grid/--tile; 0 after saying why. */
+int cli_tile_job_args(const char *cmd, const cli_tile_args *a, struct pnpr_tile_grid *g, struct pnpr_tile *t);
+/* The plan (tiles sized for k neighbours under the memory limit when --tiles); an exit code. */
+int cli_tile_plan(const cli_tile_cmd *c, const cli_tile_args *a, size_t memory_limit, uint32_t k,
+                  struct pnpr_tile_plan *r_plan);
+/* Every tile and the merge, or the manifest (--manifest); an exit code. */
+int cli_tile_execute(const cli_tile_cmd *c, const cli_tile_args *a, const struct pnpr_tile_plan *plan, int argc,
+                     char **argv);
 
 #endif

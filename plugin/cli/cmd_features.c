@@ -67,7 +67,7 @@ static void usage(FILE *f)
     cli_memory_usage(f);
     cli_columns_usage(f);
     fprintf(f, "tiles (clouds larger than memory; binary PLY input; docs/tiles.md):\n");
-    cli_tile_usage(f);
+    cli_tile_usage(f, 1);
 }
 
 /* --weights G,C: two values in the weight entries' range, not both 0. 0 after saying why. */

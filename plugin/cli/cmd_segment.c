@@ -4,9 +4,12 @@
 #include "cli_opts.h"
 
 #include <pointnpr/options.h>
+#include <pointnpr/props.h>
 #include <pointnpr/segment.h>
+#include <pointnpr/tiles.h>
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -139,6 +142,120 @@ static void usage(FILE *f)
     cli_opts_usage(f, cli_common_opts + 1, 1); /* --quiet */
     cli_outlier_usage(f);
     cli_columns_usage(f);
+    cli_memory_usage(f);
+    fprintf(f, "tiles (clouds larger than memory; --method components only; binary PLY input; the halo is the\n"
+               "  distance; the result equals a run in memory; docs/tiles.md):\n");
+    cli_tile_usage(f, 0);
+}
+
+/* ---- components in tiles (tiles.h) ---------------------------------------------------------- */
+
+typedef struct segment_tile_run {
+    const char *in;
+    float distance; /* > 0 (FLT_MIN for 0: its square is 0 as well) */
+    int threads, quiet;
+} segment_tile_run;
+
+/* One tile: read with its halo, its own components, written with the halo marked. */
+static int segment_tile_job(const void *ctx, const char *out, const pnpr_tile_grid *g, const pnpr_tile *t, double halo,
+                            size_t *r_uncertain)
+{
+    const segment_tile_run *r = ctx;
+    (void)r_uncertain; /* every component is exact: nothing uncertain */
+    double need = pnpr_tile_components_halo(g, r->distance);
+    if (!(halo >= need)) {
+        fprintf(stderr, "pointnpr segment: --halo %.9g: the components' distance %.9g needs a halo of %.9g\n", halo,
+                (double)r->distance, need);
+        return 2;
+    }
+    pnpr_cloud c = {0};
+    uint8_t *core = NULL;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_tile_read(r->in, g, t, halo, NULL, &c, &core, &err);
+    if (st != PNPR_OK) { cli_report_error("segment", st, &err); return 1; }
+    pnpr_components_options o = {0};
+    o.distance = r->distance;
+    o.min_size = 1;
+    o.threads = r->threads;
+    pnpr_segment_info info;
+    pnpr_property *p = NULL;
+    st = pnpr_cloud_alloc_labels(&c);
+    if (st == PNPR_OK) st = pnpr_segment_components(c.xyz, c.count, &o, c.label, &info);
+    if (st == PNPR_OK) st = pnpr_cloud_add_property(&c, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, &p);
+    if (st == PNPR_OK && c.count) memcpy(p->data, core, c.count);
+    size_t halo_points = 0;
+    for (size_t i = 0; i < c.count; i++) halo_points += !core[i];
+    free(core);
+    if (st == PNPR_OK) {
+        char comment[256];
+        snprintf(comment, sizeof comment, "pointnpr segment method=components distance=%.9g tile %u,%u,%u,%u",
+                 (double)r->distance, t->lo[0], t->lo[1], t->hi[0], t->hi[1]);
+        pnpr_write_options wo = {0}; /* binary PLY: the merge places its records */
+        wo.format = PNPR_FORMAT_PLY;
+        wo.comment = comment;
+        st = pnpr_write_file(out, &c, &wo, &err);
+    } else {
+        pnpr_error_set(&err, st, "%s: tile: %s", r->in, pnpr_status_string(st));
+    }
+    if (st == PNPR_OK && !r->quiet)
+        fprintf(stderr, "tile %u,%u..%u,%u: %zu points and %zu in the halo, %u components of its own\n", t->lo[0], t->lo[1],
+                t->hi[0], t->hi[1], c.count - halo_points, halo_points, info.segment_count);
+    pnpr_cloud_free(&c);
+    if (st != PNPR_OK) { cli_report_error("segment", st, &err); return 1; }
+    return 0;
+}
+
+static pnpr_status segment_merge(const void *ctx, const char *const *paths, size_t n, uint64_t points, const char *out,
+                                 const pnpr_progress *prog, pnpr_error *err)
+{
+    const segment_tile_run *r = ctx;
+    uint32_t S = 0;
+    pnpr_status st = pnpr_tile_merge_segments(paths, n, points, out, prog, &S, err);
+    if (st == PNPR_OK && !r->quiet) fprintf(stderr, "%u segments\n", S);
+    return st;
+}
+
+/* --method components in tiles: a job (--tile-grid), or the plan, the distance and the run or
+ * the manifest. */
+static int segment_tiles(segment_tile_run *r, const char *out, const cli_tile_args *a, size_t memory_limit,
+                         pnpr_progress prog, int argc, char **argv)
+{
+    if (a->grid[4] > 0) {
+        pnpr_tile_grid g;
+        pnpr_tile t;
+        size_t none = 0;
+        if (!(r->distance > 0)) {
+            fprintf(stderr, "pointnpr segment: a tile's job needs --radius (the manifest writes it)\n");
+            return 2;
+        }
+        return cli_tile_job_args("segment", a, &g, &t) ? segment_tile_job(r, out, &g, &t, a->halo, &none) : 2;
+    }
+    char extra[64] = "";
+    cli_tile_cmd c = {"segment", r->in, out, r->quiet, prog, extra, "--segments", 0, segment_tile_job, segment_merge, r};
+    pnpr_tile_plan plan;
+    int rc = cli_tile_plan(&c, a, memory_limit, 0, &plan);
+    if (rc) return rc;
+    pnpr_components_options o = {0};
+    o.distance = r->distance;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_tile_components_distance(r->in, &plan, &o, &r->distance, &err);
+    if (st != PNPR_OK) { cli_report_error("segment", st, &err); pnpr_tile_plan_free(&plan); return 1; }
+    if (!(o.distance > 0)) {
+        if (!r->quiet) fprintf(stderr, "components: distance %.9g (the automatic one of the whole file)\n", (double)r->distance);
+        if (!(r->distance > 0)) r->distance = FLT_MIN;
+        snprintf(extra, sizeof extra, "--radius %.9g", (double)r->distance);
+    }
+    double need = pnpr_tile_components_halo(&plan.grid, r->distance);
+    if (a->halo > 0 && a->halo < need) {
+        fprintf(stderr, "pointnpr segment: --halo %.9g: the components' distance %.9g needs a halo of %.9g\n", a->halo,
+                (double)r->distance, need);
+        pnpr_tile_plan_free(&plan);
+        return 2;
+    }
+    plan.halo = a->halo > 0 ? a->halo : need;
+    rc = cli_tile_execute(&c, a, &plan, argc, argv);
+    pnpr_tile_plan_free(&plan);
+    return rc;
 }
 
 int cli_segment(int argc, char **argv)
@@ -154,8 +271,13 @@ int cli_segment(int argc, char **argv)
     pnpr_write_options wo = {0};
     cli_outliers outliers = {0, 0};
     const char *columns = NULL;
+    size_t memory_limit = 0;
+    cli_tile_args tiles;
+    memset(&tiles, 0, sizeof tiles);
     for (int i = 1; i < argc; i++) {
         int oo = cli_outlier_option(&outliers, "segment", argc, argv, &i);
+        if (oo == 0) oo = cli_memory_option(&memory_limit, "segment", argc, argv, &i);
+        if (oo == 0) oo = cli_tile_option(&tiles, "segment", argc, argv, &i);
         if (oo == 0) oo = cli_columns_option(&columns, "segment", argc, argv, &i);
         if (oo == 0) oo = cli_table_option(split_table, nsplit, split_names, &split, "segment", argc, argv, &i);
         if (oo == 0) oo = method_option_arg(values, argc, argv, &i);
@@ -181,8 +303,28 @@ int cli_segment(int argc, char **argv)
     ro.columns = columns;
     ro.progress = prog;
     wo.progress = prog;
+    if (cli_tile_wanted(&tiles)) {
+        const char *why = strcmp(method, "components") ? "--method jseg, rgbgrow and labels need the whole cloud (regions "
+                                                          "grow and merge in one order over it): use --method components"
+                          : segments > 0 || threshold > 0 ? "the region hierarchy (--segments, --threshold) merges "
+                                                             "across the whole cloud"
+                          : values[1] > 1 ? "--min-size joins a small component to its nearest kept one, which may "
+                                            "lie anywhere"
+                          : split.max_variation > 0 ? "--split needs each segment whole"
+                          : outliers.drop || columns ? "tiles read binary PLY as it is: --drop-outliers and --columns "
+                                                       "do not apply"
+                          : A.ascii || wo.format != PNPR_FORMAT_PLY ? "a tiled run writes binary PLY: OUT must end in "
+                                                                     ".ply, without --ascii"
+                          : NULL;
+        if (why) { fprintf(stderr, "pointnpr segment: in tiles: %s (docs/tiles.md)\n", why); return 2; }
+        pnpr_components_options o = {0};
+        if (!apply_options(method, values, &o)) return 2;
+        segment_tile_run run = {in, o.distance, (int)threads, quiet};
+        return segment_tiles(&run, out, &tiles, memory_limit, prog, argc, argv);
+    }
     pnpr_cloud cloud = {0};
     pnpr_error err = {0};
+    if (!cli_memory_check_file("segment", in, memory_limit)) return 1;
     pnpr_status st = pnpr_read_file(in, &ro, &cloud, &err);
     if (st != PNPR_OK) { cli_report_error("segment", st, &err); return 1; }
     if (cli_outliers_apply(&outliers, "segment", in, &cloud, quiet, NULL)) { pnpr_cloud_free(&cloud); return 1; }
@@ -273,13 +415,7 @@ int cli_segment(int argc, char **argv)
         mean = malloc(3 * (size_t)(S ? S : 1) * sizeof *mean);
         if (!mean) { st = PNPR_ERR_OUT_OF_MEMORY; goto fail; }
         if ((st = pnpr_segment_mean_colors(cloud.rgb, labels, cloud.count, S, mean, NULL)) != PNPR_OK) goto fail;
-        static const char *names[3] = {"seg_red", "seg_green", "seg_blue"};
-        for (int c = 0; c < 3; c++) {
-            pnpr_property *p = NULL;
-            if ((st = pnpr_cloud_add_property(&cloud, names[c], PNPR_TYPE_UINT8, &p)) != PNPR_OK) goto fail;
-            uint8_t *d = p->data;
-            for (size_t i = 0; i < cloud.count; i++) d[i] = (uint8_t)(mean[3 * (size_t)labels[i] + c] + 0.5f);
-        }
+        if ((st = pnpr_segment_add_colors(&cloud, mean, S)) != PNPR_OK) goto fail;
     }
     char comment[256];
     snprintf(comment, sizeof comment, "pointnpr segment method=%s segments=%u", method, S);

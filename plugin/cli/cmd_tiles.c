@@ -41,9 +41,11 @@ int cli_tile_option(cli_tile_args *t, const char *cmd, int argc, char **argv, in
     return cli_opts_parse(tile_opts, CLI_COUNT(tile_opts), t, cmd, argc, argv, i);
 }
 
-void cli_tile_usage(FILE *f)
+void cli_tile_usage(FILE *f, int halo)
 {
-    cli_opts_usage(f, tile_opts, CLI_COUNT(tile_opts));
+    cli_opts_usage(f, tile_opts, 2); /* --tile-points, --tiles */
+    if (halo) cli_opts_usage(f, tile_opts + 2, 1);
+    cli_opts_usage(f, tile_opts + 3, CLI_COUNT(tile_opts) - 3);
 }
 
 int cli_tile_wanted(const cli_tile_args *t)
@@ -52,7 +54,7 @@ int cli_tile_wanted(const cli_tile_args *t)
 }
 
 /* The job's grid and tile from --tile-grid and --tile; 0 after saying why. */
-static int job_tile(const cli_tile_args *a, pnpr_tile_grid *g, pnpr_tile *t)
+int cli_tile_job_args(const char *cmd, const cli_tile_args *a, pnpr_tile_grid *g, pnpr_tile *t)
 {
     memset(g, 0, sizeof *g);
     memset(t, 0, sizeof *t);
@@ -72,8 +74,8 @@ static int job_tile(const cli_tile_args *a, pnpr_tile_grid *g, pnpr_tile *t)
     }
     pnpr_error err = {0};
     if (whole && pnpr_tile_check(g, t, a->halo, &err) == PNPR_OK) return 1;
-    fprintf(stderr, "pointnpr features: --tile-grid and --tile do not describe a tile of a plan (%s); --manifest writes "
-                    "them\n", whole ? err.message : "cell counts and cells are whole numbers within the grid");
+    fprintf(stderr, "pointnpr %s: --tile-grid and --tile do not describe a tile of a plan (%s); --manifest writes "
+                    "them\n", cmd, whole ? err.message : "cell counts and cells are whole numbers within the grid");
     return 0;
 }
 
@@ -89,9 +91,10 @@ static pnpr_status keep_for_merge(pnpr_cloud *c, const uint8_t *core, int halo)
 }
 
 /* One tile: read with its halo, features, certification, the core written. */
-static int tile_job(const cli_features_run *r, const char *out, const pnpr_tile_grid *g, const pnpr_tile *t,
-                    double halo, size_t *r_uncertain)
+static int tile_job(const void *ctx, const char *out, const pnpr_tile_grid *g, const pnpr_tile *t, double halo,
+                    size_t *r_uncertain)
 {
+    const cli_features_run *r = ctx;
     pnpr_cloud c = {0};
     uint8_t *core = NULL;
     pnpr_error err = {0};
@@ -171,7 +174,7 @@ static void job_options(FILE *f, int argc, char **argv, const char *in)
 }
 
 typedef struct manifest_ctx {
-    const cli_features_run *r;
+    const cli_tile_cmd *c;
     const pnpr_tile_plan *plan;
     const char *dir;
     int argc;
@@ -184,10 +187,11 @@ static int write_manifest(FILE *f, const void *user)
     const manifest_ctx *m = user;
     const pnpr_tile_grid *g = &m->plan->grid;
     char path[PNPR_OUTPUT_PATH_MAX];
-    if (m->merge)
-        fprintf(f, "pointnpr merge-tiles --points %llu%s -o ", (unsigned long long)m->plan->points,
-                m->r->fo->has_viewpoint ? "" : " --seams");
-    if (m->merge) shell_word_at(f, m->r->out, 1);
+    if (m->merge) {
+        fprintf(f, "pointnpr merge-tiles --points %llu%s%s -o ", (unsigned long long)m->plan->points,
+                m->c->merge_flag ? " " : "", m->c->merge_flag ? m->c->merge_flag : "");
+        shell_word_at(f, m->c->out, 1);
+    }
     for (size_t t = 0; t < m->plan->count; t++) {
         const pnpr_tile *tl = &m->plan->tiles[t];
         snprintf(path, sizeof path, "%s/tile_%05zu.ply", m->dir, t);
@@ -196,9 +200,10 @@ static int write_manifest(FILE *f, const void *user)
             shell_word_at(f, path, 1);
             continue;
         }
-        fputs("pointnpr features ", f);
-        shell_word_at(f, m->r->in, 1);
-        job_options(f, m->argc, m->argv, m->r->in);
+        fprintf(f, "pointnpr %s ", m->c->cmd);
+        shell_word_at(f, m->c->in, 1);
+        job_options(f, m->argc, m->argv, m->c->in);
+        if (m->c->job_extra[0]) fprintf(f, " %s", m->c->job_extra);
         fprintf(f, " --tile-grid %.17g,%.17g,%.17g,%.17g,%u,%u,%.17g,%.17g,%.17g --tile %u,%u,%u,%u --halo %.17g -o ",
                 g->min[0], g->min[1], g->cell[0], g->cell[1], g->cells[0], g->cells[1], g->origin[0], g->origin[1],
                 g->origin[2], tl->lo[0], tl->lo[1], tl->hi[0], tl->hi[1], m->plan->halo);
@@ -209,78 +214,119 @@ static int write_manifest(FILE *f, const void *user)
     return ferror(f);
 }
 
-static int manifest(const cli_features_run *r, const pnpr_tile_plan *plan, const char *dir, int argc, char **argv)
+static int manifest(const cli_tile_cmd *c, const pnpr_tile_plan *plan, const char *dir, int argc, char **argv)
 {
     char jobs[PNPR_OUTPUT_PATH_MAX], merge[PNPR_OUTPUT_PATH_MAX];
     if (strlen(dir) > PNPR_OUTPUT_PATH_MAX - 32) {
-        fprintf(stderr, "pointnpr features: --manifest %.40s...: the name is too long\n", dir);
+        fprintf(stderr, "pointnpr %s: --manifest %.40s...: the name is too long\n", c->cmd, dir);
         return 2;
     }
     if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "pointnpr features: %s: cannot make the folder: %s\n", dir, strerror(errno));
+        fprintf(stderr, "pointnpr %s: %s: cannot make the folder: %s\n", c->cmd, dir, strerror(errno));
         return 1;
     }
     snprintf(jobs, sizeof jobs, "%s/jobs.txt", dir);
     snprintf(merge, sizeof merge, "%s/merge.txt", dir);
-    manifest_ctx m = {r, plan, dir, argc, argv, 0};
+    manifest_ctx m = {c, plan, dir, argc, argv, 0};
     pnpr_error err = {0};
     pnpr_status st = pnpr_output_write(jobs, write_manifest, &m, &err);
     m.merge = 1;
     if (st == PNPR_OK) st = pnpr_output_write(merge, write_manifest, &m, &err);
-    if (st != PNPR_OK) { cli_report_error("features", st, &err); return 1; }
-    if (!r->quiet)
+    if (st != PNPR_OK) { cli_report_error(c->cmd, st, &err); return 1; }
+    if (!c->quiet)
         fprintf(stderr, "wrote %s (%zu independent jobs: e.g. parallel < %s) and %s (run it when they are done)\n", jobs,
                 plan->count, jobs, merge);
     return 0;
 }
 
 /* The run's work folder beside OUT: ".NAME.tiles.XXXXXX" (mkdtemp); 0 after saying why. */
-static int work_folder(const char *out, char *dir, size_t cap)
+static int work_folder(const char *cmd, const char *out, char *dir, size_t cap)
 {
     const char *slash = strrchr(out, '/');
     int dlen = slash ? (int)(slash - out) + 1 : 0;
     int n = snprintf(dir, cap, "%.*s.%.100s.tiles.XXXXXX", dlen, out, slash ? slash + 1 : out);
     if (n > 0 && (size_t)n < cap && mkdtemp(dir)) return 1;
-    fprintf(stderr, "pointnpr features: cannot make a folder for the tiles beside %s: %s\n", out, strerror(errno));
+    fprintf(stderr, "pointnpr %s: cannot make a folder for the tiles beside %s: %s\n", cmd, out, strerror(errno));
     return 0;
 }
 
 /* Every tile in turn into the work folder, then the merge; the folder is removed either way. */
-static int run_tiles(const cli_features_run *r, const pnpr_tile_plan *plan)
+static int run_tiles(const cli_tile_cmd *c, const pnpr_tile_plan *plan)
 {
     char dir[PNPR_OUTPUT_PATH_MAX - 32]; /* room for "/tile_NNNNN.ply" */
-    if (!work_folder(r->out, dir, sizeof dir)) return 1;
-    if (!r->quiet) fprintf(stderr, "the tiles go to %s until they are merged\n", dir);
+    if (!work_folder(c->cmd, c->out, dir, sizeof dir)) return 1;
+    if (!c->quiet) fprintf(stderr, "the tiles go to %s until they are merged\n", dir);
     char (*paths)[PNPR_OUTPUT_PATH_MAX] = calloc(plan->count ? plan->count : 1, sizeof *paths);
     const char **list = calloc(plan->count ? plan->count : 1, sizeof *list);
     int rc = paths && list ? 0 : 1;
-    if (rc) fprintf(stderr, "pointnpr features: out of memory for %zu tiles\n", plan->count);
+    if (rc) fprintf(stderr, "pointnpr %s: out of memory for %zu tiles\n", c->cmd, plan->count);
     size_t uncertain = 0, done = 0;
     for (; rc == 0 && done < plan->count; done++) {
         snprintf(paths[done], sizeof paths[done], "%s/tile_%05zu.ply", dir, done);
         list[done] = paths[done];
-        if (!r->quiet) fprintf(stderr, "tile %zu of %zu (%llu points)\n", done + 1, plan->count,
+        if (!c->quiet) fprintf(stderr, "tile %zu of %zu (%llu points)\n", done + 1, plan->count,
                                (unsigned long long)plan->tiles[done].points);
-        cli_features_run job = *r; /* per tile: its summary line, not every stage's */
-        job.prog.fn = NULL;
-        pnpr_features_options fo = *r->fo;
-        fo.progress.fn = NULL;
-        job.fo = &fo;
-        rc = tile_job(&job, paths[done], &plan->grid, &plan->tiles[done], plan->halo, &uncertain);
+        rc = c->job(c->ctx, paths[done], &plan->grid, &plan->tiles[done], plan->halo, &uncertain);
     }
     pnpr_error err = {0};
-    pnpr_status st = rc ? PNPR_OK : pnpr_tile_merge(list, plan->count, plan->points, !r->fo->has_viewpoint, r->out,
-                                                    &r->prog, &err);
-    if (st != PNPR_OK) { cli_report_error("features", st, &err); rc = 1; }
+    pnpr_status st = rc ? PNPR_OK : c->merge(c->ctx, list, plan->count, plan->points, c->out, &c->prog, &err);
+    if (st != PNPR_OK) { cli_report_error(c->cmd, st, &err); rc = 1; }
     for (size_t t = 0; t < done; t++) remove(paths[t]);
     rmdir(dir);
     free(paths);
     free(list);
-    if (rc == 0 && !r->quiet)
-        fprintf(stderr, "wrote %s: %llu points from %zu tiles; %zu not certain to equal a run in memory%s\n", r->out,
-                (unsigned long long)plan->points, plan->count, uncertain,
-                uncertain ? " (a larger --halo makes them so; docs/tiles.md)" : "");
+    if (rc == 0 && !c->quiet) {
+        fprintf(stderr, "wrote %s: %llu points from %zu tiles", c->out, (unsigned long long)plan->points, plan->count);
+        if (c->certifies)
+            fprintf(stderr, "; %zu not certain to equal a run in memory%s", uncertain,
+                    uncertain ? " (a larger --halo makes them so; docs/tiles.md)" : "");
+        fputc('\n', stderr);
+    }
     return rc;
+}
+
+int cli_tile_plan(const cli_tile_cmd *c, const cli_tile_args *a, size_t memory_limit, uint32_t k, pnpr_tile_plan *r_plan)
+{
+    if (cli_output_is_stream(c->out)) {
+        fprintf(stderr, "pointnpr %s: a tiled run places each point by its index: %s must be a file\n", c->cmd, c->out);
+        return 2;
+    }
+    pnpr_tile_plan_options po = {0};
+    po.tile_points = (uint64_t)a->tile_points;
+    if (!po.tile_points && a->tiled) {
+        size_t avail = memory_limit ? memory_limit : pnpr_memory_available(), held = pnpr_memory_resident();
+        po.memory_limit = avail > held ? avail - held : 1;
+    }
+    po.features_k = k;
+    po.halo = a->halo;
+    po.progress = c->prog;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_tile_plan_make(c->in, &po, r_plan, &err);
+    if (st != PNPR_OK) { cli_report_error(c->cmd, st, &err); return 1; }
+    if (c->quiet) return 0;
+    uint64_t most = 0;
+    for (size_t t = 0; t < r_plan->count; t++) most = r_plan->tiles[t].points > most ? r_plan->tiles[t].points : most;
+    if (most > r_plan->tile_points)
+        fprintf(stderr, "pointnpr %s: warning: a tile holds %llu points, more than the %llu asked: one grid cell "
+                        "(1/%d of the cloud's side) holds them all\n", c->cmd, (unsigned long long)most,
+                (unsigned long long)r_plan->tile_points, PNPR_TILE_GRID);
+    return 0;
+}
+
+int cli_tile_execute(const cli_tile_cmd *c, const cli_tile_args *a, const pnpr_tile_plan *plan, int argc, char **argv)
+{
+    if (!c->quiet)
+        fprintf(stderr, "%s: %llu points in %zu tiles (a grid of %ux%u cells of %.6g), halo %.6g (point spacing %.4g)\n",
+                c->in, (unsigned long long)plan->points, plan->count, plan->grid.cells[0], plan->grid.cells[1],
+                plan->grid.cell[0], plan->halo, plan->spacing);
+    return a->manifest ? manifest(c, plan, a->manifest, argc, argv) : run_tiles(c, plan);
+}
+
+static pnpr_status features_merge(const void *ctx, const char *const *paths, size_t n, uint64_t points, const char *out,
+                                  const pnpr_progress *prog, pnpr_error *err)
+{
+    const cli_features_run *r = ctx;
+    return pnpr_tile_merge(paths, n, points, !r->fo->has_viewpoint, out, prog, err);
 }
 
 int cli_features_tiles(const cli_features_run *r, const cli_tile_args *a, size_t memory_limit, int argc, char **argv)
@@ -294,59 +340,44 @@ int cli_features_tiles(const cli_features_run *r, const cli_tile_args *a, size_t
         pnpr_tile_grid g;
         pnpr_tile t;
         size_t uncertain = 0;
-        return job_tile(a, &g, &t) ? tile_job(r, r->out, &g, &t, a->halo, &uncertain) : 2;
+        return cli_tile_job_args("features", a, &g, &t) ? tile_job(r, r->out, &g, &t, a->halo, &uncertain) : 2;
     }
-    if (cli_output_is_stream(r->out)) {
-        fprintf(stderr, "pointnpr features: a tiled run places each point by its index: %s must be a file\n", r->out);
-        return 2;
-    }
-    pnpr_tile_plan_options po = {0};
-    po.tile_points = (uint64_t)a->tile_points;
-    if (!po.tile_points && a->tiled) {
-        size_t avail = memory_limit ? memory_limit : pnpr_memory_available(), held = pnpr_memory_resident();
-        po.memory_limit = avail > held ? avail - held : 1;
-    }
-    po.features_k = r->fo->k;
-    po.halo = a->halo;
-    po.progress = r->prog;
+    /* per tile: its summary line, not every stage's */
+    cli_features_run job = *r;
+    job.prog.fn = NULL;
+    pnpr_features_options fo = *r->fo;
+    fo.progress.fn = NULL;
+    job.fo = &fo;
+    cli_tile_cmd c = {"features", r->in, r->out, r->quiet, r->prog, "", r->fo->has_viewpoint ? NULL : "--seams", 1,
+                      tile_job, features_merge, &job};
     pnpr_tile_plan plan;
-    pnpr_error err = {0};
-    pnpr_status st = pnpr_tile_plan_make(r->in, &po, &plan, &err);
-    if (st != PNPR_OK) { cli_report_error("features", st, &err); return 1; }
-    if (!r->quiet) {
-        fprintf(stderr, "%s: %llu points in %zu tiles (a grid of %ux%u cells of %.6g), halo %.6g (point spacing %.4g)\n",
-                r->in, (unsigned long long)plan.points, plan.count, plan.grid.cells[0], plan.grid.cells[1],
-                plan.grid.cell[0], plan.halo, plan.spacing);
-        uint64_t most = 0;
-        for (size_t t = 0; t < plan.count; t++) most = plan.tiles[t].points > most ? plan.tiles[t].points : most;
-        if (most > plan.tile_points)
-            fprintf(stderr, "pointnpr features: warning: a tile holds %llu points, more than the %llu asked: one grid cell "
-                            "(1/%d of the cloud's side) holds them all\n", (unsigned long long)most,
-                    (unsigned long long)plan.tile_points, PNPR_TILE_GRID);
-        if (!(r->fo->threshold > 0))
-            fprintf(stderr, "pointnpr features: note: each tile picks its own automatic threshold; --threshold T makes "
-                            "the tiles equal to a run in memory with that threshold\n");
-    }
-    int rc = a->manifest ? manifest(r, &plan, a->manifest, argc, argv) : run_tiles(r, &plan);
+    int rc = cli_tile_plan(&c, a, memory_limit, r->fo->k, &plan);
+    if (rc) return rc;
+    if (!r->quiet && !(r->fo->threshold > 0))
+        fprintf(stderr, "pointnpr features: note: each tile picks its own automatic threshold; --threshold T makes "
+                        "the tiles equal to a run in memory with that threshold\n");
+    rc = cli_tile_execute(&c, a, &plan, argc, argv);
     pnpr_tile_plan_free(&plan);
     return rc;
 }
 
 typedef struct merge_args {
     double points;
-    int seams;
+    int seams, segments;
 } merge_args;
 
 /* pointnpr merge-tiles --points N [--seams] -o OUT.ply TILE.ply... */
 int cli_merge_tiles(int argc, char **argv)
 {
     cli_common c = {0};
-    merge_args a = {-1, 0};
+    merge_args a = {-1, 0, 0};
     static const cli_opt opts[] = {
         {"--points", NULL, CLI_NUMBER, offsetof(merge_args, points), 0, 4294967294.0, 0, 0, NULL, NULL, "N",
          "the points of the tiled file"},
         {"--seams", NULL, CLI_FLAG, offsetof(merge_args, seams), 0, 0, 0, 0, NULL, NULL, NULL,
          "the jobs oriented normals without --viewpoint: make them agree across tiles"},
+        {"--segments", NULL, CLI_FLAG, offsetof(merge_args, segments), 0, 0, 0, 0, NULL, NULL, NULL,
+         "the tiles of `pointnpr segment --method components`: join their components"},
     };
     const char **tiles = calloc((size_t)argc, sizeof *tiles);
     size_t n = 0;
@@ -355,9 +386,10 @@ int cli_merge_tiles(int argc, char **argv)
         if (oo == 0) oo = cli_opts_parse(cli_common_opts, CLI_COUNT(cli_common_opts), &c, "merge-tiles", argc, argv, &i);
         if (oo < 0) { free(tiles); return 2; }
         if (c.help) {
-            printf("usage: pointnpr merge-tiles --points N [--seams] -o OUT.ply TILE.ply...\n"
-                   "  Writes the tiles of a tiled `pointnpr features` run (--manifest) as one cloud, each\n"
-                   "  point at its index in the tiled file; every index must come exactly once.\n");
+            printf("usage: pointnpr merge-tiles --points N [--seams | --segments] -o OUT.ply TILE.ply...\n"
+                   "  Writes the tiles of a tiled `pointnpr features` or `pointnpr segment` run (--manifest) as\n"
+                   "  one cloud, each point at its index in the tiled file; every index must come exactly once.\n");
+            cli_opts_usage(stdout, opts, CLI_COUNT(opts));
             free(tiles);
             return 0;
         }
@@ -378,9 +410,17 @@ int cli_merge_tiles(int argc, char **argv)
     cli_progress_state ps = {{0}, 0, 0};
     pnpr_progress prog = {c.quiet ? NULL : cli_progress_stderr, &ps};
     pnpr_error err = {0};
-    pnpr_status st = rc ? PNPR_OK : pnpr_tile_merge(tiles, n, (uint64_t)points, a.seams, c.out, &prog, &err);
+    uint32_t S = 0;
+    if (a.seams && a.segments) {
+        fprintf(stderr, "pointnpr merge-tiles: --seams (features) or --segments (segment), not both\n");
+        rc = 2;
+    }
+    pnpr_status st = rc ? PNPR_OK
+                   : a.segments ? pnpr_tile_merge_segments(tiles, n, (uint64_t)points, c.out, &prog, &S, &err)
+                                : pnpr_tile_merge(tiles, n, (uint64_t)points, a.seams, c.out, &prog, &err);
     if (st != PNPR_OK) { cli_report_error("merge-tiles", st, &err); rc = 1; }
-    if (rc == 0 && !c.quiet) fprintf(stderr, "wrote %s (%.0f points from %zu tiles)\n", c.out, points, n);
+    if (rc == 0 && !c.quiet) fprintf(stderr, "wrote %s (%.0f points from %zu tiles%s", c.out, points, n, a.segments ? "" : ")\n");
+    if (rc == 0 && !c.quiet && a.segments) fprintf(stderr, ", %u segments)\n", S);
     free(tiles);
     return rc;
 }
