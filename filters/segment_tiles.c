@@ -272,6 +272,7 @@ static pnpr_status add_nodes(seg_merge *m, size_t tile, const pnpr_cloud *c)
     uint32_t n = 0;
     for (size_t i = 0; i < c->count; i++)
         if (pnpr_finite3f(c->xyz + 3 * i) && c->label[i] >= n) n = c->label[i] + 1;
+    if (n > c->count) return PNPR_ERR_FORMAT; /* a tile's own labels are fewer than its points */
     if (m->nodes + n > NONE - 2) return PNPR_ERR_UNSUPPORTED;
     if (m->nodes + n > m->cap) {
         size_t cap = m->cap ? m->cap : 4096;
@@ -320,7 +321,10 @@ static pnpr_status seg_pass(seg_merge *m, const char *path, size_t tile, int hal
     const uint8_t *core = NULL;
     pnpr_status st = read_tile(path, &c, &idx, &core, err);
     if (st == PNPR_OK && !halo && (st = add_nodes(m, tile, &c)) != PNPR_OK)
-        pnpr_error_set(err, st, "%s: merge: %s", path, st == PNPR_ERR_UNSUPPORTED ? "too many components" : "out of memory");
+        pnpr_error_set(err, st, "%s: merge: %s", path,
+                       st == PNPR_ERR_FORMAT        ? "labels beyond its points: not a tile of `pointnpr segment`"
+                       : st == PNPR_ERR_UNSUPPORTED ? "too many components"
+                                                    : "out of memory");
     for (size_t i = 0; st == PNPR_OK && i < c.count; i++) {
         uint32_t s = idx[i];
         if (s >= m->points) {
@@ -330,9 +334,11 @@ static pnpr_status seg_pass(seg_merge *m, const char *path, size_t tile, int hal
         }
         int valid = pnpr_finite3f(c.xyz + 3 * i);
         uint32_t node = valid ? (uint32_t)m->base[tile] + c.label[i] : INVALID;
-        if (halo && !core[i] && (m->owner[s] == NONE || (m->owner[s] == INVALID) != !valid))
+        if (halo && !core[i] && (m->owner[s] == NONE || (m->owner[s] == INVALID) != !valid)) {
             st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: halo point %zu (source index %u) %s", path, i, s,
                                 m->owner[s] == NONE ? "is in no tile's core (a tile missing?)" : "differs from its core tile's");
+            break;
+        }
         if (halo && !core[i] && valid) {
             uint32_t a = uf_find(m->parent, node), b = uf_find(m->parent, m->owner[s]);
             if (a < b) m->parent[b] = a; else m->parent[a] = b;

@@ -3,7 +3,8 @@
 # in memory and in tiles (--tile-points, and the manifest's jobs run by a shell, then merge-tiles):
 # the bodies of the results are byte-identical and all but a few points are certified; --tiles
 # sizes tiles from --memory-limit; refusals name the file and the reason; a folder of tiles joined
-# one at a time; render --sample draws a uniform sample, the same at every run.
+# one at a time; render --sample draws a uniform sample, the same at every run; segment
+# --method components in tiles equals the run in memory.
 # usage: cli_tiles.sh POINTNPR SCRATCH
 bin=$1
 dir=$2/cli_tiles
@@ -109,6 +110,41 @@ pointnpr convert "$dir/in.ply" "$dir/in.ply" -o - --stream > /dev/null 2> "$dir/
 check '[ $? -eq 2 ] && grep -q "writes a .ply file" "$dir/err.log"' "--stream to standard output is a usage error"
 pointnpr render "$dir/folder" -o "$dir/folder.png" 2> "$dir/err.log"
 check '[ $? -eq 1 ] && grep -q "pointnpr convert" "$dir/err.log"' "render of a folder says how to join it"
+
+# segment --method components in tiles: 4 x 4 coloured patches (jittered grids) and a thin line
+# across all of them above; in memory, in tiles and through the manifest's jobs, byte-identical
+awk 'BEGIN { srand(11); n = 16 * 400 + 600; print "ply\nformat ascii 1.0\nelement vertex " n
+  print "property float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green"
+  print "property uchar blue\nend_header"
+  for (k = 0; k < 16; k++) for (i = 0; i < 400; i++)
+    printf "%.5f %.5f 0 %d %d %d\n", (k % 4) * 1.5 + (i % 20 + 0.3 * rand()) * 0.05,
+      int(k / 4) * 1.5 + (int(i / 20) + 0.3 * rand()) * 0.05, 15 * k, 255 - 15 * k, i % 256
+  for (i = 0; i < 600; i++) printf "%.5f 2.9 1 7 7 7\n", i * 0.01 }' > "$dir/patches_a.ply"
+pointnpr convert "$dir/patches_a.ply" -o "$dir/patches.ply" --quiet
+pointnpr segment "$dir/patches.ply" -o "$dir/seg_mem.ply" --method components 2> "$dir/seg_mem.log"
+check 'grep -q "17 segments" "$dir/seg_mem.log"' "16 patches and the line: 17 components in memory"
+pointnpr segment "$dir/patches.ply" -o "$dir/seg_tiled.ply" --method components --tile-points 1000 2> "$dir/seg.log"
+ntiles=$(sed -n 's/.*points in \([0-9]*\) tiles.*/\1/p' "$dir/seg.log")
+check '[ "${ntiles:-0}" -ge 4 ] && grep -q "^17 segments" "$dir/seg.log"' "in $ntiles tiles: 17 segments"
+check 'body_same "$dir/seg_mem.ply" "$dir/seg_tiled.ply"' "segments in tiles equal the run in memory"
+pointnpr segment "$dir/patches.ply" -o "$dir/seg_jobs.ply" --method components --tile-points 1000 --manifest "$dir/segjobs" --quiet
+check 'grep -q -- "--radius" "$dir/segjobs/jobs.txt" && grep -q "merge-tiles --points 7000 --segments" "$dir/segjobs/merge.txt"' \
+  "the manifest's jobs get the automatic distance, its merge --segments"
+(cd "$dir" && while read -r job; do eval "$job --quiet" || exit 1; done < segjobs/jobs.txt) && bash "$dir/segjobs/merge.txt" 2> /dev/null
+check '[ $? -eq 0 ] && body_same "$dir/seg_mem.ply" "$dir/seg_jobs.ply"' "the manifest's jobs and merge equal the run in memory"
+segtiles=("$dir"/segjobs/tile_*.ply)
+pointnpr merge-tiles --points 7000 --segments -o "$dir/bad.ply" "${segtiles[@]:1}" 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "in no tile" "$dir/err.log" && [ ! -e "$dir/bad.ply" ]' "a missing segment tile is refused"
+pointnpr merge-tiles --points 7000 --segments --seams -o "$dir/bad.ply" "${segtiles[@]}" 2> "$dir/err.log"
+check '[ $? -eq 2 ]' "--seams and --segments together are a usage error"
+for bad in "--method jseg" "--method components --min-size 5" "--method components --split 0.1" \
+           "--method components --segments 4" "--method components --ascii"; do
+  pointnpr segment "$dir/patches.ply" -o "$dir/bad.ply" $bad --tile-points 1000 2> "$dir/err.log"
+  check '[ $? -eq 2 ] && grep -q "in tiles:" "$dir/err.log" && [ ! -e "$dir/bad.ply" ]' "segment $bad in tiles is refused with the reason"
+done
+pointnpr segment "$dir/patches.ply" -o "$dir/bad.ply" --method components --radius 0.2 --tile-grid 0,0,1,1,2,2,0,0,0 \
+  --tile 0,0,1,1 --halo 0.1 2> "$dir/err.log"
+check '[ $? -eq 2 ] && grep -q "needs a halo of" "$dir/err.log"' "a job's halo smaller than the distance is refused"
 
 # render --sample: a uniform share of the points, the same at every run (the automatic share under
 # --memory-limit takes the same path)

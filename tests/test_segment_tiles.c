@@ -1,0 +1,260 @@
+/* Connected components in tiles (tiles.h, filters/segment_tiles.c) against the run in memory, on
+ * generated scenes with known components: islands of points on a georeferenced plane (double
+ * coordinates around (5e5, 4.2e6)), a thin snake that crosses every tile (one component), a few
+ * lone points and points with NaN coordinates, in random file order; and a vertical wall, whose
+ * spacing the plan (2.5D) underestimates, so that the automatic distance needs several reaches.
+ * The labels, their numbering and the mean colours must be the run in memory's, bit for bit. */
+#include "testutil.h"
+
+#include <pointnpr/io.h>
+#include <pointnpr/knn.h>
+#include <pointnpr/props.h>
+#include <pointnpr/segment.h>
+#include <pointnpr/tiles.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define ISLANDS 12   /* 3 x 4 squares of side 1.5 on a 10 x 12 plane */
+#define LONE 5       /* lone points, far from everything */
+#define INVALID 3    /* points with a NaN coordinate */
+#define TILES_MAX 256
+
+enum { SCENE_ISLANDS, SCENE_WALL };
+
+/* The scene's points (world coordinates) in random order; colours by component. */
+static void make_scene(pnpr_cloud *c, int kind, size_t *r_components)
+{
+    pnpr_test_rng rng = {777};
+    const double off[3] = {5e5, 4.2e6, 100};
+    size_t n = kind == SCENE_WALL ? 20000 : 0;
+    if (kind == SCENE_ISLANDS) n = ISLANDS * 900 + 3000 + LONE + INVALID;
+    double *w = malloc(3 * n * sizeof *w);
+    uint8_t *rgb = malloc(3 * n);
+    size_t m = 0;
+    if (kind == SCENE_WALL) { /* a wall 8 long, 4 high, at y = 0: spacing about 0.04 in x and z */
+        for (; m < n; m++) { /* a jittered 200 x 100 grid: no gap of 3 median spacings */
+            double x = 0.04 * ((double)(m % 200) + 0.3 * pnpr_test_uniform(&rng));
+            double z = 0.04 * ((double)(m / 200) + 0.3 * pnpr_test_uniform(&rng));
+            double p[3] = {x, 0.001 * pnpr_test_uniform(&rng), z};
+            memcpy(w + 3 * m, p, sizeof p);
+            rgb[3 * m] = (uint8_t)(x * 30);
+            rgb[3 * m + 1] = 90;
+            rgb[3 * m + 2] = (uint8_t)(z * 50);
+        }
+        *r_components = 1;
+    } else {
+        for (int k = 0; k < ISLANDS; k++) /* a jittered 30 x 30 grid of spacing 0.05 */
+            for (int i = 0; i < 900; i++, m++) {
+                w[3 * m] = 0.75 + 3.0 * (k % 3) + 0.05 * ((i % 30) + 0.3 * pnpr_test_uniform(&rng));
+                w[3 * m + 1] = 0.75 + 3.0 * (k / 3) + 0.05 * ((i / 30) + 0.3 * pnpr_test_uniform(&rng));
+                w[3 * m + 2] = 0.01 * pnpr_test_uniform(&rng);
+                rgb[3 * m] = (uint8_t)(20 * k + (i & 7));
+                rgb[3 * m + 1] = (uint8_t)(250 - 20 * k);
+                rgb[3 * m + 2] = (uint8_t)i;
+            }
+        for (int i = 0; i < 3000; i++, m++) { /* the snake: x from 0 to 10, y zig-zagging over 0..12 */
+            double x = 10.0 * i / 3000.0, y = 0.2 + 11.6 * fabs(fmod(x, 2.0) - 1.0);
+            w[3 * m] = x;
+            w[3 * m + 1] = y;
+            w[3 * m + 2] = 0.5; /* above the islands: crossing them does not join them */
+            rgb[3 * m] = rgb[3 * m + 1] = rgb[3 * m + 2] = (uint8_t)(i % 251);
+        }
+        for (int i = 0; i < LONE; i++, m++) {
+            double p[3] = {0.3 + 2.1 * i, 11.9, -3.0};
+            memcpy(w + 3 * m, p, sizeof p);
+            memset(rgb + 3 * m, 200, 3);
+        }
+        for (int i = 0; i < INVALID; i++, m++) {
+            double p[3] = {1, NAN, 2};
+            memcpy(w + 3 * m, p, sizeof p);
+            memset(rgb + 3 * m, 10 * i, 3);
+        }
+        *r_components = ISLANDS + 1 + LONE + 1;
+    }
+    for (size_t i = n - 1; i > 0; i--) { /* random file order */
+        size_t j = (size_t)(pnpr_test_uniform(&rng) * (double)(i + 1));
+        for (int a = 0; a < 3; a++) {
+            double t = w[3 * i + a]; w[3 * i + a] = w[3 * j + a]; w[3 * j + a] = t;
+            uint8_t u = rgb[3 * i + a]; rgb[3 * i + a] = rgb[3 * j + a]; rgb[3 * j + a] = u;
+        }
+    }
+    for (size_t i = 0; i < 3 * n; i++) w[i] += off[i % 3];
+    CHECK_STATUS(pnpr_cloud_alloc(c, n), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_alloc_rgb(c), PNPR_OK);
+    memcpy(c->rgb, rgb, 3 * n);
+    CHECK_STATUS(pnpr_cloud_alloc_src_xyz(c), PNPR_OK);
+    memcpy(c->src_xyz, w, 3 * n * sizeof *w);
+    c->src_coord_type = PNPR_TYPE_FLOAT64;
+    CHECK_STATUS(pnpr_cloud_set_world(c, w), PNPR_OK);
+    free(w);
+    free(rgb);
+}
+
+static const char *scratch(const char *name, char *buf, size_t cap)
+{
+    snprintf(buf, cap, "%s/segtiles_%s", PNPR_TEST_SCRATCH, name);
+    return buf;
+}
+
+/* The run in memory: labels and the automatic distance. */
+static void in_memory(const char *path, pnpr_cloud *c, float *r_distance, uint32_t *r_segments)
+{
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_read_file(path, NULL, c, &err), PNPR_OK);
+    pnpr_kdtree *tree = NULL;
+    CHECK_STATUS(pnpr_kdtree_build(c->xyz, c->count, 0, &tree), PNPR_OK);
+    pnpr_components_options o = {0};
+    *r_distance = pnpr_components_distance(&o, pnpr_segment_median_spacing(tree, c->xyz, c->count));
+    pnpr_kdtree_free(tree);
+    CHECK_STATUS(pnpr_cloud_alloc_labels(c), PNPR_OK);
+    pnpr_segment_info info;
+    CHECK_STATUS(pnpr_segment_components(c->xyz, c->count, &o, c->label, &info), PNPR_OK);
+    *r_segments = info.segment_count;
+    float *mean = malloc(3 * (info.segment_count + 1) * sizeof *mean);
+    CHECK_STATUS(pnpr_segment_mean_colors(c->rgb, c->label, c->count, info.segment_count, mean, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_segment_add_colors(c, mean, info.segment_count), PNPR_OK);
+    free(mean);
+}
+
+/* Every tile as `pointnpr segment --tile-grid` does it: its components, the halo marked. */
+static void run_jobs(const char *in, const pnpr_tile_plan *plan, float distance, char (*paths)[512])
+{
+    for (size_t t = 0; t < plan->count; t++) {
+        pnpr_cloud c = {0};
+        uint8_t *core = NULL;
+        pnpr_error err = {0};
+        CHECK_STATUS(pnpr_tile_read(in, &plan->grid, &plan->tiles[t], plan->halo, NULL, &c, &core, &err), PNPR_OK);
+        pnpr_components_options o = {0};
+        o.distance = distance;
+        CHECK_STATUS(pnpr_cloud_alloc_labels(&c), PNPR_OK);
+        CHECK_STATUS(pnpr_segment_components(c.xyz, c.count, &o, c.label, NULL), PNPR_OK);
+        pnpr_property *tc = NULL;
+        CHECK_STATUS(pnpr_cloud_add_property(&c, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, &tc), PNPR_OK);
+        if (c.count) memcpy(tc->data, core, c.count);
+        snprintf(paths[t], sizeof paths[t], "%s/segtiles_part%03zu.ply", PNPR_TEST_SCRATCH, t);
+        CHECK_STATUS(pnpr_write_file(paths[t], &c, NULL, &err), PNPR_OK);
+        free(core);
+        pnpr_cloud_free(&c);
+    }
+}
+
+/* Points of a and b equal in labels and every property, in order. */
+static size_t differing(const pnpr_cloud *a, const pnpr_cloud *b)
+{
+    if (a->count != b->count || a->prop_count != b->prop_count || !b->label) return a->count + 1;
+    size_t bad = 0;
+    for (size_t i = 0; i < a->count; i++) {
+        int same = a->label[i] == b->label[i] && !memcmp(a->rgb + 3 * i, b->rgb + 3 * i, 3);
+        for (size_t p = 0; p < a->prop_count && same; p++)
+            same = !strcmp(a->props[p].name, b->props[p].name) &&
+                   ((const uint8_t *)a->props[p].data)[i] == ((const uint8_t *)b->props[p].data)[i];
+        bad += !same;
+    }
+    return bad;
+}
+
+static void test_equal(int kind, uint64_t tile_points, size_t min_tiles)
+{
+    char in[512], out[512];
+    pnpr_cloud scene = {0};
+    size_t expected;
+    make_scene(&scene, kind, &expected);
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_write_file(scratch("in.ply", in, sizeof in), &scene, NULL, &err), PNPR_OK);
+    pnpr_cloud_free(&scene);
+
+    pnpr_cloud mem = {0};
+    float distance = 0;
+    uint32_t segments = 0;
+    in_memory(in, &mem, &distance, &segments);
+    CHECK_MSG(segments == expected, "%u components in memory, the scene has %zu", segments, expected);
+
+    pnpr_tile_plan_options po = {0};
+    po.tile_points = tile_points;
+    pnpr_tile_plan plan;
+    CHECK_STATUS(pnpr_tile_plan_make(in, &po, &plan, &err), PNPR_OK);
+    CHECK_MSG(plan.count >= min_tiles && plan.count <= TILES_MAX, "%zu tiles", plan.count);
+    float tiled = -1;
+    CHECK_STATUS(pnpr_tile_components_distance(in, &plan, NULL, &tiled, &err), PNPR_OK);
+    CHECK_MSG(tiled == distance, "distance in tiles %.9g, in memory %.9g", (double)tiled, (double)distance);
+    plan.halo = pnpr_tile_components_halo(&plan.grid, tiled);
+    CHECK(plan.halo > tiled);
+
+    char(*paths)[512] = calloc(plan.count, sizeof *paths);
+    const char **list = calloc(plan.count, sizeof *list);
+    run_jobs(in, &plan, tiled, paths);
+    for (size_t t = 0; t < plan.count; t++) list[t] = paths[t];
+    uint32_t S = 0;
+    CHECK_STATUS(pnpr_tile_merge_segments(list, plan.count, plan.points, scratch("out.ply", out, sizeof out), NULL, &S,
+                                          &err), PNPR_OK);
+    CHECK_MSG(S == segments, "%u segments in tiles, %u in memory", S, segments);
+    pnpr_cloud merged = {0};
+    CHECK_STATUS(pnpr_read_file(out, NULL, &merged, &err), PNPR_OK);
+    size_t bad = differing(&mem, &merged);
+    CHECK_MSG(bad == 0, "%zu of %zu points differ from the run in memory", bad, mem.count);
+
+    if (kind == SCENE_ISLANDS && plan.count >= 2) {
+        /* the halos join the tiles: without them (halo 0) the snake breaks at every seam */
+        plan.halo = 0;
+        run_jobs(in, &plan, tiled, paths);
+        CHECK_STATUS(pnpr_tile_merge_segments(list, plan.count, plan.points, out, NULL, &S, &err), PNPR_OK);
+        CHECK_MSG(S > segments, "%u segments without halos", S);
+        /* a tile missing, a tile twice, not a tile of segment: refused, naming it */
+        CHECK_STATUS(pnpr_tile_merge_segments(list, plan.count - 1, plan.points, out, NULL, &S, &err), PNPR_ERR_FORMAT);
+        CHECK(strstr(err.message, "in no tile") != NULL);
+        list[1] = list[0];
+        CHECK_STATUS(pnpr_tile_merge_segments(list, plan.count, plan.points, out, NULL, &S, &err), PNPR_ERR_FORMAT);
+        CHECK(strstr(err.message, "twice") != NULL);
+        list[1] = in;
+        CHECK_STATUS(pnpr_tile_merge_segments(list, plan.count, plan.points, out, NULL, &S, &err), PNPR_ERR_FORMAT);
+        CHECK(strstr(err.message, "not a tile") != NULL && strstr(err.message, in) != NULL);
+        /* a lying tile: a label beyond its points (would ask for 4e9 components) */
+        list[1] = paths[1];
+        pnpr_cloud lie = {0};
+        CHECK_STATUS(pnpr_read_file(paths[1], NULL, &lie, &err), PNPR_OK);
+        for (size_t i = 0; i < lie.count; i++)
+            if (lie.xyz[3 * i] == lie.xyz[3 * i]) { lie.label[i] = 4000000000u; break; }
+        CHECK_STATUS(pnpr_write_file(paths[1], &lie, NULL, &err), PNPR_OK);
+        pnpr_cloud_free(&lie);
+        CHECK_STATUS(pnpr_tile_merge_segments(list, plan.count, plan.points, out, NULL, &S, &err), PNPR_ERR_FORMAT);
+        CHECK(strstr(err.message, "labels beyond its points") != NULL);
+        /* the result refused is the one merged before, untouched */
+        pnpr_cloud again = {0};
+        CHECK_STATUS(pnpr_read_file(out, NULL, &again, &err), PNPR_OK);
+        CHECK(again.count == mem.count);
+        pnpr_cloud_free(&again);
+    }
+    for (size_t t = 0; t < plan.count; t++) remove(paths[t]);
+    free(paths);
+    free(list);
+    pnpr_cloud_free(&merged);
+    pnpr_cloud_free(&mem);
+    pnpr_tile_plan_free(&plan);
+    remove(in);
+    remove(out);
+}
+
+/* An explicit distance is taken as given; a halo too small for it is the caller's to refuse. */
+static void test_given_distance(void)
+{
+    pnpr_tile_plan plan;
+    memset(&plan, 0, sizeof plan);
+    pnpr_components_options o = {0};
+    o.distance = 0.25f;
+    float d = 0;
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_tile_components_distance("/nonexistent.ply", &plan, &o, &d, &err), PNPR_OK);
+    CHECK(d == 0.25f);
+    CHECK_STATUS(pnpr_tile_components_distance(NULL, &plan, NULL, &d, &err), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_tile_components_distance("/nonexistent.ply", &plan, NULL, &d, &err), PNPR_ERR_IO);
+}
+
+int main(void)
+{
+    test_equal(SCENE_ISLANDS, 1500, 8);
+    test_equal(SCENE_WALL, 3000, 4);
+    test_given_distance();
+    return pnpr_test_finish("test_segment_tiles");
+}
