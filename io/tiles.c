@@ -296,7 +296,11 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
     if (!o.tile_points && o.memory_limit) {
         struct stat sb;
         size_t rec = stat(path, &sb) == 0 && points ? (size_t)((uint64_t)sb.st_size / points) : 64;
-        if (!(o.tile_points = pnpr_tile_points_for_memory(o.memory_limit, rec, o.features_k))) {
+        double per = (double)(rec + o.job_bytes) * (1.0 + PNPR_TILE_HALO_SHARE), n = (double)o.memory_limit / per;
+        o.tile_points = !o.job_bytes ? pnpr_tile_points_for_memory(o.memory_limit, rec, o.features_k)
+                        : n >= 1000  ? (uint64_t)n
+                                     : 0;
+        if (!o.tile_points) {
             char a[32];
             return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: a memory limit of %s leaves no room for a tile", path,
                                   pnpr_memory_text(o.memory_limit, a, sizeof a));

@@ -172,8 +172,18 @@ static void test_equal(int kind, uint64_t tile_points, size_t min_tiles)
     CHECK_MSG(segments == expected, "%u components in memory, the scene has %zu", segments, expected);
 
     pnpr_tile_plan_options po = {0};
-    po.tile_points = tile_points;
     pnpr_tile_plan plan;
+    /* under a memory limit, tiles as large as a components job may take */
+    po.memory_limit = 4u << 20;
+    po.job_bytes = PNPR_TILE_COMPONENTS_BYTES;
+    CHECK_STATUS(pnpr_tile_plan_make(in, &po, &plan, &err), PNPR_OK);
+    size_t rec = 3 * sizeof(double) + 3; /* the scene's records: double x, y, z and colours */
+    uint64_t want = (uint64_t)((double)po.memory_limit / ((double)(rec + po.job_bytes) * (1 + PNPR_TILE_HALO_SHARE)));
+    CHECK_MSG(plan.tile_points == want, "%llu points a tile under 4 MiB, want %llu", (unsigned long long)plan.tile_points,
+              (unsigned long long)want);
+    pnpr_tile_plan_free(&plan);
+    po.memory_limit = 0;
+    po.tile_points = tile_points;
     CHECK_STATUS(pnpr_tile_plan_make(in, &po, &plan, &err), PNPR_OK);
     CHECK_MSG(plan.count >= min_tiles && plan.count <= TILES_MAX, "%zu tiles", plan.count);
     float tiled = -1;

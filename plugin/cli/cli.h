@@ -189,6 +189,7 @@ typedef struct cli_tile_cmd {
     const char *job_extra;    /* written into every job after the command's options ("" for none) */
     const char *merge_flag;   /* merge-tiles' option for this command, or NULL */
     int certifies;            /* the jobs count points not certain to equal a run in memory */
+    size_t job_bytes;         /* --tiles: a job's bytes per point beyond the record (0: a feature job's) */
     /* one tile into out (its halo given); adds its uncertain points; returns an exit code */
     int (*job)(const void *ctx, const char *out, const struct pnpr_tile_grid *g, const struct pnpr_tile *t,
                double halo, size_t *r_uncertain);

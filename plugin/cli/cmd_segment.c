@@ -231,7 +231,8 @@ static int segment_tiles(segment_tile_run *r, const char *out, const cli_tile_ar
         return cli_tile_job_args("segment", a, &g, &t) ? segment_tile_job(r, out, &g, &t, a->halo, &none) : 2;
     }
     char extra[64] = "";
-    cli_tile_cmd c = {"segment", r->in, out, r->quiet, prog, extra, "--segments", 0, segment_tile_job, segment_merge, r};
+    cli_tile_cmd c = {"segment", r->in, out, r->quiet, prog, extra, "--segments", 0, PNPR_TILE_COMPONENTS_BYTES,
+                      segment_tile_job, segment_merge, r};
     pnpr_tile_plan plan;
     int rc = cli_tile_plan(&c, a, memory_limit, 0, &plan);
     if (rc) return rc;

@@ -298,6 +298,7 @@ int cli_tile_plan(const cli_tile_cmd *c, const cli_tile_args *a, size_t memory_l
         po.memory_limit = avail > held ? avail - held : 1;
     }
     po.features_k = k;
+    po.job_bytes = c->job_bytes;
     po.halo = a->halo;
     po.progress = c->prog;
     pnpr_error err = {0};
@@ -348,7 +349,7 @@ int cli_features_tiles(const cli_features_run *r, const cli_tile_args *a, size_t
     pnpr_features_options fo = *r->fo;
     fo.progress.fn = NULL;
     job.fo = &fo;
-    cli_tile_cmd c = {"features", r->in, r->out, r->quiet, r->prog, "", r->fo->has_viewpoint ? NULL : "--seams", 1,
+    cli_tile_cmd c = {"features", r->in, r->out, r->quiet, r->prog, "", r->fo->has_viewpoint ? NULL : "--seams", 1, 0,
                       tile_job, features_merge, &job};
     pnpr_tile_plan plan;
     int rc = cli_tile_plan(&c, a, memory_limit, r->fo->k, &plan);
