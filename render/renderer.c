@@ -374,7 +374,12 @@ pnpr_status pnpr_renderer_plan_frame(const pnpr_renderer *r, const pnpr_camera *
     p->coverage = r->count ? pnpr_box_coverage(&p->fc, r->bmin, r->bmax, w, h) : 0;
     if (o->budget > 0 && o->budget < n_draw) n_draw = o->budget;
     if (o->density > 0) {
+        /* the density holds among the points in view: the queue's prefix is a uniform share of
+         * every cell, so it grows by all / in view (cells the frustum culls), as PointWorks draws
+         * only the objects in view, each by its screen space */
         double cap = ceil((double)o->density * p->coverage);
+        size_t seen = pnpr_view_cells_seen(&r->view_cells, &p->fc);
+        if (seen > 0 && seen < r->view_cells.total) cap = ceil(cap * (double)r->view_cells.total / (double)seen);
         if (cap < (double)n_draw) n_draw = (size_t)cap;
     }
     p->n_draw = n_draw;

@@ -100,6 +100,7 @@ struct pnpr_renderer {
     int has_features, has_labels, has_rgb;
     double origin[3];
     float bmin[3], bmax[3];
+    pnpr_view_cells view_cells; /* the points per cell: how many a frame's view may show */
     /* style maps (intermingled styles): one style byte per vertex (attribute 4) in the main
      * order (style_vbo) and in the painterly order (paint_style_vbo); the labels and the
      * painterly order's main indices to fill them; the bytes last uploaded */

@@ -488,6 +488,7 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
         memset(r->bmin, 0, sizeof r->bmin);
         memset(r->bmax, 0, sizeof r->bmax);
     }
+    pnpr_view_cells_build(&r->view_cells, u->xyz, n, r->bmin, r->bmax);
 }
 
 static void upload_free(upload_ctx *u)

@@ -6,6 +6,9 @@
 
 #include <pointnpr/camera.h>
 
+#include <stddef.h>
+#include <stdint.h>
+
 /* Column-major 4x4 matrices (OpenGL layout): m[col * 4 + row]. */
 typedef struct pnpr_frame_camera {
     float view[16], proj[16];
@@ -30,5 +33,22 @@ pnpr_status pnpr_frame_camera_from_matrices(const pnpr_camera_matrices *m, const
  * when a corner is behind the eye. */
 double pnpr_box_coverage(const pnpr_frame_camera *fc, const float bmin[3], const float bmax[3],
                          int width, int height);
+
+/* The points of a cloud counted on a grid of cells over its box (PNPR_VIEW_CELLS along the
+ * longest side, cubes), so that a frame knows how many of them its view can show: the screen
+ * density of the queue holds among the points in view (renderer.c, docs/rendering.md). */
+#define PNPR_VIEW_CELLS 32
+typedef struct pnpr_view_cells {
+    float min[3], cell;   /* the grid's corner and a cell's side (offset coordinates) */
+    uint32_t n[3];        /* cells along each axis, 1..PNPR_VIEW_CELLS */
+    size_t total;         /* the points counted */
+    uint32_t count[PNPR_VIEW_CELLS * PNPR_VIEW_CELLS * PNPR_VIEW_CELLS];
+} pnpr_view_cells;
+/* Counts the n finite points xyz into cells over [bmin, bmax] (points outside go to the edge
+ * cells; non-finite ones are not counted). */
+void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const float bmin[3], const float bmax[3]);
+/* The points in the cells the view may show: those whose box is not wholly outside one plane of
+ * the frustum (clip space); c->total when every cell is in view. */
+size_t pnpr_view_cells_seen(const pnpr_view_cells *c, const pnpr_frame_camera *fc);
 
 #endif

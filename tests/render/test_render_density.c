@@ -9,7 +9,8 @@
  *   - under the default the darkness stays within 25% of that of the same plane seen four times
  *     larger (the screen density holds when zooming; measured 0.051 and 0.049), where drawing every
  *     point changes it by far more (0.536 and 0.222);
- *   - the points drawn are ceil(2 x the covered pixels of the box) exactly.
+ *   - the points drawn are ceil(2 x the covered pixels of the box) exactly;
+ *   - with part of the cloud out of view, the prefix grows by all / in view (test_in_view).
  * Exits 77 (skipped) when this machine has no headless EGL / GL 3.3. */
 #include "testutil.h"
 
@@ -80,6 +81,39 @@ static void measure(pnpr_renderer *r, const pnpr_cloud *c, double dist, pnpr_sty
            pnpr_style_name(style), dist, covered, r_dark[0], r_dark[1]);
 }
 
+/* The density holds among the points in view: two 100 x 100 planes 100 apart, the camera over the
+ * first; the second is out of view, so the queue's prefix doubles (it is a uniform share of both):
+ * drawn = ceil(ceil(D x covered px) x all / in view) exactly, where it was ceil(D x covered px). */
+static void test_in_view(pnpr_renderer *r, uint8_t *px)
+{
+    pnpr_cloud c = {0};
+    CHECK_STATUS(pnpr_test_plane(&c, 200, 100, 0.01, plane_off), PNPR_OK);
+    for (size_t i = 0; i < c.count; i++)
+        if (i % 200 >= 100) { /* the second plane: 100 further in x */
+            c.xyz[3 * i] += 100.0f;
+            if (c.src_xyz) c.src_xyz[3 * i] += 100.0;
+        }
+    CHECK_STATUS(pnpr_renderer_set_cloud(r, &c, NULL, NULL), PNPR_OK);
+    pnpr_camera cam = {{0}, {0}, {0, 1, 0}, 30, 0, 0};
+    for (int a = 0; a < 3; a++) cam.target[a] = c.origin[a] + (a < 2 ? 0.5 : 0);
+    memcpy(cam.eye, cam.target, sizeof cam.eye);
+    cam.eye[2] += 2;
+    pnpr_render_stats st;
+    draw(r, &cam, PNPR_STYLE_POINTS, 0.1f, px, &st);
+    const double d = 0.1f; /* as the renderer has it */
+    double want = ceil(ceil(d * st.coverage_px) * 20000.0 / 10000.0);
+    CHECK_MSG(st.points_drawn == (size_t)want && want < 20000, "in view: %zu points drawn, expected %.0f (box %g px)",
+              st.points_drawn, want, st.coverage_px);
+    /* both planes in view (from far above both): the prefix is the density's alone */
+    for (int a = 0; a < 3; a++) cam.target[a] = c.origin[a] + (a == 0 ? 50.5 : a == 1 ? 0.5 : 0);
+    memcpy(cam.eye, cam.target, sizeof cam.eye);
+    cam.eye[2] += 400;
+    draw(r, &cam, PNPR_STYLE_POINTS, 0.1f, px, &st);
+    CHECK_MSG(st.points_drawn == (size_t)ceil(d * st.coverage_px), "all in view: %zu points drawn, box %g px",
+              st.points_drawn, st.coverage_px);
+    pnpr_cloud_free(&c);
+}
+
 int main(void)
 {
     pnpr_error err = {0};
@@ -119,6 +153,7 @@ int main(void)
                       fabs(far[0] - near[0]));
         }
     }
+    if (r && px[0]) test_in_view(r, px[0]);
     free(px[0]);
     free(px[1]);
     pnpr_cloud_free(&c);

@@ -1,0 +1,72 @@
+/* The points of a cloud on a grid of cells, and how many of them a view may show
+ * (view/view_internal.h). PointWorks draws each object's queue by the screen space the object
+ * occupies and culls the objects out of view (sections 3 and 4.4); with one queue per cloud, the
+ * cells stand in for its objects in the count of what is in view. */
+#include "view_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+static uint32_t axis_index(float v, float min, float cell, uint32_t n)
+{
+    float c = (v - min) / cell;
+    if (!(c >= 0)) return 0;
+    return c >= (float)n ? n - 1 : (uint32_t)c;
+}
+
+void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const float bmin[3], const float bmax[3])
+{
+    memset(c, 0, sizeof *c);
+    float side = 0;
+    for (int a = 0; a < 3; a++) side = fmaxf(side, bmax[a] - bmin[a]);
+    c->cell = side > 0 && isfinite(side) ? side / PNPR_VIEW_CELLS : 1;
+    for (int a = 0; a < 3; a++) {
+        float k = ceilf((bmax[a] - bmin[a]) / c->cell);
+        c->n[a] = k >= PNPR_VIEW_CELLS ? PNPR_VIEW_CELLS : k >= 1 ? (uint32_t)k : 1;
+        c->min[a] = bmin[a];
+    }
+    for (size_t i = 0; i < n; i++) {
+        const float *p = xyz + 3 * i;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) continue;
+        uint32_t x = axis_index(p[0], c->min[0], c->cell, c->n[0]), y = axis_index(p[1], c->min[1], c->cell, c->n[1]),
+                 z = axis_index(p[2], c->min[2], c->cell, c->n[2]);
+        c->count[((size_t)z * c->n[1] + y) * c->n[0] + x]++;
+        c->total++;
+    }
+}
+
+/* Whether the box [lo, hi] lies wholly outside one plane of the frustum. */
+static int box_outside(const pnpr_frame_camera *fc, const float lo[3], const float hi[3])
+{
+    int out[6] = {0};
+    for (int k = 0; k < 8; k++) {
+        float p[4] = {(k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2], 1}, e[4] = {0},
+              q[4] = {0};
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) e[i] += fc->view[j * 4 + i] * p[j];
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) q[i] += fc->proj[j * 4 + i] * e[j];
+        for (int a = 0; a < 3; a++) {
+            out[2 * a] += q[a] < -q[3];
+            out[2 * a + 1] += q[a] > q[3];
+        }
+    }
+    for (int f = 0; f < 6; f++)
+        if (out[f] == 8) return 1;
+    return 0;
+}
+
+size_t pnpr_view_cells_seen(const pnpr_view_cells *c, const pnpr_frame_camera *fc)
+{
+    size_t seen = 0;
+    for (uint32_t z = 0; z < c->n[2]; z++)
+        for (uint32_t y = 0; y < c->n[1]; y++)
+            for (uint32_t x = 0; x < c->n[0]; x++) {
+                uint32_t k = c->count[((size_t)z * c->n[1] + y) * c->n[0] + x];
+                if (!k) continue;
+                float lo[3] = {c->min[0] + (float)x * c->cell, c->min[1] + (float)y * c->cell, c->min[2] + (float)z * c->cell};
+                float hi[3] = {lo[0] + c->cell, lo[1] + c->cell, lo[2] + c->cell};
+                if (!box_outside(fc, lo, hi)) seen += k;
+            }
+    return seen;
+}
