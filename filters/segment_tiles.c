@@ -54,6 +54,7 @@ typedef struct reach_pass {
     unsigned bits;
     uint32_t *kept_sample;  /* per point read: its sample, or NONE */
     size_t kept, cap;
+    size_t collected;       /* samples the first pass met */
     int failed;
 } reach_pass;
 
@@ -65,7 +66,10 @@ static int sample_of(const reach_pass *r, uint64_t index)
 static int collect_sample(void *user, uint64_t index, const double p[3])
 {
     reach_pass *r = user;
-    if (sample_of(r, index)) memcpy(r->pos + 3 * (index / r->step), p, 3 * sizeof(double));
+    if (sample_of(r, index)) {
+        memcpy(r->pos + 3 * (index / r->step), p, 3 * sizeof(double));
+        r->collected++;
+    }
     return 0;
 }
 
@@ -175,15 +179,24 @@ static pnpr_status reach_round(reach_pass *r, const char *path, const pnpr_tile_
             *r_none += !(nn > 0);
         }
     }
-    if (st == PNPR_ERR_OUT_OF_MEMORY && !err->message[0]) pnpr_error_set(err, st, "%s: components: out of memory", path);
+    if (st != PNPR_OK && !err->message[0]) pnpr_error_set(err, st, "%s: components: %s", path, pnpr_status_string(st));
     pnpr_kdtree_free(tree);
     pnpr_cloud_free(&c);
     return st;
 }
 
+/* The margin of a reach: float offsets round by up to 2^-23 of their size, so a box of half-side
+ * reach + margin in doubles holds every point within reach in floats. */
+static double reach_margin(double reach, double offset)
+{
+    return 0.01 * reach + 1e-6 * (offset + reach);
+}
+
 pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan *plan,
                                           const pnpr_components_options *opts, float *r_distance, pnpr_error *err)
 {
+    pnpr_error local = {0};
+    if (!err) err = &local;
     if (!path || !plan || !r_distance) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "components: NULL argument");
     *r_distance = 0;
     if (opts && opts->distance > 0) {
@@ -197,10 +210,11 @@ pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan
     r.pos = malloc((3 * r.ns + 1) * sizeof *r.pos);
     r.open = malloc(r.ns + 1);
     r.next = malloc((r.ns + 1) * sizeof *r.next);
-    float *term = malloc((r.ns + 1) * sizeof *term);
-    pnpr_status st = r.pos && r.open && r.next && term ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    float *term = malloc((r.ns + 1) * sizeof *term), *done = malloc((r.ns + 1) * sizeof *done);
+    pnpr_status st = r.pos && r.open && r.next && term && done ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
     if (st != PNPR_OK) pnpr_error_set(err, st, "%s: components: out of memory", path);
     if (st == PNPR_OK) {
+        for (size_t i = 0; i < 3 * r.ns; i++) r.pos[i] = NAN; /* a sample the pass does not reach */
         memset(r.open, 1, r.ns + 1);
         pnpr_read_options ro = {0};
         ro.format = PNPR_FORMAT_PLY;
@@ -209,10 +223,15 @@ pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan
         pnpr_cloud none = {0};
         st = pnpr_read_file(path, &ro, &none, err);
         pnpr_cloud_free(&none);
+        if (st == PNPR_OK && r.collected != r.ns)
+            st = pnpr_error_set(err, PNPR_ERR_IO, "%s: components: the file changed since it was planned", path);
     }
+    double offset = 0; /* the largest float offset of a sample */
+    for (size_t i = 0; i < 3 * r.ns; i++)
+        if (isfinite(r.pos[i])) offset = fmax(offset, fabs(r.pos[i] - plan->grid.origin[i % 3]));
     double side = fmax(plan->grid.cell[0] * plan->grid.cells[0], plan->grid.cell[1] * plan->grid.cells[1]);
     r.reach = plan->spacing > 0 ? plan->spacing : side > 0 ? side / 1e6 : 1;
-    r.margin = 0.01 * r.reach + 1e-6 * side;
+    r.margin = reach_margin(r.reach, offset);
     size_t none = 0, open = r.ns;
     float median = 0;
     for (int round = 0; st == PNPR_OK && open; round++) {
@@ -222,23 +241,41 @@ pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan
         }
         st = reach_round(&r, path, plan, term, &none, err);
         open = 0;
-        for (size_t i = 0; i < r.ns; i++) open += r.open[i];
-        /* the terms: the certain ones (at most reach), then the open ones (beyond it) */
         size_t m = 0, terms = r.ns - none;
-        for (size_t i = 0; i < r.ns; i++)
-            if (!r.open[i] && term[i] > 0) term[m++] = term[i], r.open[i] = 2; /* packed; 2: done */
+        for (size_t i = 0; i < r.ns; i++) {
+            open += r.open[i];
+            if (!r.open[i] && term[i] > 0) done[m++] = term[i]; /* certain: at most reach; the open ones beyond */
+        }
         if (st == PNPR_OK && (terms == 0 || terms / 2 < m)) {
-            median = terms ? pnpr_select_float(term, m, terms / 2) : 0;
+            median = terms ? pnpr_select_float(done, m, terms / 2) : 0;
             break;
         }
-        /* the median is among the open terms: unpack and reach further */
-        for (size_t i = r.ns, k = m; i-- > 0;)
-            if (r.open[i] == 2) { term[i] = term[--k]; r.open[i] = 0; }
-        r.reach *= 4;
-        r.margin = 0.01 * r.reach + 1e-6 * side;
+        r.reach *= 4; /* the median is among the open terms: reach further for them */
+        r.margin = reach_margin(r.reach, offset);
     }
     if (st == PNPR_OK) *r_distance = pnpr_components_distance(opts, median);
-    free(r.pos); free(r.open); free(r.next); free(r.cells); free(r.kept_sample); free(term);
+    free(r.pos); free(r.open); free(r.next); free(r.cells); free(r.kept_sample); free(term); free(done);
+    return st;
+}
+
+/* ---- a tile's job ------------------------------------------------------------------------------ */
+
+pnpr_status pnpr_tile_components_job(pnpr_cloud *tile, const uint8_t *core, float distance, int threads,
+                                     uint32_t *r_components)
+{
+    if (!tile || (tile->count && !core) || !(distance > 0)) return PNPR_ERR_INVALID_ARGUMENT;
+    pnpr_property *tc = NULL, *tl = NULL;
+    pnpr_status st = pnpr_cloud_add_property(tile, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, &tc);
+    if (st == PNPR_OK) st = pnpr_cloud_add_property(tile, PNPR_PROP_TILE_COMPONENT, PNPR_TYPE_UINT32, &tl);
+    if (st != PNPR_OK) return st;
+    if (tile->count) memcpy(tc->data, core, tile->count);
+    pnpr_components_options o = {0};
+    o.distance = distance;
+    o.min_size = 1;
+    o.threads = threads;
+    pnpr_segment_info info;
+    st = pnpr_segment_components(tile->xyz, tile->count, &o, tl->data, &info);
+    if (st == PNPR_OK && r_components) *r_components = info.segment_count;
     return st;
 }
 
@@ -254,6 +291,7 @@ typedef struct seg_merge {
     double *sum;       /* per node: red, green, blue and count of its core points */
     size_t nodes, cap;
     size_t *base;      /* per tile: its first node */
+    uint32_t *tile_nodes; /* per tile: its nodes (its own components) */
     uint32_t *label;   /* per node, once numbered: the final label of its root */
     uint32_t valid;    /* the components; the points with a non-finite coordinate get label `valid` */
     double invalid[4];
@@ -267,11 +305,11 @@ static uint32_t uf_find(uint32_t *parent, uint32_t x)
 }
 
 /* A tile's nodes: one per local label (labels of points with finite coordinates). */
-static pnpr_status add_nodes(seg_merge *m, size_t tile, const pnpr_cloud *c)
+static pnpr_status add_nodes(seg_merge *m, size_t tile, const pnpr_cloud *c, const uint32_t *local)
 {
-    uint32_t n = 0;
+    uint64_t n = 0;
     for (size_t i = 0; i < c->count; i++)
-        if (pnpr_finite3f(c->xyz + 3 * i) && c->label[i] >= n) n = c->label[i] + 1;
+        if (pnpr_finite3f(c->xyz + 3 * i) && local[i] >= n) n = (uint64_t)local[i] + 1;
     if (n > c->count) return PNPR_ERR_FORMAT; /* a tile's own labels are fewer than its points */
     if (m->nodes + n > NONE - 2) return PNPR_ERR_UNSUPPORTED;
     if (m->nodes + n > m->cap) {
@@ -292,24 +330,34 @@ static pnpr_status add_nodes(seg_merge *m, size_t tile, const pnpr_cloud *c)
         memset(m->sum + 4 * k, 0, 4 * sizeof *m->sum);
     }
     m->base[tile] = m->nodes;
+    m->tile_nodes[tile] = (uint32_t)n;
     m->nodes += n;
     return PNPR_OK;
 }
 
-/* Reads a tile's result: its labels, source indices and core flags (c owns them). */
+/* Reads a tile's result: its source indices, core flags and own labels (c owns them). */
 static pnpr_status read_tile(const char *path, pnpr_cloud *c, const uint32_t **r_idx, const uint8_t **r_core,
-                             pnpr_error *err)
+                             const uint32_t **r_local, pnpr_error *err)
 {
     pnpr_status st = pnpr_read_file(path, NULL, c, err);
     if (st != PNPR_OK) return st;
     const pnpr_property *si = pnpr_cloud_find_property(c, PNPR_PROP_SOURCE_INDEX);
     const pnpr_property *tc = pnpr_cloud_find_property(c, PNPR_PROP_TILE_CORE);
-    if (!si || si->type != PNPR_TYPE_UINT32 || !tc || tc->type != PNPR_TYPE_UINT8 || (c->count && !c->label))
+    const pnpr_property *tl = pnpr_cloud_find_property(c, PNPR_PROP_TILE_COMPONENT);
+    if (!si || si->type != PNPR_TYPE_UINT32 || !tc || tc->type != PNPR_TYPE_UINT8 || !tl || tl->type != PNPR_TYPE_UINT32)
         return pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: not a tile of `pointnpr segment` (it needs %s, %s and %s)", path,
-                              PNPR_PROP_SOURCE_INDEX, PNPR_PROP_TILE_CORE, PNPR_PROP_SEGMENT);
+                              PNPR_PROP_SOURCE_INDEX, PNPR_PROP_TILE_CORE, PNPR_PROP_TILE_COMPONENT);
     *r_idx = si->data;
     *r_core = tc->data;
+    *r_local = tl->data;
     return PNPR_OK;
+}
+
+/* A finite point's node, or NONE when its label lies beyond the tile's components (a tile file
+ * changed since pass 1). */
+static uint32_t node_of(const seg_merge *m, size_t tile, uint32_t local)
+{
+    return local < m->tile_nodes[tile] ? (uint32_t)m->base[tile] + local : NONE;
 }
 
 /* Pass 1 (halo 0): every core point's owner, each node's first index and colour sums. Pass 2
@@ -317,10 +365,10 @@ static pnpr_status read_tile(const char *path, pnpr_cloud *c, const uint32_t **r
 static pnpr_status seg_pass(seg_merge *m, const char *path, size_t tile, int halo, pnpr_error *err)
 {
     pnpr_cloud c = {0};
-    const uint32_t *idx = NULL;
+    const uint32_t *idx = NULL, *local = NULL;
     const uint8_t *core = NULL;
-    pnpr_status st = read_tile(path, &c, &idx, &core, err);
-    if (st == PNPR_OK && !halo && (st = add_nodes(m, tile, &c)) != PNPR_OK)
+    pnpr_status st = read_tile(path, &c, &idx, &core, &local, err);
+    if (st == PNPR_OK && !halo && (st = add_nodes(m, tile, &c, local)) != PNPR_OK)
         pnpr_error_set(err, st, "%s: merge: %s", path,
                        st == PNPR_ERR_FORMAT        ? "labels beyond its points: not a tile of `pointnpr segment`"
                        : st == PNPR_ERR_UNSUPPORTED ? "too many components"
@@ -333,7 +381,11 @@ static pnpr_status seg_pass(seg_merge *m, const char *path, size_t tile, int hal
             break;
         }
         int valid = pnpr_finite3f(c.xyz + 3 * i);
-        uint32_t node = valid ? (uint32_t)m->base[tile] + c.label[i] : INVALID;
+        uint32_t node = valid ? node_of(m, tile, local[i]) : INVALID;
+        if (node == NONE) {
+            st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: point %zu: a component beyond the tile's (it changed?)", path, i);
+            break;
+        }
         if (halo && !core[i] && (m->owner[s] == NONE || (m->owner[s] == INVALID) != !valid)) {
             st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: halo point %zu (source index %u) %s", path, i, s,
                                 m->owner[s] == NONE ? "is in no tile's core (a tile missing?)" : "differs from its core tile's");
@@ -378,7 +430,7 @@ static pnpr_status seg_number(seg_merge *m)
     size_t roots = 0;
     for (size_t k = 0; k < m->nodes; k++) roots += m->parent[k] == k && m->first[k] != NONE;
     uint64_t *key = malloc((roots + 1) * sizeof *key);
-    m->label = malloc((m->nodes + 1) * sizeof *m->label);
+    m->label = calloc(m->nodes + 1, sizeof *m->label);
     m->mean = malloc(3 * (roots + 1) * sizeof *m->mean);
     if (!key || !m->label || !m->mean) { free(key); return PNPR_ERR_OUT_OF_MEMORY; }
     size_t n = 0;
@@ -399,14 +451,25 @@ static pnpr_status seg_number(seg_merge *m)
 }
 
 /* The merge's hook: a tile's final labels, and their colours when it has colours. */
-static pnpr_status seg_relabel(void *user, size_t tile, pnpr_cloud *c, const uint32_t *idx, const uint8_t *core,
-                               pnpr_error *err)
+static pnpr_status seg_relabel(void *user, size_t tile, const char *path, pnpr_cloud *c, const uint32_t *idx,
+                               const uint8_t *core, pnpr_error *err)
 {
-    (void)idx; (void)core; (void)err;
+    (void)idx; (void)core;
     seg_merge *m = user;
-    for (size_t i = 0; i < c->count; i++)
-        c->label[i] = pnpr_finite3f(c->xyz + 3 * i) ? m->label[m->base[tile] + c->label[i]] : m->valid;
-    return c->rgb ? pnpr_segment_add_colors(c, m->mean, m->valid + (m->invalid[3] > 0)) : PNPR_OK;
+    pnpr_property *tl = pnpr_cloud_find_property(c, PNPR_PROP_TILE_COMPONENT);
+    if (!tl || tl->type != PNPR_TYPE_UINT32)
+        return pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: merge: the tile changed since it was first read", path);
+    pnpr_status st = pnpr_cloud_alloc_labels(c);
+    const uint32_t *local = tl->data;
+    for (size_t i = 0; st == PNPR_OK && i < c->count; i++) {
+        uint32_t node = pnpr_finite3f(c->xyz + 3 * i) ? node_of(m, tile, local[i]) : INVALID;
+        if (node == NONE)
+            return pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: merge: point %zu: a component beyond the tile's (it changed?)",
+                                  path, i);
+        c->label[i] = node == INVALID ? m->valid : m->label[node];
+    }
+    if (st == PNPR_OK) st = pnpr_cloud_remove_property(c, PNPR_PROP_TILE_COMPONENT);
+    return st == PNPR_OK && c->rgb ? pnpr_segment_add_colors(c, m->mean, m->valid + (m->invalid[3] > 0)) : st;
 }
 
 pnpr_status pnpr_tile_merge_segments(const char *const *paths, size_t count, uint64_t points, const char *out,
@@ -422,7 +485,8 @@ pnpr_status pnpr_tile_merge_segments(const char *const *paths, size_t count, uin
     m.points = points;
     m.owner = malloc((points + 1) * sizeof *m.owner);
     m.base = calloc(count + 1, sizeof *m.base);
-    pnpr_status st = m.owner && m.base ? PNPR_OK : pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: merge: out of memory", out);
+    m.tile_nodes = calloc(count + 1, sizeof *m.tile_nodes);
+    pnpr_status st = m.owner && m.base && m.tile_nodes ? PNPR_OK : pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: merge: out of memory", out);
     for (uint64_t i = 0; st == PNPR_OK && i < points; i++) m.owner[i] = NONE;
     for (int halo = 0; halo < 2; halo++)
         for (size_t t = 0; st == PNPR_OK && t < count; t++) {
@@ -438,6 +502,6 @@ pnpr_status pnpr_tile_merge_segments(const char *const *paths, size_t count, uin
     if (st == PNPR_OK && (st = seg_number(&m)) != PNPR_OK) pnpr_error_set(err, st, "%s: merge: out of memory", out);
     if (st == PNPR_OK) st = pnpr_tile_merge_with(paths, count, points, 0, out, progress, seg_relabel, &m, err);
     if (st == PNPR_OK && r_segment_count) *r_segment_count = m.valid + (m.invalid[3] > 0);
-    free(m.parent); free(m.first); free(m.sum); free(m.base); free(m.label); free(m.mean);
+    free(m.parent); free(m.first); free(m.sum); free(m.base); free(m.tile_nodes); free(m.label); free(m.mean);
     return st;
 }

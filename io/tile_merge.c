@@ -207,12 +207,15 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
     pnpr_property *tc = st == PNPR_OK ? pnpr_cloud_find_property(&c, PNPR_PROP_TILE_CORE) : NULL;
     if (st == PNPR_OK && (!si || si->type != PNPR_TYPE_UINT32 || (tc && tc->type != PNPR_TYPE_UINT8)))
         st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: no uint property %s: not a tile's result", path, PNPR_PROP_SOURCE_INDEX);
+    if (st == PNPR_OK && !r->hook && pnpr_cloud_find_property(&c, PNPR_PROP_TILE_COMPONENT))
+        st = pnpr_error_set(err, PNPR_ERR_FORMAT, "%s: a tile of `pointnpr segment`: its components join only in the "
+                                                  "merge of segments (merge-tiles --segments)", path);
     if (st == PNPR_OK && (!(idx = malloc((c.count ? c.count : 1) * sizeof *idx)) || !(core = malloc(c.count + 1))))
         st = PNPR_ERR_OUT_OF_MEMORY;
     if (st == PNPR_OK) {
         memcpy(idx, si->data, c.count * sizeof *idx);
         for (size_t i = 0; i < c.count; i++) core[i] = !tc || ((const uint8_t *)tc->data)[i] != 0;
-        if (r->hook) st = r->hook(r->hook_user, r->tile, &c, idx, core, err);
+        if (r->hook) st = r->hook(r->hook_user, r->tile, path, &c, idx, core, err);
         orient_tile(r, &c, idx, core);
         size_t n = 0;
         for (size_t i = 0; i < c.count; i++)

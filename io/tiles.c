@@ -30,9 +30,9 @@ void pnpr_tile_cell(const pnpr_tile_grid *g, const double p[3], uint32_t r_cell[
 
 void pnpr_tile_box(const pnpr_tile_grid *g, const pnpr_tile *t, double halo, double r_box[4])
 {
-    for (int a = 0; a < 2; a++) {
-        r_box[a] = g->min[a] + (double)t->lo[a] * g->cell[a] - halo;
-        r_box[2 + a] = g->min[a] + (double)t->hi[a] * g->cell[a] + halo;
+    for (int a = 0; a < 2; a++) { /* the grid's edge cells hold every point beyond them: so does the box */
+        r_box[a] = t->lo[a] == 0 ? -INFINITY : g->min[a] + (double)t->lo[a] * g->cell[a] - halo;
+        r_box[2 + a] = t->hi[a] >= g->cells[a] ? INFINITY : g->min[a] + (double)t->hi[a] * g->cell[a] + halo;
     }
 }
 
@@ -66,6 +66,7 @@ typedef struct plan_scan {
     uint64_t points;
     uint64_t *counts;    /* cells[0] x cells[1], row-major in y; NULL during the bounds pass */
     uint64_t *hist;      /* PLAN_BINS per axis over [lo, hi] (narrow_bounds), or NULL */
+    int narrowed;        /* far outliers were left off the grid */
 } plan_scan;
 
 #define PLAN_BINS 4096
@@ -147,7 +148,7 @@ static pnpr_status narrow_bounds(plan_scan *s, const char *path, pnpr_read_optio
             double w = (s->hi[a] - s->lo[a]) / PLAN_BINS, lo = s->lo[a];
             s->lo[a] = lo + (double)b0 * w;
             s->hi[a] = fmin(lo + (double)(b1 + 1) * w, s->hi[a]);
-            narrowed = 1;
+            narrowed = s->narrowed = 1;
         }
     }
     free(hist);
@@ -317,6 +318,7 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
     if (st == PNPR_OK) {
         r_plan->points = points;
         r_plan->grid = s.g;
+        r_plan->narrowed = s.narrowed;
         r_plan->tile_points = o.tile_points ? o.tile_points : PNPR_TILE_POINTS_DEFAULT;
         if (plan_tiles(&s, r_plan->tile_points, r_plan) != PNPR_OK)
             st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: tile plan: out of memory", path);

@@ -137,6 +137,9 @@ pointnpr merge-tiles --points 7000 --segments -o "$dir/bad.ply" "${segtiles[@]:1
 check '[ $? -eq 1 ] && grep -q "in no tile" "$dir/err.log" && [ ! -e "$dir/bad.ply" ]' "a missing segment tile is refused"
 pointnpr merge-tiles --points 7000 --segments --seams -o "$dir/bad.ply" "${segtiles[@]}" 2> "$dir/err.log"
 check '[ $? -eq 2 ]' "--seams and --segments together are a usage error"
+pointnpr merge-tiles --points 7000 -o "$dir/bad.ply" "${segtiles[@]}" 2> "$dir/err.log"
+check '[ $? -eq 1 ] && grep -q "tile_00000.ply: a tile of .pointnpr segment.*--segments" "$dir/err.log" && [ ! -e "$dir/bad.ply" ]' \
+  "segment tiles merged without --segments are refused"
 for bad in "--method jseg" "--method components --min-size 5" "--method components --split 0.1" \
            "--method components --segments 4" "--method components --ascii"; do
   pointnpr segment "$dir/patches.ply" -o "$dir/bad.ply" $bad --tile-points 1000 2> "$dir/err.log"

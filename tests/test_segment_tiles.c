@@ -1,8 +1,10 @@
 /* Connected components in tiles (tiles.h, filters/segment_tiles.c) against the run in memory, on
  * generated scenes with known components: islands of points on a georeferenced plane (double
  * coordinates around (5e5, 4.2e6)), a thin snake that crosses every tile (one component), a few
- * lone points and points with NaN coordinates, in random file order; and a vertical wall, whose
- * spacing the plan (2.5D) underestimates, so that the automatic distance needs several reaches.
+ * lone points and points with NaN coordinates, in random file order; a vertical wall, whose
+ * spacing the plan (2.5D) underestimates, so that the automatic distance needs several reaches,
+ * with NaN and coincident points among its samples (terms that do not count); and far points in
+ * a line across a seam of the edge tiles (off the plan's grid).
  * The labels, their numbering and the mean colours must be the run in memory's, bit for bit. */
 #include "testutil.h"
 
@@ -21,7 +23,8 @@
 #define INVALID 3    /* points with a NaN coordinate */
 #define TILES_MAX 256
 
-enum { SCENE_ISLANDS, SCENE_WALL };
+enum { SCENE_ISLANDS, SCENE_WALL, SCENE_EDGE };
+#define EDGE 13 /* far points in a line at x + 1e4 (under 0.1 %: off the plan's grid, in edge tiles) */
 
 /* The scene's points (world coordinates) in random order; colours by component. */
 static void make_scene(pnpr_cloud *c, int kind, size_t *r_components)
@@ -29,7 +32,7 @@ static void make_scene(pnpr_cloud *c, int kind, size_t *r_components)
     pnpr_test_rng rng = {777};
     const double off[3] = {5e5, 4.2e6, 100};
     size_t n = kind == SCENE_WALL ? 20000 : 0;
-    if (kind == SCENE_ISLANDS) n = ISLANDS * 900 + 3000 + LONE + INVALID;
+    if (kind != SCENE_WALL) n = ISLANDS * 900 + 3000 + LONE + INVALID + (kind == SCENE_EDGE ? EDGE : 0);
     double *w = malloc(3 * n * sizeof *w);
     uint8_t *rgb = malloc(3 * n);
     size_t m = 0;
@@ -42,8 +45,10 @@ static void make_scene(pnpr_cloud *c, int kind, size_t *r_components)
             rgb[3 * m] = (uint8_t)(x * 30);
             rgb[3 * m + 1] = 90;
             rgb[3 * m + 2] = (uint8_t)(z * 50);
+            if (m % 7 == 3) p[1] = NAN, memcpy(w + 3 * m, p, sizeof p); /* samples without a term */
+            if (m >= 10000 && m < 10040) w[3 * m] = 4, w[3 * m + 1] = 0, w[3 * m + 2] = 2; /* 40 coincide */
         }
-        *r_components = 1;
+        *r_components = 2; /* the wall, and the points with a NaN coordinate */
     } else {
         for (int k = 0; k < ISLANDS; k++) /* a jittered 30 x 30 grid of spacing 0.05 */
             for (int i = 0; i < 900; i++, m++) {
@@ -66,12 +71,17 @@ static void make_scene(pnpr_cloud *c, int kind, size_t *r_components)
             memcpy(w + 3 * m, p, sizeof p);
             memset(rgb + 3 * m, 200, 3);
         }
+        for (int i = 0; kind == SCENE_EDGE && i < EDGE; i++, m++) { /* across the middle rows' seam */
+            double p[3] = {1e4, 5.2 + 1.6 * i / (EDGE - 1), 0};
+            memcpy(w + 3 * m, p, sizeof p);
+            memset(rgb + 3 * m, 60, 3);
+        }
         for (int i = 0; i < INVALID; i++, m++) {
             double p[3] = {1, NAN, 2};
             memcpy(w + 3 * m, p, sizeof p);
             memset(rgb + 3 * m, 10 * i, 3);
         }
-        *r_components = ISLANDS + 1 + LONE + 1;
+        *r_components = ISLANDS + 1 + LONE + 1 + (kind == SCENE_EDGE); /* the edge line: one, at 0.2 */
     }
     for (size_t i = n - 1; i > 0; i--) { /* random file order */
         size_t j = (size_t)(pnpr_test_uniform(&rng) * (double)(i + 1));
@@ -98,14 +108,19 @@ static const char *scratch(const char *name, char *buf, size_t cap)
     return buf;
 }
 
-/* The run in memory: labels and the automatic distance. */
-static void in_memory(const char *path, pnpr_cloud *c, float *r_distance, uint32_t *r_segments)
+/* The run in memory (read with `origin`, NULL: its own): labels and the distance (`given`, or
+ * the automatic one when 0). */
+static void in_memory(const char *path, const double *origin, float given, pnpr_cloud *c, float *r_distance,
+                      uint32_t *r_segments)
 {
     pnpr_error err = {0};
-    CHECK_STATUS(pnpr_read_file(path, NULL, c, &err), PNPR_OK);
+    pnpr_read_options ro = {0};
+    ro.origin = origin;
+    CHECK_STATUS(pnpr_read_file(path, &ro, c, &err), PNPR_OK);
     pnpr_kdtree *tree = NULL;
     CHECK_STATUS(pnpr_kdtree_build(c->xyz, c->count, 0, &tree), PNPR_OK);
     pnpr_components_options o = {0};
+    o.distance = given;
     *r_distance = pnpr_components_distance(&o, pnpr_segment_median_spacing(tree, c->xyz, c->count));
     pnpr_kdtree_free(tree);
     CHECK_STATUS(pnpr_cloud_alloc_labels(c), PNPR_OK);
@@ -126,13 +141,7 @@ static void run_jobs(const char *in, const pnpr_tile_plan *plan, float distance,
         uint8_t *core = NULL;
         pnpr_error err = {0};
         CHECK_STATUS(pnpr_tile_read(in, &plan->grid, &plan->tiles[t], plan->halo, NULL, &c, &core, &err), PNPR_OK);
-        pnpr_components_options o = {0};
-        o.distance = distance;
-        CHECK_STATUS(pnpr_cloud_alloc_labels(&c), PNPR_OK);
-        CHECK_STATUS(pnpr_segment_components(c.xyz, c.count, &o, c.label, NULL), PNPR_OK);
-        pnpr_property *tc = NULL;
-        CHECK_STATUS(pnpr_cloud_add_property(&c, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, &tc), PNPR_OK);
-        if (c.count) memcpy(tc->data, core, c.count);
+        CHECK_STATUS(pnpr_tile_components_job(&c, core, distance, 2, NULL), PNPR_OK);
         snprintf(paths[t], sizeof paths[t], "%s/segtiles_part%03zu.ply", PNPR_TEST_SCRATCH, t);
         CHECK_STATUS(pnpr_write_file(paths[t], &c, NULL, &err), PNPR_OK);
         free(core);
@@ -155,7 +164,7 @@ static size_t differing(const pnpr_cloud *a, const pnpr_cloud *b)
     return bad;
 }
 
-static void test_equal(int kind, uint64_t tile_points, size_t min_tiles)
+static void test_equal(int kind, uint64_t tile_points, size_t min_tiles, float given)
 {
     char in[512], out[512];
     pnpr_cloud scene = {0};
@@ -164,12 +173,6 @@ static void test_equal(int kind, uint64_t tile_points, size_t min_tiles)
     pnpr_error err = {0};
     CHECK_STATUS(pnpr_write_file(scratch("in.ply", in, sizeof in), &scene, NULL, &err), PNPR_OK);
     pnpr_cloud_free(&scene);
-
-    pnpr_cloud mem = {0};
-    float distance = 0;
-    uint32_t segments = 0;
-    in_memory(in, &mem, &distance, &segments);
-    CHECK_MSG(segments == expected, "%u components in memory, the scene has %zu", segments, expected);
 
     pnpr_tile_plan_options po = {0};
     pnpr_tile_plan plan;
@@ -186,8 +189,18 @@ static void test_equal(int kind, uint64_t tile_points, size_t min_tiles)
     po.tile_points = tile_points;
     CHECK_STATUS(pnpr_tile_plan_make(in, &po, &plan, &err), PNPR_OK);
     CHECK_MSG(plan.count >= min_tiles && plan.count <= TILES_MAX, "%zu tiles", plan.count);
+    /* far points leave the plan's grid: the run in memory then takes another origin (docs/tiles.md),
+     * so it is read here with the plan's for equal floats */
+    CHECK_MSG(plan.narrowed == (kind == SCENE_EDGE), "narrowed %d", plan.narrowed);
+    pnpr_cloud mem = {0};
+    float distance = 0;
+    uint32_t segments = 0;
+    in_memory(in, kind == SCENE_EDGE ? plan.grid.origin : NULL, given, &mem, &distance, &segments);
+    CHECK_MSG(segments == expected, "%u components in memory, the scene has %zu", segments, expected);
     float tiled = -1;
-    CHECK_STATUS(pnpr_tile_components_distance(in, &plan, NULL, &tiled, &err), PNPR_OK);
+    pnpr_components_options to = {0};
+    to.distance = given;
+    CHECK_STATUS(pnpr_tile_components_distance(in, &plan, &to, &tiled, &err), PNPR_OK);
     CHECK_MSG(tiled == distance, "distance in tiles %.9g, in memory %.9g", (double)tiled, (double)distance);
     plan.halo = pnpr_tile_components_halo(&plan.grid, tiled);
     CHECK(plan.halo > tiled);
@@ -224,12 +237,20 @@ static void test_equal(int kind, uint64_t tile_points, size_t min_tiles)
         list[1] = paths[1];
         pnpr_cloud lie = {0};
         CHECK_STATUS(pnpr_read_file(paths[1], NULL, &lie, &err), PNPR_OK);
-        for (size_t i = 0; i < lie.count; i++)
-            if (lie.xyz[3 * i] == lie.xyz[3 * i]) { lie.label[i] = 4000000000u; break; }
-        CHECK_STATUS(pnpr_write_file(paths[1], &lie, NULL, &err), PNPR_OK);
+        uint32_t *own = pnpr_cloud_find_property(&lie, PNPR_PROP_TILE_COMPONENT)->data;
+        static const uint32_t lies[2] = {4000000000u, 0xFFFFFFFFu}; /* the second wraps to 0 components + 1 */
+        for (int l = 0; l < 2; l++) {
+            for (size_t i = lie.count; i-- > 0;)
+                if (lie.xyz[3 * i] == lie.xyz[3 * i]) { own[i] = lies[l]; break; }
+            CHECK_STATUS(pnpr_write_file(paths[1], &lie, NULL, &err), PNPR_OK);
+            CHECK_STATUS(pnpr_tile_merge_segments(list, plan.count, plan.points, out, NULL, &S, &err), PNPR_ERR_FORMAT);
+            CHECK_MSG(strstr(err.message, "labels beyond its points") != NULL && strstr(err.message, paths[1]) != NULL,
+                      "%s", err.message);
+        }
         pnpr_cloud_free(&lie);
-        CHECK_STATUS(pnpr_tile_merge_segments(list, plan.count, plan.points, out, NULL, &S, &err), PNPR_ERR_FORMAT);
-        CHECK(strstr(err.message, "labels beyond its points") != NULL);
+        /* the plain merge refuses a segment tile: it would write each tile's own components */
+        CHECK_STATUS(pnpr_tile_merge(list + 2, plan.count - 2, plan.points, 0, out, NULL, &err), PNPR_ERR_FORMAT);
+        CHECK(strstr(err.message, "merge-tiles --segments") != NULL);
         /* the result refused is the one merged before, untouched */
         pnpr_cloud again = {0};
         CHECK_STATUS(pnpr_read_file(out, NULL, &again, &err), PNPR_OK);
@@ -263,8 +284,9 @@ static void test_given_distance(void)
 
 int main(void)
 {
-    test_equal(SCENE_ISLANDS, 1500, 8);
-    test_equal(SCENE_WALL, 3000, 4);
+    test_equal(SCENE_ISLANDS, 1500, 8, 0);
+    test_equal(SCENE_WALL, 3000, 4, 0);
+    test_equal(SCENE_EDGE, 1500, 8, 0.2f);
     test_given_distance();
     return pnpr_test_finish("test_segment_tiles");
 }

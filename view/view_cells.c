@@ -35,17 +35,14 @@ void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const
     }
 }
 
-/* Whether the box [lo, hi] lies wholly outside one plane of the frustum. */
-static int box_outside(const pnpr_frame_camera *fc, const float lo[3], const float hi[3])
+/* Whether the box [lo, hi] lies wholly outside one plane of the frustum (m: projection x view). */
+static int box_outside(const float m[16], const float lo[3], const float hi[3])
 {
     int out[6] = {0};
     for (int k = 0; k < 8; k++) {
-        float p[4] = {(k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2], 1}, e[4] = {0},
-              q[4] = {0};
+        float p[4] = {(k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2], 1}, q[4] = {0};
         for (int i = 0; i < 4; i++)
-            for (int j = 0; j < 4; j++) e[i] += fc->view[j * 4 + i] * p[j];
-        for (int i = 0; i < 4; i++)
-            for (int j = 0; j < 4; j++) q[i] += fc->proj[j * 4 + i] * e[j];
+            for (int j = 0; j < 4; j++) q[i] += m[j * 4 + i] * p[j];
         for (int a = 0; a < 3; a++) {
             out[2 * a] += q[a] < -q[3];
             out[2 * a + 1] += q[a] > q[3];
@@ -58,6 +55,10 @@ static int box_outside(const pnpr_frame_camera *fc, const float lo[3], const flo
 
 size_t pnpr_view_cells_seen(const pnpr_view_cells *c, const pnpr_frame_camera *fc)
 {
+    float m[16] = {0}; /* column-major, as the camera's */
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++)
+            for (int k = 0; k < 4; k++) m[col * 4 + row] += fc->proj[k * 4 + row] * fc->view[col * 4 + k];
     size_t seen = 0;
     for (uint32_t z = 0; z < c->n[2]; z++)
         for (uint32_t y = 0; y < c->n[1]; y++)
@@ -66,7 +67,7 @@ size_t pnpr_view_cells_seen(const pnpr_view_cells *c, const pnpr_frame_camera *f
                 if (!k) continue;
                 float lo[3] = {c->min[0] + (float)x * c->cell, c->min[1] + (float)y * c->cell, c->min[2] + (float)z * c->cell};
                 float hi[3] = {lo[0] + c->cell, lo[1] + c->cell, lo[2] + c->cell};
-                if (!box_outside(fc, lo, hi)) seen += k;
+                if (!box_outside(m, lo, hi)) seen += k;
             }
     return seen;
 }

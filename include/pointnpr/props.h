@@ -18,6 +18,7 @@
  *   PNPR_PROP_CLASSIFICATION      uchar  LAS classification
  *   PNPR_PROP_SOURCE_INDEX        uint   a tile's point: its index in the whole file (tiles.h)
  *   PNPR_PROP_TILE_CORE           uchar  a tile's point: 1 in its core, 0 in its halo (tiles.h)
+ *   PNPR_PROP_TILE_COMPONENT      uint   a components tile's point: its component in the tile (tiles.h)
  *
  * Segment labels (pnpr_cloud.label, uint) are written as PNPR_PROP_SEGMENT, or as
  * PNPR_PROP_LABEL when an extra property already uses that name; readers take either.
@@ -51,5 +52,6 @@
 
 #define PNPR_PROP_SOURCE_INDEX "source_index"
 #define PNPR_PROP_TILE_CORE "tile_core"
+#define PNPR_PROP_TILE_COMPONENT "tile_component"
 
 #endif

@@ -47,6 +47,9 @@ typedef struct pnpr_tile_plan {
     pnpr_tile_grid grid;
     double spacing;        /* the point spacing estimated from the cell counts (0: none) */
     double halo;           /* the halo used (world units) */
+    int narrowed;          /* far outliers lie off the grid (in its edge cells): the origin is the
+                            * centre of all finite points, where a run in memory leaves them out
+                            * of it, so the float offsets of double coordinates differ from it */
     uint64_t tile_points;  /* the size asked (or from the memory limit); a tile of one cell may be larger */
     pnpr_tile *tiles;      /* count tiles; release with pnpr_tile_plan_free */
     size_t count;
@@ -79,7 +82,8 @@ uint64_t pnpr_tile_points_for_memory(size_t limit, size_t record_bytes, uint32_t
 
 /* The cell of a point (x, y of p), clamped into the grid; NaN goes to cell 0. */
 void pnpr_tile_cell(const pnpr_tile_grid *grid, const double p[3], uint32_t r_cell[2]);
-/* A tile's core box, and that box grown by halo, in world units (x0, y0, x1, y1). */
+/* A tile's core box, and that box grown by halo, in world units (x0, y0, x1, y1); unbounded on the
+ * sides where the tile reaches the grid's edge (its edge cells hold the points beyond it). */
 void pnpr_tile_box(const pnpr_tile_grid *grid, const pnpr_tile *tile, double halo, double r_box[4]);
 /* Whether the grid and tile are usable: finite corner and origin, finite positive cells,
  * 1..PNPR_TILE_GRID cells, lo < hi within the grid, halo finite and >= 0. PNPR_ERR_INVALID_ARGUMENT with a message otherwise. */
@@ -137,14 +141,23 @@ PNPR_NODISCARD pnpr_status pnpr_tile_components_distance(const char *path, const
 double pnpr_tile_components_halo(const pnpr_tile_grid *grid, float distance);
 /* A components job's bytes per point beyond the record (pnpr_tile_plan_options.job_bytes): the
  * source index, core flag, labels, the kd-tree and the union-find. Measured: a 5M-point tile of
- * 15-byte records peaked at 318 MiB (the whole process), 50 bytes a point beyond them. */
-#define PNPR_TILE_COMPONENTS_BYTES 56
-/* Writes the tiles' results (clouds with PNPR_PROP_SOURCE_INDEX, PNPR_PROP_TILE_CORE and labels,
- * all with the same properties) as one binary PLY at out, in input order, each point's label the
- * whole cloud's component (numbered by first appearance; points with a non-finite coordinate the
- * last) and, when the tiles have colours, the components' mean colours (pnpr_segment_add_colors).
- * Reads each tile three times; holds one tile, 4 bytes per point of the file and 44 bytes per
- * component of a tile. Every index must be a core point exactly once. */
+ * 15-byte records peaked at 318 MiB (the whole process), 50 bytes a point beyond them; 68 takes
+ * 6 more and the 12 of the float offsets that a file of double coordinates holds beside them. */
+#define PNPR_TILE_COMPONENTS_BYTES 68
+/* A components job on a tile read by pnpr_tile_read (its core flags `core`): the tile's own
+ * components at `distance` (> 0; FLT_MIN stands for 0) as PNPR_PROP_TILE_COMPONENT, its core flags
+ * as PNPR_PROP_TILE_CORE; the tile is then written as binary PLY for the merge. r_components (may
+ * be NULL): the tile's components. */
+PNPR_NODISCARD pnpr_status pnpr_tile_components_job(pnpr_cloud *tile, const uint8_t *core, float distance, int threads,
+                                                    uint32_t *r_components);
+/* Writes the tiles' results (pnpr_tile_components_job's, all with the same properties) as one
+ * binary PLY at out, in input order, each point's label (pnpr_cloud.label) the whole cloud's
+ * component (numbered by first appearance; points with a non-finite coordinate the last) and,
+ * when the tiles have colours, the components' mean colours (pnpr_segment_add_colors); the body is
+ * byte for byte the run in memory's. Reads each tile three times; holds one tile, 4 bytes per point
+ * of the file and 44 bytes per component of a tile (as many as points at worst: a distance below
+ * the spacing). Every index must be a core point exactly once. pnpr_tile_merge refuses these
+ * tiles. */
 PNPR_NODISCARD pnpr_status pnpr_tile_merge_segments(const char *const *paths, size_t count, uint64_t points,
                                                     const char *out, const pnpr_progress *progress,
                                                     uint32_t *r_segment_count, pnpr_error *err);

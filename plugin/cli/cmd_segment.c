@@ -173,16 +173,8 @@ static int segment_tile_job(const void *ctx, const char *out, const pnpr_tile_gr
     pnpr_error err = {0};
     pnpr_status st = pnpr_tile_read(r->in, g, t, halo, NULL, &c, &core, &err);
     if (st != PNPR_OK) { cli_report_error("segment", st, &err); return 1; }
-    pnpr_components_options o = {0};
-    o.distance = r->distance;
-    o.min_size = 1;
-    o.threads = r->threads;
-    pnpr_segment_info info;
-    pnpr_property *p = NULL;
-    st = pnpr_cloud_alloc_labels(&c);
-    if (st == PNPR_OK) st = pnpr_segment_components(c.xyz, c.count, &o, c.label, &info);
-    if (st == PNPR_OK) st = pnpr_cloud_add_property(&c, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, &p);
-    if (st == PNPR_OK && c.count) memcpy(p->data, core, c.count);
+    uint32_t own = 0;
+    st = pnpr_tile_components_job(&c, core, r->distance, r->threads, &own);
     size_t halo_points = 0;
     for (size_t i = 0; i < c.count; i++) halo_points += !core[i];
     free(core);
@@ -199,7 +191,7 @@ static int segment_tile_job(const void *ctx, const char *out, const pnpr_tile_gr
     }
     if (st == PNPR_OK && !r->quiet)
         fprintf(stderr, "tile %u,%u..%u,%u: %zu points and %zu in the halo, %u components of its own\n", t->lo[0], t->lo[1],
-                t->hi[0], t->hi[1], c.count - halo_points, halo_points, info.segment_count);
+                t->hi[0], t->hi[1], c.count - halo_points, halo_points, own);
     pnpr_cloud_free(&c);
     if (st != PNPR_OK) { cli_report_error("segment", st, &err); return 1; }
     return 0;
