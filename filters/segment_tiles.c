@@ -264,10 +264,12 @@ pnpr_status pnpr_tile_components_job(pnpr_cloud *tile, const uint8_t *core, floa
                                      uint32_t *r_components)
 {
     if (!tile || (tile->count && !core) || !(distance > 0)) return PNPR_ERR_INVALID_ARGUMENT;
-    pnpr_property *tc = NULL, *tl = NULL;
-    pnpr_status st = pnpr_cloud_add_property(tile, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, &tc);
-    if (st == PNPR_OK) st = pnpr_cloud_add_property(tile, PNPR_PROP_TILE_COMPONENT, PNPR_TYPE_UINT32, &tl);
+    pnpr_status st = pnpr_cloud_add_property(tile, PNPR_PROP_TILE_CORE, PNPR_TYPE_UINT8, NULL);
+    if (st == PNPR_OK) st = pnpr_cloud_add_property(tile, PNPR_PROP_TILE_COMPONENT, PNPR_TYPE_UINT32, NULL);
     if (st != PNPR_OK) return st;
+    /* found after both are added: adding one moves the others */
+    pnpr_property *tc = pnpr_cloud_find_property(tile, PNPR_PROP_TILE_CORE);
+    pnpr_property *tl = pnpr_cloud_find_property(tile, PNPR_PROP_TILE_COMPONENT);
     if (tile->count) memcpy(tc->data, core, tile->count);
     pnpr_components_options o = {0};
     o.distance = distance;
