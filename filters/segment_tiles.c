@@ -24,10 +24,13 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define NONE 0xFFFFFFFFu
 #define REACH_ROUNDS 24                 /* fourfold each: from the spacing past any cloud's size */
 #define REACH_POINTS_MAX (64u << 20)    /* the points a round may read: beyond, give the distance */
+#define REACH_BYTES 48                  /* a point read in a round, beyond its record: the sample
+                                         * mark, the kd-tree and the float offsets */
 
 double pnpr_tile_components_halo(const pnpr_tile_grid *grid, float distance)
 {
@@ -55,6 +58,7 @@ typedef struct reach_pass {
     uint32_t *kept_sample;  /* per point read: its sample, or NONE */
     size_t kept, cap;
     size_t collected;       /* samples the first pass met */
+    size_t max_kept;        /* the points a round may read */
     int failed;
 } reach_pass;
 
@@ -136,7 +140,8 @@ static int keep_near(void *user, uint64_t index, const double p[3])
     if (!sample && !near_open_sample(r, p)) return 0;
     if (r->kept == r->cap) {
         size_t cap = r->cap ? 2 * r->cap : 4096;
-        uint32_t *k = cap <= REACH_POINTS_MAX ? realloc(r->kept_sample, cap * sizeof *k) : NULL;
+        if (cap > r->max_kept) cap = r->max_kept;
+        uint32_t *k = cap > r->cap ? realloc(r->kept_sample, cap * sizeof *k) : NULL;
         if (!k) { r->failed = 1; return 0; }
         r->kept_sample = k;
         r->cap = cap;
@@ -162,7 +167,8 @@ static pnpr_status reach_round(reach_pass *r, const char *path, const pnpr_tile_
     if (st == PNPR_OK && (r->failed || c.count != r->kept))
         st = pnpr_error_set(err, r->failed ? PNPR_ERR_OUT_OF_MEMORY : PNPR_ERR_IO,
                             "%s: components: %s", path,
-                            r->failed ? "the automatic distance needs more than 64M points near its sample: give --radius"
+                            r->failed ? "the automatic distance needs more points near its sample than the memory "
+                                        "limit lets it read: give --radius"
                                       : "the file changed");
     pnpr_kdtree *tree = NULL;
     if (st == PNPR_OK) st = pnpr_kdtree_build(c.xyz, c.count, 0, &tree);
@@ -193,7 +199,8 @@ static double reach_margin(double reach, double offset)
 }
 
 pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan *plan,
-                                          const pnpr_components_options *opts, float *r_distance, pnpr_error *err)
+                                          const pnpr_components_options *opts, size_t memory_limit, float *r_distance,
+                                          pnpr_error *err)
 {
     pnpr_error local = {0};
     if (!err) err = &local;
@@ -205,6 +212,10 @@ pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan
     }
     reach_pass r;
     memset(&r, 0, sizeof r);
+    struct stat sb;
+    size_t rec = stat(path, &sb) == 0 && plan->points ? (size_t)((uint64_t)sb.st_size / plan->points) : 64;
+    r.max_kept = memory_limit ? memory_limit / (rec + REACH_BYTES) : REACH_POINTS_MAX;
+    if (r.max_kept > REACH_POINTS_MAX) r.max_kept = REACH_POINTS_MAX;
     r.step = plan->points / PNPR_SEGMENT_SPACING_SAMPLE + 1;
     r.ns = plan->points ? (size_t)((plan->points - 1) / r.step + 1) : 0;
     r.pos = malloc((3 * r.ns + 1) * sizeof *r.pos);

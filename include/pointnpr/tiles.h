@@ -131,11 +131,12 @@ struct pnpr_components_options;
 /* The distance the components connect at: opts->distance when > 0, else as
  * pnpr_segment_components takes it (a multiple of pnpr_segment_median_spacing over the whole
  * file), found with passes that read the sample and the points near it only (REACH, in the .c).
- * Errors name the file; when the sample's points are too crowded to read their neighbourhoods
- * (more than 64M points), PNPR_ERR_OUT_OF_MEMORY says to give the distance. */
+ * Errors name the file; when the points near the sample are more than a round may read (64M, and
+ * what memory_limit bytes hold at the file's record size plus 48; 0: no limit but the 64M),
+ * PNPR_ERR_OUT_OF_MEMORY says to give the distance. */
 PNPR_NODISCARD pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan *plan,
                                                          const struct pnpr_components_options *opts,
-                                                         float *r_distance, pnpr_error *err);
+                                                         size_t memory_limit, float *r_distance, pnpr_error *err);
 /* The halo that holds every point within `distance` of a tile's core, with a margin for the
  * rounding of the float offsets. */
 double pnpr_tile_components_halo(const pnpr_tile_grid *grid, float distance);

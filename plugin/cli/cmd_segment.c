@@ -231,7 +231,8 @@ static int segment_tiles(segment_tile_run *r, const char *out, const cli_tile_ar
     pnpr_components_options o = {0};
     o.distance = r->distance;
     pnpr_error err = {0};
-    pnpr_status st = pnpr_tile_components_distance(r->in, &plan, &o, &r->distance, &err);
+    size_t limit = memory_limit ? memory_limit : pnpr_memory_available();
+    pnpr_status st = pnpr_tile_components_distance(r->in, &plan, &o, limit, &r->distance, &err);
     if (st != PNPR_OK) { cli_report_error("segment", st, &err); pnpr_tile_plan_free(&plan); return 1; }
     if (!(o.distance > 0)) {
         if (!r->quiet) fprintf(stderr, "components: distance %.9g (the automatic one of the whole file)\n", (double)r->distance);
