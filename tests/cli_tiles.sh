@@ -140,6 +140,9 @@ check '[ $? -eq 2 ]' "--seams and --segments together are a usage error"
 pointnpr merge-tiles --points 7000 -o "$dir/bad.ply" "${segtiles[@]}" 2> "$dir/err.log"
 check '[ $? -eq 1 ] && grep -q "tile_00000.ply: a tile of .pointnpr segment.*--segments" "$dir/err.log" && [ ! -e "$dir/bad.ply" ]' \
   "segment tiles merged without --segments are refused"
+pointnpr segment "$dir/patches.ply" -o "$dir/seg_far.ply" --method components --radius 2 --tiles --memory-limit 40M 2> "$dir/far.log"
+check '[ $? -eq 0 ] && grep -q "warning: the distance 2 is large against the tiles" "$dir/far.log"' \
+  "a distance large against the tiles is warned of"
 for bad in "--method jseg" "--method components --min-size 5" "--method components --split 0.1" \
            "--method components --segments 4" "--method components --ascii"; do
   pointnpr segment "$dir/patches.ply" -o "$dir/bad.ply" $bad --tile-points 1000 2> "$dir/err.log"

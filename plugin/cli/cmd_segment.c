@@ -247,6 +247,18 @@ static int segment_tiles(segment_tile_run *r, const char *out, const cli_tile_ar
         return 2;
     }
     plan.halo = a->halo > 0 ? a->halo : need;
+    /* the tiles were sized for a halo of PNPR_TILE_HALO_SHARE of their points: a large distance
+     * reads more (as an area: the core's sides grown by the halo on each side) */
+    double most = 1;
+    for (size_t t = 0; t < plan.count; t++) {
+        double w = (plan.tiles[t].hi[0] - plan.tiles[t].lo[0]) * plan.grid.cell[0];
+        double h = (plan.tiles[t].hi[1] - plan.tiles[t].lo[1]) * plan.grid.cell[1];
+        most = fmax(most, (w + 2 * plan.halo) * (h + 2 * plan.halo) / (w * h));
+    }
+    if (!r->quiet && a->tiled && !a->tile_points && most > 2 * (1 + PNPR_TILE_HALO_SHARE))
+        fprintf(stderr, "pointnpr segment: warning: the distance %.6g is large against the tiles: a tile may read %.0f "
+                        "times its core's area, beyond what --tiles sized it for (give --tile-points)\n",
+                (double)r->distance, most);
     rc = cli_tile_execute(&c, a, &plan, argc, argv);
     pnpr_tile_plan_free(&plan);
     return rc;
