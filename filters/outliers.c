@@ -15,6 +15,7 @@ typedef struct source {
     const double *world;
     const pnpr_cloud *cloud;
     size_t count;
+    int is_sample; /* world is the stride sample itself: take every point */
 } source;
 
 
@@ -42,7 +43,7 @@ static size_t sample_cap(const source *s)
  * doubles, one per axis); returns how many. */
 static size_t take_sample(const source *s, double *v)
 {
-    const size_t cap = sample_cap(s), step = s->count / PNPR_OUTLIER_SAMPLES + 1;
+    const size_t cap = sample_cap(s), step = s->is_sample ? 1 : s->count / PNPR_OUTLIER_SAMPLES + 1;
     size_t m = 0;
     for (size_t i = 0; i < s->count && m < cap; i += step) {
         double w[3];
@@ -117,15 +118,27 @@ pnpr_status pnpr_world_outliers(const double *world, size_t count, const pnpr_ou
                                 uint8_t *r_far, pnpr_outlier_info *r_info)
 {
     if (count && !world) return PNPR_ERR_INVALID_ARGUMENT;
-    source s = {world, NULL, count};
+    source s = {world, NULL, count, 0};
     return find_outliers(&s, opts, r_far, r_info);
+}
+
+pnpr_status pnpr_outlier_frame_of_sample(const double *sample, size_t m, pnpr_outlier_info *r_info)
+{
+    if ((m && !sample) || m > PNPR_OUTLIER_SAMPLES || !r_info) return PNPR_ERR_INVALID_ARGUMENT;
+    memset(r_info, 0, sizeof *r_info);
+    source s = {sample, NULL, m, 1};
+    size_t n;
+    const pnpr_option_desc *table = pnpr_outlier_option_table(&n);
+    pnpr_outlier_options o = pnpr_outlier_defaults();
+    pnpr_option_fill_defaults(table, n, &o);
+    return robust_frame(&s, o.factor, r_info);
 }
 
 pnpr_status pnpr_cloud_outliers(const pnpr_cloud *cloud, const pnpr_outlier_options *opts, uint8_t *r_far,
                                 pnpr_outlier_info *r_info)
 {
     if (!cloud || (cloud->count && !cloud->xyz)) return PNPR_ERR_INVALID_ARGUMENT;
-    source s = {NULL, cloud, cloud->count};
+    source s = {NULL, cloud, cloud->count, 0};
     return find_outliers(&s, opts, r_far, r_info);
 }
 

@@ -204,6 +204,7 @@ pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan
 {
     pnpr_error local = {0};
     if (!err) err = &local;
+    err->message[0] = '\0';
     if (!path || !plan || !r_distance) return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "components: NULL argument");
     *r_distance = 0;
     if (opts && opts->distance > 0) {
@@ -238,7 +239,7 @@ pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan
             st = pnpr_error_set(err, PNPR_ERR_IO, "%s: components: the file changed since it was planned", path);
     }
     double offset = 0; /* the largest float offset of a sample */
-    for (size_t i = 0; i < 3 * r.ns; i++)
+    for (size_t i = 0; st == PNPR_OK && i < 3 * r.ns; i++)
         if (isfinite(r.pos[i])) offset = fmax(offset, fabs(r.pos[i] - plan->grid.origin[i % 3]));
     double side = fmax(plan->grid.cell[0] * plan->grid.cells[0], plan->grid.cell[1] * plan->grid.cells[1]);
     r.reach = plan->spacing > 0 ? plan->spacing : side > 0 ? side / 1e6 : 1;

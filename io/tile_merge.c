@@ -202,6 +202,7 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
     pnpr_mem_sink m = {0};
     uint32_t *idx = NULL;
     uint8_t *core = NULL;
+    int has_core = 0;
     pnpr_status st = pnpr_read_file(path, NULL, &c, err);
     pnpr_property *si = st == PNPR_OK ? pnpr_cloud_find_property(&c, PNPR_PROP_SOURCE_INDEX) : NULL;
     pnpr_property *tc = st == PNPR_OK ? pnpr_cloud_find_property(&c, PNPR_PROP_TILE_CORE) : NULL;
@@ -215,12 +216,13 @@ static pnpr_status merge_tile(merge_run *r, const char *path, pnpr_error *err)
     if (st == PNPR_OK) {
         memcpy(idx, si->data, c.count * sizeof *idx);
         for (size_t i = 0; i < c.count; i++) core[i] = !tc || ((const uint8_t *)tc->data)[i] != 0;
+        has_core = tc != NULL; /* the hook may add and remove properties: tc is not looked at after it */
         if (r->hook) st = r->hook(r->hook_user, r->tile, path, &c, idx, core, err);
         orient_tile(r, &c, idx, core);
         size_t n = 0;
         for (size_t i = 0; i < c.count; i++)
             if (core[i]) idx[n++] = idx[i];
-        if (st == PNPR_OK && tc && (st = pnpr_cloud_keep(&c, core, NULL)) == PNPR_OK)
+        if (st == PNPR_OK && has_core && (st = pnpr_cloud_keep(&c, core, NULL)) == PNPR_OK)
             st = pnpr_cloud_remove_property(&c, PNPR_PROP_TILE_CORE);
     }
     for (size_t i = 0; i < c.count && st == PNPR_OK; i++) {

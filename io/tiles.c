@@ -1,6 +1,7 @@
 /* Clouds larger than memory in tiles (pointnpr/tiles.h): the plan, a tile's reading, the merge.
  * The certification of a tile's results is filters/tile_certify.c; docs/tiles.md has the why. */
 #include <pointnpr/memory.h>
+#include <pointnpr/outliers.h>
 #include <pointnpr/props.h>
 #include <pointnpr/tiles.h>
 
@@ -67,6 +68,14 @@ typedef struct plan_scan {
     uint64_t *counts;    /* cells[0] x cells[1], row-major in y; NULL during the bounds pass */
     uint64_t *hist;      /* PLAN_BINS per axis over [lo, hi] (narrow_bounds), or NULL */
     int narrowed;        /* far outliers were left off the grid */
+    /* the origin as a run in memory takes it (world_centre, core/cloud.c): the far-outlier
+     * frame of the same stride sample (taken in the counts pass), then, when a point may be far,
+     * the box of the others (a pass of its own) */
+    double *sample;      /* PNPR_OUTLIER_SAMPLES points, or NULL */
+    size_t sample_m;
+    uint64_t sample_step;
+    const pnpr_outlier_info *far; /* the inlier box pass: the frame, else NULL */
+    double in_lo[3], in_hi[3];
 } plan_scan;
 
 #define PLAN_BINS 4096
@@ -82,10 +91,21 @@ static int scan_point(void *user, uint64_t index, const double p[3])
         }
         return 0;
     }
+    if (s->far) {
+        if (isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]) && !pnpr_outlier_is_far(s->far, p))
+            for (int a = 0; a < 3; a++) {
+                if (p[a] < s->in_lo[a]) s->in_lo[a] = p[a];
+                if (p[a] > s->in_hi[a]) s->in_hi[a] = p[a];
+            }
+        return 0;
+    }
     if (s->counts) {
         uint32_t c[2];
         pnpr_tile_cell(&s->g, p, c);
         s->counts[(size_t)c[1] * s->g.cells[0] + c[0]]++;
+        if (s->sample && index % s->sample_step == 0 && s->sample_m < PNPR_OUTLIER_SAMPLES && isfinite(p[0]) &&
+            isfinite(p[1]) && isfinite(p[2]))
+            memcpy(s->sample + 3 * s->sample_m++, p, 3 * sizeof *p);
         return 0;
     }
     if (isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))
@@ -122,7 +142,8 @@ static void axis_core(const uint64_t *h, uint64_t total, size_t *r_lo, size_t *r
 /* Far outliers would stretch the grid until the cloud fills one cell (which is never split): the
  * x/y bounds shrink to the part that holds the cloud (axis_core), a histogram pass at a time while
  * that takes off more than 15/16 of a side (at most 3 passes; usually one, which changes nothing).
- * The points left outside go to the edge cells, and their tiles do not certify them. */
+ * The points left outside go to the edge cells, whose tiles read everything beyond the edge
+ * (pnpr_tile_box). */
 static pnpr_status narrow_bounds(plan_scan *s, const char *path, pnpr_read_options *ro, pnpr_error *err)
 {
     uint64_t *hist = malloc(2 * PLAN_BINS * sizeof *hist);
@@ -164,7 +185,7 @@ static void plan_grid(plan_scan *s)
         double d = s->hi[a] - s->lo[a];
         if (d > side) side = d;
     }
-    for (int a = 0; a < 3; a++) /* as pnpr_cloud_set_world without far outliers */
+    for (int a = 0; a < 3; a++) /* as pnpr_cloud_set_world when no point is far (plan_origin) */
         s->g.origin[a] = s->lo3[a] <= s->hi3[a] ? 0.5 * s->lo3[a] + 0.5 * s->hi3[a] : 0.0;
     double cell = side / PNPR_TILE_GRID;
     if (!(cell > 0)) cell = 1;
@@ -267,6 +288,32 @@ uint64_t pnpr_tile_points_for_memory(size_t limit, size_t record_bytes, uint32_t
     return n >= 1000 ? (uint64_t)n : 0;
 }
 
+/* The origin a run in memory takes (pnpr_cloud_set_world): the centre of the box of the points
+ * that are not far outliers by the frame of the stride sample. When no corner of the box of all
+ * points is far, no point is, and the box is that one; else a pass finds the others' box. */
+static pnpr_status plan_origin(plan_scan *s, const char *path, pnpr_read_options *ro, pnpr_error *err)
+{
+    if (!s->sample_m) return PNPR_OK;
+    pnpr_outlier_info info;
+    pnpr_status st = pnpr_outlier_frame_of_sample(s->sample, s->sample_m, &info);
+    if (st != PNPR_OK) return pnpr_error_set(err, st, "%s: tile plan: %s", path, pnpr_status_string(st));
+    int any_far = 0;
+    for (int k = 0; k < 8; k++) {
+        double c[3] = {(k & 1) ? s->hi3[0] : s->lo3[0], (k & 2) ? s->hi3[1] : s->lo3[1], (k & 4) ? s->hi3[2] : s->lo3[2]};
+        any_far |= pnpr_outlier_is_far(&info, c);
+    }
+    if (!any_far) return PNPR_OK;
+    for (int a = 0; a < 3; a++) { s->in_lo[a] = INFINITY; s->in_hi[a] = -INFINITY; }
+    s->far = &info;
+    pnpr_cloud none = {0};
+    st = pnpr_read_file(path, ro, &none, err);
+    pnpr_cloud_free(&none);
+    s->far = NULL;
+    for (int a = 0; a < 3 && st == PNPR_OK; a++)
+        s->g.origin[a] = s->in_lo[a] <= s->in_hi[a] ? 0.5 * s->in_lo[a] + 0.5 * s->in_hi[a] : 0.0;
+    return st;
+}
+
 pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *opts, pnpr_tile_plan *r_plan,
                                 pnpr_error *err)
 {
@@ -308,10 +355,19 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
         }
     }
     s.counts = calloc((size_t)s.g.cells[0] * s.g.cells[1], sizeof *s.counts);
-    if (!s.counts) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: tile plan: out of memory", path);
+    s.sample = malloc(3 * PNPR_OUTLIER_SAMPLES * sizeof *s.sample);
+    s.sample_step = points / PNPR_OUTLIER_SAMPLES + 1;
+    if (!s.counts || !s.sample) {
+        free(s.counts);
+        free(s.sample);
+        return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: tile plan: out of memory", path);
+    }
     ro.progress = o.progress;
-    st = pnpr_read_file(path, &ro, &none, err); /* counts */
+    st = pnpr_read_file(path, &ro, &none, err); /* counts, and the stride sample */
     pnpr_cloud_free(&none);
+    ro.progress.fn = NULL;
+    if (st == PNPR_OK && s.points == points) st = plan_origin(&s, path, &ro, err);
+    free(s.sample);
     if (st == PNPR_OK && s.points != points)
         st = pnpr_error_set(err, PNPR_ERR_IO, "%s: the file changed while it was planned (%llu, then %llu points)", path,
                             (unsigned long long)points, (unsigned long long)s.points);

@@ -52,6 +52,13 @@ typedef struct pnpr_outlier_info {
 PNPR_NODISCARD pnpr_status pnpr_world_outliers(const double *world, size_t count, const pnpr_outlier_options *opts,
                                 uint8_t *r_far, pnpr_outlier_info *r_info);
 
+/* The robust centre, extent and limit (default factor) of a stride sample already taken: the
+ * m <= PNPR_OUTLIER_SAMPLES finite points (3 doubles each) that pnpr_world_outliers takes from a
+ * larger array (every (count / PNPR_OUTLIER_SAMPLES + 1)-th from the first, the finite ones, at
+ * most PNPR_OUTLIER_SAMPLES), so that a pass over a file gives the frame of the whole cloud in
+ * memory (the tile plan's origin, tiles.h). Only centre, extent and limit are written. */
+PNPR_NODISCARD pnpr_status pnpr_outlier_frame_of_sample(const double *sample, size_t m, pnpr_outlier_info *r_info);
+
 /* The same on a cloud's world coordinates (pnpr_cloud_world: src_xyz when present, else origin +
  * offset); also counts the points beyond float range (always far). */
 PNPR_NODISCARD pnpr_status pnpr_cloud_outliers(const pnpr_cloud *cloud, const pnpr_outlier_options *opts, uint8_t *r_far,

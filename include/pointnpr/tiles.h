@@ -33,8 +33,8 @@ typedef struct pnpr_tile_grid {
     double cell[2];     /* a cell's size in x and y (> 0) */
     uint32_t cells[2];  /* cells along x and y (1..PNPR_TILE_GRID) */
     double origin[3];   /* the origin of every tile's float offsets (files with double
-                         * coordinates): the centre of the finite box, as a run in memory takes
-                         * it when the cloud has no far outliers (docs/tiles.md) */
+                         * coordinates), as a run in memory takes it: the centre of the box of
+                         * the points that are not far outliers (pnpr_cloud_set_world) */
 } pnpr_tile_grid;
 
 typedef struct pnpr_tile {
@@ -47,9 +47,7 @@ typedef struct pnpr_tile_plan {
     pnpr_tile_grid grid;
     double spacing;        /* the point spacing estimated from the cell counts (0: none) */
     double halo;           /* the halo used (world units) */
-    int narrowed;          /* far outliers lie off the grid (in its edge cells): the origin is the
-                            * centre of all finite points, where a run in memory leaves them out
-                            * of it, so the float offsets of double coordinates differ from it */
+    int narrowed;          /* far outliers lie off the grid (in its edge cells) */
     uint64_t tile_points;  /* the size asked (or from the memory limit); a tile of one cell may be larger */
     pnpr_tile *tiles;      /* count tiles; release with pnpr_tile_plan_free */
     size_t count;
@@ -66,8 +64,9 @@ typedef struct pnpr_tile_plan_options {
     pnpr_progress progress; /* the reader's, during the last pass (the counts) */
 } pnpr_tile_plan_options;
 
-/* Plans the tiles of the PLY file at path (three to five passes over the file: bounds, one to three
- * that keep far outliers off the grid, counts; nothing of the points kept).
+/* Plans the tiles of the PLY file at path (three to six passes over the file: bounds, one to three
+ * that keep far outliers off the grid, counts, and when a point may be a far outlier one for the
+ * origin; nothing of the points kept but a stride sample).
  * Errors name the file; a halo < 0 or NaN is PNPR_ERR_INVALID_ARGUMENT. */
 PNPR_NODISCARD pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *opts,
                                                pnpr_tile_plan *r_plan, pnpr_error *err);

@@ -305,10 +305,6 @@ int cli_tile_plan(const cli_tile_cmd *c, const cli_tile_args *a, size_t memory_l
     pnpr_status st = pnpr_tile_plan_make(c->in, &po, r_plan, &err);
     if (st != PNPR_OK) { cli_report_error(c->cmd, st, &err); return 1; }
     if (c->quiet) return 0;
-    if (r_plan->narrowed)
-        fprintf(stderr, "pointnpr %s: warning: %s has far outliers: the tiles take the origin of all its points, a run in "
-                        "memory that of the points without them; with double coordinates the floats, and results, may "
-                        "differ from it (drop them first: docs/tiles.md)\n", c->cmd, c->in);
     uint64_t most = 0;
     for (size_t t = 0; t < r_plan->count; t++) most = r_plan->tiles[t].points > most ? r_plan->tiles[t].points : most;
     if (most > r_plan->tile_points)
