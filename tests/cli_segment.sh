@@ -100,6 +100,9 @@ check '[ $rc -eq 2 ]' "--segments 0 (got $rc)"
 check '[ $rc -eq 2 ]' "--split 0.5 (got $rc)"
 "$bin" segment "$dir/missing.ply" -o "$dir/x.ply" > /dev/null 2>&1; rc=$?
 check '[ $rc -eq 1 ]' "missing input file: exit 1 (got $rc)"
+"$bin" segment "$dir/planes.ply" -o "$dir/x.ply" --method components --memory-limit 1K 2> "$dir/mem.log"; rc=$?
+check '[ $rc -eq 1 ] && grep -q "planes.ply.*needs about" "$dir/mem.log" && [ ! -e "$dir/x.ply" ]' \
+  "a file that does not fit --memory-limit is refused before reading (got $rc)"
 set -e
 if [ $fail -ne 0 ]; then echo "cli_segment: FAILED" >&2; exit 1; fi
 echo "cli_segment: all checks passed"
