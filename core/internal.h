@@ -30,6 +30,8 @@ const char *pnpr_join_names(char *buf, size_t cap, const char *sep, const char *
 int pnpr_cmp_float(const void *a, const void *b);
 /* qsort comparator of uint32_t (indices, labels), ascending (core/median.c). */
 int pnpr_cmp_u32(const void *a, const void *b);
+/* The same for uint64_t (packed keys: value << 32 | index). */
+int pnpr_cmp_u64(const void *a, const void *b);
 /* The k-th smallest of v[0..n) (k < n): v is reordered so that v[k] holds it, no larger value
  * before it and no smaller after it (the rest unsorted); expected O(n). */
 float pnpr_select_float(float *v, size_t n, size_t k);

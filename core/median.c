@@ -1,5 +1,6 @@
 /* Sorting floats, selecting the k-th of floats or doubles and their median, and sorting 32-bit
- * indices (internal.h): one comparator for every qsort of floats, one for every qsort of uint32_t. */
+ * indices (internal.h): one comparator for every qsort of floats, one for every qsort of uint32_t,
+ * one for every qsort of uint64_t keys. */
 #include "internal.h"
 
 #include <stdint.h>
@@ -14,6 +15,12 @@ int pnpr_cmp_float(const void *a, const void *b)
 int pnpr_cmp_u32(const void *a, const void *b)
 {
     uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+int pnpr_cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
     return x < y ? -1 : x > y;
 }
 

@@ -178,19 +178,13 @@ static void classify_range(void *ctx, size_t begin, size_t end)
     }
 }
 
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return (x > y) - (x < y);
-}
-
 /* The feature points' positions fid[0..nf) in input_index order (the kd-tree's ties follow it). */
 static int order_by_input(uint32_t *fid, size_t nf, const uint32_t *input_index)
 {
     uint64_t *pair = malloc(nf * sizeof *pair);
     if (!pair) return 0;
     for (size_t f = 0; f < nf; f++) pair[f] = (uint64_t)input_index[fid[f]] << 32 | fid[f];
-    qsort(pair, nf, sizeof *pair, cmp_u64);
+    qsort(pair, nf, sizeof *pair, pnpr_cmp_u64);
     for (size_t f = 0; f < nf; f++) fid[f] = (uint32_t)pair[f];
     free(pair);
     return 1;

@@ -7,15 +7,11 @@
 #include <pointnpr/props.h>
 #include <pointnpr/segment.h>
 
+#include "../core/internal.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return x < y ? -1 : x > y;
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -33,7 +29,7 @@ pnpr_status pnpr_segment_compact(uint32_t *io_labels, size_t count, uint32_t *r_
     uint64_t *key = malloc(count * sizeof *key);
     if (!key) return PNPR_ERR_OUT_OF_MEMORY;
     for (size_t i = 0; i < count; i++) key[i] = (uint64_t)io_labels[i] << 32 | (uint64_t)i;
-    qsort(key, count, sizeof *key, cmp_u64);
+    qsort(key, count, sizeof *key, pnpr_cmp_u64);
     /* mark first appearances: first[i] = 1 where point i is the first of its value */
     uint8_t *first = calloc(count, 1);
     if (!first) { free(key); return PNPR_ERR_OUT_OF_MEMORY; }
@@ -221,7 +217,7 @@ pnpr_status pnpr_segment_score_labels(const uint32_t *truth, const uint32_t *res
         tsize[t[i]]++; rsize[r[i]]++;
         key[i] = (uint64_t)t[i] << 32 | r[i];
     }
-    qsort(key, count, sizeof *key, cmp_u64);
+    qsort(key, count, sizeof *key, pnpr_cmp_u64);
     double sum_ij = 0, sum_a = 0, sum_b = 0;
     for (size_t i = 0; i < count;) {
         size_t j = i;

@@ -189,12 +189,6 @@ static void rag_free(rag *g)
     memset(g, 0, sizeof *g);
 }
 
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return x < y ? -1 : x > y;
-}
-
 static pnpr_status rag_build(rag *g, const uint8_t *rgb, size_t count, const pnpr_region_graph *graph,
                              const uint32_t *labels, uint32_t S)
 {
@@ -235,7 +229,7 @@ static pnpr_status rag_build(rag *g, const uint8_t *rgb, size_t count, const pnp
             uint32_t lj = labels[j];
             if (lj >= S || lj == li) continue;
             if (n == cap) {
-                qsort(e, n, sizeof *e, cmp_u64);
+                qsort(e, n, sizeof *e, pnpr_cmp_u64);
                 size_t u = 0;
                 for (size_t q = 0; q < n; q++) if (!u || e[q] != e[u - 1]) e[u++] = e[q];
                 n = u;
@@ -249,7 +243,7 @@ static pnpr_status rag_build(rag *g, const uint8_t *rgb, size_t count, const pnp
             e[n++] = (uint64_t)a << 32 | b;
         }
     }
-    qsort(e, n, sizeof *e, cmp_u64);
+    qsort(e, n, sizeof *e, pnpr_cmp_u64);
     for (size_t q = 0; q < n; q++) {
         if (q && e[q] == e[q - 1]) continue;
         uint32_t a = (uint32_t)(e[q] >> 32), b = (uint32_t)e[q];

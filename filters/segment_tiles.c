@@ -425,12 +425,6 @@ static pnpr_status seg_pass(seg_merge *m, const char *path, size_t tile, int hal
     return st;
 }
 
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* The components (roots) numbered by their first point in file order, as pnpr_segment_finish
  * numbers them in memory; their mean colours as pnpr_segment_mean_colors gives them. */
 static pnpr_status seg_number(seg_merge *m)
@@ -450,7 +444,7 @@ static pnpr_status seg_number(seg_merge *m)
     size_t n = 0;
     for (size_t k = 0; k < m->nodes; k++)
         if (m->parent[k] == k && m->first[k] != NONE) key[n++] = (uint64_t)m->first[k] << 32 | k;
-    qsort(key, n, sizeof *key, cmp_u64);
+    qsort(key, n, sizeof *key, pnpr_cmp_u64);
     for (size_t l = 0; l < n; l++) {
         uint32_t r = (uint32_t)(key[l] & 0xFFFFFFFFu);
         m->label[r] = (uint32_t)l;
