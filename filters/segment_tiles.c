@@ -24,7 +24,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #define NONE 0xFFFFFFFFu
 #define REACH_ROUNDS 24                 /* fourfold each: from the spacing past any cloud's size */
@@ -32,11 +31,16 @@
 #define REACH_BYTES 48                  /* a point read in a round, beyond its record: the sample
                                          * mark, the kd-tree and the float offsets */
 
+/* The grid's longer side (world units). */
+static double grid_side(const pnpr_tile_grid *grid)
+{
+    return fmax(grid->cell[0] * grid->cells[0], grid->cell[1] * grid->cells[1]);
+}
+
 double pnpr_tile_components_halo(const pnpr_tile_grid *grid, float distance)
 {
-    double side = fmax(grid->cell[0] * grid->cells[0], grid->cell[1] * grid->cells[1]);
     /* the floats are offsets from the origin: a margin for their rounding */
-    return 1.01 * (double)distance + 1e-6 * side;
+    return 1.01 * (double)distance + 1e-6 * grid_side(grid);
 }
 
 /* ---- the automatic distance ------------------------------------------------------------------ */
@@ -213,9 +217,7 @@ pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan
     }
     reach_pass r;
     memset(&r, 0, sizeof r);
-    struct stat sb;
-    size_t rec = stat(path, &sb) == 0 && plan->points ? (size_t)((uint64_t)sb.st_size / plan->points) : 64;
-    r.max_kept = memory_limit ? memory_limit / (rec + REACH_BYTES) : REACH_POINTS_MAX;
+    r.max_kept = memory_limit ? memory_limit / (plan->record_bytes + REACH_BYTES) : REACH_POINTS_MAX;
     if (r.max_kept > REACH_POINTS_MAX) r.max_kept = REACH_POINTS_MAX;
     r.step = plan->points / PNPR_SEGMENT_SPACING_SAMPLE + 1;
     r.ns = plan->points ? (size_t)((plan->points - 1) / r.step + 1) : 0;
@@ -241,7 +243,7 @@ pnpr_status pnpr_tile_components_distance(const char *path, const pnpr_tile_plan
     double offset = 0; /* the largest float offset of a sample */
     for (size_t i = 0; st == PNPR_OK && i < 3 * r.ns; i++)
         if (isfinite(r.pos[i])) offset = fmax(offset, fabs(r.pos[i] - plan->grid.origin[i % 3]));
-    double side = fmax(plan->grid.cell[0] * plan->grid.cells[0], plan->grid.cell[1] * plan->grid.cells[1]);
+    double side = grid_side(&plan->grid);
     r.reach = plan->spacing > 0 ? plan->spacing : side > 0 ? side / 1e6 : 1;
     r.margin = reach_margin(r.reach, offset);
     size_t none = 0, open = r.ns;

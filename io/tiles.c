@@ -67,7 +67,6 @@ typedef struct plan_scan {
     uint64_t points;
     uint64_t *counts;    /* cells[0] x cells[1], row-major in y; NULL during the bounds pass */
     uint64_t *hist;      /* PLAN_BINS per axis over [lo, hi] (narrow_bounds), or NULL */
-    int narrowed;        /* far outliers were left off the grid */
     /* the origin as a run in memory takes it (world_centre, core/cloud.c): the far-outlier
      * frame of the same stride sample (taken in the counts pass), then, when a point may be far,
      * the box of the others (a pass of its own) */
@@ -169,7 +168,7 @@ static pnpr_status narrow_bounds(plan_scan *s, const char *path, pnpr_read_optio
             double w = (s->hi[a] - s->lo[a]) / PLAN_BINS, lo = s->lo[a];
             s->lo[a] = lo + (double)b0 * w;
             s->hi[a] = fmin(lo + (double)(b1 + 1) * w, s->hi[a]);
-            narrowed = s->narrowed = 1;
+            narrowed = 1;
         }
     }
     free(hist);
@@ -276,6 +275,14 @@ static pnpr_status plan_tiles(const plan_scan *s, uint64_t max_points, pnpr_tile
     return PNPR_OK;
 }
 
+/* The core points a job of `per` bytes a point holds within limit, with a halo of
+ * PNPR_TILE_HALO_SHARE as many again; 0 when not even 1000 fit. */
+static uint64_t points_within(size_t limit, double per)
+{
+    double n = (double)limit / (per * (1.0 + PNPR_TILE_HALO_SHARE));
+    return n >= 1000 ? (uint64_t)n : 0;
+}
+
 uint64_t pnpr_tile_points_for_memory(size_t limit, size_t record_bytes, uint32_t k)
 {
     if (!k) k = 16;
@@ -283,9 +290,7 @@ uint64_t pnpr_tile_points_for_memory(size_t limit, size_t record_bytes, uint32_t
     pnpr_memory_plan mp = {probe, k, 1, 0, 0, 0, 0, 0};
     pnpr_memory_estimate e;
     pnpr_memory_estimate_plan(&mp, &e);
-    double per = (double)record_bytes + 5.0 + (double)e.total / (double)probe + 4.0 * (k + 1) + 9.0;
-    double n = (double)limit / (per * (1.0 + PNPR_TILE_HALO_SHARE));
-    return n >= 1000 ? (uint64_t)n : 0;
+    return points_within(limit, (double)record_bytes + 5.0 + (double)e.total / (double)probe + 4.0 * (k + 1) + 9.0);
 }
 
 /* The origin a run in memory takes (pnpr_cloud_set_world): the centre of the box of the points
@@ -341,13 +346,11 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
     if (st != PNPR_OK) return st;
     plan_grid(&s);
     uint64_t points = s.points;
+    struct stat sb;
+    size_t rec = stat(path, &sb) == 0 && points ? (size_t)((uint64_t)sb.st_size / points) : 64;
     if (!o.tile_points && o.memory_limit) {
-        struct stat sb;
-        size_t rec = stat(path, &sb) == 0 && points ? (size_t)((uint64_t)sb.st_size / points) : 64;
-        double per = (double)(rec + o.job_bytes) * (1.0 + PNPR_TILE_HALO_SHARE), n = (double)o.memory_limit / per;
-        o.tile_points = !o.job_bytes ? pnpr_tile_points_for_memory(o.memory_limit, rec, o.features_k)
-                        : n >= 1000  ? (uint64_t)n
-                                     : 0;
+        o.tile_points = o.job_bytes ? points_within(o.memory_limit, (double)(rec + o.job_bytes))
+                                    : pnpr_tile_points_for_memory(o.memory_limit, rec, o.features_k);
         if (!o.tile_points) {
             char a[32];
             return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: a memory limit of %s leaves no room for a tile", path,
@@ -374,7 +377,7 @@ pnpr_status pnpr_tile_plan_make(const char *path, const pnpr_tile_plan_options *
     if (st == PNPR_OK) {
         r_plan->points = points;
         r_plan->grid = s.g;
-        r_plan->narrowed = s.narrowed;
+        r_plan->record_bytes = rec;
         r_plan->tile_points = o.tile_points ? o.tile_points : PNPR_TILE_POINTS_DEFAULT;
         if (plan_tiles(&s, r_plan->tile_points, r_plan) != PNPR_OK)
             st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: tile plan: out of memory", path);

@@ -47,7 +47,7 @@ typedef struct pnpr_tile_plan {
     pnpr_tile_grid grid;
     double spacing;        /* the point spacing estimated from the cell counts (0: none) */
     double halo;           /* the halo used (world units) */
-    int narrowed;          /* far outliers lie off the grid (in its edge cells) */
+    size_t record_bytes;   /* the file's bytes per point (its size over its points; 64 when unknown) */
     uint64_t tile_points;  /* the size asked (or from the memory limit); a tile of one cell may be larger */
     pnpr_tile *tiles;      /* count tiles; release with pnpr_tile_plan_free */
     size_t count;
