@@ -156,18 +156,23 @@ typedef struct segment_tile_run {
     int threads, quiet;
 } segment_tile_run;
 
+/* Whether a halo holds the points within the distance of a tile; 0 after saying why. */
+static int halo_holds(double halo, const pnpr_tile_grid *g, float distance)
+{
+    double need = pnpr_tile_components_halo(g, distance);
+    if (halo >= need) return 1;
+    fprintf(stderr, "pointnpr segment: --halo %.9g: the components' distance %.9g needs a halo of %.9g\n", halo,
+            (double)distance, need);
+    return 0;
+}
+
 /* One tile: read with its halo, its own components, written with the halo marked. */
 static int segment_tile_job(const void *ctx, const char *out, const pnpr_tile_grid *g, const pnpr_tile *t, double halo,
                             size_t *r_uncertain)
 {
     const segment_tile_run *r = ctx;
     (void)r_uncertain; /* every component is exact: nothing uncertain */
-    double need = pnpr_tile_components_halo(g, r->distance);
-    if (!(halo >= need)) {
-        fprintf(stderr, "pointnpr segment: --halo %.9g: the components' distance %.9g needs a halo of %.9g\n", halo,
-                (double)r->distance, need);
-        return 2;
-    }
+    if (!halo_holds(halo, g, r->distance)) return 2;
     pnpr_cloud c = {0};
     uint8_t *core = NULL;
     pnpr_error err = {0};
@@ -239,14 +244,11 @@ static int segment_tiles(segment_tile_run *r, const char *out, const cli_tile_ar
         if (!(r->distance > 0)) r->distance = FLT_MIN;
         snprintf(extra, sizeof extra, "--radius %.9g", (double)r->distance);
     }
-    double need = pnpr_tile_components_halo(&plan.grid, r->distance);
-    if (a->halo > 0 && a->halo < need) {
-        fprintf(stderr, "pointnpr segment: --halo %.9g: the components' distance %.9g needs a halo of %.9g\n", a->halo,
-                (double)r->distance, need);
+    if (a->halo > 0 && !halo_holds(a->halo, &plan.grid, r->distance)) {
         pnpr_tile_plan_free(&plan);
         return 2;
     }
-    plan.halo = a->halo > 0 ? a->halo : need;
+    plan.halo = a->halo > 0 ? a->halo : pnpr_tile_components_halo(&plan.grid, r->distance);
     /* the tiles were sized for a halo of PNPR_TILE_HALO_SHARE of their points: a large distance
      * reads more (as an area: the core's sides grown by the halo on each side) */
     double most = 1;

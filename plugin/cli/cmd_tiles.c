@@ -420,8 +420,9 @@ int cli_merge_tiles(int argc, char **argv)
                    : a.segments ? pnpr_tile_merge_segments(tiles, n, (uint64_t)points, c.out, &prog, &S, &err)
                                 : pnpr_tile_merge(tiles, n, (uint64_t)points, a.seams, c.out, &prog, &err);
     if (st != PNPR_OK) { cli_report_error("merge-tiles", st, &err); rc = 1; }
-    if (rc == 0 && !c.quiet) fprintf(stderr, "wrote %s (%.0f points from %zu tiles%s", c.out, points, n, a.segments ? "" : ")\n");
-    if (rc == 0 && !c.quiet && a.segments) fprintf(stderr, ", %u segments)\n", S);
+    char segs[32] = "";
+    if (a.segments) snprintf(segs, sizeof segs, ", %u segments", S);
+    if (rc == 0 && !c.quiet) fprintf(stderr, "wrote %s (%.0f points from %zu tiles%s)\n", c.out, points, n, segs);
     free(tiles);
     return rc;
 }
