@@ -94,6 +94,10 @@ pointnpr features "$dir/empty.ply" -o "$dir/empty_f.ply" --tile-points 5000 --ma
 (while read -r job; do eval "$job --quiet" || exit 1; done < "$dir/jobs_empty/jobs.txt") && bash "$dir/jobs_empty/merge.txt" 2> /dev/null
 check '[ $? -eq 0 ] && [ -f "$dir/empty_f.ply" ]' "an empty cloud's manifest runs and merges"
 
+pointnpr segment "$dir/empty.ply" -o "$dir/empty_s.ply" --method components --tile-points 5000 --quiet
+check '[ $? -eq 0 ] && [ "$(head -c 200 "$dir/empty_s.ply" | grep -a -c "element vertex 0")" -eq 1 ]' \
+  "an empty cloud's components in tiles: an empty result"
+
 # a folder of tiles: convert joins them one at a time when they would not fit together (here a
 # 1 KiB limit) or with --stream; the records are those of the join in memory; then features runs
 # in tiles on the joined file as on any other
