@@ -34,6 +34,7 @@ pnpr_status pnpr_brush_gl_create(pnpr_brush_gl *b, pnpr_error *err)
     b->u_brush = glGetUniformLocation(p, "u_brush");
     b->u_oit = glGetUniformLocation(p, "u_oit");
     b->u_weight = glGetUniformLocation(p, "u_weight");
+    pnpr_queue_uniforms_find(p, &b->uq);
     b->ur_accum = glGetUniformLocation(b->prog_resolve, "u_accum");
     b->ur_optical = glGetUniformLocation(b->prog_resolve, "u_optical");
     glGenVertexArrays(1, &b->vao);
@@ -144,7 +145,7 @@ static size_t draw_layer(pnpr_brush_gl *b, const pnpr_brush_pass *p, int layer)
     glUniform1i(b->u_layer, layer);
     for (size_t g = 0; g < p->groups; g++) {
         if (!p->count[g]) continue;
-        pnpr_renderer_vertex_attribs(b->vao, p->main_vbo, p->style_vbo, p->first[g], 1, 0);
+        pnpr_renderer_vertex_attribs(b->vao, p->main_vbo, p->style_vbo, p->key_vbo, p->first[g], 1, 0);
         glBindBuffer(GL_ARRAY_BUFFER, b->vbo);
         glEnableVertexAttribArray(6);
         glVertexAttribPointer(6, 3, GL_FLOAT, GL_FALSE, sizeof(pnpr_brush_vertex),

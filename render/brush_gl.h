@@ -6,6 +6,8 @@
 
 #include <pointnpr/core.h>
 
+#include "gl_state.h"
+
 #include <epoxy/gl.h>
 
 #include <stddef.h>
@@ -17,6 +19,7 @@ typedef struct pnpr_brush_gl {
     int blur_w, blur_h;
     GLint u_view, u_proj, u_scale, u_jitter, u_layer, u_filter, u_brush, u_oit, u_weight;
     GLint ur_accum, ur_optical;
+    pnpr_queue_uniforms uq; /* the per-cell queues (the renderer sets them each frame) */
     int preset;      /* the preset in `tex`; -1 = none yet */
     int w, h;        /* the blending targets' size */
     int ready;       /* the uploaded cloud carries brush data (vbo filled) */
@@ -35,14 +38,14 @@ void pnpr_brush_gl_upload(pnpr_brush_gl *b, const pnpr_brush_vertex *v, size_t n
 /* What one brush pass draws. */
 typedef struct pnpr_brush_pass {
     const float *view, *proj;    /* the frame's camera */
-    float scale;                 /* brush scale x point scale x disk growth */
+    float scale;                 /* brush scale x point scale (x each cell's disk growth in the shader) */
     float jitter_deg;
     float blur;                  /* > 0: alpha blending + a Gaussian blur of this sigma (px) */
     int filter;                  /* style-map filter (-1 = all) */
     int stencil;                 /* > 0: strokes only where the stencil equals it (a style map's
                                   * surfaces of this style); 0: no stencil test */
     GLuint frame_fbo;            /* the frame (colour attachment 0) */
-    GLuint main_vbo, style_vbo;  /* the renderer's vertices and style bytes */
+    GLuint main_vbo, style_vbo, key_vbo; /* the renderer's vertices, style bytes and queue keys */
     const size_t *first, *count; /* the groups' starts and queue prefixes */
     size_t groups;
 } pnpr_brush_pass;

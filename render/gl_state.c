@@ -44,6 +44,9 @@ void pnpr_gl_state_save(pnpr_gl_state *s)
     glActiveTexture(GL_TEXTURE1);
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->tex_2d_unit1);
     glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler_unit1);
+    glActiveTexture(GL_TEXTURE0 + PNPR_GL_CELLS_UNIT);
+    glGetIntegerv(GL_TEXTURE_BINDING_BUFFER, &s->tex_buffer_cells);
+    glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler_cells);
     glActiveTexture(GL_TEXTURE0);
     glGetIntegerv(GL_PACK_ALIGNMENT, &s->pack[0]);
     glGetIntegerv(GL_PACK_ROW_LENGTH, &s->pack[1]);
@@ -81,6 +84,7 @@ void pnpr_gl_state_neutral(void)
     glActiveTexture(GL_TEXTURE0);
     glBindSampler(0, 0);
     glBindSampler(1, 0);
+    glBindSampler(PNPR_GL_CELLS_UNIT, 0);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -129,6 +133,9 @@ void pnpr_gl_state_restore(const pnpr_gl_state *s)
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, (GLuint)s->tex_2d_unit1);
     glBindSampler(1, (GLuint)s->sampler_unit1);
+    glActiveTexture(GL_TEXTURE0 + PNPR_GL_CELLS_UNIT);
+    glBindTexture(GL_TEXTURE_BUFFER, (GLuint)s->tex_buffer_cells);
+    glBindSampler(PNPR_GL_CELLS_UNIT, (GLuint)s->sampler_cells);
     glActiveTexture((GLenum)s->active_texture);
     glPixelStorei(GL_PACK_ALIGNMENT, s->pack[0]);
     glPixelStorei(GL_PACK_ROW_LENGTH, s->pack[1]);
@@ -154,10 +161,19 @@ void pnpr_gl_state_restore(const pnpr_gl_state *s)
 
 /* ---- shader programs ---- */
 
+void pnpr_queue_uniforms_find(GLuint prog, pnpr_queue_uniforms *u)
+{
+    u->cells = glGetUniformLocation(prog, "u_cells");
+    u->min = glGetUniformLocation(prog, "u_cell_min");
+    u->inv = glGetUniformLocation(prog, "u_cell_inv");
+    u->n = glGetUniformLocation(prog, "u_cell_n");
+    u->scale = glGetUniformLocation(prog, "u_queue_scale");
+}
+
 static GLuint compile(GLenum type, const char *src, const char *name, pnpr_error *err)
 {
     /* the #version line, then the constants the C side defines (pnpr_shader_prelude), then the rest */
-    char prelude[512];
+    char prelude[2048];
     pnpr_shader_prelude(prelude, sizeof prelude);
     const char *nl = strchr(src, '\n');
     const char *parts[3] = {src, prelude, nl ? nl + 1 : ""};

@@ -8,6 +8,8 @@
 #include <stddef.h>
 
 enum { PNPR_GL_STATE_ENABLES = 14 };
+/* The texture unit of the per-cell queues' table (a buffer texture, RGBA32F per cell: renderer.c). */
+enum { PNPR_GL_CELLS_UNIT = 5 };
 
 typedef struct pnpr_gl_state {
     GLint draw_fbo, read_fbo, renderbuffer;
@@ -24,6 +26,7 @@ typedef struct pnpr_gl_state {
     GLint program, vao, array_buffer;
     GLint active_texture, tex_2d, tex_2d_array, sampler;
     GLint tex_2d_unit1, sampler_unit1; /* texture unit 1 (the outline passes read two textures) */
+    GLint tex_buffer_cells, sampler_cells; /* unit PNPR_GL_CELLS_UNIT: the per-cell queues' table */
     GLint pack[5];   /* alignment, row length, skip pixels, skip rows, pixel pack buffer */
     GLint unpack[7];
     GLint stencil[2][7]; /* front, back: func, ref, value mask, fail, depth fail, depth pass, write mask */
@@ -45,6 +48,10 @@ void pnpr_gl_state_neutral(void);
  * (PNPR_VSTYLE_HIDDEN, PNPR_BRUSH_VARIANTS, PNPR_HATCH_DIR, PNPR_HATCH_DIR2), written from the C
  * values, so no shader restates them (renderer.c). */
 void pnpr_shader_prelude(char *buf, size_t cap);
+
+/* The per-cell queues' uniforms of a program that calls the prelude's pnpr_queue (-1: not used). */
+typedef struct pnpr_queue_uniforms { GLint cells, min, inv, n, scale; } pnpr_queue_uniforms;
+void pnpr_queue_uniforms_find(GLuint prog, pnpr_queue_uniforms *u);
 
 GLuint pnpr_gl_link_program(const char *vs, const char *fs, const char *name, pnpr_error *err);
 /* A uniform of a program and where its location goes: a GLint member of a struct of locations. */

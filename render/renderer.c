@@ -34,6 +34,10 @@ static void release_gl(pnpr_renderer *r)
     if (r->style_vbo) glDeleteBuffers(1, &r->style_vbo);
     if (r->paint_style_vbo) glDeleteBuffers(1, &r->paint_style_vbo);
     if (r->line_vbo) glDeleteBuffers(1, &r->line_vbo);
+    if (r->key_vbo) glDeleteBuffers(1, &r->key_vbo);
+    if (r->paint_key_vbo) glDeleteBuffers(1, &r->paint_key_vbo);
+    if (r->cells_buf) glDeleteBuffers(1, &r->cells_buf);
+    if (r->cells_tex) glDeleteTextures(1, &r->cells_tex);
     GLuint vaos[5] = {r->vao_points, r->vao_strokes, r->vao_empty, r->vao_lines, r->vao_flat};
     glDeleteVertexArrays(5, vaos);
     if (r->stroke_tex) glDeleteTextures(1, &r->stroke_tex);
@@ -46,7 +50,7 @@ static void release_gl(pnpr_renderer *r)
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
 }
 
-void pnpr_renderer_vertex_attribs(GLuint vao, GLuint vbo, GLuint sbo, size_t first, int instanced, int flat)
+void pnpr_renderer_vertex_attribs(GLuint vao, GLuint vbo, GLuint sbo, GLuint kbo, size_t first, int instanced, int flat)
 {
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -73,6 +77,11 @@ void pnpr_renderer_vertex_attribs(GLuint vao, GLuint vbo, GLuint sbo, size_t fir
     glEnableVertexAttribArray(4);
     glVertexAttribIPointer(4, 1, GL_UNSIGNED_BYTE, 1, (const void *)(uintptr_t)first);
     if (instanced) glVertexAttribDivisor(4, 1);
+    /* attribute 7: the per-cell queue key (uint16 per vertex in `kbo`) */
+    glBindBuffer(GL_ARRAY_BUFFER, kbo);
+    glEnableVertexAttribArray(7);
+    glVertexAttribIPointer(7, 1, GL_UNSIGNED_SHORT, 2, (const void *)(uintptr_t)(2 * first));
+    if (instanced) glVertexAttribDivisor(7, 1);
 }
 
 /* The programs, in order; 0 (and the compiler's log in err) at the first that fails. */
@@ -92,8 +101,7 @@ static const pnpr_gl_uniform splat_table[] = {
     U(splat_uniforms, radius_scale, "u_radius_scale"), U(splat_uniforms, depth_push, "u_depth_push"),
     U(splat_uniforms, max_size, "u_max_size"), U(splat_uniforms, fade, "u_fade"), U(splat_uniforms, fade_color, "u_fade_color"),
     U(splat_uniforms, fixed_size, "u_fixed_size"), U(splat_uniforms, levels, "u_levels"), U(splat_uniforms, ortho, "u_ortho"),
-    U(splat_uniforms, thin, "u_thin"), U(splat_uniforms, queue_end, "u_queue_end"),
-    U(splat_uniforms, queue_fade, "u_queue_fade"),
+    U(splat_uniforms, thin, "u_thin"), U(splat_uniforms, fade_in, "u_fade_in"),
 };
 static const pnpr_gl_uniform stroke_table[] = {
     U(stroke_uniforms, view, "u_view"), U(stroke_uniforms, proj, "u_proj"), U(stroke_uniforms, viewport, "u_viewport"),
@@ -101,7 +109,7 @@ static const pnpr_gl_uniform stroke_table[] = {
     U(stroke_uniforms, radius_scale, "u_radius_scale"), U(stroke_uniforms, mode, "u_mode"),
     U(stroke_uniforms, strokes, "u_strokes"), U(stroke_uniforms, layer, "u_layer"), U(stroke_uniforms, ink, "u_ink"),
     U(stroke_uniforms, ink_from_points, "u_ink_from_points"), U(stroke_uniforms, thin, "u_thin"),
-    U(stroke_uniforms, queue_end, "u_queue_end"), U(stroke_uniforms, queue_fade, "u_queue_fade"),
+    U(stroke_uniforms, fade_in, "u_fade_in"),
     U(stroke_uniforms, tone_radius, "u_tone_radius"), U(stroke_uniforms, half_max, "u_half_max"),
 };
 static const pnpr_gl_uniform paint_table[] = {
@@ -129,6 +137,9 @@ static void find_uniforms(pnpr_renderer *r)
     FIND(r->prog_splat, splat_table, &r->us);
     r->us_filter = glGetUniformLocation(r->prog_splat, "u_style_filter");
     FIND(r->prog_stroke, stroke_table, &r->ut);
+    pnpr_queue_uniforms_find(r->prog_splat, &r->uq_splat);
+    pnpr_queue_uniforms_find(r->prog_stroke, &r->uq_stroke);
+    pnpr_queue_uniforms_find(r->prog_paint, &r->uq_paint);
     r->ut_filter = glGetUniformLocation(r->prog_stroke, "u_style_filter");
     glUseProgram(r->prog_splat);
     glUniform1i(r->us_filter, -1);
@@ -151,9 +162,13 @@ static void make_vertex_arrays(pnpr_renderer *r)
     glGenVertexArrays(1, &r->vao_flat);
     glGenBuffers(1, &r->style_vbo);
     glGenBuffers(1, &r->paint_style_vbo);
-    pnpr_renderer_vertex_attribs(r->vao_points, r->vbo, r->style_vbo, 0, 0, 0);
-    pnpr_renderer_vertex_attribs(r->vao_strokes, r->vbo, r->style_vbo, 0, 1, 0);
-    pnpr_renderer_vertex_attribs(r->vao_flat, r->vbo, r->style_vbo, 0, 0, 1);
+    glGenBuffers(1, &r->key_vbo);
+    glGenBuffers(1, &r->paint_key_vbo);
+    glGenBuffers(1, &r->cells_buf);
+    glGenTextures(1, &r->cells_tex);
+    pnpr_renderer_vertex_attribs(r->vao_points, r->vbo, r->style_vbo, r->key_vbo, 0, 0, 0);
+    pnpr_renderer_vertex_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->key_vbo, 0, 1, 0);
+    pnpr_renderer_vertex_attribs(r->vao_flat, r->vbo, r->style_vbo, r->key_vbo, 0, 0, 1);
     glGenBuffers(1, &r->line_vbo);
     glGenVertexArrays(1, &r->vao_lines);
     glBindVertexArray(r->vao_lines);
@@ -170,7 +185,7 @@ static void make_vertex_arrays(pnpr_renderer *r)
     glGenBuffers(1, &r->paint_vbo);
     glGenBuffers(1, &r->paint_col_vbo);
     glGenVertexArrays(1, &r->vao_paint);
-    pnpr_renderer_vertex_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
+    pnpr_renderer_vertex_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, r->paint_key_vbo, 0, 0, 0);
 }
 
 /* GL's limits: the largest point size, the largest frame (texture, renderbuffer and viewport). */
@@ -189,14 +204,47 @@ static void query_limits(pnpr_renderer *r)
     if (vp[1] > 0 && vp[1] < r->max_size) r->max_size = vp[1];
 }
 
+/* The per-cell queues' test (pnpr_renderer_queue_alpha is its twin on the CPU): the point's cell
+ * from its position, the cell's row of the frame's table (end, fade-in length, disk growth). */
+static const char queue_glsl[] =
+    "uniform samplerBuffer u_cells;\n"
+    "uniform vec3 u_cell_min;\n"
+    "uniform float u_cell_inv;\n"
+    "uniform ivec3 u_cell_n;\n"
+    "uniform float u_queue_scale;\n"
+    "float pnpr_queue(vec3 p, uint key, out float grow)\n"
+    "{\n"
+    "    ivec3 c;\n"
+    "    for (int a = 0; a < 3; a++) {\n"
+    "        float t = (p[a] - u_cell_min[a]) * u_cell_inv;\n"
+    "        c[a] = !(t >= 0.0) ? 0 : t >= float(u_cell_n[a]) ? u_cell_n[a] - 1 : int(t);\n"
+    "    }\n"
+    "    vec4 q = texelFetch(u_cells, (c.z * u_cell_n.y + c.y) * u_cell_n.x + c.x);\n"
+    "    float end = q.x * u_queue_scale, u = float(key) + 0.5;\n"
+    "    grow = q.z;\n"
+    "    if (!(u < end)) return -1.0;\n"
+    "    return q.y > 0.0 ? clamp((end - u) / q.y, 0.0, 1.0) : 1.0;\n"
+    "}\n";
+
 void pnpr_shader_prelude(char *buf, size_t cap)
 {
     const float h1[3] = {HATCH_DIR}, h2[3] = {HATCH_DIR2};
     snprintf(buf, cap,
              "#define PNPR_VSTYLE_HIDDEN %uu\n#define PNPR_BRUSH_VARIANTS %uu\n"
-             "#define PNPR_HATCH_DIR vec3(%.9g, %.9g, %.9g)\n#define PNPR_HATCH_DIR2 vec3(%.9g, %.9g, %.9g)\n",
+             "#define PNPR_HATCH_DIR vec3(%.9g, %.9g, %.9g)\n#define PNPR_HATCH_DIR2 vec3(%.9g, %.9g, %.9g)\n%s",
              (unsigned)PNPR_VSTYLE_HIDDEN, (unsigned)PNPR_BRUSH_VARIANTS, (double)h1[0], (double)h1[1], (double)h1[2],
-             (double)h2[0], (double)h2[1], (double)h2[2]);
+             (double)h2[0], (double)h2[1], (double)h2[2], queue_glsl);
+}
+
+double pnpr_renderer_queue_alpha(const pnpr_renderer *r, const float p[3], uint16_t key, float scale, float *r_grow)
+{
+    const float *q = r->cell_table + 4 * (size_t)pnpr_view_cells_index(&r->view_cells, p);
+    float end = q[0] * scale, u = (float)key + 0.5f;
+    *r_grow = q[2];
+    if (!(u < end)) return -1;
+    if (!(q[1] > 0)) return 1;
+    double a = ((double)end - u) / q[1];
+    return a < 0 ? 0 : a > 1 ? 1 : a;
 }
 
 pnpr_status pnpr_renderer_create(const pnpr_renderer_options *opts, pnpr_renderer **r_renderer,
@@ -248,6 +296,9 @@ void pnpr_renderer_destroy(pnpr_renderer *r)
     free(r->ulabels);
     free(r->paint_src);
     free(r->vstyle);
+    free(r->cell_table);
+    pnpr_crq_cells_free(&r->queue);
+    pnpr_crq_cells_free(&r->paint_queue);
     /* deleting a bound object unbinds it: put back what the host had (names it still owns) */
     pnpr_gl_state_restore(&saved);
     free(r);
@@ -343,7 +394,40 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
     return PNPR_OK;
 }
 
-pnpr_status pnpr_renderer_plan_frame(const pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *o,
+/* The frame's table of the per-cell queues (r->cell_table; crq.h, docs/rendering.md "Per-cell
+ * queues"): `want` points in view (< 0: every point), shared among the cells in view by their
+ * weights (pnpr_view_cells_weights: a cell at eye depth z draws min(1, c / z^2) of its points);
+ * a budget below the points that gives is met by lowering c. Fills the plan's counts. */
+static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, double want, frame_plan *p)
+{
+    float *t = r->cell_table;
+    size_t cells = r->count ? r->cells : 0;
+    double c = 0;
+    if (want >= 0 && cells) {
+        double sum = pnpr_view_cells_weights(&r->view_cells, &p->fc, t + 3, 4); /* the weights in column 3 */
+        c = sum > 0 ? want / sum : 0;
+    }
+    for (int round = 0; round < 8; round++) {
+        for (size_t k = 0; k < cells; k++) {
+            double e = want < 0 ? PNPR_CRQ_KEYS : fmin((double)PNPR_CRQ_KEYS, PNPR_CRQ_KEYS * c * t[4 * k + 3]);
+            t[4 * k] = (float)e;
+        }
+        p->n_draw = cells ? pnpr_crq_cells_drawn(&r->queue, t, 4) : 0;
+        if (!(o->budget > 0 && p->n_draw > o->budget && want >= 0)) break;
+        c *= (double)o->budget / (double)p->n_draw * 0.999; /* the keys' rounding: a point per queue at most */
+    }
+    p->end_max = 0;
+    p->lod_max = 1;
+    for (size_t k = 0; k < cells; k++) {
+        float e = t[4 * k];
+        t[4 * k + 1] = pnpr_queue_fade_length(e, PNPR_CRQ_KEYS, o->queue_fade);
+        t[4 * k + 2] = e > 0 ? (float)sqrt(PNPR_CRQ_KEYS / (double)e) : 1.0f;
+        if (e > p->end_max) p->end_max = e;
+        if (e > 0.5f && t[4 * k + 2] > p->lod_max) p->lod_max = t[4 * k + 2];
+    }
+}
+
+pnpr_status pnpr_renderer_plan_frame(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *o,
                                      int w, int h, frame_plan *p, pnpr_error *err)
 {
     pnpr_camera cam;
@@ -369,22 +453,19 @@ pnpr_status pnpr_renderer_plan_frame(const pnpr_renderer *r, const pnpr_camera *
         st = pnpr_frame_camera_make(&cam, r->origin, r->bmin, r->bmax, r->count > 0, w, h, &p->fc, err);
         if (st != PNPR_OK) return st;
     }
-    /* continuous resolution queue: how many points this frame */
-    size_t n_draw = r->count;
+    /* continuous resolution queue: how many points this frame, in view (the density x the box's
+     * covered pixels, at most the budget), and from which cells (plan_cells) */
     p->coverage = r->count ? pnpr_box_coverage(&p->fc, r->bmin, r->bmax, w, h) : 0;
-    if (o->budget > 0 && o->budget < n_draw) n_draw = o->budget;
+    double want = -1;
+    if (o->budget > 0 && o->budget < r->count) want = (double)o->budget;
     if (o->density > 0) {
-        /* the density holds among the points in view: the queue's prefix is a uniform share of
-         * every cell, so it grows by all / in view (cells the frustum culls), as PointWorks draws
-         * only the objects in view, each by its screen space */
         double cap = ceil((double)o->density * p->coverage);
-        size_t seen = pnpr_view_cells_seen(&r->view_cells, &p->fc);
-        if (seen > 0 && seen < r->view_cells.total) cap = ceil(cap * (double)r->view_cells.total / (double)seen);
-        if (cap < (double)n_draw) n_draw = (size_t)cap;
+        if (want < 0 || cap < want) want = cap;
     }
-    p->n_draw = n_draw;
-    /* a random subset of fraction f has 1/sqrt(f) times the spacing: grow the disks to match */
-    p->lod = n_draw > 0 ? (float)sqrt((double)r->count / (double)n_draw) : 1;
+    plan_cells(r, o, want, p);
+    /* a random subset of fraction f has 1/sqrt(f) times the spacing: each cell's disks grow so
+     * (the table's column 2); lod is the mean growth */
+    p->lod = p->n_draw > 0 ? (float)sqrt((double)r->count / (double)p->n_draw) : 1;
     return PNPR_OK;
 }
 
@@ -470,7 +551,7 @@ static pnpr_status resolve_map(const pnpr_renderer *r, pnpr_frame_ctx *f, uint8_
 
 /* Everything a frame (or tile) of a w x h image needs before GL: the checked options, the style
  * map (*r_vstyle), the scales and ink, the camera, the queue prefixes, whether outlines follow. */
-static pnpr_status prepare_frame(const pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
+static pnpr_status prepare_frame(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
                                  int w, int h, const tile_rect *tile, pnpr_frame_ctx *f, uint8_t **r_vstyle,
                                  pnpr_error *err)
 {
@@ -492,13 +573,12 @@ static pnpr_status prepare_frame(const pnpr_renderer *r, const pnpr_camera *came
     f->n_draw = plan.n_draw;
     f->coverage = plan.coverage;
     f->lod = plan.lod;
-    size_t gsize[GROUP_MAX + 1];
+    f->end_max = plan.end_max;
+    /* the vertex prefixes that hold every cell's points drawn (the shaders drop the others) */
     f->ng = r->group_count + 1; /* + "other" (empty by construction) */
-    for (size_t g = 0; g < f->ng; g++) gsize[g] = r->group_start[g + 1] - r->group_start[g];
-    pnpr_crq_split(gsize, f->ng, f->n_draw, f->gdraw);
-    size_t nb = r->paint_bins, bsize[PAINT_MAX_BINS];
-    for (size_t b = 0; b < nb; b++) bsize[b] = r->paint_start[b + 1] - r->paint_start[b];
-    if (nb) pnpr_crq_split(bsize, nb, f->n_draw, f->pdraw);
+    for (size_t g = 0; g < f->ng; g++) f->gdraw[g] = f->n_draw ? pnpr_crq_cells_prefix(&r->queue, g, f->end_max) : 0;
+    for (size_t b = 0; b < r->paint_bins; b++)
+        f->pdraw[b] = f->n_draw ? pnpr_crq_cells_prefix(&r->paint_queue, b, f->end_max) : 0;
 
     /* outlines: after the style's passes, from the mask's surface info (written only then) */
     f->outline_width = 0;
@@ -508,6 +588,34 @@ static pnpr_status prepare_frame(const pnpr_renderer *r, const pnpr_camera *came
     f->outline = outline && !f->mapped && o->style != PNPR_STYLE_PAINTERLY && o->style != PNPR_STYLE_POINTS &&
                  f->n_draw > 0;
     return PNPR_OK;
+}
+
+/* The frame's table of the per-cell queues to its buffer texture on PNPR_GL_CELLS_UNIT, and the
+ * grid and a scale of 1 to the programs that test it (pnpr_shader_prelude). */
+static void bind_queue(pnpr_renderer *r)
+{
+    glBindBuffer(GL_ARRAY_BUFFER, r->cells_buf); /* (the host's texture-buffer binding untouched) */
+    int any = r->cells && r->count;
+    const float none[4] = {0, 0, 1, 0};
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(4 * (any ? r->cells : 1) * sizeof(float)), any ? r->cell_table : none,
+                 GL_STREAM_DRAW);
+    glActiveTexture(GL_TEXTURE0 + PNPR_GL_CELLS_UNIT);
+    glBindTexture(GL_TEXTURE_BUFFER, r->cells_tex);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r->cells_buf);
+    glActiveTexture(GL_TEXTURE0);
+    const pnpr_view_cells *c = &r->view_cells;
+    const struct { GLuint prog; const pnpr_queue_uniforms *u; } progs[4] = {
+        {r->prog_splat, &r->uq_splat}, {r->prog_stroke, &r->uq_stroke}, {r->prog_paint, &r->uq_paint},
+        {r->brush.prog, &r->brush.uq}};
+    for (int i = 0; i < 4; i++) {
+        glUseProgram(progs[i].prog);
+        glUniform1i(progs[i].u->cells, PNPR_GL_CELLS_UNIT);
+        glUniform3f(progs[i].u->min, c->min[0], c->min[1], c->min[2]);
+        glUniform1f(progs[i].u->inv, c->inv);
+        glUniform3i(progs[i].u->n, (GLint)c->n[0], (GLint)c->n[1], (GLint)c->n[2]);
+        glUniform1f(progs[i].u->scale, 1.0f);
+    }
+    glUseProgram(0);
 }
 
 /* Binds the frame, clears colour (to the premultiplied background), depth, stencil and the
@@ -633,6 +741,7 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
     if (st == PNPR_OK && hier) st = pnpr_brush_gl_targets(&r->brush, f.fw, f.fh, r->depth_rb, err);
     if (st != PNPR_OK) { pnpr_gl_state_restore(&saved); return st; }
     clear_frame(r, &f);
+    bind_queue(r);
     if (rec) record_frame(rec, &f);
     if (rec) f.pass_only = rec->pass_only;
     size_t strokes = 0;
@@ -653,7 +762,7 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
 
 /* The guard band of target (pnpr_target.guard; < 0: the renderer's own tile margin), at most what
  * the GL's size limit leaves; 0 when none. */
-static pnpr_status guard_of(const pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
+static pnpr_status guard_of(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
                             const pnpr_target *t, int *r_guard, pnpr_error *err)
 {
     *r_guard = 0;

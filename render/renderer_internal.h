@@ -55,14 +55,15 @@ typedef struct pnpr_vertex {
     int8_t normal[4]; /* unit normal * 127 (orientation does not matter); all 0 = unknown */
 } pnpr_vertex;
 
-typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin, queue_end, queue_fade; } splat_uniforms;
+typedef struct splat_uniforms { GLint view, proj, ppu, radius_scale, depth_push, max_size, fade, fade_color, fixed_size, levels, ortho, thin, fade_in; } splat_uniforms;
 typedef struct line_uniforms { GLint view, proj, viewport, width, near_plane, ink, pull, ortho, ppu, min_px; } line_uniforms;
 typedef struct stroke_uniforms {
-    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin, queue_end, queue_fade,
+    GLint view, proj, viewport, ppu, length, width, radius_scale, mode, strokes, layer, ink, ink_from_points, thin, fade_in,
         tone_radius, half_max;
 } stroke_uniforms;
 
 typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
+
 
 enum { PAINT_MAX_BINS = PNPR_PAINTERLY_BINS_MAX, PAINT_K = 12, BRUSH_TEX = 64 };
 
@@ -101,6 +102,14 @@ struct pnpr_renderer {
     double origin[3];
     float bmin[3], bmax[3];
     pnpr_view_cells view_cells; /* the points per cell: how many a frame's view may show */
+    /* per-cell queues (crq.h): the vertices' keys (uint16, main and painterly order), the queues
+     * of the groups and of the painterly bins, and the frame's table: per cell its end, fade-in
+     * length and disk growth (4 floats; cell_table, in cells_buf as a buffer texture) */
+    GLuint key_vbo, paint_key_vbo, cells_buf, cells_tex;
+    pnpr_crq_cells queue, paint_queue;
+    float *cell_table;
+    size_t cells;
+    pnpr_queue_uniforms uq_splat, uq_stroke, uq_paint;
     /* style maps (intermingled styles): one style byte per vertex (attribute 4) in the main
      * order (style_vbo) and in the painterly order (paint_style_vbo); the labels and the
      * painterly order's main indices to fill them; the bytes last uploaded */
@@ -118,12 +127,17 @@ struct pnpr_renderer {
     double line_origin[3];
 };
 
+/* The per-cell queues' test of a point at offset position p with key `key` (pnpr_shader_prelude's
+ * pnpr_queue): -1 when its cell's end (x scale) leaves it out, else its fade-in alpha; *r_grow:
+ * the cell's disk growth. Reads the last frame's table. */
+double pnpr_renderer_queue_alpha(const pnpr_renderer *r, const float p[3], uint16_t key, float scale, float *r_grow);
+
 /* The continuous resolution queue's fade-in (issue 16): of the `drawn` first points of a group of
  * `size`, the last ones are drawn with alpha ramping from 1 down to 0 over this many points, so a
  * stroke appears and vanishes gradually as the budget moves across it; `fraction` of the drawn
  * points (pnpr_draw_options.queue_fade), at most the points left undrawn + 1 (a whole group is
  * drawn at full alpha), 0 = no fade. */
-float pnpr_queue_fade_length(size_t drawn, size_t size, float fraction);
+float pnpr_queue_fade_length(double drawn, double size, float fraction);
 
 /* The longest half length of a stroke or hatch in pixels: half of o->stroke_max (its default when
  * 0), no limit (FLT_MAX) when negative. The stroke shader's u_half_max and the vector export's
@@ -171,7 +185,7 @@ pnpr_status pnpr_renderer_draw_recorded(pnpr_renderer *r, const pnpr_camera *cam
 /* Points `vao` at the vertices of `vbo` from vertex `first` on (attributes 0 position, 1 radius,
  * 2 colour (the flat colour with `flat`), 5 normal; 3 the feature direction and per-instance
  * attributes with `instanced`) and attribute 4 at the style bytes of `sbo` (renderer.c). */
-void pnpr_renderer_vertex_attribs(GLuint vao, GLuint vbo, GLuint sbo, size_t first, int instanced, int flat);
+void pnpr_renderer_vertex_attribs(GLuint vao, GLuint vbo, GLuint sbo, GLuint kbo, size_t first, int instanced, int flat);
 
 /* Generates and uploads the stroke texture array and the painterly brush (renderer_textures.c). */
 pnpr_status pnpr_renderer_make_textures(pnpr_renderer *r);
@@ -207,9 +221,11 @@ typedef struct tile_rect { int full_w, full_h, x, y, w, h; } tile_rect;
 /* The camera, the queue count and the disk growth of a full image (shared by every tile). */
 typedef struct frame_plan {
     pnpr_frame_camera fc;
-    size_t n_draw;
+    size_t n_draw;       /* the points drawn (every cell's keys below its end) */
     double coverage;
-    float lod;
+    float lod;           /* sqrt(points / drawn): the disks' mean growth (the lines' pull) */
+    float lod_max;       /* the largest growth of a cell drawn (tile guard bands) */
+    float end_max;       /* the largest end of a cell: the vertex prefixes drawn reach it */
 } frame_plan;
 
 /* The margin of a tile of at most tmax px (guard band, in px) that keeps the sprites, marks and
@@ -224,7 +240,7 @@ int pnpr_renderer_tile_margin(const pnpr_renderer *r, const pnpr_draw_options *o
  * target unless it is offscreen or a tile), *rec filled when given. */
 pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_options *opts, pnpr_draw_options *o,
                                         pnpr_error *err);
-pnpr_status pnpr_renderer_plan_frame(const pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *o,
+pnpr_status pnpr_renderer_plan_frame(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *o,
                                      int w, int h, frame_plan *p, pnpr_error *err);
 pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera, const pnpr_draw_options *opts,
                                      const pnpr_target *target, const tile_rect *tile, pnpr_render_stats *r_stats,
@@ -240,6 +256,7 @@ typedef struct pnpr_frame_ctx {
     size_t ng;                       /* the groups drawn (group_count + "other", empty) */
     size_t gdraw[GROUP_MAX + 1];     /* the prefix of each group */
     size_t pdraw[PAINT_MAX_BINS];    /* painterly: the prefix of each bin (the mask's) */
+    float end_max;                   /* the largest end of a cell (the prefixes reach it) */
     double coverage;
     float lod, point_scale, mask_scale, ink[4];
     int outline;                     /* outlines after the passes (from the mask's surface info) */

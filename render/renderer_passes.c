@@ -17,10 +17,10 @@ void pnpr_renderer_draw_buffers(int info, int color)
     glDrawBuffers(2, bufs);
 }
 
-float pnpr_queue_fade_length(size_t drawn, size_t size, float fraction)
+float pnpr_queue_fade_length(double drawn, double size, float fraction)
 {
-    if (fraction < 0 || drawn == 0 || drawn >= size) return 0;
-    double f = (fraction > 0 ? fraction : pnpr_draw_defaults().queue_fade) * (double)drawn, left = (double)(size - drawn) + 1;
+    if (fraction < 0 || !(drawn > 0) || drawn >= size) return 0;
+    double f = (fraction > 0 ? fraction : pnpr_draw_defaults().queue_fade) * drawn, left = size - drawn + 1;
     if (f > left) f = left;
     return f >= 1 ? (float)f : 1.0f;
 }
@@ -59,7 +59,7 @@ static void splat_program(pnpr_renderer *r, const pnpr_frame_ctx *f)
  * program current). */
 static void draw_splats(pnpr_renderer *r, const pnpr_frame_ctx *f, GLuint vao)
 {
-    glUniform1f(r->us.radius_scale, f->point_scale * f->lod);
+    glUniform1f(r->us.radius_scale, f->point_scale); /* x each cell's disk growth (pnpr_queue) */
     glUniform1f(r->us.depth_push, 0.0f);
     glBindVertexArray(vao);
     draw_groups(r, f);
@@ -83,7 +83,7 @@ static void draw_mask(pnpr_renderer *r, const pnpr_frame_ctx *f, const mask_spec
 {
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
-    glUniform1f(r->us.radius_scale, f->point_scale * f->lod * m->scale);
+    glUniform1f(r->us.radius_scale, f->point_scale * m->scale);
     glUniform1f(r->us.depth_push, 1.0f);
     glUniform1i(r->us_filter, m->filter);
     if (m->stencil > 0) {
@@ -94,7 +94,7 @@ static void draw_mask(pnpr_renderer *r, const pnpr_frame_ctx *f, const mask_spec
     }
     pnpr_renderer_draw_buffers(m->info, m->color);
     if (m->painterly) {
-        pnpr_renderer_vertex_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
+        pnpr_renderer_vertex_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, r->paint_key_vbo, 0, 0, 0);
         if (m->color) { /* the coarsest pass's blended colours (level 0) */
             glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
             glVertexAttribPointer(2, PAINT_COL_BYTES, GL_UNSIGNED_BYTE, GL_TRUE, PAINT_COL_BYTES, (const void *)0);
@@ -171,15 +171,14 @@ static size_t draw_sketchy(pnpr_renderer *r, const pnpr_frame_ctx *f)
         glUniform1i(r->ut.thin, g == GROUP_DITHER);
         glUniform1f(r->ut.tone_radius, g == GROUP_DITHER ? r->tone_radius : 0.0f);
         glUniform4fv(r->ut.ink, 1, g == GROUP_DITHER ? tone_ink : ink);
-        glUniform1f(r->ut.queue_end, (float)f->gdraw[g]);
-        glUniform1f(r->ut.queue_fade, pnpr_queue_fade_length(f->gdraw[g], r->group_start[g + 1] - r->group_start[g], o->queue_fade));
-        pnpr_renderer_vertex_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->group_start[g], 1, 0);
+        glUniform1i(r->ut.fade_in, 1);
+        pnpr_renderer_vertex_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->key_vbo, r->group_start[g], 1, 0);
         glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)f->gdraw[g]);
         strokes += f->gdraw[g];
     }
     glUniform1i(r->ut.thin, 0);
     glUniform1f(r->ut.tone_radius, 0.0f);
-    glUniform1f(r->ut.queue_fade, 0.0f);
+    glUniform1i(r->ut.fade_in, 0);
     glUniform4fv(r->ut.ink, 1, ink);
     return strokes;
 }
@@ -192,7 +191,7 @@ static size_t draw_stipple(pnpr_renderer *r, const pnpr_frame_ctx *f)
     const pnpr_draw_options *o = &f->o;
     size_t dots = 0;
     blend_marks();
-    glUniform1f(r->us.radius_scale, f->point_scale * f->lod);
+    glUniform1f(r->us.radius_scale, f->point_scale);
     glUniform1f(r->us.depth_push, 0.0f);
     glUniform1f(r->us.fade, 1.0f);
     glUniform4fv(r->us.fade_color, 1, f->ink);
@@ -201,13 +200,12 @@ static size_t draw_stipple(pnpr_renderer *r, const pnpr_frame_ctx *f)
     for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER; g++) {
         if (!f->gdraw[g]) continue;
         glUniform1i(r->us.thin, g == GROUP_DITHER);
-        glUniform1f(r->us.queue_end, (float)(r->group_start[g] + f->gdraw[g]));
-        glUniform1f(r->us.queue_fade, pnpr_queue_fade_length(f->gdraw[g], r->group_start[g + 1] - r->group_start[g], o->queue_fade));
+        glUniform1i(r->us.fade_in, 1);
         glDrawArrays(GL_POINTS, (GLint)r->group_start[g], (GLsizei)f->gdraw[g]);
         dots += f->gdraw[g];
     }
     glUniform1i(r->us.thin, 0);
-    glUniform1f(r->us.queue_fade, 0.0f);
+    glUniform1i(r->us.fade_in, 0);
     glUniform1f(r->us.fade, 0.0f);
     glUniform1f(r->us.fixed_size, 0.0f);
     return dots;
@@ -252,15 +250,14 @@ static size_t draw_lines(pnpr_renderer *r, const pnpr_frame_ctx *f)
 
 /* Painterly's dabs: pass L = 0..bins-1 draws bins L..bins-1 as brush dabs of pnpr_paint_brush(L)
  * disk radii in the pass's blended colours; it needs about 1/brush^2 of the points for the same
- * coverage; the dab fills about half its sprite, so min(q * (points of bins L..),
- * 2 q * count / brush^2) with q = n_draw / count, split over those bins in proportion to their
- * sizes (never more than the mask drew of a bin). Passes whose brush is larger than the mask
- * disk test stencil == ref (the sky mask); the smaller ones do not. */
+ * coverage; the dab fills about half its sprite, so of what the mask drew of each cell, the share
+ * min(1, 2 count / (brush^2 x points of bins L..)) (the queues' scale: each cell's end times it).
+ * Passes whose brush is larger than the mask disk test stencil == ref (the sky mask); the
+ * smaller ones do not. */
 static size_t draw_dabs(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter, GLint ref, float mask_scale)
 {
-    size_t nb = r->paint_bins, bsize[PAINT_MAX_BINS], d[PAINT_MAX_BINS], dabs = 0;
-    for (size_t b = 0; b < nb; b++) bsize[b] = r->paint_start[b + 1] - r->paint_start[b];
-    pnpr_renderer_vertex_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, 0, 0, 0);
+    size_t nb = r->paint_bins, dabs = 0;
+    pnpr_renderer_vertex_attribs(r->vao_paint, r->paint_vbo, r->paint_style_vbo, r->paint_key_vbo, 0, 0, 0);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_FALSE);
     glStencilMask(0);
@@ -276,28 +273,28 @@ static size_t draw_dabs(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter, G
     glUniform1i(r->up.style_filter, filter);
     glUniform1i(r->up.brush, 0);
     glBindTexture(GL_TEXTURE_2D, r->brush_tex);
-    double q = r->count ? (double)f->n_draw / (double)r->count : 0;
     for (size_t L = 0; L < nb; L++) {
         float brush = pnpr_paint_brush(L, nb);
-        size_t avail = 0;
-        for (size_t b = L; b < nb; b++) avail += bsize[b];
-        double want = q * (double)avail, cap = 2.0 * q * (double)r->count / ((double)brush * brush); /* 2: the dab (a 2:1 ellipse) covers about half its sprite */
-        size_t total = (size_t)ceil(want < cap ? want : cap);
-        pnpr_crq_split(bsize + L, nb - L, total, d + L);
+        size_t avail = r->paint_start[nb] - r->paint_start[L];
+        /* 2: the dab (a 2:1 ellipse) covers about half its sprite */
+        double share = fmin(1.0, 2.0 * (double)r->count / ((double)brush * brush * (double)(avail ? avail : 1)));
+        glUniform1f(r->uq_paint.scale, (float)share);
         if (brush > mask_scale && !f->o.paint_no_sky_mask) glEnable(GL_STENCIL_TEST);
         else glDisable(GL_STENCIL_TEST);
-        glUniform1f(r->up.radius_scale, f->point_scale * f->lod * brush);
+        glUniform1f(r->up.radius_scale, f->point_scale * brush);
         /* attribute 2 <- this pass's colour level (vertex i's colour at level L is at L*count + i) */
         glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
         glVertexAttribPointer(2, PAINT_COL_BYTES, GL_UNSIGNED_BYTE, GL_TRUE, PAINT_COL_BYTES,
                               (const void *)(uintptr_t)(L * r->count * PAINT_COL_BYTES));
-        for (size_t b = L; b < nb; b++) {
-            size_t m = d[b] < f->pdraw[b] ? d[b] : f->pdraw[b];
+        for (size_t b = L; b < nb; b++) { /* + 1: the shader's product may round up */
+            size_t m = pnpr_crq_cells_prefix(&r->paint_queue, b, f->end_max * (float)share + 1.0f);
+            if (m > f->pdraw[b]) m = f->pdraw[b];
             if (!m) continue;
             glDrawArrays(GL_POINTS, (GLint)r->paint_start[b], (GLsizei)m);
             dabs += m;
         }
     }
+    glUniform1f(r->uq_paint.scale, 1.0f);
     return dabs;
 }
 
@@ -317,7 +314,7 @@ static size_t draw_paint_strokes(pnpr_renderer *r, const pnpr_frame_ctx *f, int 
     glUniform1i(r->ut.mode, 0);
     glUniform1f(r->ut.layer, (float)o->stroke_texture);
     glUniform1f(r->ut.length, o->stroke_length);
-    pnpr_renderer_vertex_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->group_start[GROUP_DIRECTIONAL], 1, 0);
+    pnpr_renderer_vertex_attribs(r->vao_strokes, r->vbo, r->style_vbo, r->key_vbo, r->group_start[GROUP_DIRECTIONAL], 1, 0);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)n);
     return n;
 }
@@ -362,9 +359,9 @@ static size_t draw_brush(pnpr_renderer *r, const pnpr_frame_ctx *f, int filter)
     size_t first[GROUP_MAX + 1];
     for (size_t g = 0; g < f->ng; g++) first[g] = r->group_start[g];
     float jitter = f->o.brush_jitter < 0 ? 0.0f : f->o.brush_jitter;
-    pnpr_brush_pass p = {f->fc.view, f->fc.proj, f->o.brush_scale * f->point_scale * f->lod, jitter, f->o.brush_blur, filter,
+    pnpr_brush_pass p = {f->fc.view, f->fc.proj, f->o.brush_scale * f->point_scale, jitter, f->o.brush_blur, filter,
                          filter >= 0 ? filter + 1 : 0, r->fbo,
-                         r->vbo, r->style_vbo, first, f->gdraw, f->ng};
+                         r->vbo, r->style_vbo, r->key_vbo, first, f->gdraw, f->ng};
     size_t n = pnpr_brush_gl_draw(&r->brush, &p);
     glUseProgram(r->prog_splat);
     return n;

@@ -100,7 +100,7 @@ int pnpr_renderer_tile_margin(const pnpr_renderer *r, const pnpr_draw_options *o
     if (plan->fc.ortho) dmin = 1; /* orthographic: clip w = 1, sprite sizes do not depend on depth */
     /* o: checked and filled (pnpr_renderer_check_options); the mask scale: cartoon's default, the larger */
     float ps = o->point_scale, ms = pnpr_draw_mask_scale(o, PNPR_STYLE_CARTOON);
-    double grow = ps * plan->lod * (ms > PNPR_PAINT_MAX_BRUSH ? ms : PNPR_PAINT_MAX_BRUSH);
+    double grow = ps * plan->lod_max * (ms > PNPR_PAINT_MAX_BRUSH ? ms : PNPR_PAINT_MAX_BRUSH);
     double sprite = r->count ? 2.0 * r->max_radius * grow * plan->fc.pixels_per_unit / dmin : 0;
     if (!(sprite <= r->max_point_size)) sprite = r->max_point_size;
     double extra = (double)o->dot_size + (double)o->line_width +

@@ -48,6 +48,12 @@ typedef struct upload_ctx {
     uint32_t *vlabel, *paint_src; /* style maps: keys in queue order; painterly -> queue index */
     uint8_t *zeros;               /* the initial style bytes */
     pnpr_brush_vertex *bverts;    /* brush: the brush attributes in queue order (NULL: no brush data) */
+    float bmin[3], bmax[3];       /* the box without far outliers */
+    pnpr_view_cells *cells;       /* the grid of cells over it */
+    uint32_t *cell_of;            /* point j's cell */
+    uint16_t *qkey, *pkey;        /* the per-cell queue keys in queue and painterly order */
+    float *table;                 /* the frames' per-cell table (pnpr_renderer.cell_table) */
+    pnpr_crq_cells queue, pqueue; /* the groups' and the painterly bins' per-cell queues */
 } upload_ctx;
 
 typedef struct label_index { uint32_t label, j; } label_index;
@@ -131,6 +137,10 @@ static pnpr_status paint_data(upload_ctx *u)
     free(di);
     /* a seed of its own, so that the bins' order is not the class queues' */
     pnpr_status st = pnpr_crq_order(n, bin, (uint32_t)bins, u->o.seed ^ 0x9E3779B97F4A7C15ull, porder, u->pstarts);
+    if (st != PNPR_OK) return st;
+    if (!(u->pkey = malloc(n * sizeof *u->pkey))) return PNPR_ERR_OUT_OF_MEMORY;
+    st = pnpr_crq_cells_make(porder, u->pstarts, bins + 1, u->cell_of, u->cells->n[0] * u->cells->n[1] * u->cells->n[2],
+                             u->o.seed ^ 0x9E3779B97F4A7C15ull, u->pkey, &u->pqueue);
     if (st != PNPR_OK) return st;
     uint8_t *col = u->pcol = malloc(bins * n * PAINT_COL_BYTES); /* after the sort's scratch is gone */
     if (!col) return PNPR_ERR_OUT_OF_MEMORY;
@@ -300,6 +310,27 @@ static int stored_spacing(upload_ctx *u)
     return 1;
 }
 
+/* The grid of cells over the box without far outliers, each point's cell, and the groups'
+ * per-cell queues: the queue order sorted by key inside each group (crq.h). */
+static pnpr_status upload_cells(upload_ctx *u)
+{
+    size_t n = u->n;
+    if (pnpr_cloud_inlier_bounds(u->cloud, u->bmin, u->bmax) == 0) { /* far outliers do not stretch it */
+        memset(u->bmin, 0, sizeof u->bmin);
+        memset(u->bmax, 0, sizeof u->bmax);
+    }
+    u->cells = malloc(sizeof *u->cells);
+    u->cell_of = malloc((n ? n : 1) * sizeof *u->cell_of);
+    u->qkey = malloc((n ? n : 1) * sizeof *u->qkey);
+    if (!u->cells || !u->cell_of || !u->qkey) return PNPR_ERR_OUT_OF_MEMORY;
+    pnpr_view_cells_build(u->cells, u->xyz, n, u->bmin, u->bmax);
+    if (!(u->table = malloc(4 * sizeof *u->table * u->cells->n[0] * u->cells->n[1] * u->cells->n[2])))
+        return PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t j = 0; j < n; j++) u->cell_of[j] = pnpr_view_cells_index(u->cells, u->xyz + 3 * j);
+    return pnpr_crq_cells_make(u->order, u->starts, u->ngroups + 1, u->cell_of,
+                               u->cells->n[0] * u->cells->n[1] * u->cells->n[2], u->o.seed, u->qkey, &u->queue);
+}
+
 /* The disk radii (and painterly's neighbour lists), the queue order, the greys of a colourless
  * cloud and the segments' mean colours. */
 static pnpr_status upload_order(upload_ctx *u)
@@ -319,6 +350,7 @@ static pnpr_status upload_order(upload_ctx *u)
     }
     u->ngroups = u->features ? GROUP_MAX : 1;
     st = pnpr_crq_order(n, u->group, (uint32_t)u->ngroups, u->o.seed, u->order, u->starts);
+    if (st == PNPR_OK) st = upload_cells(u);
     if (st != PNPR_OK) return st;
     if (!u->cloud->rgb && n > 0 && (st = shade_greys(u->cloud, u->src, n, &u->o.tone, &u->shade, &u->grey)) != PNPR_OK)
         return st;
@@ -454,12 +486,27 @@ static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
     glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(u->nbins * n * PAINT_COL_BYTES) : 0, paint ? u->pcol : NULL, GL_STATIC_DRAW);
     pnpr_brush_gl_upload(&r->brush, u->bverts, n);
+    glBindBuffer(GL_ARRAY_BUFFER, r->key_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(2 * (n ? n : 1)), n ? u->qkey : NULL, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, r->paint_key_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(paint ? 2 * n : 2), paint ? u->pkey : NULL, GL_STATIC_DRAW);
     pnpr_gl_state_restore(&saved);
 }
 
-/* The renderer's description of the uploaded cloud; takes over the style-map arrays. */
+/* The renderer's description of the uploaded cloud; takes over the style-map arrays and the
+ * per-cell queues. */
 static void upload_commit(pnpr_renderer *r, upload_ctx *u)
 {
+    free(r->cell_table);
+    r->cell_table = u->table;
+    u->table = NULL;
+    r->cells = u->cells->n[0] * u->cells->n[1] * u->cells->n[2];
+    pnpr_crq_cells_free(&r->queue);
+    pnpr_crq_cells_free(&r->paint_queue);
+    r->queue = u->queue;
+    r->paint_queue = u->pqueue;
+    memset(&u->queue, 0, sizeof u->queue);
+    memset(&u->pqueue, 0, sizeof u->pqueue);
     const pnpr_cloud *cloud = u->cloud;
     size_t n = u->n;
     r->paint_bins = u->paint ? u->nbins : 0;
@@ -484,11 +531,9 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
     r->mean_radius = n ? (float)(rsum / (double)n) : 0;
     r->tone_radius = u->o.tone_radius > 0 && isfinite(u->o.tone_radius) ? u->o.tone_radius : r->mean_radius;
     memcpy(r->origin, cloud->origin, sizeof r->origin);
-    if (pnpr_cloud_inlier_bounds(cloud, r->bmin, r->bmax) == 0) { /* far outliers do not stretch it */
-        memset(r->bmin, 0, sizeof r->bmin);
-        memset(r->bmax, 0, sizeof r->bmax);
-    }
-    pnpr_view_cells_build(&r->view_cells, u->xyz, n, r->bmin, r->bmax);
+    memcpy(r->bmin, u->bmin, sizeof r->bmin);
+    memcpy(r->bmax, u->bmax, sizeof r->bmax);
+    r->view_cells = *u->cells;
 }
 
 static void upload_free(upload_ctx *u)
@@ -496,6 +541,9 @@ static void upload_free(upload_ctx *u)
     free(u->src); free(u->xyz); free(u->radius); free(u->group); free(u->order); free(u->flat);
     free(u->nidx); free(u->porder); free(u->inv); free(u->pbin); free(u->pcol);
     free(u->vlabel); free(u->paint_src); free(u->zeros); free(u->shade); free(u->grey); free(u->bverts);
+    free(u->cells); free(u->cell_of); free(u->qkey); free(u->pkey); free(u->table);
+    pnpr_crq_cells_free(&u->queue);
+    pnpr_crq_cells_free(&u->pqueue);
 }
 
 pnpr_status pnpr_renderer_set_cloud(pnpr_renderer *r, const pnpr_cloud *cloud,

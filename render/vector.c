@@ -64,18 +64,11 @@ typedef struct vec_ctx {
                                   * them, once (drawn_extent interpolates between two per stroke) */
     pnpr_drawing *out;
     uint8_t ink[4];
-    float queue_end, queue_fade; /* the group being read: its prefix and fade-in (as the shaders) */
+    double fade;                 /* the vertex being read: its queue fade-in (as the shaders) */
     int style_filter;            /* >= 0: a style map's frame; marks of the vertices of this style only */
     const uint8_t *stencil;      /* a style map's frame with lines: the mask's stencil (style + 1) */
 } vec_ctx;
 
-/* The queue's fade-in of the k-th point of the group being read (stroke.vert, splat.vert). */
-static double queue_alpha(const vec_ctx *c, size_t k)
-{
-    if (!(c->queue_fade > 0)) return 1;
-    double a = ((double)c->queue_end - (double)k) / c->queue_fade;
-    return a < 0 ? 0 : a > 1 ? 1 : a;
-}
 
 static uint8_t unit_byte(float v) { return (uint8_t)(v <= 0 ? 0 : v >= 1 ? 255 : (int)(v * 255.0f + 0.5f)); }
 
@@ -421,7 +414,7 @@ static pnpr_status stroke_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t instan
     double fl, fw, fa;
     stroke_shape(c, tex_layer, half_len, half_wid, axis, &fl, &fw, &fa);
     if (fa > 1) { fw *= fa; fa = 1; } /* more ink than an opaque shape carries: wider */
-    double alpha = rgba[3] / 255.0 * queue_alpha(c, instance) * (thin ? SKETCH_TONE_INK : 1) * fa;
+    double alpha = rgba[3] / 255.0 * c->fade * (thin ? SKETCH_TONE_INK : 1) * fa;
     rgba[3] = (uint8_t)(alpha * 255 + 0.5);
     double hl = half_len * fl;
     if (!rgba[3] || !(hl > 0)) return PNPR_OK;
@@ -481,7 +474,7 @@ static pnpr_status partial_mark(vec_ctx *c, const ink_moments *m, const uint8_t 
 
 /* One stipple dot of splat.vert (fixed size; thin: tone): whole when DOT_WHOLE of its ink passes
  * the depth test, else its visible part (partial_mark). */
-static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id, size_t k, int thin)
+static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id, int thin)
 {
     const pnpr_frame_record *rec = c->rec;
     const pnpr_frame_camera *fc = &rec->fc;
@@ -498,7 +491,7 @@ static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id
     to_window(c, clip, clip[3], centre, &z);
     uint8_t rgba[4];
     memcpy(rgba, c->ink, 4);
-    rgba[3] = (uint8_t)(rgba[3] * queue_alpha(c, k) + 0.5);
+    rgba[3] = (uint8_t)(rgba[3] * c->fade + 0.5);
     if (!rgba[3]) return PNPR_OK;
     ink_moments m;
     dot_coverage(c, centre, z, size, &m);
@@ -510,29 +503,33 @@ static pnpr_status dot_mark(vec_ctx *c, const pnpr_vertex *v, uint32_t vertex_id
     return partial_mark(c, &m, rgba, PNPR_LAYER_DOTS);
 }
 
-/* The queue prefix of group g read back in chunks; each vertex becomes a mark. */
-static pnpr_status group_marks(vec_ctx *c, int g, int kind, pnpr_vertex *buf)
+/* The queue prefix of group g read back in chunks (the vertices and their queue keys); each
+ * vertex its cell's queue keeps becomes a mark. */
+static pnpr_status group_marks(vec_ctx *c, int g, int kind, pnpr_vertex *buf, uint16_t *keys)
 {
     const pnpr_frame_record *rec = c->rec;
     size_t first = c->r->group_start[g], n = rec->gdraw[g];
     float length = rec->o.stroke_length;
-    c->queue_end = (float)n;
-    c->queue_fade = pnpr_queue_fade_length(n, c->r->group_start[g + 1] - first, rec->o.queue_fade);
     pnpr_status st = PNPR_OK;
     for (size_t k0 = 0; k0 < n && st == PNPR_OK; k0 += READ_CHUNK) {
         size_t m = n - k0 < READ_CHUNK ? n - k0 : READ_CHUNK;
         glBindBuffer(GL_ARRAY_BUFFER, c->r->vbo);
         glGetBufferSubData(GL_ARRAY_BUFFER, (GLintptr)((first + k0) * sizeof *buf), (GLsizeiptr)(m * sizeof *buf), buf);
+        glBindBuffer(GL_ARRAY_BUFFER, c->r->key_vbo);
+        glGetBufferSubData(GL_ARRAY_BUFFER, (GLintptr)((first + k0) * sizeof *keys), (GLsizeiptr)(m * sizeof *keys), keys);
         for (size_t k = 0; k < m && st == PNPR_OK; k++) {
             uint32_t id = (uint32_t)(k0 + k);
             if (c->style_filter >= 0 && c->r->vstyle[first + k0 + k] != (uint8_t)c->style_filter) continue;
+            float grow;
+            c->fade = pnpr_renderer_queue_alpha(c->r, buf[k].pos, keys[k], 1.0f, &grow);
+            if (c->fade < 0) continue;
             if (kind == 0) { /* sketchy */
                 int dir = g == GROUP_DIRECTIONAL;
                 st = stroke_mark(c, buf + k, id, dir ? 0 : 1, g == GROUP_DITHER, dir ? length : 0.5f * length,
                                  dir ? rec->o.stroke_texture : STROKE_LAYER_HATCH,
                                  dir ? PNPR_LAYER_STROKES : g == GROUP_DITHER ? PNPR_LAYER_TONE : PNPR_LAYER_HATCHES);
             } else {
-                st = dot_mark(c, buf + k, (uint32_t)(first + k0 + k), k0 + k, g == GROUP_DITHER);
+                st = dot_mark(c, buf + k, (uint32_t)(first + k0 + k), g == GROUP_DITHER);
             }
         }
     }
@@ -546,7 +543,8 @@ static pnpr_status point_marks(vec_ctx *c)
     const pnpr_frame_record *rec = c->rec;
     const pnpr_style kinds[2] = {PNPR_STYLE_STIPPLE, PNPR_STYLE_SKETCHY};
     pnpr_vertex *buf = malloc(READ_CHUNK * sizeof *buf);
-    if (!buf) return PNPR_ERR_OUT_OF_MEMORY;
+    uint16_t *keys = malloc(READ_CHUNK * sizeof *keys);
+    if (!buf || !keys) { free(buf); free(keys); return PNPR_ERR_OUT_OF_MEMORY; }
     pnpr_status st = PNPR_OK;
     for (int k = 0; k < 2 && st == PNPR_OK; k++) {
         int sketchy = kinds[k] == PNPR_STYLE_SKETCHY;
@@ -555,10 +553,11 @@ static pnpr_status point_marks(vec_ctx *c)
                        !sketchy || rec->o.sketch_variant == PNPR_SKETCH_ALL};
         c->style_filter = rec->mapped ? (int)kinds[k] : -1;
         for (int g = GROUP_DIRECTIONAL; g <= GROUP_DITHER && st == PNPR_OK; g++)
-            if (want[g] && rec->gdraw[g] && c->r->has_features) st = group_marks(c, g, sketchy ? 0 : 1, buf);
+            if (want[g] && rec->gdraw[g] && c->r->has_features) st = group_marks(c, g, sketchy ? 0 : 1, buf, keys);
     }
     c->style_filter = -1;
     free(buf);
+    free(keys);
     return st;
 }
 

@@ -12,11 +12,12 @@ layout(location = 2) in vec4 a_color;
 layout(location = 4) in uint a_style;
 layout(location = 5) in vec4 a_normal;   // unit normal; zero = unknown
 layout(location = 6) in vec3 a_brush;    // size (r + eps; 0 = none), stretch, layers (1 or 2)
+layout(location = 7) in uint a_queue;    // the per-cell queue key (pnpr_queue: the prelude)
 
 uniform int u_style_filter;      // >= 0: draw only points whose a_style equals it (style maps)
 uniform mat4 u_view;
 uniform mat4 u_proj;
-uniform float u_scale;           // brush scale x point scale x the queue's disk growth
+uniform float u_scale;           // brush scale x point scale (x the cell's disk growth: pnpr_queue)
 uniform float u_jitter;          // radians: the per-point angle lies in [-u_jitter, u_jitter]
 uniform int u_layer;             // 1: the second layer of small clusters' points
 
@@ -33,7 +34,8 @@ uint mix_bits(uint h)
 void main()
 {
     bool hidden = a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter);
-    if (hidden || (u_layer == 1 && a_brush.z < 1.5)) {
+    float grow = 1.0;
+    if (hidden || (u_layer == 1 && a_brush.z < 1.5) || pnpr_queue(a_pos, a_queue, grow) < 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         v_uv = vec2(0.0);
         v_color = vec4(0.0);
@@ -69,7 +71,7 @@ void main()
     vec3 tt = c * t + s * b, bb = -s * t + c * b;
     int corner = gl_VertexID & 3;
     vec2 q = vec2((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0);
-    float size = (a_brush.x > 0.0 ? a_brush.x : a_radius) * u_scale;
+    float size = (a_brush.x > 0.0 ? a_brush.x : a_radius) * u_scale * grow;
     float stretch = max(a_brush.y, 1.0);
     vec3 p = a_pos + size * (q.x * stretch * tt + q.y * bb);
     vec4 clip = u_proj * (u_view * vec4(p, 1.0));

@@ -6,6 +6,7 @@ layout(location = 0) in vec3 a_pos;
 layout(location = 1) in float a_radius;
 layout(location = 2) in vec4 a_color;
 layout(location = 4) in uint a_style;
+layout(location = 7) in uint a_queue;  // the per-cell queue key (pnpr_queue: the prelude; u_queue_scale: the pass's share)
 
 uniform mat4 u_view;
 uniform mat4 u_proj;
@@ -19,7 +20,9 @@ out vec2 v_rot;                  // cos, sin of the dab's angle
 
 void main()
 {
-    if (a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter)) {
+    float grow = 1.0;
+    bool hidden = a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter);
+    if (hidden || pnpr_queue(a_pos, a_queue, grow) < 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         gl_PointSize = 1.0;
         v_color = vec4(0.0);
@@ -27,7 +30,7 @@ void main()
         return;
     }
     vec4 clip = u_proj * (u_view * vec4(a_pos, 1.0));
-    float r = a_radius * u_radius_scale;
+    float r = a_radius * u_radius_scale * grow;
     gl_PointSize = clamp(2.0 * r * u_pixels_per_unit / max(clip.w, 1e-6), 1.0, u_max_size);
     gl_Position = clip;
     uint h = uint(gl_VertexID) * 2654435761u;

@@ -7,6 +7,7 @@ layout(location = 1) in float a_radius;
 layout(location = 2) in vec4 a_color;
 layout(location = 4) in uint a_style; // the point's style under a style map
 layout(location = 5) in vec4 a_normal; // unit normal (either orientation); zero = unknown
+layout(location = 7) in uint a_queue;  // the per-cell queue key (pnpr_queue: the prelude)
 
 uniform int u_style_filter;      // >= 0: draw only points whose a_style equals it (style maps)
 uniform mat4 u_view;
@@ -21,8 +22,7 @@ uniform float u_fixed_size;      // > 0: a dot of this diameter in pixels (stipp
 uniform float u_levels;          // >= 2: colour quantised to this many levels per channel (cartoon)
 uniform int u_ortho;             // orthographic projection: view rays along -z
 uniform int u_thin;              // 1: tone dots, thinned so that ink coverage follows the tone
-uniform float u_queue_end;       // stipple dots: the end of the group's queue prefix drawn (vertex id)
-uniform float u_queue_fade;      // > 0: its last u_queue_fade points fade in (pnpr_queue_fade_length)
+uniform int u_fade_in;           // 1: the last points of the cell's queue prefix fade in (stipple dots)
 
 out vec4 v_color;
 out float v_sprite_px;           // the sprite's size in pixels
@@ -32,7 +32,10 @@ out vec3 v_info;                 // the mask's surface info: eye distance, the d
 
 void main()
 {
-    if (a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter)) {
+    float grow = 1.0;
+    bool hidden = a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter);
+    float fade = hidden ? -1.0 : pnpr_queue(a_pos, a_queue, grow);
+    if (fade < 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         gl_PointSize = 1.0;
         v_color = vec4(0.0);
@@ -41,7 +44,7 @@ void main()
         v_info = vec3(0.0);
         return;
     }
-    float r = a_radius * u_radius_scale;
+    float r = a_radius * u_radius_scale * grow;
     vec4 eye = u_view * vec4(a_pos, 1.0);
     vec4 clip = u_proj * eye;
     float size = 2.0 * r * u_pixels_per_unit / max(clip.w, 1e-6);
@@ -79,8 +82,8 @@ void main()
     // keep the disk's screen position, take the pushed depth
     gl_Position = vec4(clip.xy / clip.w * pushed.w, pushed.z, pushed.w);
     v_color = mix(a_color, u_fade_color, u_fade);
-    if (u_queue_fade > 0.0)
-        v_color.a *= clamp((u_queue_end - float(gl_VertexID)) / u_queue_fade, 0.0, 1.0);
+    if (u_fade_in != 0)
+        v_color.a *= fade;
     if (u_levels >= 2.0)
         v_color.rgb = floor(v_color.rgb * (u_levels - 1.0) + 0.5) / (u_levels - 1.0);
 }

@@ -13,6 +13,7 @@ layout(location = 2) in vec4 a_color;
 layout(location = 3) in vec3 a_dir;
 layout(location = 4) in uint a_style; // the point's style under a style map
 layout(location = 5) in vec4 a_normal; // unit normal (either orientation); zero = unknown
+layout(location = 7) in uint a_queue;  // the per-cell queue key (pnpr_queue: the prelude)
 
 uniform int u_style_filter;      // >= 0: draw only points whose a_style equals it (style maps)
 uniform mat4 u_view;
@@ -27,8 +28,7 @@ uniform int u_mode;
 uniform int u_thin;               // 1: tone hatches, thinned so that ink coverage follows the tone
 uniform float u_tone_radius;      // > 0: tone hatches are this radius (the cloud's mean) long, not
                                   // their point's: as long everywhere, denser samples keep fewer
-uniform float u_queue_end;        // the queue prefix drawn (instances 0 .. u_queue_end - 1)
-uniform float u_queue_fade;       // > 0: its last u_queue_fade instances fade in (pnpr_queue_fade_length)
+uniform int u_fade_in;            // 1: the last points of the cell's queue prefix fade in
 
 out vec2 v_uv;
 out vec4 v_color;
@@ -37,7 +37,10 @@ out vec4 v_px;                    // the fragment along and across the stroke in
 
 void main()
 {
-    if (a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter)) {
+    float grow = 1.0; // strokes keep their size: the disk growth is the mask's
+    bool hidden = a_style == PNPR_VSTYLE_HIDDEN || (u_style_filter >= 0 && int(a_style) != u_style_filter);
+    float fade = hidden ? -1.0 : pnpr_queue(a_pos, a_queue, grow);
+    if (fade < 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped
         v_color = vec4(0.0);
         v_uv = vec2(0.0);
@@ -103,5 +106,5 @@ void main()
     v_uv = q * ext / vec2(half_len, half_wid) * 0.5 + 0.5;
     v_px = vec4(q * ext, half_len, half_wid);
     v_color = a_color;
-    v_fade = u_queue_fade > 0.0 ? clamp((u_queue_end - float(gl_InstanceID)) / u_queue_fade, 0.0, 1.0) : 1.0;
+    v_fade = u_fade_in != 0 ? fade : 1.0;
 }

@@ -1,6 +1,6 @@
 /* Continuous resolution queue (no GL): the order is a permutation grouped by class and shuffled
  * inside each group, the same for the same seed, different for another seed; the per-group split
- * of a frame's budget is exact. */
+ * of a frame's budget is exact; the per-cell queues (test_cells) against brute force. */
 #include "testutil.h"
 
 #include <math.h>
@@ -84,6 +84,88 @@ static void test_view_sample(void)
     CHECK_STATUS(pnpr_view_sample_init(NULL, eye, target, 45, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
 }
 
+/* Per-cell queues: two groups over 1203 cells (one of 5000 points, one of 200, 1200 of one point,
+ * one empty) against brute force: each group sorted by key, stable (a cell's points keep the
+ * group's queue order), the keys of a cell's queue its ranks as (rank + offset) / count, the
+ * prefixes and the drawn counts exactly those of the keys; a share f of every cell draws f x all
+ * within a few points (the offsets' golden-ratio sequence), and the shares nest. */
+static void test_cells(void)
+{
+    enum { CELLS = 1204, N = 5000 + 200 + 1200 };
+    uint32_t *cell = malloc(N * sizeof *cell), *order = malloc(N * sizeof *order), *before = malloc(N * sizeof *before);
+    uint16_t *key = malloc(N * sizeof *key);
+    uint8_t *group = malloc(N);
+    float *end = malloc(CELLS * sizeof *end);
+    CHECK(cell && order && before && key && group && end);
+    if (!cell || !order || !before || !key || !group || !end) return;
+    for (size_t i = 0; i < N; i++) {
+        cell[i] = i < 5000 ? 0 : i < 5200 ? 1 : (uint32_t)(i - 5200 + 2); /* cell 1203: empty */
+        group[i] = (uint8_t)(i % 3 == 0);
+    }
+    size_t starts[4];
+    CHECK_STATUS(pnpr_crq_order(N, group, 2, 7, order, starts), PNPR_OK);
+    memcpy(before, order, N * sizeof *order);
+    pnpr_crq_cells q;
+    CHECK_STATUS(pnpr_crq_cells_make(order, starts, 3, cell, CELLS, 7, key, &q), PNPR_OK);
+    CHECK(is_permutation(order, N));
+    size_t bad_sort = 0, bad_stable = 0, bad_key = 0, bad_group = 0;
+    for (size_t g = 0; g < 2; g++) {
+        size_t rank[CELLS] = {0};
+        for (size_t i = starts[g]; i < starts[g + 1]; i++) { /* the queue order: ranks */
+            uint32_t p = before[i], k = cell[p];
+            size_t r = rank[k]++;
+            /* where p went: its key is its rank's */
+            size_t at = starts[g];
+            while (at < starts[g + 1] && order[at] != p) at++;
+            bad_group += at == starts[g + 1];
+            if (at < starts[g + 1]) bad_key += key[at] != pnpr_crq_key(r, q.count[g * CELLS + k], q.offset[g * CELLS + k]);
+        }
+        for (size_t i = starts[g] + 1; i < starts[g + 1]; i++) {
+            bad_sort += key[i] < key[i - 1];
+            /* stable: two points of one cell with one key keep the queue order */
+        }
+        for (size_t i = starts[g]; i < starts[g + 1]; i++)
+            for (size_t j = i + 1; j < starts[g + 1] && j < i + 64; j++)
+                if (cell[order[i]] == cell[order[j]]) {
+                    size_t pi = starts[g], pj = starts[g];
+                    while (before[pi] != order[i]) pi++;
+                    while (before[pj] != order[j]) pj++;
+                    bad_stable += pi > pj;
+                }
+    }
+    CHECK_MSG(!bad_sort && !bad_stable && !bad_key && !bad_group, "sorted %zu, stable %zu, keys %zu, groups %zu", bad_sort,
+              bad_stable, bad_key, bad_group);
+    const float fracs[] = {0.0f, 0.013f, 0.3f, 0.5f, 0.77f, 1.0f};
+    size_t last = 0;
+    for (size_t t = 0; t < sizeof fracs / sizeof fracs[0]; t++) {
+        for (size_t k = 0; k < CELLS; k++) end[k] = fracs[t] * PNPR_CRQ_KEYS;
+        size_t drawn = 0, prefix_ok = 1;
+        for (size_t g = 0; g < 2; g++) {
+            size_t kept = 0;
+            for (size_t i = starts[g]; i < starts[g + 1]; i++) kept += (float)key[i] + 0.5f < end[cell[order[i]]];
+            drawn += kept;
+            prefix_ok &= pnpr_crq_cells_prefix(&q, g, end[0]) == kept; /* one end: the prefix is what it keeps */
+        }
+        CHECK_MSG(pnpr_crq_cells_drawn(&q, end, 1) == drawn && prefix_ok, "share %g: %zu drawn, brute force %zu",
+                  (double)fracs[t], pnpr_crq_cells_drawn(&q, end, 1), drawn);
+        CHECK_MSG(fabs((double)drawn - fracs[t] * N) <= 4, "share %g: %zu of %d drawn", (double)fracs[t], drawn, N);
+        CHECK(drawn >= last);
+        last = drawn;
+    }
+    /* cells of their own ends: the counts follow each cell's */
+    for (size_t k = 0; k < CELLS; k++) end[k] = k == 0 ? 0.25f * PNPR_CRQ_KEYS : 0;
+    size_t c0 = q.count[0] + q.count[CELLS];
+    CHECK_MSG(fabs((double)pnpr_crq_cells_drawn(&q, end, 1) - 0.25 * (double)c0) <= 2, "cell 0 at 1/4: %zu of %zu",
+              pnpr_crq_cells_drawn(&q, end, 1), c0);
+    /* a cell out of range: refused, nothing left allocated */
+    cell[5] = CELLS;
+    pnpr_crq_cells bad;
+    CHECK_STATUS(pnpr_crq_cells_make(order, starts, 3, cell, CELLS, 7, key, &bad), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK(bad.count == NULL && bad.cum == NULL && bad.offset == NULL);
+    pnpr_crq_cells_free(&q);
+    free(cell); free(order); free(before); free(key); free(group); free(end);
+}
+
 int main(void)
 {
     enum { N = 10000 };
@@ -91,6 +173,7 @@ int main(void)
     uint8_t *group = malloc(N);
     CHECK(a && b && c && group);
     if (!a || !b || !c || !group) return pnpr_test_finish("test_crq");
+    test_cells();
 
     /* one group: a permutation, deterministic, seed-dependent, not the identity */
     size_t starts[8];

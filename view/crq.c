@@ -2,6 +2,7 @@
  * order fixed once; a frame draws a prefix of each group's queue. */
 #include <pointnpr/crq.h>
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -91,4 +92,131 @@ void pnpr_crq_split(const size_t *group_size, size_t group_count, size_t total, 
         r_draw[best]++;
         given++;
     }
+}
+
+/* ---- per-cell queues (crq.h) ----------------------------------------------------------------- */
+
+uint16_t pnpr_crq_key(size_t rank, size_t count, double offset)
+{
+    double k = floor(((double)rank + offset) * (double)PNPR_CRQ_KEYS / (double)count);
+    return k >= PNPR_CRQ_KEYS - 1 ? (uint16_t)(PNPR_CRQ_KEYS - 1) : k <= 0 ? 0 : (uint16_t)k;
+}
+
+/* The queues' offsets: the golden-ratio sequence over the queues with points, group-major. */
+static void cells_offsets(pnpr_crq_cells *q)
+{
+    uint64_t state = q->seed ^ 0x8BB84B93962EACC9ull;
+    double s = (double)(crq_next(&state) >> 11) * 0x1.0p-53, m = 0;
+    for (size_t i = 0; i < q->groups * q->cells; i++) {
+        if (!q->count[i]) continue;
+        double h = s + 0.6180339887498949 * m++;
+        q->offset[i] = (float)(h - floor(h));
+        if (!(q->offset[i] < 1.0f)) q->offset[i] = 0; /* (rounded up to 1) */
+    }
+}
+
+void pnpr_crq_cells_free(pnpr_crq_cells *q)
+{
+    free(q->count);
+    free(q->cum);
+    free(q->offset);
+    memset(q, 0, sizeof *q);
+}
+
+/* Keys of group g's points in queue order, then the group sorted by them (counting sort). */
+static void cells_sort_group(pnpr_crq_cells *q, uint32_t *order, size_t a, size_t b, size_t g, const uint32_t *cell_of,
+                             uint32_t *seen, uint16_t *r_key, uint32_t *tmp_order, uint16_t *tmp_key)
+{
+    const uint32_t *count = q->count + g * q->cells;
+    uint32_t *cum = q->cum + g * (size_t)(PNPR_CRQ_KEYS + 1);
+    memset(seen, 0, q->cells * sizeof *seen);
+    for (size_t i = a; i < b; i++) {
+        uint32_t k = cell_of[order[i]];
+        tmp_key[i - a] = pnpr_crq_key(seen[k]++, count[k], q->offset[g * q->cells + k]);
+        tmp_order[i - a] = order[i];
+        cum[tmp_key[i - a] + 1]++;
+    }
+    for (size_t v = 0; v < PNPR_CRQ_KEYS; v++) cum[v + 1] += cum[v];
+    /* stable: each key's points in queue order, from where the keys below it end */
+    for (size_t i = 0; i < b - a; i++) {
+        size_t at = a + cum[tmp_key[i]]++;
+        order[at] = tmp_order[i];
+        r_key[at] = tmp_key[i];
+    }
+    for (size_t v = PNPR_CRQ_KEYS; v > 0; v--) cum[v] = cum[v - 1]; /* undo the fill: keys below v */
+    cum[0] = 0;
+}
+
+pnpr_status pnpr_crq_cells_make(uint32_t *order, const size_t *group_start, size_t groups, const uint32_t *cell_of,
+                                size_t cells, uint64_t seed, uint16_t *r_key, pnpr_crq_cells *r)
+{
+    memset(r, 0, sizeof *r);
+    if (groups == 0 || cells == 0) return PNPR_ERR_INVALID_ARGUMENT;
+    size_t most = 0;
+    for (size_t g = 0; g < groups; g++)
+        if (group_start[g + 1] - group_start[g] > most) most = group_start[g + 1] - group_start[g];
+    r->groups = groups;
+    r->cells = cells;
+    r->seed = seed;
+    r->count = calloc(groups * cells, sizeof *r->count);
+    r->cum = calloc(groups * (size_t)(PNPR_CRQ_KEYS + 1), sizeof *r->cum);
+    r->offset = calloc(groups * cells, sizeof *r->offset);
+    uint32_t *seen = malloc(cells * sizeof *seen), *tmp_order = malloc((most ? most : 1) * sizeof *tmp_order);
+    uint16_t *tmp_key = malloc((most ? most : 1) * sizeof *tmp_key);
+    pnpr_status st = r->count && r->cum && r->offset && seen && tmp_order && tmp_key ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    for (size_t g = 0; st == PNPR_OK && g < groups; g++)
+        for (size_t i = group_start[g]; i < group_start[g + 1]; i++) {
+            if (cell_of[order[i]] >= cells) { st = PNPR_ERR_INVALID_ARGUMENT; break; }
+            r->count[g * cells + cell_of[order[i]]]++;
+        }
+    if (st == PNPR_OK) cells_offsets(r);
+    for (size_t g = 0; st == PNPR_OK && g < groups; g++)
+        cells_sort_group(r, order, group_start[g], group_start[g + 1], g, cell_of, seen, r_key, tmp_order, tmp_key);
+    free(seen);
+    free(tmp_order);
+    free(tmp_key);
+    if (st != PNPR_OK) pnpr_crq_cells_free(r);
+    return st;
+}
+
+/* The keys v a shader keeps under `end`: (float)v + 0.5f < end, as a count of the keys from 0. */
+static size_t keys_below(float end)
+{
+    if (!(end > 0.5f)) return 0;
+    size_t lo = 0, hi = PNPR_CRQ_KEYS; /* the first key not kept */
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if ((float)mid + 0.5f < end) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
+}
+
+size_t pnpr_crq_cells_prefix(const pnpr_crq_cells *q, size_t g, float end)
+{
+    if (!q->cum || g >= q->groups) return 0;
+    return q->cum[g * (size_t)(PNPR_CRQ_KEYS + 1) + keys_below(end)];
+}
+
+size_t pnpr_crq_cells_drawn(const pnpr_crq_cells *q, const float *end, size_t stride)
+{
+    size_t drawn = 0;
+    for (size_t k = 0; q->count && k < q->cells; k++) {
+        size_t kept = keys_below(end[k * stride]);
+        if (kept == 0) continue;
+        for (size_t g = 0; g < q->groups; g++) {
+            size_t c = q->count[g * q->cells + k];
+            if (c == 0) continue;
+            if (kept >= PNPR_CRQ_KEYS) { drawn += c; continue; }
+            double h = q->offset[g * q->cells + k];
+            size_t lo = 0, hi = c; /* the first rank whose key is not kept */
+            while (lo < hi) {
+                size_t mid = lo + (hi - lo) / 2;
+                if (pnpr_crq_key(mid, c, h) < kept) lo = mid + 1;
+                else hi = mid;
+            }
+            drawn += lo;
+        }
+    }
+    return drawn;
 }

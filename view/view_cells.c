@@ -7,9 +7,9 @@
 #include <math.h>
 #include <string.h>
 
-static uint32_t axis_index(float v, float min, float cell, uint32_t n)
+static uint32_t axis_index(float v, float min, float inv, uint32_t n)
 {
-    float c = (v - min) / cell;
+    float c = (v - min) * inv; /* as the shaders compute it (pnpr_shader_prelude) */
     if (!(c >= 0)) return 0;
     return c >= (float)n ? n - 1 : (uint32_t)c;
 }
@@ -20,6 +20,7 @@ void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const
     float side = 0;
     for (int a = 0; a < 3; a++) side = fmaxf(side, bmax[a] - bmin[a]);
     c->cell = side > 0 && isfinite(side) ? side / PNPR_VIEW_CELLS : 1;
+    c->inv = 1.0f / c->cell;
     for (int a = 0; a < 3; a++) {
         float k = ceilf((bmax[a] - bmin[a]) / c->cell);
         c->n[a] = k >= PNPR_VIEW_CELLS ? PNPR_VIEW_CELLS : k >= 1 ? (uint32_t)k : 1;
@@ -28,11 +29,16 @@ void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const
     for (size_t i = 0; i < n; i++) {
         const float *p = xyz + 3 * i;
         if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) continue;
-        uint32_t x = axis_index(p[0], c->min[0], c->cell, c->n[0]), y = axis_index(p[1], c->min[1], c->cell, c->n[1]),
-                 z = axis_index(p[2], c->min[2], c->cell, c->n[2]);
-        c->count[((size_t)z * c->n[1] + y) * c->n[0] + x]++;
+        c->count[pnpr_view_cells_index(c, p)]++;
         c->total++;
     }
+}
+
+uint32_t pnpr_view_cells_index(const pnpr_view_cells *c, const float p[3])
+{
+    uint32_t x = axis_index(p[0], c->min[0], c->inv, c->n[0]), y = axis_index(p[1], c->min[1], c->inv, c->n[1]),
+             z = axis_index(p[2], c->min[2], c->inv, c->n[2]);
+    return (z * c->n[1] + y) * c->n[0] + x;
 }
 
 /* Whether the box [lo, hi] lies wholly outside one plane of the frustum (m: projection x view). */
@@ -53,21 +59,31 @@ static int box_outside(const float m[16], const float lo[3], const float hi[3])
     return 0;
 }
 
-size_t pnpr_view_cells_seen(const pnpr_view_cells *c, const pnpr_frame_camera *fc)
+double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera *fc, float *r_w, size_t stride)
 {
     float m[16] = {0}; /* column-major, as the camera's */
     for (int col = 0; col < 4; col++)
         for (int row = 0; row < 4; row++)
             for (int k = 0; k < 4; k++) m[col * 4 + row] += fc->proj[k * 4 + row] * fc->view[col * 4 + k];
-    size_t seen = 0;
+    double zmin = fc->near_plane > 1e-30 ? fc->near_plane : 1e-30, sum = 0;
     for (uint32_t z = 0; z < c->n[2]; z++)
         for (uint32_t y = 0; y < c->n[1]; y++)
             for (uint32_t x = 0; x < c->n[0]; x++) {
-                uint32_t k = c->count[((size_t)z * c->n[1] + y) * c->n[0] + x];
-                if (!k) continue;
+                size_t k = ((size_t)z * c->n[1] + y) * c->n[0] + x;
                 float lo[3] = {c->min[0] + (float)x * c->cell, c->min[1] + (float)y * c->cell, c->min[2] + (float)z * c->cell};
                 float hi[3] = {lo[0] + c->cell, lo[1] + c->cell, lo[2] + c->cell};
-                if (!box_outside(m, lo, hi)) seen += k;
+                r_w[k * stride] = 0;
+                if (!c->count[k] || box_outside(m, lo, hi)) continue;
+                double depth = HUGE_VAL; /* the nearest corner's eye depth (the camera looks down -z) */
+                for (int q = 0; q < 8; q++) {
+                    const float p[3] = {(q & 1) ? hi[0] : lo[0], (q & 2) ? hi[1] : lo[1], (q & 4) ? hi[2] : lo[2]};
+                    double e = -((double)fc->view[2] * p[0] + (double)fc->view[6] * p[1] + (double)fc->view[10] * p[2] +
+                                 (double)fc->view[14]);
+                    if (e < depth) depth = e;
+                }
+                double w = fc->ortho ? 1.0 : 1.0 / (fmax(depth, zmin) * fmax(depth, zmin));
+                r_w[k * stride] = (float)w;
+                sum += (double)c->count[k] * (float)w;
             }
-    return seen;
+    return sum;
 }

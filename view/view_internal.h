@@ -40,6 +40,7 @@ double pnpr_box_coverage(const pnpr_frame_camera *fc, const float bmin[3], const
 #define PNPR_VIEW_CELLS 32
 typedef struct pnpr_view_cells {
     float min[3], cell;   /* the grid's corner and a cell's side (offset coordinates) */
+    float inv;            /* 1 / cell: a point's cell is floor((p - min) x inv), clamped to the grid */
     uint32_t n[3];        /* cells along each axis, 1..PNPR_VIEW_CELLS */
     size_t total;         /* the points counted */
     uint32_t count[PNPR_VIEW_CELLS * PNPR_VIEW_CELLS * PNPR_VIEW_CELLS];
@@ -47,8 +48,14 @@ typedef struct pnpr_view_cells {
 /* Counts the n finite points xyz into cells over [bmin, bmax] (points outside go to the edge
  * cells; non-finite ones are not counted). */
 void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const float bmin[3], const float bmax[3]);
-/* The points in the cells the view may show: those whose box is not wholly outside one plane of
- * the frustum (clip space); c->total when every cell is in view. */
-size_t pnpr_view_cells_seen(const pnpr_view_cells *c, const pnpr_frame_camera *fc);
+/* The cell of point p (offset coordinates): (z n[1] + y) n[0] + x, as the shaders find it. */
+uint32_t pnpr_view_cells_index(const pnpr_view_cells *c, const float p[3]);
+/* Each cell's weight in this view, r_w[k * stride] for cell k: 0 for a cell without points or
+ * whose box lies wholly outside one plane of the frustum (clip space); else the pixels a unit
+ * of surface covers there relative to unit distance: 1 / z^2 at the eye depth z of the box's
+ * nearest corner (at least the near plane; orthographic: 1). Returns the sum of count x weight:
+ * a frame of N points in view draws min(1, N x weight / sum) of each cell's points, so that
+ * near and far surfaces keep the same points per pixel (renderer.c). */
+double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera *fc, float *r_w, size_t stride);
 
 #endif

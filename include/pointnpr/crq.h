@@ -28,6 +28,44 @@ PNPR_NODISCARD pnpr_status pnpr_crq_order(size_t count, const uint8_t *group, ui
  * that the counts sum to min(total, sum of sizes) exactly. */
 void pnpr_crq_split(const size_t *group_size, size_t group_count, size_t total, size_t *r_draw);
 
+/* ---- per-cell queues (PointWorks section 4.4: each object its own queue, drawn by the screen
+ * space it covers) ----------------------------------------------------------------------------
+ * The points of each group are also split by cell (the renderer's grid, view/view_cells.c); each
+ * (group, cell) is its own queue, its points in the group's random order. A point's key is its
+ * place in its queue as a fraction in PNPR_CRQ_KEYS steps, (rank + offset) / count, with an
+ * offset in [0, 1) per queue so that a prefix of any fraction f holds f x count points on
+ * average: the queues in order (group-major, then by cell) take the golden-ratio sequence
+ * frac(s + m x 0.618...) from a start s drawn from the seed, so that the rounding of the queues
+ * cancels out (the points drawn of a fraction f of all are f x all within a few). The group is then sorted by key, stable: every queue's prefix of fraction f lies in
+ * the group's prefix of the keys below f, and a frame draws cell k's points whose key + 0.5 is
+ * below its end E_k (PNPR_CRQ_KEYS x the fraction it wants), the vertex shaders dropping the
+ * others (docs/rendering.md, "Per-cell queues"). */
+#define PNPR_CRQ_KEYS 65536
+
+typedef struct pnpr_crq_cells {
+    size_t groups, cells;
+    uint64_t seed;
+    uint32_t *count; /* [g * cells + k]: the points of group g in cell k */
+    uint32_t *cum;   /* [g * (PNPR_CRQ_KEYS + 1) + v]: the points of group g with a key below v */
+    float *offset;   /* [g * cells + k]: the offset of queue (g, k) */
+} pnpr_crq_cells;
+
+/* The key of the point of rank `rank` of a queue of `count` points with offset `offset`. */
+uint16_t pnpr_crq_key(size_t rank, size_t count, double offset);
+/* Sorts each group of `order` (a pnpr_crq_order result, group g at group_start[g] ..
+ * group_start[g + 1]) by key, stable, cell_of[order[q]] being point order[q]'s cell (< cells);
+ * r_key[q]: the key of the point at queue position q after the sort. Fills *r (free with
+ * pnpr_crq_cells_free; zeroed on failure). */
+PNPR_NODISCARD pnpr_status pnpr_crq_cells_make(uint32_t *order, const size_t *group_start, size_t groups,
+                                               const uint32_t *cell_of, size_t cells, uint64_t seed,
+                                               uint16_t *r_key, pnpr_crq_cells *r);
+void pnpr_crq_cells_free(pnpr_crq_cells *q);
+/* The prefix of group g holding every point whose key + 0.5 is below `end`. */
+size_t pnpr_crq_cells_prefix(const pnpr_crq_cells *q, size_t g, float end);
+/* The points a frame draws: over every group and cell k, those whose key + 0.5 is below
+ * end[k * stride] (exactly as the shaders test it). */
+size_t pnpr_crq_cells_drawn(const pnpr_crq_cells *q, const float *end, size_t stride);
+
 /* ---- a sample for one view (view/view_sample.c) --------------------------------------------
  * A cloud larger than memory drawn from one camera: read a sample that the view needs instead of
  * a uniform one. Points outside the view's cone (the half-angle of its diagonal, widened by

@@ -145,7 +145,7 @@ static void test_background(pnpr_renderer *r)
     pnpr_cloud_free(&cl);
 }
 
-/* ---- CRQ: budget b draws exactly the first b points of the permutation ------------------ */
+/* ---- CRQ: a budget draws at most b points, nested as b grows ---------------------------- */
 static void test_crq_prefix(pnpr_renderer *r)
 {
     enum { NX = 16, N = NX * NX };
@@ -162,26 +162,34 @@ static void test_crq_prefix(pnpr_renderer *r)
     memset(&uo, 0, sizeof uo);
     uo.seed = 1234;
     CHECK_STATUS(pnpr_renderer_set_cloud(r, &cl, &uo, NULL), PNPR_OK);
-    uint32_t order[N];
-    CHECK_STATUS(pnpr_crq_order(N, NULL, 1, 1234, order, NULL), PNPR_OK);
     pnpr_camera cam = look(0, 0, 30, 0, 0, 0);
     pnpr_draw_options o;
     memset(&o, 0, sizeof o);
     o.point_scale = 0.1f;
     uint8_t *px = malloc(W * H * 4);
+    /* each point has a cell of its own here (per-cell queues of one point: crq.h): a budget draws
+     * at most b and, the queues' offsets spread evenly, within a few of b; the points seen are
+     * the points counted, and a larger budget keeps every point of a smaller one */
     static const size_t budgets[] = {1, 17, 64, 200, 256};
+    char last[N] = {0};
     for (size_t t = 0; t < sizeof budgets / sizeof budgets[0]; t++) {
         size_t b = budgets[t];
         o.budget = b;
         pnpr_render_stats st;
         CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
-        CHECK(st.points_drawn == b && st.points_total == N);
+        CHECK_MSG(st.points_drawn <= b && st.points_drawn + 3 >= b && st.points_total == N, "budget %zu: %zu drawn", b,
+                  st.points_drawn);
         char seen[N] = {0};
+        size_t nseen = 0, lost = 0;
         for (size_t i = 0; i < (size_t)W * H; i++)
             if (px[4 * i + 1] == 200 && px[4 * i + 2] == 50) seen[px[4 * i]] = 1;
-        char want[N] = {0};
-        for (size_t q = 0; q < b; q++) want[order[q]] = 1;
-        CHECK_MSG(memcmp(seen, want, N) == 0, "budget %zu: the visible points are not the queue's first %zu", b, b);
+        for (size_t p = 0; p < N; p++) {
+            nseen += seen[p];
+            lost += last[p] && !seen[p];
+        }
+        CHECK_MSG(nseen == st.points_drawn && lost == 0, "budget %zu: %zu points seen, %zu drawn, %zu of the smaller budget's lost",
+                  b, nseen, st.points_drawn, lost);
+        memcpy(last, seen, N);
     }
     /* density: fewer points when the cloud covers less of the screen */
     o.budget = 0;
@@ -192,7 +200,7 @@ static void test_crq_prefix(pnpr_renderer *r)
     CHECK_STATUS(render(r, &cam_far, &o, px, &far), PNPR_OK);
     CHECK_MSG(far.points_drawn < near.points_drawn && far.points_drawn > 0,
               "density: near %zu, far %zu points", near.points_drawn, far.points_drawn);
-    CHECK_NEAR((double)near.points_drawn, ceil(0.02 * near.coverage_px), 0.5);
+    CHECK_NEAR((double)near.points_drawn, ceil(0.02 * near.coverage_px), 0.02 * ceil(0.02 * near.coverage_px) + 2);
     free(px);
     pnpr_cloud_free(&cl);
 }

@@ -344,7 +344,8 @@ static void test_stipple_tone(pnpr_renderer *r)
     /* a budget draws fewer dots; without features: NOT_FOUND */
     o.budget = c.count / 4;
     CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
-    CHECK(st.points_drawn == c.count / 4);
+    CHECK_MSG(st.points_drawn <= c.count / 4 && st.points_drawn >= 0.97 * (double)(c.count / 4), "budget %zu: %zu drawn",
+              c.count / 4, st.points_drawn);
     o.budget = 0;
     pnpr_upload_options uo;
     memset(&uo, 0, sizeof uo);
