@@ -394,34 +394,37 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
     return PNPR_OK;
 }
 
-/* The frame's table of the per-cell queues (r->cell_table; crq.h, docs/rendering.md "Per-cell
- * queues"): `want` points in view (< 0: every point), shared among the cells in view by their
- * weights (pnpr_view_cells_weights: a cell at eye depth z draws min(1, c / z^2) of its points);
- * a budget below the points that gives is met by lowering c. Fills the plan's counts. */
+/* The frame's table of the per-cell queues (r->cell_table; crq.h, docs/rendering.md "Continuous
+ * resolution queue"): `want` points in view (< 0: every point), shared among the cells in view by
+ * their weights (pnpr_view_cells_weights, _solve: a cell at eye depth z draws min(1, c / z^2) of
+ * its points); a budget the keys' rounding goes over lowers c. Each cell's disks grow by
+ * 1 / sqrt(share), at most to the cell's size (one point for all). Fills the plan's counts. */
 static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, double want, frame_plan *p)
 {
     float *t = r->cell_table;
     size_t cells = r->count ? r->cells : 0;
-    double c = 0;
+    double c = HUGE_VAL;
     if (want >= 0 && cells) {
-        double sum = pnpr_view_cells_weights(&r->view_cells, &p->fc, t + 3, 4); /* the weights in column 3 */
-        c = sum > 0 ? want / sum : 0;
+        pnpr_view_cells_weights(&r->view_cells, &p->fc, t + 3, 4); /* the weights in column 3 */
+        c = pnpr_view_cells_solve(&r->view_cells, t + 3, 4, want);
     }
     for (int round = 0; round < 8; round++) {
         for (size_t k = 0; k < cells; k++) {
-            double e = want < 0 ? PNPR_CRQ_KEYS : fmin((double)PNPR_CRQ_KEYS, PNPR_CRQ_KEYS * c * t[4 * k + 3]);
-            t[4 * k] = (float)e;
+            double w = want < 0 ? 1 : t[4 * k + 3];
+            t[4 * k] = w > 0 ? (float)(PNPR_CRQ_KEYS * fmin(1.0, c * w)) : 0.0f;
         }
         p->n_draw = cells ? pnpr_crq_cells_drawn(&r->queue, t, 4) : 0;
         if (!(o->budget > 0 && p->n_draw > o->budget && want >= 0)) break;
+        if (c == HUGE_VAL) c = 1; /* (every cell was full) */
         c *= (double)o->budget / (double)p->n_draw * 0.999; /* the keys' rounding: a point per queue at most */
     }
     p->end_max = 0;
     p->lod_max = 1;
     for (size_t k = 0; k < cells; k++) {
         float e = t[4 * k];
+        double share = fmax((double)e / PNPR_CRQ_KEYS, 1.0 / fmax(1.0, (double)r->view_cells.count[k]));
         t[4 * k + 1] = pnpr_queue_fade_length(e, PNPR_CRQ_KEYS, o->queue_fade);
-        t[4 * k + 2] = e > 0 ? (float)sqrt(PNPR_CRQ_KEYS / (double)e) : 1.0f;
+        t[4 * k + 2] = (float)sqrt(1.0 / share);
         if (e > p->end_max) p->end_max = e;
         if (e > 0.5f && t[4 * k + 2] > p->lod_max) p->lod_max = t[4 * k + 2];
     }

@@ -5,6 +5,7 @@
 #include "view_internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static uint32_t axis_index(float v, float min, float inv, uint32_t n)
@@ -86,4 +87,36 @@ double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera
                 sum += (double)c->count[k] * (float)w;
             }
     return sum;
+}
+
+typedef struct cell_weight { float w; uint32_t count; } cell_weight;
+static int cmp_weight_desc(const void *a, const void *b)
+{
+    float x = ((const cell_weight *)a)->w, y = ((const cell_weight *)b)->w;
+    return x > y ? -1 : x < y;
+}
+
+double pnpr_view_cells_solve(const pnpr_view_cells *c, const float *w, size_t stride, double want)
+{
+    size_t cells = (size_t)c->n[0] * c->n[1] * c->n[2], m = 0;
+    double all = 0, sum = 0;
+    cell_weight *a = malloc((cells ? cells : 1) * sizeof *a);
+    for (size_t k = 0; k < cells; k++) {
+        if (!(w[k * stride] > 0) || !c->count[k]) continue;
+        all += c->count[k];
+        sum += (double)c->count[k] * w[k * stride];
+        if (a) a[m++] = (cell_weight){w[k * stride], c->count[k]};
+    }
+    if (want >= all) { free(a); return HUGE_VAL; }
+    if (!a || !(want > 0)) { free(a); return want > 0 && sum > 0 ? want / sum : 0; } /* (no memory: none full) */
+    qsort(a, m, sizeof *a, cmp_weight_desc);
+    double full = 0, rest = sum, lambda = HUGE_VAL;
+    for (size_t j = 0; j < m; j++) { /* the cells before j are full; is cell j? */
+        double l = (want - full) / rest;
+        if (l * a[j].w < 1) { lambda = l; break; }
+        full += a[j].count;
+        rest -= (double)a[j].count * a[j].w;
+    }
+    free(a);
+    return lambda;
 }

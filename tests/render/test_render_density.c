@@ -17,6 +17,7 @@
  *     (test_depth, a known answer).
  * Exits 77 (skipped) when this machine has no headless EGL / GL 3.3. */
 #include "testutil.h"
+#include "../../render/renderer_internal.h" /* the frame's table of the per-cell queues (test_depth) */
 
 #include <pointnpr/features.h>
 #include <pointnpr/render.h>
@@ -120,14 +121,16 @@ static void test_in_view(pnpr_renderer *r, uint8_t *px)
     pnpr_cloud_free(&c);
 }
 
-/* Near and far keep their points per pixel (a known answer): two 1 x 1 planes of 100 x 100 points
- * seen from straight above (fov 60), the near one at height 2, the far one at 0 and 1.5 further
- * in x. The grid of cells (crq.h, view/view_cells.c): 32 cells along the box's 2.5, 0.078125
- * each; the near plane's cells reach up to 2.03125, the far one's to 0.078125, so from an eye at
- * height 4 their nearest corners lie 1.96875 and 3.921875 deep, and each cell draws
- * min(1, c / depth^2) of its points. With about 15 000 points wanted the near plane saturates:
- * drawn = 10 000 + 10 000 x min(1, N w_far / S), S = 10 000 (w_near + w_far), w = 1 / depth^2
- * (13 020 here, where one share for every cell would draw 15 000). */
+/* Near and far keep their points per pixel (a known answer, read off the frame's table of the
+ * per-cell queues): two 1 x 1 planes of 100 x 100 points seen from straight above (fov 60), the
+ * near one at height 2, the far one at 0 and 1.5 further in x. The grid of cells (crq.h,
+ * view/view_cells.c): 32 cells along the box's 2.5, 0.078125 each; the near plane's cells reach up
+ * to 2.03125, the far one's to 0.078125, so from an eye at height 4 their nearest corners lie
+ * 1.96875 and 3.921875 deep, and each cell draws min(1, c / depth^2) of its points:
+ *   - 5 000 points wanted: every near cell draws (3.921875 / 1.96875)^2 = 3.968 times the share
+ *     of every far cell, and 5 000 in all: 0.3994 and 0.1006;
+ *   - 15 000 wanted: the near cells are full (share 1) and the far ones draw the rest, 0.5.
+ * One share for every cell (the queue before) would give 0.25 and 0.75 everywhere. */
 static void test_depth(pnpr_renderer *r, uint8_t *px)
 {
     enum { SIDE = 100, PLANE = SIDE * SIDE };
@@ -146,15 +149,36 @@ static void test_depth(pnpr_renderer *r, uint8_t *px)
     pnpr_camera cam = {{1001.25, 2000.5, 4}, {1001.25, 2000.5, 0}, {0, 1, 0}, 60, 0, 0};
     pnpr_render_stats st;
     draw(r, &cam, PNPR_STYLE_POINTS, 1.0f, px, &st);
-    float d = (float)(15000.0 / st.coverage_px);
-    draw(r, &cam, PNPR_STYLE_POINTS, d, px, &st);
-    double want = ceil((double)d * st.coverage_px), wn = 1 / (1.96875 * 1.96875), wf = 1 / (3.921875 * 3.921875);
-    double s = PLANE * (wn + wf), fn = want * wn / s, ff = fmin(1.0, want * wf / s);
-    double expect = PLANE * fmin(fn, 1.0) + PLANE * ff;
-    printf("near and far planes: %zu points drawn, expected %.0f (near share %.2f, far %.3f; one share: %.0f)\n",
-           st.points_drawn, expect, fn, ff, want);
-    CHECK_MSG(fn > 1 && fabs((double)st.points_drawn - expect) <= 0.02 * expect,
-              "near and far: %zu points drawn, expected %.0f", st.points_drawn, expect);
+    const double ratio = (3.921875 / 1.96875) * (3.921875 / 1.96875);
+    const double wants[2] = {5000, 15000};
+    for (int t = 0; t < 2; t++) {
+        float d = (float)(wants[t] / st.coverage_px);
+        draw(r, &cam, PNPR_STYLE_POINTS, d, px, &st);
+        double want = ceil((double)d * st.coverage_px);
+        double near_want = t == 0 ? want * ratio / (PLANE * (ratio + 1)) : 1, far_want = t == 0 ? near_want / ratio : (want - PLANE) / PLANE;
+        /* every cell with points: its share (end / keys), by plane (layer 25 near, 0 far) */
+        const pnpr_view_cells *vc = &r->view_cells;
+        double lo[2] = {2, 2}, hi[2] = {-1, -1};
+        size_t counted[2] = {0, 0};
+        CHECK(vc->n[0] == 32 && vc->n[1] == 13 && vc->n[2] == 26);
+        for (size_t k = 0; k < r->cells; k++) {
+            if (!vc->count[k]) continue;
+            int layer = (int)(k / ((size_t)vc->n[0] * vc->n[1])), near = layer == 25;
+            CHECK(layer == 25 || layer == 0);
+            double share = r->cell_table[4 * k] / PNPR_CRQ_KEYS;
+            lo[near] = fmin(lo[near], share);
+            hi[near] = fmax(hi[near], share);
+            counted[near] += vc->count[k];
+        }
+        printf("near and far planes, %.0f wanted: near cells' share %.4f..%.4f (expected %.4f), far %.4f..%.4f (%.4f); %zu drawn\n",
+               want, lo[1], hi[1], near_want, lo[0], hi[0], far_want, st.points_drawn);
+        CHECK(counted[0] == PLANE && counted[1] == PLANE);
+        CHECK_MSG(fabs(lo[1] - near_want) < 1e-4 && fabs(hi[1] - near_want) < 1e-4 && fabs(lo[0] - far_want) < 1e-4 &&
+                      fabs(hi[0] - far_want) < 1e-4,
+                  "%.0f wanted: near %.5f..%.5f, expected %.5f; far %.5f..%.5f, expected %.5f", want, lo[1], hi[1], near_want,
+                  lo[0], hi[0], far_want);
+        CHECK_MSG(fabs((double)st.points_drawn - want) <= 0.02 * want, "%.0f wanted, %zu drawn", want, st.points_drawn);
+    }
     pnpr_cloud_free(&c);
 }
 
