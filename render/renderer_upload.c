@@ -50,7 +50,6 @@ typedef struct upload_ctx {
     pnpr_brush_vertex *bverts;    /* brush: the brush attributes in queue order (NULL: no brush data) */
     float bmin[3], bmax[3];       /* the box without far outliers */
     pnpr_view_cells *cells;       /* the grid of cells over it */
-    uint32_t *cell_of;            /* point j's cell */
     uint16_t *qkey, *pkey;        /* the per-cell queue keys in queue and painterly order */
     float *table;                 /* the frames' per-cell table (pnpr_renderer.cell_table) */
     pnpr_crq_cells queue, pqueue; /* the groups' and the painterly bins' per-cell queues */
@@ -113,6 +112,13 @@ static uint8_t point_rgb(const upload_ctx *u, const uint8_t *rgb, uint32_t j, in
     return rgb ? rgb[3 * (size_t)u->src[j] + c] : u->grey[j];
 }
 
+/* Finite point j's cell (pnpr_crq_cell_fn). */
+static uint32_t point_cell(const void *user, uint32_t j)
+{
+    const upload_ctx *u = user;
+    return pnpr_view_cells_index(u->cells, u->xyz + 3 * (size_t)j);
+}
+
 /* The painterly data (section 5.3): finite points sorted by feature_degree (non-finite = lowest)
  * and divided evenly into `bins` bins, each shuffled into a queue (pnpr_crq_order); the vertices
  * in that order (written to GL by upload_vertex_buffer) and, per pass L and point, the
@@ -139,7 +145,7 @@ static pnpr_status paint_data(upload_ctx *u)
     pnpr_status st = pnpr_crq_order(n, bin, (uint32_t)bins, u->o.seed ^ 0x9E3779B97F4A7C15ull, porder, u->pstarts);
     if (st != PNPR_OK) return st;
     if (!(u->pkey = malloc(n * sizeof *u->pkey))) return PNPR_ERR_OUT_OF_MEMORY;
-    st = pnpr_crq_cells_make(porder, u->pstarts, bins + 1, u->cell_of, u->cells->n[0] * u->cells->n[1] * u->cells->n[2],
+    st = pnpr_crq_cells_make(porder, u->pstarts, bins + 1, point_cell, u, u->cells->n[0] * u->cells->n[1] * u->cells->n[2],
                              u->o.seed ^ 0x9E3779B97F4A7C15ull, u->pkey, &u->pqueue);
     if (st != PNPR_OK) return st;
     uint8_t *col = u->pcol = malloc(bins * n * PAINT_COL_BYTES); /* after the sort's scratch is gone */
@@ -320,14 +326,12 @@ static pnpr_status upload_cells(upload_ctx *u)
         memset(u->bmax, 0, sizeof u->bmax);
     }
     u->cells = malloc(sizeof *u->cells);
-    u->cell_of = malloc((n ? n : 1) * sizeof *u->cell_of);
     u->qkey = malloc((n ? n : 1) * sizeof *u->qkey);
-    if (!u->cells || !u->cell_of || !u->qkey) return PNPR_ERR_OUT_OF_MEMORY;
+    if (!u->cells || !u->qkey) return PNPR_ERR_OUT_OF_MEMORY;
     pnpr_view_cells_build(u->cells, u->xyz, n, u->bmin, u->bmax);
     if (!(u->table = malloc(4 * sizeof *u->table * u->cells->n[0] * u->cells->n[1] * u->cells->n[2])))
         return PNPR_ERR_OUT_OF_MEMORY;
-    for (size_t j = 0; j < n; j++) u->cell_of[j] = pnpr_view_cells_index(u->cells, u->xyz + 3 * j);
-    return pnpr_crq_cells_make(u->order, u->starts, u->ngroups + 1, u->cell_of,
+    return pnpr_crq_cells_make(u->order, u->starts, u->ngroups + 1, point_cell, u,
                                u->cells->n[0] * u->cells->n[1] * u->cells->n[2], u->o.seed, u->qkey, &u->queue);
 }
 
@@ -468,12 +472,20 @@ static void upload_vertex_buffer(const upload_ctx *u, const uint32_t *porder)
 }
 
 /* The GL buffers: style bytes (zero), vertices, painterly vertices and colours. */
-static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
+static void upload_buffers(pnpr_renderer *r, upload_ctx *u)
 {
     size_t n = u->n;
     int paint = u->paint;
     pnpr_gl_state saved;
     pnpr_gl_state_save(&saved);
+    /* the queue keys first, freed once GL has them: not held while the vertices are copied */
+    glBindBuffer(GL_ARRAY_BUFFER, r->key_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(2 * (n ? n : 1)), n ? u->qkey : NULL, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, r->paint_key_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(paint ? 2 * n : 2), paint ? u->pkey : NULL, GL_STATIC_DRAW);
+    free(u->qkey);
+    free(u->pkey);
+    u->qkey = u->pkey = NULL;
     glBindBuffer(GL_ARRAY_BUFFER, r->style_vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n ? n : 1), u->zeros, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_style_vbo);
@@ -486,10 +498,6 @@ static void upload_buffers(pnpr_renderer *r, const upload_ctx *u)
     glBindBuffer(GL_ARRAY_BUFFER, r->paint_col_vbo);
     glBufferData(GL_ARRAY_BUFFER, paint ? (GLsizeiptr)(u->nbins * n * PAINT_COL_BYTES) : 0, paint ? u->pcol : NULL, GL_STATIC_DRAW);
     pnpr_brush_gl_upload(&r->brush, u->bverts, n);
-    glBindBuffer(GL_ARRAY_BUFFER, r->key_vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(2 * (n ? n : 1)), n ? u->qkey : NULL, GL_STATIC_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, r->paint_key_vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(paint ? 2 * n : 2), paint ? u->pkey : NULL, GL_STATIC_DRAW);
     pnpr_gl_state_restore(&saved);
 }
 
@@ -541,7 +549,7 @@ static void upload_free(upload_ctx *u)
     free(u->src); free(u->xyz); free(u->radius); free(u->group); free(u->order); free(u->flat);
     free(u->nidx); free(u->porder); free(u->inv); free(u->pbin); free(u->pcol);
     free(u->vlabel); free(u->paint_src); free(u->zeros); free(u->shade); free(u->grey); free(u->bverts);
-    free(u->cells); free(u->cell_of); free(u->qkey); free(u->pkey); free(u->table);
+    free(u->cells); free(u->qkey); free(u->pkey); free(u->table);
     pnpr_crq_cells_free(&u->queue);
     pnpr_crq_cells_free(&u->pqueue);
 }

@@ -89,6 +89,8 @@ static void test_view_sample(void)
  * group's queue order), the keys of a cell's queue its ranks as (rank + offset) / count, the
  * prefixes and the drawn counts exactly those of the keys; a share f of every cell draws f x all
  * within a few points (the offsets' golden-ratio sequence), and the shares nest. */
+static uint32_t cell_of_array(const void *user, uint32_t point) { return ((const uint32_t *)user)[point]; }
+
 static void test_cells(void)
 {
     enum { CELLS = 1204, N = 5000 + 200 + 1200 };
@@ -106,7 +108,7 @@ static void test_cells(void)
     CHECK_STATUS(pnpr_crq_order(N, group, 2, 7, order, starts), PNPR_OK);
     memcpy(before, order, N * sizeof *order);
     pnpr_crq_cells q;
-    CHECK_STATUS(pnpr_crq_cells_make(order, starts, 3, cell, CELLS, 7, key, &q), PNPR_OK);
+    CHECK_STATUS(pnpr_crq_cells_make(order, starts, 3, cell_of_array, cell, CELLS, 7, key, &q), PNPR_OK);
     CHECK(is_permutation(order, N));
     size_t bad_sort = 0, bad_stable = 0, bad_key = 0, bad_group = 0;
     for (size_t g = 0; g < 2; g++) {
@@ -160,7 +162,7 @@ static void test_cells(void)
     /* a cell out of range: refused, nothing left allocated */
     cell[5] = CELLS;
     pnpr_crq_cells bad;
-    CHECK_STATUS(pnpr_crq_cells_make(order, starts, 3, cell, CELLS, 7, key, &bad), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_crq_cells_make(order, starts, 3, cell_of_array, cell, CELLS, 7, key, &bad), PNPR_ERR_INVALID_ARGUMENT);
     CHECK(bad.count == NULL && bad.cum == NULL && bad.offset == NULL);
     pnpr_crq_cells_free(&q);
     free(cell); free(order); free(before); free(key); free(group); free(end);

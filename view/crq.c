@@ -123,35 +123,33 @@ void pnpr_crq_cells_free(pnpr_crq_cells *q)
     memset(q, 0, sizeof *q);
 }
 
-/* Keys of group g's points in queue order, then the group sorted by them (counting sort). */
-static void cells_sort_group(pnpr_crq_cells *q, uint32_t *order, size_t a, size_t b, size_t g, const uint32_t *cell_of,
-                             uint32_t *seen, uint16_t *r_key, uint32_t *tmp_order, uint16_t *tmp_key)
+/* Keys of group g's points in queue order (into r_key), then the group sorted by them: a counting
+ * sort moves the points through `tmp`; the sorted keys follow from the counts. */
+static void cells_sort_group(pnpr_crq_cells *q, uint32_t *order, size_t a, size_t b, size_t g, pnpr_crq_cell_fn cell_of,
+                             const void *user, uint32_t *seen, uint16_t *r_key, uint32_t *tmp)
 {
     const uint32_t *count = q->count + g * q->cells;
     uint32_t *cum = q->cum + g * (size_t)(PNPR_CRQ_KEYS + 1);
     memset(seen, 0, q->cells * sizeof *seen);
     for (size_t i = a; i < b; i++) {
-        uint32_t k = cell_of[order[i]];
-        tmp_key[i - a] = pnpr_crq_key(seen[k]++, count[k], q->offset[g * q->cells + k]);
-        tmp_order[i - a] = order[i];
-        cum[tmp_key[i - a] + 1]++;
+        uint32_t k = cell_of(user, order[i]);
+        r_key[i] = pnpr_crq_key(seen[k]++, count[k], q->offset[g * q->cells + k]);
+        cum[r_key[i] + 1]++;
     }
     for (size_t v = 0; v < PNPR_CRQ_KEYS; v++) cum[v + 1] += cum[v];
-    /* stable: each key's points in queue order, from where the keys below it end */
-    for (size_t i = 0; i < b - a; i++) {
-        size_t at = a + cum[tmp_key[i]]++;
-        order[at] = tmp_order[i];
-        r_key[at] = tmp_key[i];
-    }
+    for (size_t i = a; i < b; i++) tmp[cum[r_key[i]]++] = order[i]; /* stable: in queue order per key */
     for (size_t v = PNPR_CRQ_KEYS; v > 0; v--) cum[v] = cum[v - 1]; /* undo the fill: keys below v */
     cum[0] = 0;
+    memcpy(order + a, tmp, (b - a) * sizeof *order);
+    for (size_t v = 0; v < PNPR_CRQ_KEYS; v++)
+        for (size_t i = cum[v]; i < cum[v + 1]; i++) r_key[a + i] = (uint16_t)v;
 }
 
-pnpr_status pnpr_crq_cells_make(uint32_t *order, const size_t *group_start, size_t groups, const uint32_t *cell_of,
-                                size_t cells, uint64_t seed, uint16_t *r_key, pnpr_crq_cells *r)
+pnpr_status pnpr_crq_cells_make(uint32_t *order, const size_t *group_start, size_t groups, pnpr_crq_cell_fn cell_of,
+                                const void *user, size_t cells, uint64_t seed, uint16_t *r_key, pnpr_crq_cells *r)
 {
     memset(r, 0, sizeof *r);
-    if (groups == 0 || cells == 0) return PNPR_ERR_INVALID_ARGUMENT;
+    if (groups == 0 || cells == 0 || !cell_of) return PNPR_ERR_INVALID_ARGUMENT;
     size_t most = 0;
     for (size_t g = 0; g < groups; g++)
         if (group_start[g + 1] - group_start[g] > most) most = group_start[g + 1] - group_start[g];
@@ -161,20 +159,19 @@ pnpr_status pnpr_crq_cells_make(uint32_t *order, const size_t *group_start, size
     r->count = calloc(groups * cells, sizeof *r->count);
     r->cum = calloc(groups * (size_t)(PNPR_CRQ_KEYS + 1), sizeof *r->cum);
     r->offset = calloc(groups * cells, sizeof *r->offset);
-    uint32_t *seen = malloc(cells * sizeof *seen), *tmp_order = malloc((most ? most : 1) * sizeof *tmp_order);
-    uint16_t *tmp_key = malloc((most ? most : 1) * sizeof *tmp_key);
-    pnpr_status st = r->count && r->cum && r->offset && seen && tmp_order && tmp_key ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
+    uint32_t *seen = malloc(cells * sizeof *seen), *tmp = malloc((most ? most : 1) * sizeof *tmp);
+    pnpr_status st = r->count && r->cum && r->offset && seen && tmp ? PNPR_OK : PNPR_ERR_OUT_OF_MEMORY;
     for (size_t g = 0; st == PNPR_OK && g < groups; g++)
         for (size_t i = group_start[g]; i < group_start[g + 1]; i++) {
-            if (cell_of[order[i]] >= cells) { st = PNPR_ERR_INVALID_ARGUMENT; break; }
-            r->count[g * cells + cell_of[order[i]]]++;
+            uint32_t k = cell_of(user, order[i]);
+            if (k >= cells) { st = PNPR_ERR_INVALID_ARGUMENT; break; }
+            r->count[g * cells + k]++;
         }
     if (st == PNPR_OK) cells_offsets(r);
     for (size_t g = 0; st == PNPR_OK && g < groups; g++)
-        cells_sort_group(r, order, group_start[g], group_start[g + 1], g, cell_of, seen, r_key, tmp_order, tmp_key);
+        cells_sort_group(r, order, group_start[g], group_start[g + 1], g, cell_of, user, seen, r_key, tmp);
     free(seen);
-    free(tmp_order);
-    free(tmp_key);
+    free(tmp);
     if (st != PNPR_OK) pnpr_crq_cells_free(r);
     return st;
 }

@@ -52,13 +52,16 @@ typedef struct pnpr_crq_cells {
 
 /* The key of the point of rank `rank` of a queue of `count` points with offset `offset`. */
 uint16_t pnpr_crq_key(size_t rank, size_t count, double offset);
+/* The cell (< cells) of point `point`: the caller's grid (no array of them is kept). */
+typedef uint32_t (*pnpr_crq_cell_fn)(const void *user, uint32_t point);
 /* Sorts each group of `order` (a pnpr_crq_order result, group g at group_start[g] ..
- * group_start[g + 1]) by key, stable, cell_of[order[q]] being point order[q]'s cell (< cells);
- * r_key[q]: the key of the point at queue position q after the sort. Fills *r (free with
- * pnpr_crq_cells_free; zeroed on failure). */
+ * group_start[g + 1]) by key, stable, cell_of(user, order[q]) being point order[q]'s cell;
+ * r_key[q]: the key of the point at queue position q after the sort. Scratch: 4 bytes a point
+ * of the largest group. Fills *r (free with pnpr_crq_cells_free; zeroed on failure, and
+ * PNPR_ERR_INVALID_ARGUMENT for a cell out of range). */
 PNPR_NODISCARD pnpr_status pnpr_crq_cells_make(uint32_t *order, const size_t *group_start, size_t groups,
-                                               const uint32_t *cell_of, size_t cells, uint64_t seed,
-                                               uint16_t *r_key, pnpr_crq_cells *r);
+                                               pnpr_crq_cell_fn cell_of, const void *user, size_t cells,
+                                               uint64_t seed, uint16_t *r_key, pnpr_crq_cells *r);
 void pnpr_crq_cells_free(pnpr_crq_cells *q);
 /* The prefix of group g holding every point whose key + 0.5 is below `end`. */
 size_t pnpr_crq_cells_prefix(const pnpr_crq_cells *q, size_t g, float end);
