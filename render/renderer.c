@@ -394,11 +394,21 @@ pnpr_status pnpr_renderer_check_options(const pnpr_renderer *r, const pnpr_draw_
     return PNPR_OK;
 }
 
+/* The vertices a frame sends with every cell's end at most `end`: the groups' prefixes. */
+static size_t sent_below(const pnpr_renderer *r, float end)
+{
+    size_t n = 0;
+    for (size_t g = 0; g <= r->group_count; g++) n += pnpr_crq_cells_prefix(&r->queue, g, end);
+    return n;
+}
+
 /* The frame's table of the per-cell queues (r->cell_table; crq.h, docs/rendering.md "Continuous
  * resolution queue"): `want` points in view (< 0: every point), shared among the cells in view by
  * their weights (pnpr_view_cells_weights, _solve: a cell at eye depth z draws min(1, c / z^2) of
- * its points); a budget the keys' rounding goes over lowers c. Each cell's disks grow by
- * 1 / sqrt(share), at most to the cell's size (one point for all). Fills the plan's counts. */
+ * its points). The budget caps the vertices sent (the groups' prefixes up to the largest end):
+ * over it, every end is cut to the largest that fits, the far cells keeping their smaller shares.
+ * Each cell's disks grow by 1 / sqrt(share), at most to the cell's size (one point for all).
+ * Fills the plan's counts. */
 static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, double want, frame_plan *p)
 {
     float *t = r->cell_table;
@@ -408,16 +418,24 @@ static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, double want
         pnpr_view_cells_weights(&r->view_cells, &p->fc, t + 3, 4); /* the weights in column 3 */
         c = pnpr_view_cells_solve(&r->view_cells, t + 3, 4, want);
     }
-    for (int round = 0; round < 8; round++) {
-        for (size_t k = 0; k < cells; k++) {
-            double w = want < 0 ? 1 : t[4 * k + 3];
-            t[4 * k] = w > 0 ? (float)(PNPR_CRQ_KEYS * fmin(1.0, c * w)) : 0.0f;
-        }
-        p->n_draw = cells ? pnpr_crq_cells_drawn(&r->queue, t, 4) : 0;
-        if (!(o->budget > 0 && p->n_draw > o->budget && want >= 0)) break;
-        if (c == HUGE_VAL) c = 1; /* (every cell was full) */
-        c *= (double)o->budget / (double)p->n_draw * 0.999; /* the keys' rounding: a point per queue at most */
+    float end_max = 0;
+    for (size_t k = 0; k < cells; k++) {
+        double w = want < 0 ? 1 : t[4 * k + 3];
+        t[4 * k] = w > 0 ? (float)(PNPR_CRQ_KEYS * fmin(1.0, c * w)) : 0.0f;
+        if (t[4 * k] > end_max) end_max = t[4 * k];
     }
+    if (o->budget > 0 && cells && sent_below(r, end_max) > o->budget) {
+        size_t lo = 0, hi = PNPR_CRQ_KEYS; /* the most keys v < kv whose prefixes fit */
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo + 1) / 2;
+            if (sent_below(r, (float)mid + 0.5f) <= o->budget) lo = mid;
+            else hi = mid - 1;
+        }
+        float cut = (float)lo + 0.5f; /* keeps the keys below lo */
+        for (size_t k = 0; k < cells; k++)
+            if (t[4 * k] > cut) t[4 * k] = cut;
+    }
+    p->n_draw = cells ? pnpr_crq_cells_drawn(&r->queue, t, 4) : 0;
     p->end_max = 0;
     p->lod_max = 1;
     for (size_t k = 0; k < cells; k++) {
@@ -457,14 +475,9 @@ pnpr_status pnpr_renderer_plan_frame(pnpr_renderer *r, const pnpr_camera *camera
         if (st != PNPR_OK) return st;
     }
     /* continuous resolution queue: how many points this frame, in view (the density x the box's
-     * covered pixels, at most the budget), and from which cells (plan_cells) */
+     * covered pixels), from which cells, and the budget's cap on the vertices sent (plan_cells) */
     p->coverage = r->count ? pnpr_box_coverage(&p->fc, r->bmin, r->bmax, w, h) : 0;
-    double want = -1;
-    if (o->budget > 0 && o->budget < r->count) want = (double)o->budget;
-    if (o->density > 0) {
-        double cap = ceil((double)o->density * p->coverage);
-        if (want < 0 || cap < want) want = cap;
-    }
+    double want = o->density > 0 ? ceil((double)o->density * p->coverage) : -1;
     plan_cells(r, o, want, p);
     /* a random subset of fraction f has 1/sqrt(f) times the spacing: each cell's disks grow so
      * (the table's column 2); lod is the mean growth */

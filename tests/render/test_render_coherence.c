@@ -78,9 +78,11 @@ static size_t pops(const uint8_t *a, const uint8_t *b, int n)
  * frame (as an animated --budget does). Strokes and dots that pop in change their pixels at once
  * by the full ink; fading in (the default, over the last 10% of the prefix) they darken by at most
  * 2/10 of it a frame. Pixels still pop where the mask's disks, which grow as fewer points are
- * drawn (the queue's lod), uncover or hide a mark: measured 41 of 59 (sketchy; antialiased
- * strokes ink most pixels in part, so fewer pop at all) and 55 of 100 (stipple) pops remain,
- * asserted below 3/4. Without a budget the fade changes nothing. */
+ * drawn (the queue's lod), uncover or hide a mark: measured 41 of 52 (sketchy; antialiased
+ * strokes ink most pixels in part, so fewer pop at all) and 53 of 77 (stipple) pops remain
+ * (with the per-cell queues; one queue for all: 41 of 59 and 55 of 100), asserted below 0.85;
+ * a longer fade leaves fewer (sketchy 39 at 0.2, 32 at 0.4). Without a budget the fade changes
+ * nothing. */
 static void check_fade(pnpr_renderer *r, const pnpr_camera_path *path, uint8_t *px[2])
 {
     pnpr_camera start;
@@ -103,7 +105,7 @@ static void check_fade(pnpr_renderer *r, const pnpr_camera_path *path, uint8_t *
         }
         printf("  budget growing 2%% a frame, %s: %zu pixels pop without the fade, %zu with it\n", pnpr_style_name(styles[s]),
                popped[0], popped[1]);
-        CHECK_MSG(popped[0] > 50 && popped[1] < 0.75 * popped[0], "%s: %zu pixels pop with the fade, %zu without",
+        CHECK_MSG(popped[0] > 50 && popped[1] < 0.85 * popped[0], "%s: %zu pixels pop with the fade, %zu without",
                   pnpr_style_name(styles[s]), popped[1], popped[0]);
     }
     /* everything drawn: no fade at all, the same pixels */

@@ -129,7 +129,8 @@ static void test_in_view(pnpr_renderer *r, uint8_t *px)
  * 1.96875 and 3.921875 deep, and each cell draws min(1, c / depth^2) of its points:
  *   - 5 000 points wanted: every near cell draws (3.921875 / 1.96875)^2 = 3.968 times the share
  *     of every far cell, and 5 000 in all: 0.3994 and 0.1006;
- *   - 15 000 wanted: the near cells are full (share 1) and the far ones draw the rest, 0.5.
+ *   - 15 000 wanted: the near cells are full (share 1) and the far ones draw the rest, 0.5;
+ *   - and a budget of 6 000 (it caps the vertices sent): every cell 0.3.
  * One share for every cell (the queue before) would give 0.25 and 0.75 everywhere. */
 static void test_depth(pnpr_renderer *r, uint8_t *px)
 {
@@ -179,6 +180,25 @@ static void test_depth(pnpr_renderer *r, uint8_t *px)
                   lo[0], hi[0], far_want);
         CHECK_MSG(fabs((double)st.points_drawn - want) <= 0.02 * want, "%.0f wanted, %zu drawn", want, st.points_drawn);
     }
+    /* a budget caps the vertices sent, the groups' prefixes up to the largest end: 6 000 of the
+     * 15 000 wanted cuts every cell to one end, 0.3 of its points (the near ones would send all) */
+    pnpr_draw_options o;
+    memset(&o, 0, sizeof o);
+    o.density = (float)(15000.0 / st.coverage_px);
+    o.budget = 6000;
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_renderer_snapshot(r, &cam, &o, W, H, NULL, px, &st, &err), PNPR_OK);
+    float end_max = 0, end_min = PNPR_CRQ_KEYS;
+    for (size_t k = 0; k < r->cells; k++)
+        if (r->view_cells.count[k]) {
+            end_max = fmaxf(end_max, r->cell_table[4 * k]);
+            end_min = fminf(end_min, r->cell_table[4 * k]);
+        }
+    size_t sent = 0;
+    for (size_t g = 0; g <= r->group_count; g++) sent += pnpr_crq_cells_prefix(&r->queue, g, end_max);
+    CHECK_MSG(sent <= 6000 && sent > 5990 && st.points_drawn == sent && end_min == end_max &&
+                  fabs(end_max / PNPR_CRQ_KEYS - 0.3) < 1e-3,
+              "budget 6000: %zu sent, %zu drawn, ends %.1f..%.1f", sent, st.points_drawn, (double)end_min, (double)end_max);
     pnpr_cloud_free(&c);
 }
 
