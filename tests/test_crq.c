@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include <pointnpr/crq.h>
+#include "../view/view_internal.h" /* the cells' shares (test_solve) */
 
 #include <stdlib.h>
 #include <string.h>
@@ -89,6 +90,25 @@ static void test_view_sample(void)
  * group's queue order), the keys of a cell's queue its ranks as (rank + offset) / count, the
  * prefixes and the drawn counts exactly those of the keys; a share f of every cell draws f x all
  * within a few points (the offsets' golden-ratio sequence), and the shares nest. */
+/* The cells' shares (view/view_cells.c, pnpr_view_cells_solve), known answers: three cells of 100
+ * points with weights 4, 1 and 0 (out of view). 50 wanted: lambda 50 / 500 = 0.1 (shares 0.4 and
+ * 0.1); 150: the first would take 1.2, so it is full and the second draws the other 50 (lambda
+ * 0.5); 200 or more: every cell in view whole (HUGE_VAL); 0: none. */
+static void test_solve(void)
+{
+    pnpr_view_cells *c = calloc(1, sizeof *c);
+    CHECK(c != NULL);
+    if (!c) return;
+    c->n[0] = 3; c->n[1] = c->n[2] = 1;
+    c->count[0] = c->count[1] = c->count[2] = 100;
+    const float w[6] = {4, -1, 1, -1, 0, -1}; /* stride 2 */
+    CHECK_NEAR(pnpr_view_cells_solve(c, w, 2, 50), 0.1, 1e-12);
+    CHECK_NEAR(pnpr_view_cells_solve(c, w, 2, 150), 0.5, 1e-12);
+    CHECK(pnpr_view_cells_solve(c, w, 2, 200) == HUGE_VAL && pnpr_view_cells_solve(c, w, 2, 1e9) == HUGE_VAL);
+    CHECK(pnpr_view_cells_solve(c, w, 2, 0) == 0);
+    free(c);
+}
+
 static uint32_t cell_of_array(const void *user, uint32_t point) { return ((const uint32_t *)user)[point]; }
 
 static void test_cells(void)
@@ -176,6 +196,7 @@ int main(void)
     CHECK(a && b && c && group);
     if (!a || !b || !c || !group) return pnpr_test_finish("test_crq");
     test_cells();
+    test_solve();
 
     /* one group: a permutation, deterministic, seed-dependent, not the identity */
     size_t starts[8];
