@@ -403,29 +403,35 @@ static size_t sent_below(const pnpr_renderer *r, float end)
 }
 
 /* The frame's table of the per-cell queues (r->cell_table; crq.h, docs/rendering.md "Continuous
- * resolution queue"): `want` points in view (< 0: every point), shared among the cells in view by
- * their weights (pnpr_view_cells_weights, _solve: a cell at eye depth z draws min(1, c / z^2) of
- * its points). The budget caps the vertices sent (the groups' prefixes up to the largest end):
- * over it, every end is cut to the largest that fits, the far cells keeping their smaller shares.
- * Each cell's disks grow by 1 / sqrt(share), at most to the cell's size (one point for all).
- * Fills the plan's counts. */
-static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, double want, frame_plan *p)
+ * resolution queue") for the view `fc`: `want` points in view (< 0: every point), shared among the
+ * cells in view by their weights (pnpr_view_cells_weights, _solve: a cell at eye depth z draws
+ * min(1, c / z^2) of its points). A cell out of view draws by its weight too, at most the largest
+ * share in view: no vertex more is sent, and disks and marks beyond the picture's edge still
+ * reach into it (guard bands, tiles). The budget caps the vertices sent (the groups' prefixes up
+ * to the largest end): over it, every end is cut to the largest that fits (one key level at
+ * least), the far cells keeping their smaller shares. Each cell's disks grow by 1 / sqrt(share),
+ * at most to the cell's size (one point for all). Fills the plan's counts (in view). */
+static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr_frame_camera *fc, double want,
+                       frame_plan *p)
 {
     float *t = r->cell_table;
     size_t cells = r->count ? r->cells : 0;
     double c = HUGE_VAL;
+    for (size_t k = 0; k < cells; k++) t[4 * k + 3] = r->view_cells.count[k] ? 1.0f : 0.0f;
     if (want >= 0 && cells) {
-        pnpr_view_cells_weights(&r->view_cells, &p->fc, t + 3, 4); /* the weights in column 3 */
+        pnpr_view_cells_weights(&r->view_cells, fc, t + 3, 4); /* the weights in column 3, < 0 out of view */
         c = pnpr_view_cells_solve(&r->view_cells, t + 3, 4, want);
     }
     float end_max = 0;
     for (size_t k = 0; k < cells; k++) {
-        double w = want < 0 ? 1 : t[4 * k + 3];
+        double w = t[4 * k + 3];
         t[4 * k] = w > 0 ? (float)(PNPR_CRQ_KEYS * fmin(1.0, c * w)) : 0.0f;
         if (t[4 * k] > end_max) end_max = t[4 * k];
     }
+    for (size_t k = 0; k < cells; k++)
+        if (t[4 * k + 3] < 0) t[4 * k] = fminf((float)(PNPR_CRQ_KEYS * fmin(1.0, c * -t[4 * k + 3])), end_max);
     if (o->budget > 0 && cells && sent_below(r, end_max) > o->budget) {
-        size_t lo = 0, hi = PNPR_CRQ_KEYS; /* the most keys v < kv whose prefixes fit */
+        size_t lo = 1, hi = PNPR_CRQ_KEYS; /* the most key levels kv whose prefixes fit (one at least) */
         while (lo < hi) {
             size_t mid = lo + (hi - lo + 1) / 2;
             if (sent_below(r, (float)mid + 0.5f) <= o->budget) lo = mid;
@@ -435,11 +441,20 @@ static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, double want
         for (size_t k = 0; k < cells; k++)
             if (t[4 * k] > cut) t[4 * k] = cut;
     }
+    /* the points drawn in view: the cells out of view counted as none (column 1, the fade, is
+     * written below) */
+    size_t in_view = 0;
+    for (size_t k = 0; k < cells; k++) {
+        t[4 * k + 1] = t[4 * k];
+        if (t[4 * k + 3] < 0) t[4 * k] = 0;
+        else if (t[4 * k + 3] > 0) in_view += r->view_cells.count[k];
+    }
     p->n_draw = cells ? pnpr_crq_cells_drawn(&r->queue, t, 4) : 0;
+    p->lod = p->n_draw > 0 ? (float)sqrt((double)in_view / (double)p->n_draw) : 1;
     p->end_max = 0;
     p->lod_max = 1;
     for (size_t k = 0; k < cells; k++) {
-        float e = t[4 * k];
+        float e = t[4 * k] = t[4 * k + 1];
         double share = fmax((double)e / PNPR_CRQ_KEYS, 1.0 / fmax(1.0, (double)r->view_cells.count[k]));
         t[4 * k + 1] = pnpr_queue_fade_length(e, PNPR_CRQ_KEYS, o->queue_fade);
         t[4 * k + 2] = (float)sqrt(1.0 / share);
@@ -475,13 +490,24 @@ pnpr_status pnpr_renderer_plan_frame(pnpr_renderer *r, const pnpr_camera *camera
         if (st != PNPR_OK) return st;
     }
     /* continuous resolution queue: how many points this frame, in view (the density x the box's
-     * covered pixels), from which cells, and the budget's cap on the vertices sent (plan_cells) */
-    p->coverage = r->count ? pnpr_box_coverage(&p->fc, r->bmin, r->bmax, w, h) : 0;
+     * covered pixels), from which cells, and the budget's cap on the vertices sent (plan_cells),
+     * for the frame's view or the whole picture's it is a tile of (o->plan_matrices); a random
+     * subset of share f has 1/sqrt(f) times the spacing: each cell's disks grow so (the table's
+     * column 2), lod is the growth of all the points in view */
+    pnpr_frame_camera plan_fc = p->fc;
+    int pw = w, ph = h;
+    if (o->plan_matrices) {
+        if (o->plan_width <= 0 || o->plan_height <= 0)
+            return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "renderer: plan view of %dx%d pixels", o->plan_width,
+                                  o->plan_height);
+        pw = o->plan_width;
+        ph = o->plan_height;
+        st = pnpr_frame_camera_from_matrices(o->plan_matrices, r->origin, pw, ph, &plan_fc, err);
+        if (st != PNPR_OK) return st;
+    }
+    p->coverage = r->count ? pnpr_box_coverage(&plan_fc, r->bmin, r->bmax, pw, ph) : 0;
     double want = o->density > 0 ? ceil((double)o->density * p->coverage) : -1;
-    plan_cells(r, o, want, p);
-    /* a random subset of fraction f has 1/sqrt(f) times the spacing: each cell's disks grow so
-     * (the table's column 2); lod is the mean growth */
-    p->lod = p->n_draw > 0 ? (float)sqrt((double)r->count / (double)p->n_draw) : 1;
+    plan_cells(r, o, &plan_fc, want, p);
     return PNPR_OK;
 }
 
@@ -770,6 +796,7 @@ pnpr_status pnpr_renderer_draw_frame(pnpr_renderer *r, const pnpr_camera *camera
     if (r_stats) {
         r_stats->points_total = r->count;
         r_stats->points_drawn = f.n_draw;
+        for (size_t g = 0; g < f.ng; g++) r_stats->points_sent += f.gdraw[g];
         r_stats->strokes_drawn = strokes;
         r_stats->coverage_px = f.coverage;
     }

@@ -329,7 +329,7 @@ static pnpr_status upload_cells(upload_ctx *u)
     u->qkey = malloc((n ? n : 1) * sizeof *u->qkey);
     if (!u->cells || !u->qkey) return PNPR_ERR_OUT_OF_MEMORY;
     pnpr_view_cells_build(u->cells, u->xyz, n, u->bmin, u->bmax);
-    if (!(u->table = malloc(4 * sizeof *u->table * u->cells->n[0] * u->cells->n[1] * u->cells->n[2])))
+    if (!(u->table = calloc(4 * (size_t)u->cells->n[0] * u->cells->n[1] * u->cells->n[2], sizeof *u->table)))
         return PNPR_ERR_OUT_OF_MEMORY;
     return pnpr_crq_cells_make(u->order, u->starts, u->ngroups + 1, point_cell, u,
                                u->cells->n[0] * u->cells->n[1] * u->cells->n[2], u->o.seed, u->qkey, &u->queue);

@@ -74,7 +74,8 @@ double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera
                 float lo[3] = {c->min[0] + (float)x * c->cell, c->min[1] + (float)y * c->cell, c->min[2] + (float)z * c->cell};
                 float hi[3] = {lo[0] + c->cell, lo[1] + c->cell, lo[2] + c->cell};
                 r_w[k * stride] = 0;
-                if (!c->count[k] || box_outside(m, lo, hi)) continue;
+                if (!c->count[k]) continue;
+                int out = box_outside(m, lo, hi);
                 double depth = HUGE_VAL; /* the nearest corner's eye depth (the camera looks down -z) */
                 for (int q = 0; q < 8; q++) {
                     const float p[3] = {(q & 1) ? hi[0] : lo[0], (q & 2) ? hi[1] : lo[1], (q & 4) ? hi[2] : lo[2]};
@@ -83,8 +84,8 @@ double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera
                     if (e < depth) depth = e;
                 }
                 double w = fc->ortho ? 1.0 : 1.0 / (fmax(depth, zmin) * fmax(depth, zmin));
-                r_w[k * stride] = (float)w;
-                sum += (double)c->count[k] * (float)w;
+                r_w[k * stride] = out ? -(float)w : (float)w;
+                if (!out) sum += (double)c->count[k] * (float)w;
             }
     return sum;
 }
@@ -108,15 +109,22 @@ double pnpr_view_cells_solve(const pnpr_view_cells *c, const float *w, size_t st
         if (a) a[m++] = (cell_weight){w[k * stride], c->count[k]};
     }
     if (want >= all) { free(a); return HUGE_VAL; }
-    if (!a || !(want > 0)) { free(a); return want > 0 && sum > 0 ? want / sum : 0; } /* (no memory: none full) */
+    double *rest = a ? malloc((m + 1) * sizeof *rest) : NULL;
+    if (!rest || !(want > 0)) { /* (no memory: none full) */
+        free(a); free(rest);
+        return want > 0 && sum > 0 ? want / sum : 0;
+    }
     qsort(a, m, sizeof *a, cmp_weight_desc);
-    double full = 0, rest = sum, lambda = HUGE_VAL;
+    rest[m] = 0; /* rest[j]: count x weight of the cells from j on, summed from the smallest (no
+                  * cancellation when the weights span many orders of magnitude) */
+    for (size_t j = m; j > 0; j--) rest[j - 1] = rest[j] + (double)a[j - 1].count * a[j - 1].w;
+    double full = 0, lambda = HUGE_VAL;
     for (size_t j = 0; j < m; j++) { /* the cells before j are full; is cell j? */
-        double l = (want - full) / rest;
-        if (l * a[j].w < 1) { lambda = l; break; }
+        double l = (want - full) / rest[j];
+        if (l * a[j].w < 1) { lambda = l > 0 ? l : 0; break; }
         full += a[j].count;
-        rest -= (double)a[j].count * a[j].w;
     }
     free(a);
+    free(rest);
     return lambda;
 }

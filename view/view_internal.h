@@ -50,13 +50,13 @@ typedef struct pnpr_view_cells {
 void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const float bmin[3], const float bmax[3]);
 /* The cell of point p (offset coordinates): (z n[1] + y) n[0] + x, as the shaders find it. */
 uint32_t pnpr_view_cells_index(const pnpr_view_cells *c, const float p[3]);
-/* Each cell's weight in this view, r_w[k * stride] for cell k: 0 for a cell without points or
- * whose box lies wholly outside one plane of the frustum (clip space); else the pixels a unit
- * of surface covers there relative to unit distance: 1 / z^2 at the eye depth z of the box's
- * nearest corner (at least the near plane; orthographic: 1): a surface's screen area per point
- * goes as it. Returns the sum of count x weight. */
+/* Each cell's weight in this view, r_w[k * stride] for cell k: 0 for a cell without points; else
+ * the pixels a unit of surface covers there relative to unit distance: 1 / z^2 at the eye depth z
+ * of the box's nearest corner (at least the near plane; orthographic: 1): a surface's screen
+ * area per point goes as it; negated for a cell whose box lies wholly outside one plane of the
+ * frustum (clip space). Returns the sum of count x weight over the cells in view. */
 double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera *fc, float *r_w, size_t stride);
-/* The lambda for which the cells of weight w[k * stride] > 0, each drawing min(1, lambda x w) of
+/* The lambda (>= 0) for which the cells of weight w[k * stride] > 0, each drawing min(1, lambda x w) of
  * its points, draw `want` points in all (cells that would draw more than theirs are full and
  * give the rest to the others): HUGE_VAL when they hold no more than that; 0 for want <= 0. So
  * near and far keep the same points per pixel among the cells not full (renderer.c). */

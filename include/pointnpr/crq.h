@@ -39,7 +39,7 @@ void pnpr_crq_split(const size_t *group_size, size_t group_count, size_t total, 
  * cancels out (the points drawn of a fraction f of all are f x all within a few). The group is then sorted by key, stable: every queue's prefix of fraction f lies in
  * the group's prefix of the keys below f, and a frame draws cell k's points whose key + 0.5 is
  * below its end E_k (PNPR_CRQ_KEYS x the fraction it wants), the vertex shaders dropping the
- * others (docs/rendering.md, "Per-cell queues"). */
+ * others (docs/rendering.md, "Continuous resolution queue"). */
 #define PNPR_CRQ_KEYS 65536
 
 typedef struct pnpr_crq_cells {

@@ -117,11 +117,14 @@ typedef struct pnpr_draw_options {
     int layer_exclude;
     pnpr_sketch_variant sketch_variant;
     float background[4];   /* clear colour of the frame (zero = transparent black) */
-    size_t budget;         /* at most this many points per frame (0 = no limit) */
-    float density;         /* at most density * (screen pixels covered by the cloud's projected
-                            * bounding box) points per frame: the screen-space budget that keeps
-                            * a dense view from drowning in ink (0 = the default of the option
-                            * table, "density"; negative = no limit: every point) */
+    size_t budget;         /* at most this many points sent per frame (the per-cell queues'
+                            * prefixes; the near cells thinned first: docs/rendering.md;
+                            * 0 = no limit) */
+    float density;         /* about density * (screen pixels covered by the cloud's projected
+                            * bounding box) points in view per frame, shared among the cells by
+                            * depth: the screen-space budget that keeps a dense view from
+                            * drowning in ink (0 = the default of the option table, "density";
+                            * negative = no limit: every point) */
     float point_scale;     /* multiplies the disk radii */
     float mask_scale;      /* visibility-mask disks = point_scale * mask_scale * radius (cartoon:
                             * the enlarged outline disks, with its own default) */
@@ -169,6 +172,12 @@ typedef struct pnpr_draw_options {
      * replaces the `camera` argument of pnpr_renderer_draw / pnpr_renderer_snapshot; NULL = use
      * `camera` (look-at + symmetric perspective). */
     const struct pnpr_camera_matrices *matrices;
+    /* The view the queue is planned for when it is not the frame's own: a tile of a larger
+     * picture drawn by the host (MeshLab's snapshot tiles) gives the whole picture's camera and
+     * size here, so that every tile draws the points the whole picture draws (the cells' shares,
+     * the coverage). NULL = the frame's own view. Read during the call only. */
+    const struct pnpr_camera_matrices *plan_matrices;
+    int plan_width, plan_height;
 } pnpr_draw_options;
 
 /* Where the frame goes: framebuffer object `framebuffer` (0 = the default framebuffer) and the
@@ -191,8 +200,12 @@ typedef struct pnpr_target {
 
 typedef struct pnpr_render_stats {
     size_t points_total;   /* points uploaded (finite ones) */
-    size_t points_drawn;   /* queue prefix drawn this frame (pass 2 and the mask alike) */
-    size_t strokes_drawn;  /* sketchy: primitives of pass 2; lines: line segments; stipple: dots */
+    size_t points_drawn;   /* points in view the per-cell queues keep this frame (pass 2 and the
+                            * mask alike) */
+    size_t points_sent;    /* vertices sent per pass (the groups' prefixes: what `budget` caps;
+                            * the vertex shaders drop those beyond their cell's share) */
+    size_t strokes_drawn;  /* sketchy, brush, painterly: marks sent in pass 2; lines: line
+                            * segments; stipple: dots */
     double coverage_px;    /* screen pixels covered by the projected bounding box */
 } pnpr_render_stats;
 

@@ -238,7 +238,8 @@ struct DecorateContextState {
     QString lastError;            /* the last message logged (not repeated every frame) */
     double lastMV[16] = {0}, lastP[16] = {0};
     bool haveLast = false;
-    size_t lastDrawn = 0;         /* points of the last on-screen frame at rest (tiles draw as many) */
+    pnpr_camera_matrices restCam = {}; /* the last on-screen frame at rest: the view the tiles' queue is planned for */
+    int restW = 0, restH = 0;     /* ... and its viewport (0: none yet) */
     double screenScale = 0;       /* |P[0]| of the last on-screen frame: a tile's over it is the multiplier */
     double snapK = 0;             /* > 0 while MeshLab draws snapshot tiles: their multiplier */
     int uploads = 0;              /* clouds uploaded in this state (the log says so after a restart) */
@@ -1743,9 +1744,10 @@ static pnpr_draw_options frameOptions(DecorateContextState *s, const Params &prm
         s->slowBits = ls.bits;
         s->slowSignature = s->signature;
     }
-    if (tile && s->lastDrawn > 0 && !(prm.density < 0)) {
-        o.budget = s->lastDrawn;
-        o.density = -1;
+    if (tile && s->restW > 0) { /* the tile draws the points the view on screen draws (the per-cell queues' plan) */
+        o.plan_matrices = &s->restCam;
+        o.plan_width = s->restW;
+        o.plan_height = s->restH;
     }
     o.line_width = prm.lineWidth;
     o.brush_preset = prm.brush;
@@ -1838,8 +1840,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
      * has P[8] = P[9] = 0, a symmetric orthographic box P[12] = P[13] = 0) k times narrower than
      * the view's (P[0] k times larger); the middle tile of an odd multiplier is symmetric, and is
      * told by its P[0], k times the view's, right after the off-centre ones. A tile is not camera
-     * motion; it draws the point count of the frame on screen (the screen-space budget of a tile's
-     * own coverage would differ from tile to tile and leave seams) and every width k times. */
+     * motion; its queue is planned for the view on screen at rest (pnpr_draw_options.plan_matrices:
+     * the points the screen draws, cell by cell; a tile's own coverage would differ from tile to
+     * tile and leave seams) and every width is k times. */
     bool offCentre = P[15] == 0 ? (P[8] != 0 || P[9] != 0) : (P[12] != 0 || P[13] != 0);
     double zoom = s->screenScale > 0 ? std::fabs(P[0]) / s->screenScale : 1;
     if (offCentre) s->snapK = zoom;
@@ -1864,7 +1867,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     pnpr_draw_options o = frameOptions(s, prm, ls, plainPoints, keyed, moving, tile, budgetTimed);
     if (tile) {
         scaleWidths(o, s->snapK);
-        report(QString("snapshot tiles at %1x the view: %2 points each, widths %1x").arg(s->snapK, 0, 'g', 3).arg(o.budget), false);
+        report(QString("snapshot tiles at %1x the view: the points of the view on screen, widths %1x").arg(s->snapK, 0, 'g', 3), false);
     } else {
         s->screenScale = std::fabs(P[0]);
     }
@@ -1929,8 +1932,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (moving) {
         glFinish();
         qint64 ms = drawClock.nsecsElapsed() / 1000000;
-        if (st == PNPR_OK && stats.points_drawn > 0) { /* slower at once, faster over about 4 frames */
-            double perPoint = (double)drawClock.nsecsElapsed() / 1e6 / (double)stats.points_drawn;
+        if (st == PNPR_OK && stats.points_sent > 0) { /* slower at once, faster over about 4 frames */
+            /* per vertex sent: what the budget caps (the shaders drop the far cells' extra ones) */
+            double perPoint = (double)drawClock.nsecsElapsed() / 1e6 / (double)stats.points_sent;
             s->motionMsPerPoint = s->motionMsPerPoint > 0 && perPoint < s->motionMsPerPoint
                                       ? 0.75 * s->motionMsPerPoint + 0.25 * perPoint
                                       : perPoint;
@@ -1948,7 +1952,11 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         report(QString("draw (%1) failed: %2").arg(fxDraw ? QString("effects") : styleNames(ls.bits)).arg(status(st, err)), true);
         return;
     }
-    if (!tile && !moving && !fxDraw) s->lastDrawn = stats.points_drawn;
+    if (!tile && !moving && !fxDraw) {
+        s->restCam = cm;
+        s->restW = vp[2];
+        s->restH = vp[3];
+    }
     if (s->restarted) {
         s->restarted = false;
         report(QString("decoration restarted by MeshLab (a parameter applied or a filter run): layers, features and "

@@ -70,7 +70,9 @@ static void read_host(GLuint fbo, uint8_t *px)
  * framebuffer (MeshLab's tiled snapshot, 2x1), against the whole frame drawn at once: with
  * a guard band (pnpr_target.guard -1) the 16 columns along the cut match as the rest does; without
  * one they do not (GL drops the sprites whose centre lies beyond the cut, and the image-space
- * outlines see the frame's border). Cartoon, whose outlines are found in image space. Drawn alone,
+ * outlines see the frame's border). Cartoon, whose outlines are found in image space; with every
+ * point and with the default screen density (the halves planned as the whole frame:
+ * pnpr_draw_options.plan_matrices; the cells beyond a half's edge still draw). Drawn alone,
  * the left half leaves the right half of the framebuffer as it was (the guard is cropped). */
 static void check_guard(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr_camera_matrices *m)
 {
@@ -98,6 +100,9 @@ static void check_guard(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr
             if (side == 0) { glClearColor(1, 0, 1, 1); glClear(GL_COLOR_BUFFER_BIT); }
             pnpr_draw_options oh = *o;
             oh.matrices = &half[side];
+            oh.plan_matrices = m; /* the queue planned for the whole frame */
+            oh.plan_width = W;
+            oh.plan_height = H;
             pnpr_target t = {fbo, side * (W / 2), 0, W / 2, H, 0, guarded ? -1 : 0};
             pnpr_error err = {0};
             CHECK_STATUS(pnpr_renderer_draw(r, NULL, &oh, &t, NULL, &err), PNPR_OK);
@@ -215,7 +220,10 @@ int main(void)
 
     pnpr_draw_options oc = o; /* cartoon: its outlines are found in image space, up to the frame's border */
     oc.style = PNPR_STYLE_CARTOON;
-    oc.density = -1; /* every point in the whole frame and in each half, as the decorator's tiles */
+    oc.density = -1; /* every point in the whole frame and in each half */
+    check_guard(r, &oc, &m);
+    oc.density = 0; /* the default screen density: each half planned as the whole frame
+                     * (plan_matrices), as the decorator's tiles are */
     check_guard(r, &oc, &m);
 
     /* the right half too, through the tiled snapshot path (guard bands on top of the frustum) */

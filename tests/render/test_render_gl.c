@@ -177,8 +177,8 @@ static void test_crq_prefix(pnpr_renderer *r)
         o.budget = b;
         pnpr_render_stats st;
         CHECK_STATUS(render(r, &cam, &o, px, &st), PNPR_OK);
-        CHECK_MSG(st.points_drawn <= b && st.points_drawn + 3 >= b && st.points_total == N, "budget %zu: %zu drawn", b,
-                  st.points_drawn);
+        CHECK_MSG(st.points_drawn <= st.points_sent && st.points_sent <= b && st.points_drawn + 3 >= b && st.points_total == N,
+                  "budget %zu: %zu drawn, %zu sent", b, st.points_drawn, st.points_sent);
         char seen[N] = {0};
         size_t nseen = 0, lost = 0;
         for (size_t i = 0; i < (size_t)W * H; i++)
