@@ -225,6 +225,13 @@ int main(void)
     oc.density = 0; /* the default screen density: each half planned as the whole frame
                      * (plan_matrices), as the decorator's tiles are */
     check_guard(r, &oc, &m);
+    /* a plan view without a size: refused */
+    pnpr_draw_options op = oc;
+    op.matrices = &m;
+    op.plan_matrices = &m;
+    uint8_t *tmp = malloc((size_t)W * H * 4);
+    CHECK(tmp && draw(r, NULL, &op, W, H, tmp) == PNPR_ERR_INVALID_ARGUMENT);
+    free(tmp);
 
     /* the right half too, through the tiled snapshot path (guard bands on top of the frustum) */
     pnpr_camera_matrices mr = m;
