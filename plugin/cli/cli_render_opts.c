@@ -156,8 +156,8 @@ static const cli_opt render_opts[] = {
           "pixels; for measurements)"),
     CLI_SKETCH_OPT(cli_render_opts, dopt.sketch_variant),
     {"--budget", NULL, CLI_CUSTOM, 0, 0, 0, 0, 0, NULL, parse_budget, "N|all",
-     "at most N points per frame (default: no count, the screen-space budget --density only); all: every "
-     "point, however dense the view"},
+     "at most N points sent per frame, the near cells thinned first (default: no count, the screen-space "
+     "budget --density only); all: every point, however dense the view"},
     R_OPT("--seed", CLI_CUSTOM, uopt.seed, parse_seed, "S", "continuous resolution queue seed (default 0)"),
     {"--sample", NULL, CLI_NUMBER, offsetof(cli_render_opts, sample), 0, 1, 1, 0, NULL, NULL, "S",
      "read a sample of this share of a binary PLY's points, a preview of a cloud larger than memory: uniform, "
