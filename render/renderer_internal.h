@@ -132,11 +132,11 @@ struct pnpr_renderer {
  * the cell's disk growth. Reads the last frame's table. */
 double pnpr_renderer_queue_alpha(const pnpr_renderer *r, const float p[3], uint16_t key, float scale, float *r_grow);
 
-/* The continuous resolution queue's fade-in (issue 16): of the `drawn` first points of a group of
- * `size`, the last ones are drawn with alpha ramping from 1 down to 0 over this many points, so a
- * stroke appears and vanishes gradually as the budget moves across it; `fraction` of the drawn
- * points (pnpr_draw_options.queue_fade), at most the points left undrawn + 1 (a whole group is
- * drawn at full alpha), 0 = no fade. */
+/* The continuous resolution queue's fade-in (issue 16): of a queue of `size` keys drawn up to
+ * `drawn` (a cell's end, in keys: plan_cells), the last ones are drawn with alpha ramping from 1
+ * down to 0 over this many keys, so a stroke appears and vanishes gradually as the share moves
+ * across it; `fraction` of the drawn keys (pnpr_draw_options.queue_fade), at most the keys left
+ * + 1 (a cell drawn whole is drawn at full alpha), 0 = no fade. */
 float pnpr_queue_fade_length(double drawn, double size, float fraction);
 
 /* The longest half length of a stroke or hatch in pixels: half of o->stroke_max (its default when
