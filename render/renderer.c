@@ -236,11 +236,10 @@ void pnpr_shader_prelude(char *buf, size_t cap)
              (double)h2[0], (double)h2[1], (double)h2[2], queue_glsl);
 }
 
-double pnpr_renderer_queue_alpha(const pnpr_renderer *r, const float p[3], uint16_t key, float scale, float *r_grow)
+double pnpr_renderer_queue_alpha(const pnpr_renderer *r, const float p[3], uint16_t key)
 {
     const float *q = r->cell_table + 4 * (size_t)pnpr_view_cells_index(&r->view_cells, p);
-    float end = q[0] * scale, u = (float)key + 0.5f;
-    *r_grow = q[2];
+    float end = q[0], u = (float)key + 0.5f;
     if (!(u < end)) return -1;
     if (!(q[1] > 0)) return 1;
     double a = ((double)end - u) / q[1];
@@ -441,20 +440,18 @@ static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr_
         for (size_t k = 0; k < cells; k++)
             if (t[4 * k] > cut) t[4 * k] = cut;
     }
-    /* the points drawn in view: the cells out of view counted as none (column 1, the fade, is
-     * written below) */
+    /* the points drawn in view: the ends of the cells in view in column 1 (the fade, written below) */
     size_t in_view = 0;
     for (size_t k = 0; k < cells; k++) {
-        t[4 * k + 1] = t[4 * k];
-        if (t[4 * k + 3] < 0) t[4 * k] = 0;
-        else if (t[4 * k + 3] > 0) in_view += r->view_cells.count[k];
+        t[4 * k + 1] = t[4 * k + 3] > 0 ? t[4 * k] : 0.0f;
+        if (t[4 * k + 3] > 0) in_view += r->view_cells.count[k];
     }
-    p->n_draw = cells ? pnpr_crq_cells_drawn(&r->queue, t, 4) : 0;
+    p->n_draw = cells ? pnpr_crq_cells_drawn(&r->queue, t + 1, 4) : 0;
     p->lod = p->n_draw > 0 ? (float)sqrt((double)in_view / (double)p->n_draw) : 1;
     p->end_max = 0;
     p->lod_max = 1;
     for (size_t k = 0; k < cells; k++) {
-        float e = t[4 * k] = t[4 * k + 1];
+        float e = t[4 * k];
         double share = fmax((double)e / PNPR_CRQ_KEYS, 1.0 / fmax(1.0, (double)r->view_cells.count[k]));
         t[4 * k + 1] = pnpr_queue_fade_length(e, PNPR_CRQ_KEYS, o->queue_fade);
         t[4 * k + 2] = (float)sqrt(1.0 / share);

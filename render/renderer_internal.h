@@ -64,7 +64,6 @@ typedef struct stroke_uniforms {
 
 typedef struct paint_uniforms { GLint view, proj, ppu, radius_scale, max_size, style_filter, brush; } paint_uniforms;
 
-
 enum { PAINT_MAX_BINS = PNPR_PAINTERLY_BINS_MAX, PAINT_K = 12, BRUSH_TEX = 64 };
 
 struct pnpr_renderer {
@@ -128,9 +127,9 @@ struct pnpr_renderer {
 };
 
 /* The per-cell queues' test of a point at offset position p with key `key` (pnpr_shader_prelude's
- * pnpr_queue): -1 when its cell's end (x scale) leaves it out, else its fade-in alpha; *r_grow:
- * the cell's disk growth. Reads the last frame's table. */
-double pnpr_renderer_queue_alpha(const pnpr_renderer *r, const float p[3], uint16_t key, float scale, float *r_grow);
+ * pnpr_queue at a scale of 1): -1 when its cell's end leaves it out, else its fade-in alpha. Reads
+ * the last frame's table. */
+double pnpr_renderer_queue_alpha(const pnpr_renderer *r, const float p[3], uint16_t key);
 
 /* The continuous resolution queue's fade-in (issue 16): of a queue of `size` keys drawn up to
  * `drawn` (a cell's end, in keys: plan_cells), the last ones are drawn with alpha ramping from 1
@@ -223,7 +222,7 @@ typedef struct frame_plan {
     pnpr_frame_camera fc;
     size_t n_draw;       /* the points drawn (every cell's keys below its end) */
     double coverage;
-    float lod;           /* sqrt(points / drawn): the disks' mean growth (the lines' pull) */
+    float lod;           /* sqrt(points in view / drawn): their disks' growth (the lines' pull) */
     float lod_max;       /* the largest growth of a cell drawn (tile guard bands) */
     float end_max;       /* the largest end of a cell: the vertex prefixes drawn reach it */
 } frame_plan;

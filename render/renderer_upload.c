@@ -145,7 +145,7 @@ static pnpr_status paint_data(upload_ctx *u)
     pnpr_status st = pnpr_crq_order(n, bin, (uint32_t)bins, u->o.seed ^ 0x9E3779B97F4A7C15ull, porder, u->pstarts);
     if (st != PNPR_OK) return st;
     if (!(u->pkey = malloc(n * sizeof *u->pkey))) return PNPR_ERR_OUT_OF_MEMORY;
-    st = pnpr_crq_cells_make(porder, u->pstarts, bins + 1, point_cell, u, u->cells->n[0] * u->cells->n[1] * u->cells->n[2],
+    st = pnpr_crq_cells_make(porder, u->pstarts, bins + 1, point_cell, u, pnpr_view_cells_size(u->cells),
                              u->o.seed ^ 0x9E3779B97F4A7C15ull, u->pkey, &u->pqueue);
     if (st != PNPR_OK) return st;
     uint8_t *col = u->pcol = malloc(bins * n * PAINT_COL_BYTES); /* after the sort's scratch is gone */
@@ -329,10 +329,10 @@ static pnpr_status upload_cells(upload_ctx *u)
     u->qkey = malloc((n ? n : 1) * sizeof *u->qkey);
     if (!u->cells || !u->qkey) return PNPR_ERR_OUT_OF_MEMORY;
     pnpr_view_cells_build(u->cells, u->xyz, n, u->bmin, u->bmax);
-    if (!(u->table = calloc(4 * (size_t)u->cells->n[0] * u->cells->n[1] * u->cells->n[2], sizeof *u->table)))
+    if (!(u->table = calloc(4 * pnpr_view_cells_size(u->cells), sizeof *u->table)))
         return PNPR_ERR_OUT_OF_MEMORY;
     return pnpr_crq_cells_make(u->order, u->starts, u->ngroups + 1, point_cell, u,
-                               u->cells->n[0] * u->cells->n[1] * u->cells->n[2], u->o.seed, u->qkey, &u->queue);
+                               pnpr_view_cells_size(u->cells), u->o.seed, u->qkey, &u->queue);
 }
 
 /* The disk radii (and painterly's neighbour lists), the queue order, the greys of a colourless
@@ -508,7 +508,7 @@ static void upload_commit(pnpr_renderer *r, upload_ctx *u)
     free(r->cell_table);
     r->cell_table = u->table;
     u->table = NULL;
-    r->cells = u->cells->n[0] * u->cells->n[1] * u->cells->n[2];
+    r->cells = pnpr_view_cells_size(u->cells);
     pnpr_crq_cells_free(&r->queue);
     pnpr_crq_cells_free(&r->paint_queue);
     r->queue = u->queue;

@@ -520,8 +520,7 @@ static pnpr_status group_marks(vec_ctx *c, int g, int kind, pnpr_vertex *buf, ui
         for (size_t k = 0; k < m && st == PNPR_OK; k++) {
             uint32_t id = (uint32_t)(k0 + k);
             if (c->style_filter >= 0 && c->r->vstyle[first + k0 + k] != (uint8_t)c->style_filter) continue;
-            float grow;
-            c->fade = pnpr_renderer_queue_alpha(c->r, buf[k].pos, keys[k], 1.0f, &grow);
+            c->fade = pnpr_renderer_queue_alpha(c->r, buf[k].pos, keys[k]);
             if (c->fade < 0) continue;
             if (kind == 0) { /* sketchy */
                 int dir = g == GROUP_DIRECTIONAL;

@@ -103,9 +103,9 @@ uint16_t pnpr_crq_key(size_t rank, size_t count, double offset)
 }
 
 /* The queues' offsets: the golden-ratio sequence over the queues with points, group-major. */
-static void cells_offsets(pnpr_crq_cells *q)
+static void cells_offsets(pnpr_crq_cells *q, uint64_t seed)
 {
-    uint64_t state = q->seed ^ 0x8BB84B93962EACC9ull;
+    uint64_t state = seed ^ 0x8BB84B93962EACC9ull;
     double s = (double)(crq_next(&state) >> 11) * 0x1.0p-53, m = 0;
     for (size_t i = 0; i < q->groups * q->cells; i++) {
         if (!q->count[i]) continue;
@@ -155,7 +155,6 @@ pnpr_status pnpr_crq_cells_make(uint32_t *order, const size_t *group_start, size
         if (group_start[g + 1] - group_start[g] > most) most = group_start[g + 1] - group_start[g];
     r->groups = groups;
     r->cells = cells;
-    r->seed = seed;
     r->count = calloc(groups * cells, sizeof *r->count);
     r->cum = calloc(groups * (size_t)(PNPR_CRQ_KEYS + 1), sizeof *r->cum);
     r->offset = calloc(groups * cells, sizeof *r->offset);
@@ -167,7 +166,7 @@ pnpr_status pnpr_crq_cells_make(uint32_t *order, const size_t *group_start, size
             if (k >= cells) { st = PNPR_ERR_INVALID_ARGUMENT; break; }
             r->count[g * cells + k]++;
         }
-    if (st == PNPR_OK) cells_offsets(r);
+    if (st == PNPR_OK) cells_offsets(r, seed);
     for (size_t g = 0; st == PNPR_OK && g < groups; g++)
         cells_sort_group(r, order, group_start[g], group_start[g + 1], g, cell_of, user, seen, r_key, tmp);
     free(seen);

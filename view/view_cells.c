@@ -31,7 +31,6 @@ void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const
         const float *p = xyz + 3 * i;
         if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) continue;
         c->count[pnpr_view_cells_index(c, p)]++;
-        c->total++;
     }
 }
 
@@ -60,13 +59,13 @@ static int box_outside(const float m[16], const float lo[3], const float hi[3])
     return 0;
 }
 
-double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera *fc, float *r_w, size_t stride)
+void pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera *fc, float *r_w, size_t stride)
 {
     float m[16] = {0}; /* column-major, as the camera's */
     for (int col = 0; col < 4; col++)
         for (int row = 0; row < 4; row++)
             for (int k = 0; k < 4; k++) m[col * 4 + row] += fc->proj[k * 4 + row] * fc->view[col * 4 + k];
-    double zmin = fc->near_plane > 1e-30 ? fc->near_plane : 1e-30, sum = 0;
+    double zmin = fc->near_plane > 1e-30 ? fc->near_plane : 1e-30;
     for (uint32_t z = 0; z < c->n[2]; z++)
         for (uint32_t y = 0; y < c->n[1]; y++)
             for (uint32_t x = 0; x < c->n[0]; x++) {
@@ -85,9 +84,7 @@ double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera
                 }
                 double w = fc->ortho ? 1.0 : 1.0 / (fmax(depth, zmin) * fmax(depth, zmin));
                 r_w[k * stride] = out ? -(float)w : (float)w;
-                if (!out) sum += (double)c->count[k] * (float)w;
             }
-    return sum;
 }
 
 typedef struct cell_weight { float w; uint32_t count; } cell_weight;
@@ -99,7 +96,7 @@ static int cmp_weight_desc(const void *a, const void *b)
 
 double pnpr_view_cells_solve(const pnpr_view_cells *c, const float *w, size_t stride, double want)
 {
-    size_t cells = (size_t)c->n[0] * c->n[1] * c->n[2], m = 0;
+    size_t cells = pnpr_view_cells_size(c), m = 0;
     double all = 0, sum = 0;
     cell_weight *a = malloc((cells ? cells : 1) * sizeof *a);
     for (size_t k = 0; k < cells; k++) {

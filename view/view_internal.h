@@ -42,20 +42,21 @@ typedef struct pnpr_view_cells {
     float min[3], cell;   /* the grid's corner and a cell's side (offset coordinates) */
     float inv;            /* 1 / cell: a point's cell is floor((p - min) x inv), clamped to the grid */
     uint32_t n[3];        /* cells along each axis, 1..PNPR_VIEW_CELLS */
-    size_t total;         /* the points counted */
     uint32_t count[PNPR_VIEW_CELLS * PNPR_VIEW_CELLS * PNPR_VIEW_CELLS];
 } pnpr_view_cells;
 /* Counts the n finite points xyz into cells over [bmin, bmax] (points outside go to the edge
  * cells; non-finite ones are not counted). */
 void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const float bmin[3], const float bmax[3]);
+/* The cells of the grid: n[0] x n[1] x n[2]. */
+static inline size_t pnpr_view_cells_size(const pnpr_view_cells *c) { return (size_t)c->n[0] * c->n[1] * c->n[2]; }
 /* The cell of point p (offset coordinates): (z n[1] + y) n[0] + x, as the shaders find it. */
 uint32_t pnpr_view_cells_index(const pnpr_view_cells *c, const float p[3]);
 /* Each cell's weight in this view, r_w[k * stride] for cell k: 0 for a cell without points; else
  * the pixels a unit of surface covers there relative to unit distance: 1 / z^2 at the eye depth z
  * of the box's nearest corner (at least the near plane; orthographic: 1): a surface's screen
  * area per point goes as it; negated for a cell whose box lies wholly outside one plane of the
- * frustum (clip space). Returns the sum of count x weight over the cells in view. */
-double pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera *fc, float *r_w, size_t stride);
+ * frustum (clip space). */
+void pnpr_view_cells_weights(const pnpr_view_cells *c, const pnpr_frame_camera *fc, float *r_w, size_t stride);
 /* The lambda (>= 0) for which the cells of weight w[k * stride] > 0, each drawing min(1, lambda x w) of
  * its points, draw `want` points in all (cells that would draw more than theirs are full and
  * give the rest to the others): HUGE_VAL when they hold no more than that; 0 for want <= 0. So

@@ -44,7 +44,6 @@ void pnpr_crq_split(const size_t *group_size, size_t group_count, size_t total, 
 
 typedef struct pnpr_crq_cells {
     size_t groups, cells;
-    uint64_t seed;
     uint32_t *count; /* [g * cells + k]: the points of group g in cell k */
     uint32_t *cum;   /* [g * (PNPR_CRQ_KEYS + 1) + v]: the points of group g with a key below v */
     float *offset;   /* [g * cells + k]: the offset of queue (g, k) */
