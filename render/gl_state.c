@@ -173,7 +173,7 @@ void pnpr_queue_uniforms_find(GLuint prog, pnpr_queue_uniforms *u)
 static GLuint compile(GLenum type, const char *src, const char *name, pnpr_error *err)
 {
     /* the #version line, then the constants the C side defines (pnpr_shader_prelude), then the rest */
-    char prelude[2048];
+    char prelude[PNPR_SHADER_PRELUDE_MAX];
     pnpr_shader_prelude(prelude, sizeof prelude);
     const char *nl = strchr(src, '\n');
     const char *parts[3] = {src, prelude, nl ? nl + 1 : ""};

@@ -47,6 +47,7 @@ void pnpr_gl_state_neutral(void);
 /* The #defines every shader gets after its #version line: the constants both C and GLSL use
  * (PNPR_VSTYLE_HIDDEN, PNPR_BRUSH_VARIANTS, PNPR_HATCH_DIR, PNPR_HATCH_DIR2), written from the C
  * values, so no shader restates them (renderer.c). */
+#define PNPR_SHADER_PRELUDE_MAX 2048 /* the prelude's bytes at most (the compile's buffer) */
 void pnpr_shader_prelude(char *buf, size_t cap);
 
 /* The per-cell queues' uniforms of a program that calls the prelude's pnpr_queue (-1: not used). */

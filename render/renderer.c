@@ -224,7 +224,14 @@ static const char queue_glsl[] =
     "    grow = q.z;\n"
     "    if (!(u < end)) return -1.0;\n"
     "    return q.y > 0.0 ? clamp((end - u) / q.y, 0.0, 1.0) : 1.0;\n"
+    "}\n"
+    "float pnpr_queue_size(float size, float grow)\n" /* a disk grown, at most to a cell's side */
+    "{\n"
+    "    return max(size, min(size * grow, 1.0 / u_cell_inv));\n"
     "}\n";
+
+/* with room for the constants' lines before it */
+_Static_assert(sizeof queue_glsl + 256 <= PNPR_SHADER_PRELUDE_MAX, "the queue's GLSL fits the shader prelude");
 
 void pnpr_shader_prelude(char *buf, size_t cap)
 {
@@ -409,7 +416,7 @@ static size_t sent_below(const pnpr_renderer *r, float end)
  * reach into it (guard bands, tiles). The budget caps the vertices sent (the groups' prefixes up
  * to the largest end): over it, every end is cut to the largest that fits (one key level at
  * least), the far cells keeping their smaller shares. Each cell's disks grow by 1 / sqrt(share),
- * at most to the cell's size (one point for all). Fills the plan's counts (in view). */
+ * at most to the cell's side (pnpr_queue_size). Fills the plan's counts (in view). */
 static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr_frame_camera *fc, double want,
                        frame_plan *p)
 {
@@ -450,13 +457,16 @@ static void plan_cells(pnpr_renderer *r, const pnpr_draw_options *o, const pnpr_
     p->lod = p->n_draw > 0 ? (float)sqrt((double)in_view / (double)p->n_draw) : 1;
     p->end_max = 0;
     p->lod_max = 1;
+    /* a disk grows at most to a cell's side (pnpr_queue_size): the largest disk is the larger of
+     * the largest radius and the side */
+    double lod_cap = r->max_radius > 0 ? fmax(1.0, r->view_cells.cell / r->max_radius) : 1.0;
     for (size_t k = 0; k < cells; k++) {
         float e = t[4 * k];
-        double share = fmax((double)e / PNPR_CRQ_KEYS, 1.0 / fmax(1.0, (double)r->view_cells.count[k]));
+        double share = fmax((double)e / PNPR_CRQ_KEYS, 1.0 / PNPR_CRQ_KEYS);
         t[4 * k + 1] = pnpr_queue_fade_length(e, PNPR_CRQ_KEYS, o->queue_fade);
         t[4 * k + 2] = (float)sqrt(1.0 / share);
         if (e > p->end_max) p->end_max = e;
-        if (e > 0.5f && t[4 * k + 2] > p->lod_max) p->lod_max = t[4 * k + 2];
+        if (e > 0.5f && t[4 * k + 2] > p->lod_max) p->lod_max = (float)fmin(t[4 * k + 2], lod_cap);
     }
 }
 

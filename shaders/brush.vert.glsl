@@ -71,7 +71,7 @@ void main()
     vec3 tt = c * t + s * b, bb = -s * t + c * b;
     int corner = gl_VertexID & 3;
     vec2 q = vec2((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0);
-    float size = (a_brush.x > 0.0 ? a_brush.x : a_radius) * u_scale * grow;
+    float size = pnpr_queue_size(a_brush.x > 0.0 ? a_brush.x : a_radius, grow) * u_scale;
     float stretch = max(a_brush.y, 1.0);
     vec3 p = a_pos + size * (q.x * stretch * tt + q.y * bb);
     vec4 clip = u_proj * (u_view * vec4(p, 1.0));

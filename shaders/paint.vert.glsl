@@ -30,7 +30,7 @@ void main()
         return;
     }
     vec4 clip = u_proj * (u_view * vec4(a_pos, 1.0));
-    float r = a_radius * u_radius_scale * grow;
+    float r = pnpr_queue_size(a_radius, grow) * u_radius_scale;
     gl_PointSize = clamp(2.0 * r * u_pixels_per_unit / max(clip.w, 1e-6), 1.0, u_max_size);
     gl_Position = clip;
     uint h = uint(gl_VertexID) * 2654435761u;

@@ -44,7 +44,7 @@ void main()
         v_info = vec3(0.0);
         return;
     }
-    float r = a_radius * u_radius_scale * grow;
+    float r = pnpr_queue_size(a_radius, grow) * u_radius_scale;
     vec4 eye = u_view * vec4(a_pos, 1.0);
     vec4 clip = u_proj * eye;
     float size = 2.0 * r * u_pixels_per_unit / max(clip.w, 1e-6);

@@ -15,16 +15,44 @@ static uint32_t axis_index(float v, float min, float inv, uint32_t n)
     return c >= (float)n ? n - 1 : (uint32_t)c;
 }
 
+/* Cells of side e along an extent (1 at least; the grid's product bounds each axis). */
+static uint32_t axis_cells(float extent, float e)
+{
+    float k = ceilf(extent / e);
+    return k >= (float)PNPR_VIEW_CELLS_MAX ? PNPR_VIEW_CELLS_MAX : k >= 1 ? (uint32_t)k : 1;
+}
+
+static double grid_cells(const float bmin[3], const float bmax[3], float e)
+{
+    double n = 1;
+    for (int a = 0; a < 3; a++) n *= axis_cells(bmax[a] - bmin[a], e);
+    return n;
+}
+
+/* The smallest side (to float precision, by bisection) whose grid has at most
+ * PNPR_VIEW_CELLS_MAX cells; `longest` (the box's longest side, finite, > 0) / 31 always fits
+ * (32 cubes a side at most, with rounding). */
+static float grid_side(const float bmin[3], const float bmax[3], float longest)
+{
+    float lo = longest / (float)PNPR_VIEW_CELLS_MAX, hi = longest / 31.0f;
+    if (grid_cells(bmin, bmax, lo) <= PNPR_VIEW_CELLS_MAX) return lo; /* a line */
+    for (int it = 0; it < 64 && hi - lo > hi * 1e-6f; it++) {
+        float mid = 0.5f * (lo + hi);
+        if (grid_cells(bmin, bmax, mid) <= PNPR_VIEW_CELLS_MAX) hi = mid;
+        else lo = mid;
+    }
+    return hi;
+}
+
 void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const float bmin[3], const float bmax[3])
 {
     memset(c, 0, sizeof *c);
     float side = 0;
     for (int a = 0; a < 3; a++) side = fmaxf(side, bmax[a] - bmin[a]);
-    c->cell = side > 0 && isfinite(side) ? side / PNPR_VIEW_CELLS : 1;
+    c->cell = side > 0 && isfinite(side) ? grid_side(bmin, bmax, side) : 1;
     c->inv = 1.0f / c->cell;
     for (int a = 0; a < 3; a++) {
-        float k = ceilf((bmax[a] - bmin[a]) / c->cell);
-        c->n[a] = k >= PNPR_VIEW_CELLS ? PNPR_VIEW_CELLS : k >= 1 ? (uint32_t)k : 1;
+        c->n[a] = axis_cells(bmax[a] - bmin[a], c->cell);
         c->min[a] = bmin[a];
     }
     for (size_t i = 0; i < n; i++) {

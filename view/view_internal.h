@@ -34,15 +34,17 @@ pnpr_status pnpr_frame_camera_from_matrices(const pnpr_camera_matrices *m, const
 double pnpr_box_coverage(const pnpr_frame_camera *fc, const float bmin[3], const float bmax[3],
                          int width, int height);
 
-/* The points of a cloud counted on a grid of cells over its box (PNPR_VIEW_CELLS along the
- * longest side, cubes), so that a frame knows how many of them its view can show: the screen
- * density of the queue holds among the points in view (renderer.c, docs/rendering.md). */
-#define PNPR_VIEW_CELLS 32
+/* The points of a cloud counted on a grid of cells over its box (cubes, the smallest side for
+ * which the grid has at most PNPR_VIEW_CELLS_MAX cells: a long road gets cells of a few metres
+ * along its length and across, not 32 slices of its whole width), so that a frame knows how many
+ * of them its view can show and each cell's queue is drawn by its depth (renderer.c,
+ * docs/rendering.md). */
+#define PNPR_VIEW_CELLS_MAX 32768
 typedef struct pnpr_view_cells {
     float min[3], cell;   /* the grid's corner and a cell's side (offset coordinates) */
     float inv;            /* 1 / cell: a point's cell is floor((p - min) x inv), clamped to the grid */
-    uint32_t n[3];        /* cells along each axis, 1..PNPR_VIEW_CELLS */
-    uint32_t count[PNPR_VIEW_CELLS * PNPR_VIEW_CELLS * PNPR_VIEW_CELLS];
+    uint32_t n[3];        /* cells along each axis, their product at most PNPR_VIEW_CELLS_MAX */
+    uint32_t count[PNPR_VIEW_CELLS_MAX];
 } pnpr_view_cells;
 /* Counts the n finite points xyz into cells over [bmin, bmax] (points outside go to the edge
  * cells; non-finite ones are not counted). */

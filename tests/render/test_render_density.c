@@ -124,11 +124,13 @@ static void test_in_view(pnpr_renderer *r, uint8_t *px)
 /* Near and far keep their points per pixel (a known answer, read off the frame's table of the
  * per-cell queues): two 1 x 1 planes of 100 x 100 points seen from straight above (fov 60), the
  * near one at height 2, the far one at 0 and 1.5 further in x. The grid of cells (crq.h,
- * view/view_cells.c): 32 cells along the box's 2.5, 0.078125 each; the near plane's cells reach up
- * to 2.03125, the far one's to 0.078125, so from an eye at height 4 their nearest corners lie
- * 1.96875 and 3.921875 deep, and each cell draws min(1, c / depth^2) of its points:
- *   - 5 000 points wanted: every near cell draws (3.921875 / 1.96875)^2 = 3.968 times the share
- *     of every far cell, and 5 000 in all: 0.3994 and 0.1006;
+ * view/view_cells.c): the smallest cubes with at most 32 768 of them over the box's 2.5 x 1 x 2
+ * are 2.5 / 46 = 0.0543 a side (46 x 19 x 37 = 32 338 cells; 47 a side would need 33 041); the
+ * near plane's cells (the top layer) reach up to 37 x 0.0543 = 2.0109, the far one's to 0.0543,
+ * so from an eye at height 4 their nearest corners lie 1.9891 and 3.9457 deep, and each cell
+ * draws min(1, c / depth^2) of its points:
+ *   - 5 000 points wanted: every near cell draws (3.9457 / 1.9891)^2 = 3.935 times the share
+ *     of every far cell, and 5 000 in all: 0.3987 and 0.1013;
  *   - 15 000 wanted: the near cells are full (share 1) and the far ones draw the rest, 0.5;
  *   - and a budget of 6 000 (it caps the vertices sent): every cell 0.3.
  * One share for every cell (the queue before) would give 0.25 and 0.75 everywhere. */
@@ -150,22 +152,24 @@ static void test_depth(pnpr_renderer *r, uint8_t *px)
     pnpr_camera cam = {{1001.25, 2000.5, 4}, {1001.25, 2000.5, 0}, {0, 1, 0}, 60, 0, 0};
     pnpr_render_stats st;
     draw(r, &cam, PNPR_STYLE_POINTS, 1.0f, px, &st);
-    const double ratio = (3.921875 / 1.96875) * (3.921875 / 1.96875);
+    const pnpr_view_cells *vc = &r->view_cells;
+    CHECK_MSG(vc->n[0] == 46 && vc->n[1] == 19 && vc->n[2] == 37 && fabs(vc->cell - 2.5 / 46) < 1e-6,
+              "grid %u x %u x %u of side %.9g", vc->n[0], vc->n[1], vc->n[2], (double)vc->cell);
+    const double near_depth = 4.0 - 37.0 * vc->cell, far_depth = 4.0 - vc->cell; /* the side to float precision */
+    const double ratio = (far_depth / near_depth) * (far_depth / near_depth);
     const double wants[2] = {5000, 15000};
     for (int t = 0; t < 2; t++) {
         float d = (float)(wants[t] / st.coverage_px);
         draw(r, &cam, PNPR_STYLE_POINTS, d, px, &st);
         double want = ceil((double)d * st.coverage_px);
         double near_want = t == 0 ? want * ratio / (PLANE * (ratio + 1)) : 1, far_want = t == 0 ? near_want / ratio : (want - PLANE) / PLANE;
-        /* every cell with points: its share (end / keys), by plane (layer 25 near, 0 far) */
-        const pnpr_view_cells *vc = &r->view_cells;
+        /* every cell with points: its share (end / keys), by plane (layer 36 near, 0 far) */
         double lo[2] = {2, 2}, hi[2] = {-1, -1};
         size_t counted[2] = {0, 0};
-        CHECK(vc->n[0] == 32 && vc->n[1] == 13 && vc->n[2] == 26);
         for (size_t k = 0; k < r->cells; k++) {
             if (!vc->count[k]) continue;
-            int layer = (int)(k / ((size_t)vc->n[0] * vc->n[1])), near = layer == 25;
-            CHECK(layer == 25 || layer == 0);
+            int layer = (int)(k / ((size_t)vc->n[0] * vc->n[1])), near = layer == 36;
+            CHECK(layer == 36 || layer == 0);
             double share = r->cell_table[4 * k] / PNPR_CRQ_KEYS;
             lo[near] = fmin(lo[near], share);
             hi[near] = fmax(hi[near], share);
