@@ -174,6 +174,21 @@ if built_with_render "$bin"; then
     if (d > 0 && r2 <= d * d * t2) n++ } END { print n }' "$dir/ascii.ply")
   check '[ -n "$kept" ] && [ "$kept" -ge $((want - 2)) ] && [ "$kept" -le $((want + 2)) ] && [ "$want" -lt 14000 ]' \
     "the sample by the view keeps the $want points in view (got '$kept')"
+  # by a path's frames: two frames (1 s at 1 frame/s), the cameras of the two keys, keep the points
+  # in either cone
+  printf 'time 0\neye 6 5 6\ntarget 6 5 0\nup 0 1 0\ntime 1\neye 2 2 6\ntarget 2 2 0\n' > "$dir/two.campath"
+  pointnpr animate "$dir/mem.ply" -o "$dir/frames/" --camera-path "$dir/two.campath" --fps 1 --size 160x120 \
+    --sample 0.9 2> "$dir/path.log"
+  kept=$(sed -n "s/.*sample by the frames' views .* of \([0-9]*\) of 14400 points.*/\1/p" "$dir/path.log")
+  want=$(awk 'BEGIN { ty = sin(3.14159265358979 / 8) / cos(3.14159265358979 / 8); tx = ty * 160 / 120
+    t2 = 1.15 * 1.15 * (tx * tx + ty * ty) } NR > 7 { d = 6 - $3; ra = ($1 - 6) ^ 2 + ($2 - 5) ^ 2
+    rb = ($1 - 2) ^ 2 + ($2 - 2) ^ 2; if (d > 0 && (ra <= d * d * t2 || rb <= d * d * t2)) n++ } END { print n }' "$dir/ascii.ply")
+  check '[ -n "$kept" ] && [ "$kept" -ge $((want - 2)) ] && [ "$kept" -le $((want + 2)) ] && [ "$want" -lt 14000 ] &&
+         [ -s "$dir/frames/frame-00001.png" ]' "the sample by a path's two frames keeps the $want points in their views (got '$kept')"
+  pointnpr render "$dir/mem.ply" -o "$dir/at1.png" --size 160x120 --sample 0.9 --camera-path "$dir/two.campath" \
+    --camera-at 0 2> "$dir/at.log"
+  check 'grep -q "sample by the view .* of $(sed -n "s/.*sample by the view .* of \([0-9]*\) of 14400.*/\1/p" "$dir/view.log") of 14400" "$dir/at.log"' \
+    "render --camera-path --camera-at 0 samples by that frame's view as --eye/--target do"
   pointnpr render "$dir/ascii.ply" -o "$dir/bad.png" --size 160x120 --sample 0.25 2> "$dir/err.log"
   check '[ $? -eq 1 ] && grep -q "binary" "$dir/err.log"' "--sample of an ascii PLY is refused"
 fi

@@ -46,33 +46,33 @@ static void test_view_sample(void)
     }
     pnpr_view_sample_add(&v, nan);
     pnpr_view_sample_add(&v, inf);
-    CHECK_MSG(v.visible == 2000, "%llu points in view", (unsigned long long)v.visible);
+    CHECK_MSG(v.least.visible == 2000, "%llu points in view", (unsigned long long)v.least.visible);
     CHECK(pnpr_view_sample_depth(&v, near) == 10 && pnpr_view_sample_depth(&v, behind) == 0 &&
           pnpr_view_sample_depth(&v, beside) == 0 && pnpr_view_sample_depth(&v, nan) == 0);
     CHECK(pnpr_view_sample_depth(&v, edge_in) == 10 && pnpr_view_sample_depth(&v, edge_out) == 0);
-    pnpr_view_sample_solve(&v, 1100);
+    pnpr_view_sample_solve(&v, 1100, 0);
     double s_near = pnpr_view_sample_share(&v, near), s_far = pnpr_view_sample_share(&v, far);
     CHECK_MSG(s_near == 1 && fabs(s_far - 0.1) < 1e-9 && fabs(v.c - 1000) < 1e-6, "shares %g %g, c %g", s_near, s_far, v.c);
     CHECK(pnpr_view_sample_share(&v, behind) == 0 && pnpr_view_sample_share(&v, beside) == 0);
     /* asking for more than is in view: every point in view, whole */
-    pnpr_view_sample_solve(&v, 2000);
+    pnpr_view_sample_solve(&v, 2000, 0);
     CHECK(pnpr_view_sample_share(&v, far) == 1 && pnpr_view_sample_share(&v, behind) == 0);
     /* a far-only scene: asking a tenth gives every point a tenth */
     CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 90, 100, 100), PNPR_OK);
     for (int i = 0; i < 1000; i++) pnpr_view_sample_add(&v, far);
-    pnpr_view_sample_solve(&v, 100);
+    pnpr_view_sample_solve(&v, 100, 0);
     CHECK(fabs(pnpr_view_sample_share(&v, far) - 0.1) < 1e-9);
     /* nothing asked (0, negative, NaN): nothing kept */
-    pnpr_view_sample_solve(&v, 0);
+    pnpr_view_sample_solve(&v, 0, 0);
     CHECK(pnpr_view_sample_share(&v, far) == 0);
-    pnpr_view_sample_solve(&v, NAN);
+    pnpr_view_sample_solve(&v, NAN, 0);
     CHECK(pnpr_view_sample_share(&v, far) == 0);
     /* depths far from 1: 1000 points at 1e70 and at 1e-70, a tenth asked of each scene */
     const double deep[3] = {1e70, 0, 0}, shallow[3] = {1e-70, 0, 0};
     for (int s = 0; s < 2; s++) {
         CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 90, 100, 100), PNPR_OK);
         for (int i = 0; i < 1000; i++) pnpr_view_sample_add(&v, s ? shallow : deep);
-        pnpr_view_sample_solve(&v, 100);
+        pnpr_view_sample_solve(&v, 100, 0);
         double share = pnpr_view_sample_share(&v, s ? shallow : deep);
         CHECK_MSG(fabs(share - 0.1) < 1e-6, "depth %g: share %g", s ? 1e-70 : 1e70, share);
     }
@@ -83,6 +83,59 @@ static void test_view_sample(void)
     CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 45, 0, 100), PNPR_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(pnpr_view_sample_init(&v, nan, target, 45, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(pnpr_view_sample_init(NULL, eye, target, 45, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
+    /* one view's frame cap: 1100 wanted but each frame draws 50 (10.1 c = 50) */
+    CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 90, 100, 100), PNPR_OK);
+    for (int i = 0; i < 1000; i++) {
+        pnpr_view_sample_add(&v, near);
+        pnpr_view_sample_add(&v, far);
+    }
+    pnpr_view_sample_solve(&v, 1100, 50);
+    CHECK_MSG(fabs(v.c - 50 / 10.1) < 1e-6, "c %g", v.c);
+    pnpr_view_sample_solve(&v, 1100, 1e6); /* the frame sees fewer than it draws: no cap */
+    CHECK_MSG(fabs(v.c - 1000) < 1e-6, "c %g", v.c);
+}
+
+/* A camera path's sample, known answers: view A at the origin looking down +x sees `near` at depth
+ * 10 and `far` at 100, view B at x = 110 looking back sees them at 100 and 10, and `past` (x =
+ * 120, behind B) only A sees, at 120. The least depths: 10, 10, 120. 1100 wanted of 2000 + 100:
+ * 2000 c / 10^2 + 100 c / 120^2 = 1100, c = 54.98 (shares 0.5498 near and far). Each frame to
+ * draw 50 of its own: A's 1000 c / 100 + 1000 c / 10^4 + 100 c / 120^2 = 50 (c = 4.9472), B's
+ * 10.1 c = 50 (4.9505): the cap is the larger, B's. Without the views' own histograms, no cap. */
+static void test_path_sample(void)
+{
+    static pnpr_view_sample v;
+    static pnpr_view_depths each[PNPR_VIEW_SAMPLE_VIEWS];
+    const double a[3] = {0, 0, 0}, a_to[3] = {1, 0, 0}, b[3] = {110, 0, 0}, b_to[3] = {0, 0, 0};
+    const double near[3] = {10, 0.5, 0}, far[3] = {100, -3, 2}, past[3] = {120, 1, 0}, side[3] = {55, 500, 0};
+    for (int pass = 0; pass < 2; pass++) {
+        CHECK_STATUS(pnpr_view_sample_init(&v, a, a_to, 90, 100, 100), PNPR_OK);
+        CHECK_STATUS(pnpr_view_sample_add_view(&v, b, b_to, 90, 100, 100), PNPR_OK);
+        memset(each, 0, sizeof each);
+        v.each = pass ? each : NULL;
+        for (int i = 0; i < 1000; i++) {
+            pnpr_view_sample_add(&v, near);
+            pnpr_view_sample_add(&v, far);
+            if (i < 100) pnpr_view_sample_add(&v, past);
+            pnpr_view_sample_add(&v, side); /* neither sees it */
+        }
+        CHECK(pnpr_view_sample_depth(&v, near) == 10 && pnpr_view_sample_depth(&v, far) == 10 &&
+              pnpr_view_sample_depth(&v, past) == 120 && pnpr_view_sample_depth(&v, side) == 0);
+        CHECK_MSG(v.least.visible == 2100, "%llu in view", (unsigned long long)v.least.visible);
+        const double c = 1100 / (2000 / 100.0 + 100 / 14400.0);
+        pnpr_view_sample_solve(&v, 1100, 0);
+        CHECK_MSG(fabs(v.c - c) < 1e-6, "c %g, want %g", v.c, c);
+        CHECK(fabs(pnpr_view_sample_share(&v, far) - c / 100) < 1e-9 && pnpr_view_sample_share(&v, side) == 0);
+        pnpr_view_sample_solve(&v, 1100, 50);
+        const double cap = pass ? 50 / 10.1 : c;
+        CHECK_MSG(fabs(v.c - cap) < 1e-6, "pass %d: c %g, want %g", pass, v.c, cap);
+        if (pass) CHECK(each[0].visible == 2100 && each[1].visible == 2000 && each[2].visible == 0);
+    }
+    /* at most PNPR_VIEW_SAMPLE_VIEWS views */
+    CHECK_STATUS(pnpr_view_sample_init(&v, a, a_to, 90, 100, 100), PNPR_OK);
+    for (int k = 1; k < PNPR_VIEW_SAMPLE_VIEWS; k++) CHECK_STATUS(pnpr_view_sample_add_view(&v, b, b_to, 90, 100, 100), PNPR_OK);
+    CHECK_STATUS(pnpr_view_sample_add_view(&v, b, b_to, 90, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK(v.views == PNPR_VIEW_SAMPLE_VIEWS);
+    CHECK_STATUS(pnpr_view_sample_add_view(NULL, b, b_to, 90, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
 }
 
 /* Per-cell queues: two groups over 1203 cells (one of 5000 points, one of 200, 1200 of one point,
@@ -261,5 +314,6 @@ int main(void)
 
     free(a); free(b); free(c); free(group);
     test_view_sample();
+    test_path_sample();
     return pnpr_test_finish("test_crq");
 }

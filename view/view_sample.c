@@ -1,80 +1,140 @@
-/* A sample of a cloud for one view (include/pointnpr/crq.h, docs/tiles.md "Drawing a cloud larger
- * than memory"): the cone test, the depth histogram and the solve for c. */
+/* A sample of a cloud for a view or a camera path's frames (include/pointnpr/crq.h, docs/tiles.md
+ * "Drawing a cloud larger than memory"): the cone tests, the depth histograms and the solve for c. */
 #include <pointnpr/crq.h>
 
 #include <math.h>
 #include <string.h>
 
-pnpr_status pnpr_view_sample_init(pnpr_view_sample *v, const double eye[3], const double target[3], double fov_deg,
-                                  int width, int height)
+/* One view into slot v->views. */
+static pnpr_status set_view(pnpr_view_sample *v, const double eye[3], const double target[3], double fov_deg,
+                            int width, int height)
 {
-    if (!v || !eye || !target) return PNPR_ERR_INVALID_ARGUMENT;
-    memset(v, 0, sizeof *v);
+    if (!v || !eye || !target || v->views < 0 || v->views >= PNPR_VIEW_SAMPLE_VIEWS) return PNPR_ERR_INVALID_ARGUMENT;
     double f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
     double len = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
     if (!(len > 0) || !isfinite(len) || !isfinite(eye[0] + eye[1] + eye[2]) || !(fov_deg > 0 && fov_deg < 180) ||
         width <= 0 || height <= 0)
         return PNPR_ERR_INVALID_ARGUMENT;
-    for (int k = 0; k < 3; k++) {
-        v->eye[k] = eye[k];
-        v->forward[k] = f[k] / len;
-    }
     double ty = tan(0.5 * fov_deg * 3.14159265358979323846 / 180.0), tx = ty * width / height;
-    v->tan_cone = PNPR_VIEW_SAMPLE_MARGIN * sqrt(tx * tx + ty * ty);
-    return isfinite(v->tan_cone) ? PNPR_OK : PNPR_ERR_INVALID_ARGUMENT;
+    double tan_cone = PNPR_VIEW_SAMPLE_MARGIN * sqrt(tx * tx + ty * ty);
+    if (!isfinite(tan_cone)) return PNPR_ERR_INVALID_ARGUMENT;
+    int k = v->views++;
+    for (int i = 0; i < 3; i++) {
+        v->eye[k][i] = eye[i];
+        v->forward[k][i] = f[i] / len;
+    }
+    v->tan_cone[k] = tan_cone;
+    return PNPR_OK;
+}
+
+pnpr_status pnpr_view_sample_init(pnpr_view_sample *v, const double eye[3], const double target[3], double fov_deg,
+                                  int width, int height)
+{
+    if (!v) return PNPR_ERR_INVALID_ARGUMENT;
+    memset(v, 0, sizeof *v);
+    return set_view(v, eye, target, fov_deg, width, height);
+}
+
+pnpr_status pnpr_view_sample_add_view(pnpr_view_sample *v, const double eye[3], const double target[3],
+                                      double fov_deg, int width, int height)
+{
+    return set_view(v, eye, target, fov_deg, width, height);
+}
+
+/* The eye depth of p in view k when that view sees it, else 0. */
+static double view_depth(const pnpr_view_sample *v, int k, const double p[3])
+{
+    const double *e = v->eye[k], *f = v->forward[k];
+    double d[3] = {p[0] - e[0], p[1] - e[1], p[2] - e[2]};
+    double z = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+    if (!(z > 0) || !isfinite(z)) return 0;
+    double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - z * z;
+    return r2 <= z * z * v->tan_cone[k] * v->tan_cone[k] ? z : 0;
 }
 
 double pnpr_view_sample_depth(const pnpr_view_sample *v, const double p[3])
 {
-    double d[3] = {p[0] - v->eye[0], p[1] - v->eye[1], p[2] - v->eye[2]};
-    double z = d[0] * v->forward[0] + d[1] * v->forward[1] + d[2] * v->forward[2];
-    if (!(z > 0) || !isfinite(z)) return 0;
-    double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - z * z;
-    return r2 <= z * z * v->tan_cone * v->tan_cone ? z : 0;
+    double least = 0;
+    for (int k = 0; k < v->views; k++) {
+        double z = view_depth(v, k, p);
+        if (z > 0 && (least == 0 || z < least)) least = z;
+    }
+    return least;
 }
 
+/* 16 bins an octave from 2^-64: the exponent and the mantissa's first 4 bits, the top 16 bits of
+ * the double after its sign (no log2: a path adds every point to each of its views' histograms).
+ * z is positive and finite. */
 static int depth_bin(double z)
 {
-    double b = floor((log2(z) + 64.0) * 16.0);
+    uint64_t bits;
+    memcpy(&bits, &z, sizeof bits);
+    long b = (long)(bits >> 48) - (1023L - 64L) * 16L;
     return b < 0 ? 0 : b >= PNPR_VIEW_SAMPLE_BINS ? PNPR_VIEW_SAMPLE_BINS - 1 : (int)b;
+}
+
+static void depths_add(pnpr_view_depths *h, double z)
+{
+    int b = depth_bin(z);
+    if (!h->visible || z < h->z_min) h->z_min = z;
+    if (!h->visible || z > h->z_max) h->z_max = z;
+    h->count[b]++;
+    h->inv_z2[b] += 1.0 / (z * z);
+    h->visible++;
 }
 
 void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3])
 {
-    double z = pnpr_view_sample_depth(v, p);
-    if (z == 0) return;
-    int b = depth_bin(z);
-    if (!v->visible || z < v->z_min) v->z_min = z;
-    if (!v->visible || z > v->z_max) v->z_max = z;
-    v->count[b]++;
-    v->inv_z2[b] += 1.0 / (z * z);
-    v->visible++;
+    double least = 0;
+    for (int k = 0; k < v->views; k++) {
+        double z = view_depth(v, k, p);
+        if (!(z > 0)) continue;
+        if (v->each && v->views > 1) depths_add(&v->each[k], z);
+        if (least == 0 || z < least) least = z;
+    }
+    if (least > 0) depths_add(&v->least, least);
 }
 
 /* The expected count for c: a bin gives c x its sum of 1/z^2, at most its count (exact unless the
  * share reaches 1 inside the bin). */
-static double expected(const pnpr_view_sample *v, double c)
+static double expected(const pnpr_view_depths *h, double c)
 {
     double n = 0;
     for (int b = 0; b < PNPR_VIEW_SAMPLE_BINS; b++) {
-        double s = c * v->inv_z2[b];
-        n += s < (double)v->count[b] ? s : (double)v->count[b];
+        double s = c * h->inv_z2[b];
+        n += s < (double)h->count[b] ? s : (double)h->count[b];
     }
     return n;
 }
 
-void pnpr_view_sample_solve(pnpr_view_sample *v, double want)
+/* c for an expected count of `want` of the depths of h; HUGE_VAL when all fit, 0 for none. */
+static double depths_solve(const pnpr_view_depths *h, double want)
 {
-    if (!(want > 0)) { v->c = 0; return; } /* nothing (NaN too) */
-    if (!((double)v->visible > want)) { v->c = HUGE_VAL; return; }
+    if (!(want > 0)) return 0; /* nothing (NaN too) */
+    if (!((double)h->visible > want)) return HUGE_VAL;
     /* log2 c between the depths squared: shares from 2^-80 at the nearest to 1 at the farthest */
-    double lo = 2.0 * log2(v->z_min) - 80.0, hi = 2.0 * log2(v->z_max) + 1.0;
+    double lo = 2.0 * log2(h->z_min) - 80.0, hi = 2.0 * log2(h->z_max) + 1.0;
     for (int it = 0; it < 200; it++) {
         double mid = 0.5 * (lo + hi);
-        if (expected(v, exp2(mid)) > want) hi = mid;
+        if (expected(h, exp2(mid)) > want) hi = mid;
         else lo = mid;
     }
-    v->c = exp2(lo);
+    return exp2(lo);
+}
+
+void pnpr_view_sample_solve(pnpr_view_sample *v, double want, double frame_want)
+{
+    double c = depths_solve(&v->least, want);
+    if (frame_want > 0 && (v->views == 1 || v->each)) {
+        double cap = 0;
+        for (int k = 0; k < v->views; k++) { /* a view that sees no more than it draws: all whole */
+            const pnpr_view_depths *h = v->views == 1 ? &v->least : &v->each[k];
+            double ck = (double)h->visible > frame_want ? depths_solve(h, frame_want) : h->z_max * h->z_max;
+            if (h->visible && ck > cap) cap = ck;
+        }
+        if (cap < c) c = cap;
+    }
+    v->c = c;
 }
 
 double pnpr_view_sample_share(const pnpr_view_sample *v, const double p[3])

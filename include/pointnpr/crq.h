@@ -68,40 +68,59 @@ size_t pnpr_crq_cells_prefix(const pnpr_crq_cells *q, size_t g, float end);
  * end[k * stride] (exactly as the shaders test it). */
 size_t pnpr_crq_cells_drawn(const pnpr_crq_cells *q, const float *end, size_t stride);
 
-/* ---- a sample for one view (view/view_sample.c) --------------------------------------------
- * A cloud larger than memory drawn from one camera: read a sample that the view needs instead of
- * a uniform one. Points outside the view's cone (the half-angle of its diagonal, widened by
- * PNPR_VIEW_SAMPLE_MARGIN: disks reach in from outside) or behind the eye get the share 0; the
- * others min(1, c / z^2) at eye depth z, so that surfaces near and far keep about as many points
- * per pixel (the queue above thins all depths alike). c comes from a histogram of the depths
- * (PNPR_VIEW_SAMPLE_BINS bins of 1/16 octave from 2^-64, each with its count and its sum of 1/z^2,
- * exact but in the one or two bins where the share reaches 1) so that the expected count is
- * `want`.
- * Use: init, add every point (a pass over the coordinates), solve, then keep each point with its
- * share (e.g. by a hash of its index). World coordinates throughout. */
+/* ---- a sample for a view or a camera path (view/view_sample.c) -----------------------------
+ * A cloud larger than memory drawn from known cameras: read the sample that their frames need
+ * instead of a uniform one. A point that no view sees (outside every view's cone: the half-angle
+ * of its diagonal, widened by PNPR_VIEW_SAMPLE_MARGIN, since disks reach in from outside; or
+ * behind the eye) gets the share 0; the others min(1, c / z^2), z the least eye depth among the
+ * views that see it, so that surfaces near and far keep about as many points per pixel in the
+ * frame that sees them nearest (the renderer's per-cell queues then thin each frame by depth in
+ * the same way). c comes from a histogram of those depths (PNPR_VIEW_SAMPLE_BINS bins, 16 an
+ * octave from 2^-64, each with its count and its sum of 1/z^2, exact but in the one or two bins
+ * where the share reaches 1) so that the expected count is `want`.
+ * Use: init with the first view, add the others (a camera path's frames: up to
+ * PNPR_VIEW_SAMPLE_VIEWS of them), add every point (a pass over the coordinates), solve, then keep
+ * each point with its share (e.g. by a hash of its index). World coordinates throughout. */
 #define PNPR_VIEW_SAMPLE_BINS 2048
 #define PNPR_VIEW_SAMPLE_MARGIN 1.15
+#define PNPR_VIEW_SAMPLE_VIEWS 64
+
+/* A histogram of eye depths (in view only). */
+typedef struct pnpr_view_depths {
+    uint64_t visible;          /* depths added */
+    double z_min, z_max;       /* their range (the solve's bounds) */
+    uint64_t count[PNPR_VIEW_SAMPLE_BINS];
+    double inv_z2[PNPR_VIEW_SAMPLE_BINS]; /* sum of 1/z^2 over the bin's depths */
+} pnpr_view_depths;
 
 typedef struct pnpr_view_sample {
-    double eye[3], forward[3]; /* forward: unit */
-    double tan_cone;           /* tangent of the kept cone's half-angle */
+    int views;
+    double eye[PNPR_VIEW_SAMPLE_VIEWS][3], forward[PNPR_VIEW_SAMPLE_VIEWS][3]; /* forward: unit */
+    double tan_cone[PNPR_VIEW_SAMPLE_VIEWS]; /* tangent of each view's cone's half-angle */
     double c;                  /* share = min(1, c / z^2); 0 until solved, HUGE_VAL: every point seen */
-    uint64_t visible;          /* points added that are in view */
-    double z_min, z_max;       /* their depths' range (the solve's bounds) */
-    uint64_t count[PNPR_VIEW_SAMPLE_BINS];
-    double inv_z2[PNPR_VIEW_SAMPLE_BINS]; /* sum of 1/z^2 over the bin's points */
+    pnpr_view_depths least;    /* each point's least depth among the views that see it */
+    pnpr_view_depths *each;    /* NULL, or one histogram per view (caller-owned, PNPR_VIEW_SAMPLE_VIEWS
+                                * of them, zeroed): each view's own depths, for the frame's cap
+                                * of pnpr_view_sample_solve with more than one view */
 } pnpr_view_sample;
 
-/* A look-at view: eye and target apart and finite, fov_deg in (0, 180), width and height > 0;
- * PNPR_ERR_INVALID_ARGUMENT otherwise. */
+/* A look-at view: eye and target apart and finite, fov_deg (vertical) in (0, 180), width and
+ * height > 0; PNPR_ERR_INVALID_ARGUMENT otherwise. init empties v (each: NULL) and makes this
+ * its only view; add_view adds one (PNPR_ERR_INVALID_ARGUMENT when v holds
+ * PNPR_VIEW_SAMPLE_VIEWS already). Views are added before points. */
 PNPR_NODISCARD pnpr_status pnpr_view_sample_init(pnpr_view_sample *v, const double eye[3], const double target[3],
                                                  double fov_deg, int width, int height);
-/* The eye depth of p when it is in view, else 0 (also for NaN and Inf). */
+PNPR_NODISCARD pnpr_status pnpr_view_sample_add_view(pnpr_view_sample *v, const double eye[3],
+                                                     const double target[3], double fov_deg, int width, int height);
+/* The least eye depth of p among the views that see it, else 0 (also for NaN and Inf). */
 double pnpr_view_sample_depth(const pnpr_view_sample *v, const double p[3]);
 void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3]);
 /* c for an expected count of `want` points (every point in view when fewer were added; none
- * when want is not positive). Depths beyond 1e150 are out of view (their squares overflow). */
-void pnpr_view_sample_solve(pnpr_view_sample *v, double want);
+ * when want is not positive), and when frame_want > 0 at most the c with which the frame that
+ * needs the most draws frame_want points of its own: the largest of each view's own c (with one
+ * view: its depths are `least`; with more: from `each`, no cap without it). Depths beyond 1e150
+ * are out of view (their squares overflow). */
+void pnpr_view_sample_solve(pnpr_view_sample *v, double want, double frame_want);
 /* The share of p once solved: 0 out of view, else min(1, c / z^2). */
 double pnpr_view_sample_share(const pnpr_view_sample *v, const double p[3]);
 

@@ -107,17 +107,19 @@ int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const p
 /* Reads IN for render and animate: a uniform sample of `share` of its points when 0 < share < 1
  * (binary PLY); else whole when it fits (cli_memory_check_file), else, for a PLY, a uniform sample
  * that fits `limit` (0: what is available) by the memory model of `mp` (its points are the
- * file's), saying so unless quiet (cli_sample.c). `view` (NULL: none) with its eye and target
- * given: the sample follows that view instead (near points kept, far ones thinned, unseen ones
- * left out), of at most frame_points (the frame's budget; 0: none) unless `share` is asked.
+ * file's), saying so unless quiet (cli_sample.c). `cams` (cam_count of them, at most
+ * PNPR_VIEW_SAMPLE_VIEWS; NULL: none), the cameras of the frames to draw at mp's image size: the
+ * sample follows their views instead (points near a camera kept, far ones thinned, unseen ones
+ * left out), each frame's share of it at most frame_points (the frame's budget; 0: none) unless
+ * `share` is asked.
  * *r_tone_radius: for a sample, the whole cloud's mean spacing as it estimates it (0: none; the
  * renderer's tone_radius). `plan` (may be NULL) fills the stages of mp that a sample will run
  * from the file's properties (a cloud read without points), with `plan_user`. Returns 0 after
  * printing why. */
 typedef void (*cli_plan_fn)(const pnpr_cloud *header, void *user, pnpr_memory_plan *mp);
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
-                     cli_plan_fn plan, void *plan_user, size_t limit, double share, const cli_view *view,
-                     double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius);
+                     cli_plan_fn plan, void *plan_user, size_t limit, double share, const pnpr_camera *cams,
+                     size_t cam_count, double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius);
 
 /* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
  * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */

@@ -6,9 +6,10 @@
  * a binary PLY is read through the reader's point filter keeping each point with the probability
  * that fits, decided by a hash of its index (the same points at every run and every size), and
  * the stored point spacing (the disk radii) grows by 1/sqrt of that share, as the spacing of a
- * uniformly thinned surface does. --sample asks for a share itself (a quick preview). With a
- * camera given (render --eye/--target or --camera), the share follows the view instead: near
- * points kept, far ones thinned, unseen ones left out (below). */
+ * uniformly thinned surface does. --sample asks for a share itself (a quick preview). With
+ * cameras given (render --eye/--target, --camera or --camera-path; animate --camera-path: up to 64
+ * of its frames), the share follows their views instead: points near a camera kept, far ones
+ * thinned, unseen ones left out (below). */
 #include "cli.h"
 
 #include <pointnpr/crq.h>
@@ -17,6 +18,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -91,7 +93,7 @@ static double fitting_share(const char *in, const pnpr_memory_plan *mp, cli_plan
     return fit >= (double)*seen ? 1 : fit > 0 ? SAMPLE_MARGIN * fit / (double)*seen : 0;
 }
 
-/* ---- the view's sample: a camera given (render --eye/--target, --camera; crq.h) ------------- */
+/* ---- the views' sample: cameras given (crq.h) ---------------------------------------------- */
 
 typedef struct view_keep {
     uint64_t seen;
@@ -136,9 +138,24 @@ static float grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double u
     return weight > 0 ? (float)(sum / weight) : 0;
 }
 
+/* The views of the cameras into k (each view's own histogram when there are several: the frame's
+ * cap); 0 when there are none or one is not a look-at view the sample can follow. */
+static int init_views(view_keep *k, const pnpr_camera *cams, size_t count, int width, int height)
+{
+    if (!cams || count == 0 || count > PNPR_VIEW_SAMPLE_VIEWS) return 0;
+    for (size_t i = 0; i < count; i++) {
+        double fov = cams[i].fov_y_deg > 0 ? cams[i].fov_y_deg : 45;
+        pnpr_status st = i ? pnpr_view_sample_add_view(&k->v, cams[i].eye, cams[i].target, fov, width, height)
+                           : pnpr_view_sample_init(&k->v, cams[i].eye, cams[i].target, fov, width, height);
+        if (st != PNPR_OK) return 0;
+    }
+    if (count > 1 && !(k->v.each = calloc(PNPR_VIEW_SAMPLE_VIEWS, sizeof *k->v.each))) return 0;
+    return 1;
+}
+
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
-                     cli_plan_fn plan, void *plan_user, size_t limit, double share, const cli_view *view,
-                     double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius)
+                     cli_plan_fn plan, void *plan_user, size_t limit, double share, const pnpr_camera *cams,
+                     size_t cam_count, double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius)
 {
     *r_tone_radius = 0;
     pnpr_read_options ro = *opts;
@@ -146,8 +163,7 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     uint64_t points = 0;
     const int asked = share > 0 && share < 1;
     view_keep vk = {0};
-    int by_view = view && pnpr_format_from_path(in) == PNPR_FORMAT_PLY &&
-                  pnpr_view_sample_init(&vk.v, view->eye, view->target, view->fov, view->width, view->height) == PNPR_OK;
+    int by_view = pnpr_format_from_path(in) == PNPR_FORMAT_PLY && init_views(&vk, cams, cam_count, mp->width, mp->height);
     double fit = 0;
     if (by_view) {
         fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, &vk, &vk.seen, asked, &points);
@@ -155,19 +171,20 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     }
     if (by_view) {
         if (!asked) share = fit;
-        /* not more than a frame draws: the screen-space budget thins uniformly (the paper's random
-         * prefix), which would thin the near surfaces as much as the far ones */
-        double want = share * (double)points;
-        if (!asked && frame_points > 0 && frame_points < want) want = frame_points;
-        pnpr_view_sample_solve(&vk.v, want);
+        /* each frame's share at most what it draws (the screen-space budget thins by depth too, but
+         * a larger sample costs reading and upload) */
+        pnpr_view_sample_solve(&vk.v, share * (double)points, asked ? 0 : frame_points);
         vk.solved = 1;
-        if (points && !vk.v.visible)
-            fprintf(stderr, "%s: warning: none of its %llu points is in the view of --eye/--target (they lie behind "
-                            "the eye or outside the field of view)\n", in, (unsigned long long)points);
+        if (points && !vk.v.least.visible)
+            fprintf(stderr, "%s: warning: none of its %llu points is in view of the camera%s (they lie behind "
+                            "the eye or outside the field of view)\n", in, (unsigned long long)points,
+                    cam_count > 1 ? "s of the frames" : "");
     } else if (!asked) {
         sample_keep count = {0, 0};
         share = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, 0, &points);
     }
+    free(vk.v.each); /* read by the solve only */
+    vk.v.each = NULL;
     sample_keep keep = {0, UINT64_MAX};
     if (share > 0 && share < 1) {
         keep.below = (uint64_t)(share * 18446744073709551616.0);
@@ -183,8 +200,9 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     double kept = points ? (double)cloud->count / (double)points : 1;
     *r_tone_radius = grow_spacing(cloud, by_view ? &vk.v : NULL, kept);
     char a[32];
-    const char *what = by_view ? "a sample by the view (points near the camera kept, far and unseen ones thinned)"
-                               : "a uniform sample";
+    const char *what = !by_view        ? "a uniform sample"
+                       : cam_count > 1 ? "a sample by the frames' views (points near a camera kept, far and unseen ones thinned)"
+                                       : "a sample by the view (points near the camera kept, far and unseen ones thinned)";
     if (!quiet && asked)
         fprintf(stderr, "%s: drawing %s of %zu of %llu points (%.1f%%, --sample)\n", in, what, cloud->count,
                 (unsigned long long)points, 100.0 * kept);

@@ -165,14 +165,24 @@ int cli_render(int argc, char **argv)
     if (rc >= 0) { pnpr_camera_path_free(&r.path); cli_render_opts_free(&o); return rc; }
     rc = 1;
     cli_render_session s;
+    memset(&s, 0, sizeof s);
     pnpr_camera cam;
     const pnpr_camera *camp = NULL;
     double tone_up[3] = {0, 0, 0};
-    if (!cli_render_load(&s, &o, "render", r.in, 1)) goto done;
+    /* the camera a sample of a cloud larger than memory follows: the path's, or --eye/--target's
+     * (its up does not matter to the sample) */
+    pnpr_camera given = {{0}, {0}, {0}, (float)o.view.fov, 0, 0};
+    memcpy(given.eye, o.view.eye, sizeof given.eye);
+    memcpy(given.target, o.view.target, sizeof given.target);
+    if (r.camera_path &&
+        pnpr_camera_path_eval(&r.path, r.have_camera_at ? r.camera_at : r.path.keys[0].time, &given) != PNPR_OK)
+        goto done;
+    int have_given = r.camera_path || (o.view.have_eye && o.view.have_target);
+    if (!cli_render_load(&s, &o, "render", r.in, have_given ? &given : NULL, have_given)) goto done;
     /* the camera first: its up vector is the tone's "above" (the key light comes from there) */
     if (r.camera_path) { /* the path's first up is the key light's above, as in `animate` */
         memcpy(tone_up, r.path.keys[0].up, sizeof tone_up);
-        if (pnpr_camera_path_eval(&r.path, r.have_camera_at ? r.camera_at : r.path.keys[0].time, &cam) != PNPR_OK) goto done;
+        cam = given;
         camp = &cam;
     } else if ((camp = cli_view_camera(&o.view, &s.cloud, &cam)) != NULL)
         memcpy(tone_up, camp->up, sizeof tone_up);
