@@ -76,6 +76,9 @@ cat "$out/features.md"
 echo "== profile lines: scaling 10k..1M directional points" >&2
 "$build/bench/bench_lines" 1000000 | tee "$out/lines.md"
 
+echo "== the sample by a camera path's views: cost a point (docs/tiles.md)" >&2
+"$build/bench/bench_view_sample" 4000000 | tee "$out/view_sample.md"
+
 echo "== normals at growing coordinate offsets: Open3D (ours: tests/test_stability)" >&2
 /usr/bin/python3 bench/open3d_offset.py 20000 | tee "$out/open3d_offset.md"
 

@@ -20,10 +20,10 @@ static pnpr_status set_view(pnpr_view_sample *v, const double eye[3], const doub
     if (!isfinite(tan_cone)) return PNPR_ERR_INVALID_ARGUMENT;
     int k = v->views++;
     for (int i = 0; i < 3; i++) {
-        v->eye[k][i] = eye[i];
-        v->forward[k][i] = f[i] / len;
+        v->eye[i][k] = eye[i];
+        v->forward[i][k] = f[i] / len;
     }
-    v->tan_cone[k] = tan_cone;
+    v->tan2[k] = tan_cone * tan_cone;
     return PNPR_OK;
 }
 
@@ -41,25 +41,40 @@ pnpr_status pnpr_view_sample_add_view(pnpr_view_sample *v, const double eye[3], 
     return set_view(v, eye, target, fov_deg, width, height);
 }
 
-/* The eye depth of p in view k when that view sees it, else 0. */
-static double view_depth(const pnpr_view_sample *v, int k, const double p[3])
+/* The views' slots in whole groups of 4 (PNPR_VIEW_SAMPLE_VIEWS is a multiple of 4). */
+static int views_rounded(const pnpr_view_sample *v)
 {
-    const double *e = v->eye[k], *f = v->forward[k];
-    double d[3] = {p[0] - e[0], p[1] - e[1], p[2] - e[2]};
-    double z = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
-    if (!(z > 0) || !isfinite(z)) return 0;
-    double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - z * z;
-    return r2 <= z * z * v->tan_cone[k] * v->tan_cone[k] ? z : 0;
+    return v->views <= 0 ? 0 : v->views >= PNPR_VIEW_SAMPLE_VIEWS ? PNPR_VIEW_SAMPLE_VIEWS : (v->views + 3) & ~3;
+}
+
+/* The eye depth of p in each view that sees it, else 0 (NaN and Inf too: the comparisons fail), in
+ * the slots up to `views` rounded up to 4 (the slots after `views` see nothing): one loop without
+ * branches (the compiler's vectors). */
+static void view_depths(const pnpr_view_sample *restrict v, const double *restrict p, double *restrict r_z)
+{
+    const int slots = views_rounded(v);
+    for (int k = 0; k < slots; k++) {
+        double dx = p[0] - v->eye[0][k], dy = p[1] - v->eye[1][k], dz = p[2] - v->eye[2][k];
+        double z = dx * v->forward[0][k] + dy * v->forward[1][k] + dz * v->forward[2][k];
+        double r2 = dx * dx + dy * dy + dz * dz - z * z;
+        int seen = (z > 0) & (r2 <= z * z * v->tan2[k]); /* no branch: the loop vectorises */
+        r_z[k] = seen ? z : 0;
+    }
+}
+
+/* The least positive of the depths of `slots` views, 0 when none is. */
+static double least_depth(const double *z, int slots)
+{
+    double least = HUGE_VAL;
+    for (int k = 0; k < slots; k++) least = z[k] > 0 && z[k] < least ? z[k] : least;
+    return least < HUGE_VAL ? least : 0;
 }
 
 double pnpr_view_sample_depth(const pnpr_view_sample *v, const double p[3])
 {
-    double least = 0;
-    for (int k = 0; k < v->views; k++) {
-        double z = view_depth(v, k, p);
-        if (z > 0 && (least == 0 || z < least)) least = z;
-    }
-    return least;
+    double z[PNPR_VIEW_SAMPLE_VIEWS];
+    view_depths(v, p, z);
+    return least_depth(z, views_rounded(v));
 }
 
 /* 16 bins an octave from 2^-64: the exponent and the mantissa's first 4 bits, the top 16 bits of
@@ -85,14 +100,14 @@ static void depths_add(pnpr_view_depths *h, double z)
 
 void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3])
 {
-    double least = 0;
-    for (int k = 0; k < v->views; k++) {
-        double z = view_depth(v, k, p);
-        if (!(z > 0)) continue;
-        if (v->each && v->views > 1) depths_add(&v->each[k], z);
-        if (least == 0 || z < least) least = z;
-    }
-    if (least > 0) depths_add(&v->least, least);
+    double z[PNPR_VIEW_SAMPLE_VIEWS];
+    view_depths(v, p, z);
+    double least = least_depth(z, views_rounded(v));
+    if (!(least > 0)) return;
+    depths_add(&v->least, least);
+    if (v->each && v->views > 1)
+        for (int k = 0; k < v->views; k++)
+            if (z[k] > 0) depths_add(&v->each[k], z[k]);
 }
 
 /* The expected count for c: a bin gives c x its sum of 1/z^2, at most its count (exact unless the

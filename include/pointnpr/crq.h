@@ -95,8 +95,10 @@ typedef struct pnpr_view_depths {
 
 typedef struct pnpr_view_sample {
     int views;
-    double eye[PNPR_VIEW_SAMPLE_VIEWS][3], forward[PNPR_VIEW_SAMPLE_VIEWS][3]; /* forward: unit */
-    double tan_cone[PNPR_VIEW_SAMPLE_VIEWS]; /* tangent of each view's cone's half-angle */
+    /* by axis, then view (the cone tests of all views in one loop); forward: unit, 0 in the
+     * slots after `views` (their depth is never positive) */
+    double eye[3][PNPR_VIEW_SAMPLE_VIEWS], forward[3][PNPR_VIEW_SAMPLE_VIEWS];
+    double tan2[PNPR_VIEW_SAMPLE_VIEWS]; /* the squared tangent of each view's cone's half-angle */
     double c;                  /* share = min(1, c / z^2); 0 until solved, HUGE_VAL: every point seen */
     pnpr_view_depths least;    /* each point's least depth among the views that see it */
     pnpr_view_depths *each;    /* NULL, or one histogram per view (caller-owned, PNPR_VIEW_SAMPLE_VIEWS

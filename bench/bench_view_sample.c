@@ -1,0 +1,62 @@
+/* The cost a point of the sample by the views of a camera path (docs/tiles.md, "A sample by a
+ * path's frames"): N points on a road 2 km x 40 m, the views of 1, 8 and 64 frames of a camera
+ * flown 600 m along it at 2 m, looking ahead. Prints a markdown table: nanoseconds a point to add
+ * it to the histograms (the first pass over a file) and to find its share (the second), and the
+ * views that see a point on average.
+ *   bench_view_sample [N]   (default 4000000) */
+#include <pointnpr/crq.h>
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int main(int argc, char **argv)
+{
+    size_t n = argc > 1 ? (size_t)atol(argv[1]) : 4000000;
+    double *p = malloc(3 * n * sizeof *p);
+    static pnpr_view_sample v;
+    static pnpr_view_depths each[PNPR_VIEW_SAMPLE_VIEWS];
+    if (!p || n == 0) return 1;
+    uint64_t s = 1;
+    for (size_t i = 0; i < 3 * n; i += 3) { /* a 64-bit LCG (Knuth's MMIX constants) */
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        p[i] = (double)(s >> 11) / 9007199254740992.0 * 2000.0;
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        p[i + 1] = (double)(s >> 11) / 9007199254740992.0 * 40.0 - 20.0;
+        p[i + 2] = 0;
+    }
+    printf("| views | add ns/point | share ns/point | views seeing a point |\n|---:|---:|---:|---:|\n");
+    const int counts[3] = {1, 8, PNPR_VIEW_SAMPLE_VIEWS};
+    for (int c = 0; c < 3; c++) {
+        int m = counts[c];
+        for (int k = 0; k < m; k++) {
+            double t = m > 1 ? 600.0 * k / (m - 1) : 0, eye[3] = {2 + t, 0, 2}, target[3] = {60 + t, 0, 1};
+            pnpr_status st = k ? pnpr_view_sample_add_view(&v, eye, target, 45, 400, 225)
+                               : pnpr_view_sample_init(&v, eye, target, 45, 400, 225);
+            if (st != PNPR_OK) return 1;
+        }
+        for (int k = 0; k < PNPR_VIEW_SAMPLE_VIEWS; k++) each[k] = (pnpr_view_depths){0};
+        v.each = m > 1 ? each : NULL;
+        double t0 = now();
+        for (size_t i = 0; i < n; i++) pnpr_view_sample_add(&v, p + 3 * i);
+        double t1 = now();
+        pnpr_view_sample_solve(&v, 0.25 * (double)n, 180000);
+        double kept = 0, t2 = now();
+        for (size_t i = 0; i < n; i++) kept += pnpr_view_sample_share(&v, p + 3 * i);
+        double t3 = now(), seen = 0;
+        for (int k = 0; k < m && m > 1; k++) seen += (double)each[k].visible;
+        printf("| %d | %.0f | %.0f | %.1f |\n", m, 1e9 * (t1 - t0) / (double)n, 1e9 * (t3 - t2) / (double)n,
+               m > 1 ? seen / (double)n : (double)v.least.visible / (double)n);
+        if (!(kept >= 0)) return 1;
+    }
+    free(p);
+    return 0;
+}
