@@ -95,21 +95,111 @@ static void test_view_sample(void)
     CHECK_MSG(fabs(v.c - 1000) < 1e-6, "c %g", v.c);
 }
 
+/* A path's frames, more than views (pnpr_view_sample_init_frames): 127 frames, every second one a
+ * view (frame f = 126 j / 63 = 2 j), each view standing for its neighbours.
+ *   - Turning: eyes at the origin, frame f looking 2.5 f degrees about z, fov 2 (the cone's
+ *     half-angle atan(1.15 sqrt 2 tan 1 deg) = 1.63 deg). A point at 2.5 degrees, 10 away, lies in
+ *     frame 1's cone only; the views of frames 0 and 2 stand for it (half-angles 1.63 + 2.5) and
+ *     see it at its depth 10 cos 2.5 deg. The views without widening would not see it.
+ *   - Moving: frame f's eye at x = f / 2, all looking down +x, fov 90. A point at x = 70 lies 7
+ *     ahead of the last eye; the last view stands for frame 125, 0.5 behind: its depth 7 - 0.5.
+ *     A point 0.2 ahead of frame 1's eye (x = 0.7) gets at most 0.2, the nearest a frame sees it. */
+static void test_frames(void)
+{
+    enum { F = 127 };
+    static pnpr_view_sample v;
+    static double eyes[3 * F], targets[3 * F], fovs[F];
+    for (int f = 0; f < F; f++) {
+        double a = 2.5 * f * 3.14159265358979323846 / 180.0;
+        eyes[3 * f] = eyes[3 * f + 1] = eyes[3 * f + 2] = 0;
+        targets[3 * f] = cos(a);
+        targets[3 * f + 1] = sin(a);
+        targets[3 * f + 2] = 0;
+        fovs[f] = 2;
+    }
+    CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, F, 100, 100), PNPR_OK);
+    CHECK(v.views == PNPR_VIEW_SAMPLE_VIEWS);
+    const double half = 2.5 * 3.14159265358979323846 / 180.0, p[3] = {10 * cos(half), 10 * sin(half), 0};
+    double z = pnpr_view_sample_depth(&v, p);
+    CHECK_MSG(fabs(z - 10 * cos(half)) < 1e-9, "turning: depth %.12g, expected %.12g", z, 10 * cos(half));
+    static pnpr_view_sample bare; /* the same views without widening */
+    CHECK_STATUS(pnpr_view_sample_init(&bare, eyes, targets, 2, 100, 100), PNPR_OK);
+    CHECK_STATUS(pnpr_view_sample_add_view(&bare, eyes + 6, targets + 6, 2, 100, 100), PNPR_OK);
+    CHECK(pnpr_view_sample_depth(&bare, p) == 0);
+    for (int f = 0; f < F; f++) {
+        eyes[3 * f] = 0.5 * f;
+        targets[3 * f] = 0.5 * f + 1;
+        targets[3 * f + 1] = 0;
+        fovs[f] = 90;
+    }
+    CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, F, 100, 100), PNPR_OK);
+    const double ahead[3] = {70, 0, 0}, close[3] = {0.7, 0, 0};
+    z = pnpr_view_sample_depth(&v, ahead);
+    CHECK_MSG(fabs(z - 6.5) < 1e-9, "moving: depth %.12g, expected 6.5", z);
+    z = pnpr_view_sample_depth(&v, close);
+    CHECK_MSG(z > 0 && z <= 0.2 + 1e-12, "moving: depth %g near frame 1's eye", z);
+    /* as many frames as views: no widening, the plain views' depths */
+    CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, 3, 100, 100), PNPR_OK);
+    CHECK(v.views == 3 && pnpr_view_sample_depth(&v, ahead) == 69);
+    /* a frame that is not a view */
+    targets[3 * 5] = eyes[3 * 5];
+    CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, F, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, 0, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
+}
+
+/* The grid over degenerate boxes: never more than PNPR_VIEW_CELLS_MAX cells, every finite point
+ * counted once. A box of subnormal size and one whose extent overflows a float get one cell (they
+ * had made 32768^3 and 32768^2 cells, written past the counts); a single point one; an ordinary
+ * flat box the smallest cubes. */
+static void test_grid_degenerate(void)
+{
+    static pnpr_view_cells vc;
+    const float boxes[][6] = {
+        {0, 0, 0, 1e-44f, 1e-44f, 1e-44f},  {-3e38f, -3e38f, 0, 3e38f, 3e38f, 0}, {5, 5, 5, 5, 5, 5},
+        {0, 0, 0, 2000, 40, 0},            {0, 0, 0, 1e-38f, 2e-38f, 0},        {NAN, 0, 0, 1, 1, 1},
+    };
+    const uint32_t cells[] = {1, 1, 1, 0, 0, 0}; /* 0: not a known count, at most the limit */
+    for (size_t b = 0; b < sizeof boxes / sizeof *boxes; b++) {
+        const float *lo = boxes[b], *hi = boxes[b] + 3;
+        float pts[5 * 3] = {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], 0.5f * (lo[0] + hi[0]), lo[1], hi[2],
+                            NAN, 0, 0, INFINITY, 1, 1};
+        pnpr_view_cells_build(&vc, pts, 5, lo, hi);
+        size_t size = pnpr_view_cells_size(&vc), total = 0;
+        for (size_t k = 0; k < size && size <= PNPR_VIEW_CELLS_MAX; k++) total += vc.count[k];
+        size_t finite = 0;
+        for (int i = 0; i < 5; i++) finite += isfinite(pts[3 * i]) && isfinite(pts[3 * i + 1]) && isfinite(pts[3 * i + 2]);
+        CHECK_MSG(size >= 1 && size <= PNPR_VIEW_CELLS_MAX && (!cells[b] || size == cells[b]) && total == finite &&
+                      vc.cell > 0 && isfinite(vc.inv),
+                  "box %zu: %u x %u x %u cells of side %g, %zu of %zu points counted", b, vc.n[0], vc.n[1], vc.n[2],
+                  (double)vc.cell, total, finite);
+    }
+    /* the flat road: cubes of 2000 / 1000 x 40 / 20 -> the smallest side with at most 32768 */
+    pnpr_view_cells_build(&vc, NULL, 0, boxes[3], boxes[3] + 3);
+    CHECK_MSG(vc.n[2] == 1 && (double)vc.n[0] * vc.n[1] <= PNPR_VIEW_CELLS_MAX &&
+                  (double)ceil(2000 / (vc.cell * 0.999)) * ceil(40 / (vc.cell * 0.999)) > PNPR_VIEW_CELLS_MAX,
+              "road: %u x %u of side %g", vc.n[0], vc.n[1], (double)vc.cell);
+}
+
 /* A camera path's sample, known answers: view A at the origin looking down +x sees `near` at depth
  * 10 and `far` at 100, view B at x = 110 looking back sees them at 100 and 10, and `past` (x =
  * 120, behind B) only A sees, at 120. The least depths: 10, 10, 120. 1100 wanted of 2000 + 100:
  * 2000 c / 10^2 + 100 c / 120^2 = 1100, c = 54.98 (shares 0.5498 near and far). Each frame to
  * draw 50 of its own: A's 1000 c / 100 + 1000 c / 10^4 + 100 c / 120^2 = 50 (c = 4.9472), B's
- * 10.1 c = 50 (4.9505): the cap is the larger, B's. Without the views' own histograms, no cap. */
+ * 10.1 c = 50 (4.9505): the cap is the larger, B's, the first view (view C, looking away, sees
+ * nothing and counts for nothing). Without the views' own histograms, no cap. Every point wanted
+ * and each frame drawing more than it sees: the cap is the square of the farthest depth a frame
+ * sees (A's 120), every point whole. */
 static void test_path_sample(void)
 {
     static pnpr_view_sample v;
     static pnpr_view_depths each[PNPR_VIEW_SAMPLE_VIEWS];
     const double a[3] = {0, 0, 0}, a_to[3] = {1, 0, 0}, b[3] = {110, 0, 0}, b_to[3] = {0, 0, 0};
     const double near[3] = {10, 0.5, 0}, far[3] = {100, -3, 2}, past[3] = {120, 1, 0}, side[3] = {55, 500, 0};
-    for (int pass = 0; pass < 2; pass++) {
-        CHECK_STATUS(pnpr_view_sample_init(&v, a, a_to, 90, 100, 100), PNPR_OK);
-        CHECK_STATUS(pnpr_view_sample_add_view(&v, b, b_to, 90, 100, 100), PNPR_OK);
+    const double c_to[3] = {0, 0, 1}; /* view C looks up, away from every point */
+    for (int pass = 0; pass < 2; pass++) { /* B (the neediest) first, C last */
+        CHECK_STATUS(pnpr_view_sample_init(&v, b, b_to, 90, 100, 100), PNPR_OK);
+        CHECK_STATUS(pnpr_view_sample_add_view(&v, a, a_to, 90, 100, 100), PNPR_OK);
+        CHECK_STATUS(pnpr_view_sample_add_view(&v, a, c_to, 10, 100, 100), PNPR_OK);
         memset(each, 0, sizeof each);
         v.each = pass ? each : NULL;
         for (int i = 0; i < 1000; i++) {
@@ -128,7 +218,12 @@ static void test_path_sample(void)
         pnpr_view_sample_solve(&v, 1100, 50);
         const double cap = pass ? 50 / 10.1 : c;
         CHECK_MSG(fabs(v.c - cap) < 1e-6, "pass %d: c %g, want %g", pass, v.c, cap);
-        if (pass) CHECK(each[0].visible == 2100 && each[1].visible == 2000 && each[2].visible == 0);
+        if (pass) CHECK(each[0].visible == 2000 && each[1].visible == 2100 && each[2].visible == 0);
+        /* every point wanted, each frame drawing more than it sees: all whole, c the square of the
+         * farthest depth a frame sees (A's 120) */
+        pnpr_view_sample_solve(&v, 1e6, 1e6);
+        CHECK_MSG(pass ? v.c == 120.0 * 120.0 : v.c == HUGE_VAL, "pass %d: c %g", pass, v.c);
+        CHECK(pnpr_view_sample_share(&v, past) == 1 && pnpr_view_sample_share(&v, near) == 1);
     }
     /* at most PNPR_VIEW_SAMPLE_VIEWS views */
     CHECK_STATUS(pnpr_view_sample_init(&v, a, a_to, 90, 100, 100), PNPR_OK);
@@ -315,5 +410,7 @@ int main(void)
     free(a); free(b); free(c); free(group);
     test_view_sample();
     test_path_sample();
+    test_grid_degenerate();
+    test_frames();
     return pnpr_test_finish("test_crq");
 }

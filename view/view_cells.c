@@ -4,6 +4,7 @@
  * cells stand in for its objects in the count of what is in view. */
 #include "view_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,8 +31,8 @@ static double grid_cells(const float bmin[3], const float bmax[3], float e)
 }
 
 /* The smallest side (to float precision, by bisection) whose grid has at most
- * PNPR_VIEW_CELLS_MAX cells; `longest` (the box's longest side, finite, > 0) / 31 always fits
- * (32 cubes a side at most, with rounding). */
+ * PNPR_VIEW_CELLS_MAX cells; `longest` (the box's longest side, finite, > 0) / 31 fits (32 cubes a
+ * side at most, with rounding) unless it is subnormal: the caller checks. */
 static float grid_side(const float bmin[3], const float bmax[3], float longest)
 {
     float lo = longest / (float)PNPR_VIEW_CELLS_MAX, hi = longest / 31.0f;
@@ -49,10 +50,14 @@ void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const
     memset(c, 0, sizeof *c);
     float side = 0;
     for (int a = 0; a < 3; a++) side = fmaxf(side, bmax[a] - bmin[a]);
-    c->cell = side > 0 && isfinite(side) ? grid_side(bmin, bmax, side) : 1;
+    c->cell = side > 0 && isfinite(side) ? grid_side(bmin, bmax, side) : 0;
+    /* a box too small or too large for float cubes (a side below the normal floats, an extent
+     * that overflows), or empty: one cell, every point clamped into it */
+    const int one = !(c->cell >= FLT_MIN) || !isfinite(1.0f / c->cell) || grid_cells(bmin, bmax, c->cell) > PNPR_VIEW_CELLS_MAX;
+    if (one) c->cell = 1;
     c->inv = 1.0f / c->cell;
     for (int a = 0; a < 3; a++) {
-        c->n[a] = axis_cells(bmax[a] - bmin[a], c->cell);
+        c->n[a] = one ? 1 : axis_cells(bmax[a] - bmin[a], c->cell);
         c->min[a] = bmin[a];
     }
     for (size_t i = 0; i < n; i++) {

@@ -5,6 +5,15 @@
 #include <math.h>
 #include <string.h>
 
+#define PI 3.14159265358979323846
+
+/* The tangent of a view's cone's half-angle: its diagonal's, widened by PNPR_VIEW_SAMPLE_MARGIN. */
+static double cone_tan(double fov_deg, int width, int height)
+{
+    double ty = tan(0.5 * fov_deg * PI / 180.0), tx = ty * width / height;
+    return PNPR_VIEW_SAMPLE_MARGIN * sqrt(tx * tx + ty * ty);
+}
+
 /* One view into slot v->views. */
 static pnpr_status set_view(pnpr_view_sample *v, const double eye[3], const double target[3], double fov_deg,
                             int width, int height)
@@ -15,8 +24,7 @@ static pnpr_status set_view(pnpr_view_sample *v, const double eye[3], const doub
     if (!(len > 0) || !isfinite(len) || !isfinite(eye[0] + eye[1] + eye[2]) || !(fov_deg > 0 && fov_deg < 180) ||
         width <= 0 || height <= 0)
         return PNPR_ERR_INVALID_ARGUMENT;
-    double ty = tan(0.5 * fov_deg * 3.14159265358979323846 / 180.0), tx = ty * width / height;
-    double tan_cone = PNPR_VIEW_SAMPLE_MARGIN * sqrt(tx * tx + ty * ty);
+    double tan_cone = cone_tan(fov_deg, width, height);
     if (!isfinite(tan_cone)) return PNPR_ERR_INVALID_ARGUMENT;
     int k = v->views++;
     for (int i = 0; i < 3; i++) {
@@ -41,14 +49,79 @@ pnpr_status pnpr_view_sample_add_view(pnpr_view_sample *v, const double eye[3], 
     return set_view(v, eye, target, fov_deg, width, height);
 }
 
+/* View k also stands for cameras whose eyes lie within `reach` of its eye and whose cones reach
+ * `half_angle` (radians) about its axis: its half-angle becomes at least that (at most 89.9
+ * degrees), its apex moves back along its axis by reach / sin(half-angle), so that its cone holds
+ * theirs, and a point's depth in it is its depth from the eye less `reach` (view_depths): the
+ * nearest those cameras may see it. */
+static void widen(pnpr_view_sample *v, int k, double half_angle, double reach)
+{
+    const double most = 89.9 * PI / 180.0;
+    double now = atan(sqrt(v->tan2[k])), a = half_angle < now ? now : half_angle < most ? half_angle : most;
+    double t = tan(a), back = reach / sin(a);
+    for (int i = 0; i < 3; i++) v->eye[i][k] -= back * v->forward[i][k];
+    v->tan2[k] = t * t;
+    v->shift[k] = back + reach;
+}
+
+/* Frame f's unit direction into r_f; 0 when its eye and target are not apart and finite. */
+static int frame_dir(const double *eyes, const double *targets, size_t f, double r_f[3])
+{
+    double d[3] = {targets[3 * f] - eyes[3 * f], targets[3 * f + 1] - eyes[3 * f + 1], targets[3 * f + 2] - eyes[3 * f + 2]};
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(len > 0) || !isfinite(len)) return 0;
+    for (int i = 0; i < 3; i++) r_f[i] = d[i] / len;
+    return 1;
+}
+
+/* The frame of view j of m over n frames: spread evenly, the first and the last among them. */
+static size_t kept_frame(size_t j, size_t m, size_t n)
+{
+    return m > 1 ? (size_t)floor((double)j * (double)(n - 1) / (double)(m - 1) + 0.5) : 0;
+}
+
+pnpr_status pnpr_view_sample_init_frames(pnpr_view_sample *v, const double *eyes, const double *targets,
+                                         const double *fovs, size_t n, int width, int height)
+{
+    if (!v || !eyes || !targets || !fovs || n == 0) return PNPR_ERR_INVALID_ARGUMENT;
+    memset(v, 0, sizeof *v);
+    size_t m = n < PNPR_VIEW_SAMPLE_VIEWS ? n : PNPR_VIEW_SAMPLE_VIEWS;
+    for (size_t j = 0; j < m; j++) {
+        size_t f = kept_frame(j, m, n);
+        pnpr_status st = set_view(v, eyes + 3 * f, targets + 3 * f, fovs[f], width, height);
+        if (st != PNPR_OK) return st;
+    }
+    for (size_t j = 0; j < m && m < n; j++) { /* the frames between a view's neighbours */
+        size_t f = kept_frame(j, m, n), lo = j ? kept_frame(j - 1, m, n) + 1 : 0;
+        size_t hi = j + 1 < m ? kept_frame(j + 1, m, n) : n;
+        double fj[3], half = 0, reach = 0;
+        for (int i = 0; i < 3; i++) fj[i] = v->forward[i][j];
+        for (size_t g = lo; g < hi; g++) {
+            double fg[3], e2 = 0;
+            double t = cone_tan(fovs[g], width, height);
+            if (!frame_dir(eyes, targets, g, fg) || !(fovs[g] > 0 && fovs[g] < 180) || !isfinite(t))
+                return PNPR_ERR_INVALID_ARGUMENT;
+            double c = fj[0] * fg[0] + fj[1] * fg[1] + fj[2] * fg[2];
+            double a = atan(t) + acos(c < -1 ? -1 : c > 1 ? 1 : c);
+            for (int i = 0; i < 3; i++) e2 += (eyes[3 * g + i] - eyes[3 * f + i]) * (eyes[3 * g + i] - eyes[3 * f + i]);
+            if (!isfinite(e2)) return PNPR_ERR_INVALID_ARGUMENT;
+            if (a > half) half = a;
+            if (sqrt(e2) > reach) reach = sqrt(e2);
+        }
+        widen(v, (int)j, half, reach);
+    }
+    return PNPR_OK;
+}
+
 /* The views' slots in whole groups of 4 (PNPR_VIEW_SAMPLE_VIEWS is a multiple of 4). */
 static int views_rounded(const pnpr_view_sample *v)
 {
     return v->views <= 0 ? 0 : v->views >= PNPR_VIEW_SAMPLE_VIEWS ? PNPR_VIEW_SAMPLE_VIEWS : (v->views + 3) & ~3;
 }
 
-/* The eye depth of p in each view that sees it, else 0 (NaN and Inf too: the comparisons fail), in
- * the slots up to `views` rounded up to 4 (the slots after `views` see nothing): one loop without
+/* The eye depth of p in each view that sees it, else 0 (NaN and Inf too: the comparisons fail); a
+ * widened view's depth from its cone's apex less its shift, at least 1e-6 of it; in the slots up
+ * to `views` rounded up to 4 (the slots after `views` see nothing): one loop without
  * branches (the compiler's vectors). */
 static void view_depths(const pnpr_view_sample *restrict v, const double *restrict p, double *restrict r_z)
 {
@@ -58,7 +131,8 @@ static void view_depths(const pnpr_view_sample *restrict v, const double *restri
         double z = dx * v->forward[0][k] + dy * v->forward[1][k] + dz * v->forward[2][k];
         double r2 = dx * dx + dy * dy + dz * dz - z * z;
         int seen = (z > 0) & (r2 <= z * z * v->tan2[k]); /* no branch: the loop vectorises */
-        r_z[k] = seen ? z : 0;
+        double near = z - v->shift[k], least = 1e-6 * z; /* a widened view's depth (below) */
+        r_z[k] = seen ? (near > least ? near : least) : 0;
     }
 }
 

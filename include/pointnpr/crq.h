@@ -79,7 +79,7 @@ size_t pnpr_crq_cells_drawn(const pnpr_crq_cells *q, const float *end, size_t st
  * octave from 2^-64, each with its count and its sum of 1/z^2, exact but in the one or two bins
  * where the share reaches 1) so that the expected count is `want`.
  * Use: init with the first view, add the others (a camera path's frames: up to
- * PNPR_VIEW_SAMPLE_VIEWS of them), add every point (a pass over the coordinates), solve, then keep
+ * PNPR_VIEW_SAMPLE_VIEWS of them, widened to stand for the frames between), add every point (a pass over the coordinates), solve, then keep
  * each point with its share (e.g. by a hash of its index). World coordinates throughout. */
 #define PNPR_VIEW_SAMPLE_BINS 2048
 #define PNPR_VIEW_SAMPLE_MARGIN 1.15
@@ -95,15 +95,18 @@ typedef struct pnpr_view_depths {
 
 typedef struct pnpr_view_sample {
     int views;
-    /* by axis, then view (the cone tests of all views in one loop); forward: unit, 0 in the
-     * slots after `views` (their depth is never positive) */
+    /* by axis, then view (the cone tests of all views in one loop): the cone's apex (the eye, or
+     * behind it for a widened view) and its axis, unit, 0 in the slots after `views` (their
+     * depth is never positive) */
     double eye[3][PNPR_VIEW_SAMPLE_VIEWS], forward[3][PNPR_VIEW_SAMPLE_VIEWS];
     double tan2[PNPR_VIEW_SAMPLE_VIEWS]; /* the squared tangent of each view's cone's half-angle */
+    double shift[PNPR_VIEW_SAMPLE_VIEWS]; /* a widened view (init_frames): its apex's distance behind
+                                           * the eye plus the reach of the frames it stands for */
     double c;                  /* share = min(1, c / z^2); 0 until solved, HUGE_VAL: every point seen */
     pnpr_view_depths least;    /* each point's least depth among the views that see it */
-    pnpr_view_depths *each;    /* NULL, or one histogram per view (caller-owned, PNPR_VIEW_SAMPLE_VIEWS
-                                * of them, zeroed): each view's own depths, for the frame's cap
-                                * of pnpr_view_sample_solve with more than one view */
+    pnpr_view_depths *each;    /* NULL, or one histogram per view (caller-owned, `views` of them,
+                                * zeroed): each view's own depths, for the frame's cap of
+                                * pnpr_view_sample_solve with more than one view */
 } pnpr_view_sample;
 
 /* A look-at view: eye and target apart and finite, fov_deg (vertical) in (0, 180), width and
@@ -114,6 +117,19 @@ PNPR_NODISCARD pnpr_status pnpr_view_sample_init(pnpr_view_sample *v, const doub
                                                  double fov_deg, int width, int height);
 PNPR_NODISCARD pnpr_status pnpr_view_sample_add_view(pnpr_view_sample *v, const double eye[3],
                                                      const double target[3], double fov_deg, int width, int height);
+/* The views of a camera path's n frames (frame f: eyes[3 f..], targets[3 f..], fovs[f] vertical
+ * degrees, all at width x height): up to PNPR_VIEW_SAMPLE_VIEWS of them, spread evenly over the
+ * frames with the first and the last. With more frames than views, each view also stands for the
+ * frames between it and its neighbours: its cone's half-angle grows by how far they turn (their
+ * own half-angle plus the angle between the directions; at most 89.9 degrees), its apex moves
+ * back along its axis by reach / sin(half-angle), reach the farthest of their eyes, so that its
+ * cone holds theirs, and a point's depth in it is its depth from the eye less reach (at least
+ * 1e-6 of its depth from the apex): the nearest those frames may see it. Empties v first (each:
+ * NULL). PNPR_ERR_INVALID_ARGUMENT when a frame is not a look-at view (eye and target apart and
+ * finite, fov in (0, 180)) or n is 0. */
+PNPR_NODISCARD pnpr_status pnpr_view_sample_init_frames(pnpr_view_sample *v, const double *eyes,
+                                                        const double *targets, const double *fovs, size_t n,
+                                                        int width, int height);
 /* The least eye depth of p among the views that see it, else 0 (also for NaN and Inf). */
 double pnpr_view_sample_depth(const pnpr_view_sample *v, const double p[3]);
 void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3]);

@@ -107,9 +107,9 @@ int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const p
 /* Reads IN for render and animate: a uniform sample of `share` of its points when 0 < share < 1
  * (binary PLY); else whole when it fits (cli_memory_check_file), else, for a PLY, a uniform sample
  * that fits `limit` (0: what is available) by the memory model of `mp` (its points are the
- * file's), saying so unless quiet (cli_sample.c). `cams` (cam_count of them, at most
- * PNPR_VIEW_SAMPLE_VIEWS; NULL: none), the cameras of the frames to draw at mp's image size: the
- * sample follows their views instead (points near a camera kept, far ones thinned, unseen ones
+ * file's), saying so unless quiet (cli_sample.c). `cams` (cam_count of them; NULL: none), the
+ * cameras of the frames to draw at mp's image size (pnpr_view_sample_init_frames): the sample
+ * follows their views instead (points near a camera kept, far ones thinned, unseen ones
  * left out), each frame's share of it at most frame_points (the frame's budget; 0: none) unless
  * `share` is asked.
  * *r_tone_radius: for a sample, the whole cloud's mean spacing as it estimates it (0: none; the

@@ -7,8 +7,8 @@
  * that fits, decided by a hash of its index (the same points at every run and every size), and
  * the stored point spacing (the disk radii) grows by 1/sqrt of that share, as the spacing of a
  * uniformly thinned surface does. --sample asks for a share itself (a quick preview). With
- * cameras given (render --eye/--target, --camera or --camera-path; animate --camera-path: up to 64
- * of its frames), the share follows their views instead: points near a camera kept, far ones
+ * cameras given (render --eye/--target, --camera or --camera-path; animate --camera-path: its
+ * frames, up to 64 views standing for them all), the share follows their views instead: points near a camera kept, far ones
  * thinned, unseen ones left out (below). */
 #include "cli.h"
 
@@ -138,19 +138,23 @@ static float grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double u
     return weight > 0 ? (float)(sum / weight) : 0;
 }
 
-/* The views of the cameras into k (each view's own histogram when there are several: the frame's
- * cap); 0 when there are none or one is not a look-at view the sample can follow. */
+/* The views of the cameras (the frames to draw) into k, each view's own histogram when there are
+ * several (the frame's cap); 0 when there are none, or one is not a look-at view (the frame would
+ * not draw either). */
 static int init_views(view_keep *k, const pnpr_camera *cams, size_t count, int width, int height)
 {
-    if (!cams || count == 0 || count > PNPR_VIEW_SAMPLE_VIEWS) return 0;
+    if (!cams || count == 0) return 0;
+    double *eyes = malloc(7 * count * sizeof *eyes), *targets = eyes + 3 * count, *fovs = eyes + 6 * count;
+    if (!eyes) return 0;
     for (size_t i = 0; i < count; i++) {
-        double fov = cams[i].fov_y_deg > 0 ? cams[i].fov_y_deg : 45;
-        pnpr_status st = i ? pnpr_view_sample_add_view(&k->v, cams[i].eye, cams[i].target, fov, width, height)
-                           : pnpr_view_sample_init(&k->v, cams[i].eye, cams[i].target, fov, width, height);
-        if (st != PNPR_OK) return 0;
+        memcpy(eyes + 3 * i, cams[i].eye, sizeof cams[i].eye);
+        memcpy(targets + 3 * i, cams[i].target, sizeof cams[i].target);
+        fovs[i] = cams[i].fov_y_deg > 0 ? cams[i].fov_y_deg : 45;
     }
-    if (count > 1 && !(k->v.each = calloc(PNPR_VIEW_SAMPLE_VIEWS, sizeof *k->v.each))) return 0;
-    return 1;
+    int ok = pnpr_view_sample_init_frames(&k->v, eyes, targets, fovs, count, width, height) == PNPR_OK;
+    free(eyes);
+    if (ok && k->v.views > 1 && !(k->v.each = calloc((size_t)k->v.views, sizeof *k->v.each))) return 0;
+    return ok;
 }
 
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,

@@ -10,7 +10,6 @@
 #include <stdio.h>
 
 #include <pointnpr/camera_path.h>
-#include <pointnpr/crq.h>
 #include <pointnpr/output.h>
 
 #include <errno.h>
@@ -425,21 +424,23 @@ static int make_video(const anim_args *r, long n, int quiet)
     return 1;
 }
 
-/* The cameras a sample of a cloud larger than memory follows (cli_read_fitting): up to
- * PNPR_VIEW_SAMPLE_VIEWS frames of a path file spread evenly over its frames, the first and the
- * last among them; none for a preset (its start comes from the cloud: its frames are not known
- * before reading; `--save-path` writes them to a file first). Returns how many. */
-static size_t sample_cameras(const anim_args *r, pnpr_camera cams[PNPR_VIEW_SAMPLE_VIEWS])
+/* The cameras a sample of a cloud larger than memory follows (cli_read_fitting): every frame of a
+ * path file, into *r_cams (malloc'd); none for a preset (its start comes from the cloud: its
+ * frames are not known before reading; `--save-path` writes them to a path file first). Returns
+ * how many (0: none, or a frame not evaluated: animate() says why). */
+static size_t sample_cameras(const anim_args *r, pnpr_camera **r_cams)
 {
+    *r_cams = NULL;
     if (!r->path_file) return 0;
     long n = frame_count(&r->path, r->fps);
-    if (n < 1 || n > FRAMES_MAX) return 0; /* animate() says why */
-    long m = n < PNPR_VIEW_SAMPLE_VIEWS ? n : PNPR_VIEW_SAMPLE_VIEWS;
-    for (long j = 0; j < m; j++) {
-        long k = m > 1 ? (long)floor((double)j * (double)(n - 1) / (double)(m - 1) + 0.5) : 0;
-        if (pnpr_camera_path_eval(&r->path, r->path.keys[0].time + (double)k / r->fps, &cams[j]) != PNPR_OK) return 0;
-    }
-    return (size_t)m;
+    if (n < 1 || n > FRAMES_MAX || !(*r_cams = malloc((size_t)n * sizeof **r_cams))) return 0;
+    for (long k = 0; k < n; k++)
+        if (pnpr_camera_path_eval(&r->path, r->path.keys[0].time + (double)k / r->fps, &(*r_cams)[k]) != PNPR_OK) {
+            free(*r_cams);
+            *r_cams = NULL;
+            return 0;
+        }
+    return (size_t)n;
 }
 #endif
 
@@ -483,12 +484,10 @@ int cli_animate(int argc, char **argv)
                         "(Debian: apt-get install ffmpeg)\n", r.dir, r.out);
     cli_render_session s;
     long n = 0;
-    pnpr_camera cams[PNPR_VIEW_SAMPLE_VIEWS];
-    size_t cam_count = sample_cameras(&r, cams);
-    rc = cli_render_load(&s, &o, "animate", r.in, cam_count ? cams : NULL, cam_count) &&
-                 animate(&s, &o, &r, argc, argv, &n)
-             ? 0
-             : 1;
+    pnpr_camera *cams = NULL;
+    size_t cam_count = sample_cameras(&r, &cams);
+    rc = cli_render_load(&s, &o, "animate", r.in, cams, cam_count) && animate(&s, &o, &r, argc, argv, &n) ? 0 : 1;
+    free(cams);
     cli_render_end(&s);
     if (rc == 0 && r.video && !make_video(&r, n, o.quiet)) rc = 1;
     pnpr_camera_path_free(&r.path);

@@ -125,7 +125,8 @@ static void test_in_view(pnpr_renderer *r, uint8_t *px)
  * per-cell queues): two 1 x 1 planes of 100 x 100 points seen from straight above (fov 60), the
  * near one at height 2, the far one at 0 and 1.5 further in x. The grid of cells (crq.h,
  * view/view_cells.c): the smallest cubes with at most 32 768 of them over the box's 2.5 x 1 x 2
- * are 2.5 / 46 = 0.0543 a side (46 x 19 x 37 = 32 338 cells; 47 a side would need 33 041); the
+ * are 2.5 / 46 = 0.0543 a side (46 x 19 x 37 = 32 338 cells; the next smaller side needs 46 x
+ * 19 x 38 = 33 212); the
  * near plane's cells (the top layer) reach up to 37 x 0.0543 = 2.0109, the far one's to 0.0543,
  * so from an eye at height 4 their nearest corners lie 1.9891 and 3.9457 deep, and each cell
  * draws min(1, c / depth^2) of its points:
