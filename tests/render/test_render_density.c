@@ -204,6 +204,20 @@ static void test_depth(pnpr_renderer *r, uint8_t *px)
     CHECK_MSG(sent <= 6000 && sent > 5990 && st.points_drawn == sent && end_min == end_max &&
                   fabs(end_max / PNPR_CRQ_KEYS - 0.3) < 1e-3,
               "budget 6000: %zu sent, %zu drawn, ends %.1f..%.1f", sent, st.points_drawn, (double)end_min, (double)end_max);
+    /* 50 points wanted: every cell draws 1/400 of its points or less, and its disks would grow 20
+     * times or more; a disk grows at most to a cell's side, so the largest growth the frame plans
+     * for (the guard bands) is the side over the largest radius */
+    o.budget = 0;
+    o.density = (float)(50.0 / st.coverage_px);
+    frame_plan plan;
+    CHECK_STATUS(pnpr_renderer_plan_frame(r, &cam, &o, W, H, &plan, &err), PNPR_OK);
+    float grow_max = 0;
+    for (size_t k = 0; k < r->cells; k++)
+        if (r->view_cells.count[k] && r->cell_table[4 * k] > 0.5f) grow_max = fmaxf(grow_max, r->cell_table[4 * k + 2]);
+    double cap = fmax(1.0, (double)vc->cell / r->max_radius);
+    CHECK_MSG(grow_max > 20 && cap < grow_max && fabs(plan.lod_max - cap) < 1e-5 * cap,
+              "50 wanted: growth up to %.1f, planned %.3f, the cell's side over the largest radius %.3f", (double)grow_max,
+              (double)plan.lod_max, cap);
     pnpr_cloud_free(&c);
 }
 
