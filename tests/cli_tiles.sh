@@ -189,6 +189,16 @@ if built_with_render "$bin"; then
     --camera-at 0 2> "$dir/at.log"
   check 'grep -q "sample by the view .* of $(sed -n "s/.*sample by the view .* of \([0-9]*\) of 14400.*/\1/p" "$dir/view.log") of 14400" "$dir/at.log"' \
     "render --camera-path --camera-at 0 samples by that frame's view as --eye/--target do"
+  # a preset's frames come from a uniform preview of the cloud: the sample follows them, and the
+  # path is about the one made from the whole cloud (every number within 0.01 of the scene's 15)
+  pointnpr animate "$dir/mem.ply" -o "$dir/orbit/" --orbit --duration 1 --fps 2 --size 160x120 --sample 0.9 \
+    --save-path "$dir/orbit_sampled.campath" 2> "$dir/orbit.log"
+  pointnpr animate "$dir/mem.ply" --orbit --duration 1 --save-path "$dir/orbit_whole.campath" --quiet
+  near=$(paste -d' ' "$dir/orbit_sampled.campath" "$dir/orbit_whole.campath" | awk '$1 == "eye" || $1 == "target" {
+    n++; for (i = 2; i <= 4; i++) { d = $i - $(i + 4); if (d > 0.01 || d < -0.01) bad++ } } END { print n + 0, bad + 0 }')
+  check '[ -s "$dir/orbit/frame-00001.png" ] && grep -q "sample by the frames. views" "$dir/orbit.log" &&
+         [ "${near% *}" -gt 100 ] && [ "${near#* }" = 0 ]' \
+    "animate --orbit samples by its frames, its path from the preview within 0.01 of the whole cloud's (eyes and targets, far ones: $near)"
   pointnpr render "$dir/ascii.ply" -o "$dir/bad.png" --size 160x120 --sample 0.25 2> "$dir/err.log"
   check '[ $? -eq 1 ] && grep -q "binary" "$dir/err.log"' "--sample of an ascii PLY is refused"
 fi

@@ -107,9 +107,8 @@ int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const p
 /* Reads IN for render and animate: a uniform sample of `share` of its points when 0 < share < 1
  * (binary PLY); else whole when it fits (cli_memory_check_file), else, for a PLY, a uniform sample
  * that fits `limit` (0: what is available) by the memory model of `mp` (its points are the
- * file's), saying so unless quiet (cli_sample.c). `cams` (cam_count of them; NULL: none), the
- * cameras of the frames to draw at mp's image size (pnpr_view_sample_init_frames): the sample
- * follows their views instead (points near a camera kept, far ones thinned, unseen ones
+ * file's), saying so unless quiet (cli_sample.c). `views` (NULL: none), the cameras of the frames
+ * to draw at mp's image size (pnpr_view_sample_init_frames): the sample follows their views instead (points near a camera kept, far ones thinned, unseen ones
  * left out), each frame's share of it at most frame_points (the frame's budget; 0: none) unless
  * `share` is asked.
  * *r_tone_radius: for a sample, the whole cloud's mean spacing as it estimates it (0: none; the
@@ -117,9 +116,20 @@ int cli_memory_check_plan(const char *cmd, const char *in, size_t limit, const p
  * from the file's properties (a cloud read without points), with `plan_user`. Returns 0 after
  * printing why. */
 typedef void (*cli_plan_fn)(const pnpr_cloud *header, void *user, pnpr_memory_plan *mp);
+/* The frames a sample follows: their cameras when known before reading (a path file, a camera);
+ * else, when from_preview is given and the file is sampled, the cameras from a uniform preview of
+ * about 200 000 of its points (a preset's path comes from the cloud; the pass that counts the
+ * points keeps them): from_preview returns how many into *r_cams (malloc'd; 0: none, a uniform
+ * sample then). */
+typedef struct cli_sample_views {
+    const pnpr_camera *cams;
+    size_t count;
+    size_t (*from_preview)(const pnpr_cloud *preview, void *user, pnpr_camera **r_cams);
+    void *user;
+} cli_sample_views;
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
-                     cli_plan_fn plan, void *plan_user, size_t limit, double share, const pnpr_camera *cams,
-                     size_t cam_count, double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius);
+                     cli_plan_fn plan, void *plan_user, size_t limit, double share, const cli_sample_views *views,
+                     double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius);
 
 /* Far outliers (outliers.h), shared by features, segment, render and lines (cmd_info.c):
  * --drop-outliers removes them after reading, --outlier-factor F sets how far is far. */

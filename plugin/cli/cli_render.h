@@ -62,9 +62,9 @@ typedef struct cli_render_session {
 } cli_render_session;
 
 /* Reads IN and applies the outlier options; a sample of a cloud that does not fit follows the views
- * of `cams` (cam_count of them: the frames to draw; NULL: a uniform sample; cli_read_fitting). Returns 1, or 0 after printing why. */
+ * of the frames to draw (NULL: a uniform sample; cli_read_fitting). Returns 1, or 0 after printing why. */
 int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in,
-                    const pnpr_camera *cams, size_t cam_count);
+                    const cli_sample_views *views);
 /* The key light's "above" is tone_up (the camera's up); then the stage plan, the GL context, the
  * renderer with the cloud (and the profile lines), the pixel buffer. Returns 1, or 0 after
  * printing why. */

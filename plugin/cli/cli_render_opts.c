@@ -161,7 +161,7 @@ static const cli_opt render_opts[] = {
     R_OPT("--seed", CLI_CUSTOM, uopt.seed, parse_seed, "S", "continuous resolution queue seed (default 0)"),
     {"--sample", NULL, CLI_NUMBER, offsetof(cli_render_opts, sample), 0, 1, 1, 0, NULL, NULL, "S",
      "read a sample of this share of a binary PLY's points, a preview of a cloud larger than memory: uniform, "
-     "or by the view with a camera (render --eye/--target or --camera-path, animate --camera-path: near points "
+     "or by the view with a camera (render --eye/--target or --camera-path; animate: its frames; near points "
      "kept, far and unseen ones thinned) (default: every point, or the share that fits --memory-limit; "
      "docs/tiles.md)"},
     {"--tone", NULL, CLI_CHOICE, offsetof(cli_render_opts, tone.source), 0, 0, 0, 0, tone_sources, NULL, NULL,
@@ -579,7 +579,7 @@ void cli_render_opts_free(cli_render_opts *o)
 }
 
 int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char *cmd, const char *in,
-                    const pnpr_camera *cams, size_t cam_count)
+                    const cli_sample_views *views)
 {
     memset(s, 0, sizeof *s);
     s->prog.fn = o->quiet ? NULL : cli_progress_stderr;
@@ -589,8 +589,8 @@ int cli_render_load(cli_render_session *s, const cli_render_opts *o, const char 
     ro.columns = o->columns;
     pnpr_memory_plan mp = {0, 0, 0, 0, style_bits(o), o->view.width, o->view.height, 0};
     mp.drawn = frame_points(o);
-    if (!cli_read_fitting(cmd, in, &ro, &mp, sample_plan, (void *)o, o->memory_limit, o->sample, cams, cam_count,
-                          (double)mp.drawn, o->quiet, &s->cloud, &s->tone_radius))
+    if (!cli_read_fitting(cmd, in, &ro, &mp, sample_plan, (void *)o, o->memory_limit, o->sample, views, (double)mp.drawn,
+                          o->quiet, &s->cloud, &s->tone_radius))
         return 0;
     return cli_outliers_apply(&o->outliers, cmd, in, &s->cloud, o->quiet, NULL) == 0;
 }

@@ -7,9 +7,10 @@
  * that fits, decided by a hash of its index (the same points at every run and every size), and
  * the stored point spacing (the disk radii) grows by 1/sqrt of that share, as the spacing of a
  * uniformly thinned surface does. --sample asks for a share itself (a quick preview). With
- * cameras given (render --eye/--target, --camera or --camera-path; animate --camera-path: its
- * frames, up to 64 views standing for them all), the share follows their views instead: points near a camera kept, far ones
- * thinned, unseen ones left out (below). */
+ * cameras given (render --eye/--target, --camera or --camera-path; animate: its path's frames, up
+ * to 64 views standing for them all; a preset's path made from a preview of the cloud), the share
+ * follows their views instead: points near a camera kept, far ones thinned, unseen ones left out
+ * (below). */
 #include "cli.h"
 
 #include <pointnpr/crq.h>
@@ -67,11 +68,11 @@ static double fitting_count(const pnpr_memory_plan *mp, double rec, double room,
 
 /* The share of the file's points that fits, 1 when all do (decided from its size alone, without a
  * pass unless need_pass); 0 when it cannot tell (not a PLY). The pass over the coordinates calls
- * `keep` (which keeps nothing: it counts, and makes the view's histogram) with `user`; *r_points:
- * the points seen (*seen after the pass). */
+ * `keep` with `user` (it counts, makes the views' histograms, or keeps a preview); *r_points: the
+ * points seen (*seen after the pass); r_kept (NULL: freed): the points `keep` kept. */
 static double fitting_share(const char *in, const pnpr_memory_plan *mp, cli_plan_fn plan, void *plan_user,
                             size_t limit, int (*keep)(void *, uint64_t, const double *), void *user,
-                            const uint64_t *seen, int need_pass, uint64_t *r_points)
+                            const uint64_t *seen, int need_pass, uint64_t *r_points, pnpr_cloud *r_kept)
 {
     struct stat sb;
     if (pnpr_format_from_path(in) != PNPR_FORMAT_PLY || stat(in, &sb) != 0 || !S_ISREG(sb.st_mode)) return 0;
@@ -86,7 +87,8 @@ static double fitting_share(const char *in, const pnpr_memory_plan *mp, cli_plan
     if (pnpr_read_file(in, &ro, &none_read, &err) != PNPR_OK) return 0; /* the real read says why */
     pnpr_memory_plan m = *mp; /* with the stages the file's properties leave to run */
     if (plan) plan(&none_read, plan_user, &m);
-    pnpr_cloud_free(&none_read);
+    if (r_kept) *r_kept = none_read;
+    else pnpr_cloud_free(&none_read);
     *r_points = *seen;
     if (!*seen) return 1;
     double rec = (double)sb.st_size / (double)*seen + 8.0, fit = fitting_count(&m, rec, room, *seen);
@@ -157,21 +159,50 @@ static int init_views(view_keep *k, const pnpr_camera *cams, size_t count, int w
     return ok;
 }
 
+/* The frames' views from a uniform preview of the file (a preset's path comes from the cloud):
+ * the pass that counts the points keeps about PREVIEW_POINTS of them (fewer for wider records).
+ * When the file is to be sampled (`asked`, or it does not fit), the views of the frames of
+ * views->from_preview go into vk, and a second pass makes their histograms: returns 1 then, with
+ * *r_fit and *r_points; else 0 with the uniform share that fits in *r_fit. */
+#define PREVIEW_POINTS 200000.0
+static int preview_views(const char *in, const pnpr_memory_plan *mp, cli_plan_fn plan, void *plan_user, size_t limit,
+                         int asked, const cli_sample_views *views, view_keep *vk, double *r_fit, uint64_t *r_points)
+{
+    struct stat sb;
+    double most = stat(in, &sb) == 0 ? (double)sb.st_size / 12.0 : 0;
+    sample_keep count = {0, most > PREVIEW_POINTS ? (uint64_t)(PREVIEW_POINTS / most * 18446744073709551616.0) : UINT64_MAX};
+    pnpr_cloud preview = {0};
+    *r_fit = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, asked, r_points, &preview);
+    pnpr_camera *cams = NULL;
+    size_t n = (asked || (*r_fit > 0 && *r_fit < 1)) && preview.count ? views->from_preview(&preview, views->user, &cams) : 0;
+    pnpr_cloud_free(&preview);
+    int ok = n && init_views(vk, cams, n, mp->width, mp->height);
+    free(cams);
+    if (ok) *r_fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, vk, &vk->seen, 1, r_points, NULL);
+    return ok;
+}
+
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
-                     cli_plan_fn plan, void *plan_user, size_t limit, double share, const pnpr_camera *cams,
-                     size_t cam_count, double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius)
+                     cli_plan_fn plan, void *plan_user, size_t limit, double share, const cli_sample_views *views,
+                     double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius)
 {
     *r_tone_radius = 0;
     pnpr_read_options ro = *opts;
     pnpr_error err = {0};
     uint64_t points = 0;
-    const int asked = share > 0 && share < 1;
+    const int asked = share > 0 && share < 1, ply = pnpr_format_from_path(in) == PNPR_FORMAT_PLY;
     view_keep vk = {0};
-    int by_view = pnpr_format_from_path(in) == PNPR_FORMAT_PLY && init_views(&vk, cams, cam_count, mp->width, mp->height);
+    int by_view = ply && views && init_views(&vk, views->cams, views->count, mp->width, mp->height);
     double fit = 0;
     if (by_view) {
-        fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, &vk, &vk.seen, asked, &points);
+        fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, &vk, &vk.seen, asked, &points, NULL);
         if (asked && !points) by_view = 0; /* no pass (not a regular file): the uniform share asked */
+    } else if (ply && views && views->from_preview && !views->count) {
+        by_view = preview_views(in, mp, plan, plan_user, limit, asked, views, &vk, &fit, &points);
+        if (!asked && !by_view) share = fit;
+    } else if (!asked) {
+        sample_keep count = {0, 0};
+        share = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, 0, &points, NULL);
     }
     if (by_view) {
         if (!asked) share = fit;
@@ -182,10 +213,7 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
         if (points && !vk.v.least.visible)
             fprintf(stderr, "%s: warning: none of its %llu points is in view of the camera%s (they lie behind "
                             "the eye or outside the field of view)\n", in, (unsigned long long)points,
-                    cam_count > 1 ? "s of the frames" : "");
-    } else if (!asked) {
-        sample_keep count = {0, 0};
-        share = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, 0, &points);
+                    vk.v.views > 1 ? "s of the frames" : "");
     }
     free(vk.v.each); /* read by the solve only */
     vk.v.each = NULL;
@@ -204,8 +232,8 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     double kept = points ? (double)cloud->count / (double)points : 1;
     *r_tone_radius = grow_spacing(cloud, by_view ? &vk.v : NULL, kept);
     char a[32];
-    const char *what = !by_view        ? "a uniform sample"
-                       : cam_count > 1 ? "a sample by the frames' views (points near a camera kept, far and unseen ones thinned)"
+    const char *what = !by_view          ? "a uniform sample"
+                       : vk.v.views > 1 ? "a sample by the frames' views (points near a camera kept, far and unseen ones thinned)"
                                        : "a sample by the view (points near the camera kept, far and unseen ones thinned)";
     if (!quiet && asked)
         fprintf(stderr, "%s: drawing %s of %zu of %llu points (%.1f%%, --sample)\n", in, what, cloud->count,

@@ -37,6 +37,7 @@ typedef struct anim_args {
     int have_duration, keep_frames, video;
     char dir[PNPR_OUTPUT_PATH_MAX];
     pnpr_camera_path path; /* the path file's (read before any work) or the preset's */
+    int path_made;         /* the preset's path is made (from a preview of a cloud that is sampled) */
 } anim_args;
 
 #define ANIM_FPS 25 /* --fps: the default */
@@ -166,6 +167,7 @@ static int make_path(anim_args *r, const cli_render_opts *o, const pnpr_cloud *c
 {
     pnpr_error err = {0};
     pnpr_status st = PNPR_OK;
+    if (r->path_made) return 1;
     if (!r->path_file) {
         pnpr_camera start;
         double up[3];
@@ -177,6 +179,7 @@ static int make_path(anim_args *r, const cli_render_opts *o, const pnpr_cloud *c
     }
     if (st == PNPR_OK && r->save_path) st = pnpr_camera_path_write(r->save_path, &r->path, &err);
     if (st != PNPR_OK) cli_report_error("animate", st, &err);
+    r->path_made = st == PNPR_OK;
     return st == PNPR_OK;
 }
 
@@ -424,14 +427,13 @@ static int make_video(const anim_args *r, long n, int quiet)
     return 1;
 }
 
-/* The cameras a sample of a cloud larger than memory follows (cli_read_fitting): every frame of a
- * path file, into *r_cams (malloc'd); none for a preset (its start comes from the cloud: its
- * frames are not known before reading; `--save-path` writes them to a path file first). Returns
- * how many (0: none, or a frame not evaluated: animate() says why). */
+/* The cameras a sample of a cloud larger than memory follows (cli_read_fitting): every frame of the
+ * path (a path file's, or a preset's once made), into *r_cams (malloc'd). Returns how many (0:
+ * none, or a frame not evaluated: animate() says why). */
 static size_t sample_cameras(const anim_args *r, pnpr_camera **r_cams)
 {
     *r_cams = NULL;
-    if (!r->path_file) return 0;
+    if (!r->path_file && !r->path_made) return 0;
     long n = frame_count(&r->path, r->fps);
     if (n < 1 || n > FRAMES_MAX || !(*r_cams = malloc((size_t)n * sizeof **r_cams))) return 0;
     for (long k = 0; k < n; k++)
@@ -442,6 +444,20 @@ static size_t sample_cameras(const anim_args *r, pnpr_camera **r_cams)
         }
     return (size_t)n;
 }
+
+typedef struct preview_user {
+    anim_args *r;
+    const cli_render_opts *o;
+} preview_user;
+
+/* cli_sample_views.from_preview for a preset: its path from a uniform preview of a cloud that is
+ * sampled (its start camera needs the cloud), then its frames' cameras. */
+static size_t preset_cameras(const pnpr_cloud *preview, void *user, pnpr_camera **r_cams)
+{
+    preview_user *u = user;
+    *r_cams = NULL;
+    return make_path(u->r, u->o, preview) ? sample_cameras(u->r, r_cams) : 0;
+}
 #endif
 
 /* Without -o: the cloud (for a preset's start camera) and the path, written to --save-path.
@@ -450,7 +466,7 @@ static int save_path_only(cli_render_opts *o, anim_args *r)
 {
     cli_render_session s;
     memset(&s, 0, sizeof s);
-    int ok = (r->path_file || cli_render_load(&s, o, "animate", r->in, NULL, 0)) && make_path(r, o, &s.cloud);
+    int ok = (r->path_file || cli_render_load(&s, o, "animate", r->in, NULL)) && make_path(r, o, &s.cloud);
     cli_render_end(&s);
     if (ok && !o->quiet) fprintf(stderr, "wrote %s\n", r->save_path);
     return ok ? 0 : 1;
@@ -485,8 +501,10 @@ int cli_animate(int argc, char **argv)
     cli_render_session s;
     long n = 0;
     pnpr_camera *cams = NULL;
-    size_t cam_count = sample_cameras(&r, &cams);
-    rc = cli_render_load(&s, &o, "animate", r.in, cams, cam_count) && animate(&s, &o, &r, argc, argv, &n) ? 0 : 1;
+    preview_user pu = {&r, &o};
+    cli_sample_views views = {NULL, sample_cameras(&r, &cams), preset_cameras, &pu};
+    views.cams = cams;
+    rc = cli_render_load(&s, &o, "animate", r.in, &views) && animate(&s, &o, &r, argc, argv, &n) ? 0 : 1;
     free(cams);
     cli_render_end(&s);
     if (rc == 0 && r.video && !make_video(&r, n, o.quiet)) rc = 1;

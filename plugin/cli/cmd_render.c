@@ -177,8 +177,9 @@ int cli_render(int argc, char **argv)
     if (r.camera_path &&
         pnpr_camera_path_eval(&r.path, r.have_camera_at ? r.camera_at : r.path.keys[0].time, &given) != PNPR_OK)
         goto done;
+    const cli_sample_views views = {&given, 1, NULL, NULL};
     int have_given = r.camera_path || (o.view.have_eye && o.view.have_target);
-    if (!cli_render_load(&s, &o, "render", r.in, have_given ? &given : NULL, have_given)) goto done;
+    if (!cli_render_load(&s, &o, "render", r.in, have_given ? &views : NULL)) goto done;
     /* the camera first: its up vector is the tone's "above" (the key light comes from there) */
     if (r.camera_path) { /* the path's first up is the key light's above, as in `animate` */
         memcpy(tone_up, r.path.keys[0].up, sizeof tone_up);
