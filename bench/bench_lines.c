@@ -11,14 +11,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 int main(int argc, char **argv)
 {
@@ -58,9 +50,9 @@ int main(int argc, char **argv)
         const double origin[3] = {0, 0, 0};
         pnpr_polylines lines;
         pnpr_lines_stats st;
-        double t0 = now();
+        double t0 = pnpr_test_seconds();
         pnpr_status r = pnpr_profile_lines_points(p, d, n, origin, &lo, &lines, &st);
-        double t = now() - t0;
+        double t = pnpr_test_seconds() - t0;
         if (r != PNPR_OK) { fprintf(stderr, "bench_lines: %s\n", pnpr_status_string(r)); return 1; }
         printf("| %zu | %zu | %zu | %zu | %.3f | %.3f | %.3f | %.3f |\n", n, st.graph_edges, st.forest_edges, st.chains,
                st.seconds_graph, st.seconds_mst, st.seconds_fit, t);

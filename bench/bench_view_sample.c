@@ -4,19 +4,12 @@
  * it to the histograms (the first pass over a file) and to find its share (the second), and the
  * views that see a point on average.
  *   bench_view_sample [N]   (default 4000000) */
+#include "../tests/testutil.h"
 #include <pointnpr/crq.h>
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 int main(int argc, char **argv)
 {
@@ -45,13 +38,13 @@ int main(int argc, char **argv)
         }
         for (int k = 0; k < PNPR_VIEW_SAMPLE_VIEWS; k++) each[k] = (pnpr_view_depths){0};
         v.each = m > 1 ? each : NULL;
-        double t0 = now();
+        double t0 = pnpr_test_seconds();
         for (size_t i = 0; i < n; i++) pnpr_view_sample_add(&v, p + 3 * i);
-        double t1 = now();
+        double t1 = pnpr_test_seconds();
         pnpr_view_sample_solve(&v, 0.25 * (double)n, 180000);
-        double kept = 0, t2 = now();
+        double kept = 0, t2 = pnpr_test_seconds();
         for (size_t i = 0; i < n; i++) kept += pnpr_view_sample_share(&v, p + 3 * i);
-        double t3 = now(), seen = 0;
+        double t3 = pnpr_test_seconds(), seen = 0;
         for (int k = 0; k < m && m > 1; k++) seen += (double)each[k].visible;
         printf("| %d | %.0f | %.0f | %.1f |\n", m, 1e9 * (t1 - t0) / (double)n, 1e9 * (t3 - t2) / (double)n,
                m > 1 ? seen / (double)n : (double)v.least.visible / (double)n);

@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <time.h>
 
 int pnpr_test_failures = 0;
 
@@ -126,4 +127,11 @@ int pnpr_test_temporaries(const char *dir, const char *name)
     }
     closedir(d);
     return n;
+}
+
+double pnpr_test_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }

@@ -36,6 +36,9 @@ pnpr_status pnpr_test_cube(pnpr_cloud *cloud, double side, double h, double nois
 /* Plane z=0, grid of nx*ny points spacing h. */
 pnpr_status pnpr_test_plane(pnpr_cloud *cloud, size_t nx, size_t ny, double h, const double offset[3]);
 
+/* Seconds of the monotonic clock (the benchmarks' timer). */
+double pnpr_test_seconds(void);
+
 /* Number of temporaries of the output `name` (".<name>.<hex>.part", pointnpr/output.h; "" = of
  * any output) in the folder `dir`; -1 if the folder cannot be read. */
 int pnpr_test_temporaries(const char *dir, const char *name);

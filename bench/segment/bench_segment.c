@@ -2,22 +2,15 @@
  * primitives with known labels (ARI against the truth, wall time). Writes each scene as
  * OUTDIR/scene_<name>.bin (uint64 n; n x {float x,y,z; uint8 r,g,b,pad; uint32 truth}) for the
  * PCL peer (segment_pcl). Usage: bench_segment OUTDIR [spacing] */
+#include "../../tests/testutil.h"
 #include <pointnpr/segment.h>
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 typedef struct scene { size_t n, cap; float *xyz; uint8_t *rgb; uint32_t *truth; } scene;
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static double gauss(uint64_t *s)
 {
@@ -118,10 +111,10 @@ int main(int argc, char **argv)
             double best = INFINITY;
             pnpr_status st = PNPR_OK;
             for (int rep = 0; rep < 3 && st == PNPR_OK; rep++) {
-                double t0 = now();
+                double t0 = pnpr_test_seconds();
                 st = m == 0 ? pnpr_segment_jseg(s.xyz, s.rgb, s.n, NULL, labels, &info)
                             : pnpr_segment_rgbgrow(s.xyz, s.rgb, s.n, NULL, labels, &info);
-                double t = now() - t0;
+                double t = pnpr_test_seconds() - t0;
                 if (t < best) best = t;
             }
             pnpr_segment_score sc = {0};
