@@ -95,15 +95,64 @@ static void test_view_sample(void)
     CHECK_MSG(fabs(v.c - 1000) < 1e-6, "c %g", v.c);
 }
 
+/* Random frames: a path of 65 frames has 64 views, frame 32 the one without its own (views 31 and
+ * 32 are frames 31 and 33, both standing for it). Frames 31 and 33 at the origin looking down +x,
+ * the others 1e6 away; frame 32 turned by up to 20 degrees and moved by up to about 1, fovs 30..60.
+ * 200 random points in frame 32's cone (its own cone test) each seen by the path's views at most
+ * at frame 32's depth. Without the cosine of the frames' half-angle (the depth from the view's eye
+ * less the reach) 1019 of these 4053 points, near the edge of frame 32's cone on the side it turns
+ * from, came out deeper than frame 32 sees them. */
+static void check_widened_holds(void)
+{
+    enum { F = 65, M = 32 };
+    static pnpr_view_sample v, one;
+    static double eyes[3 * F], targets[3 * F], fovs[F];
+    pnpr_test_rng rng = {12345};
+    int missed = 0, deeper = 0, tried = 0;
+    for (int trial = 0; trial < 50; trial++) {
+        for (int f = 0; f < F; f++) {
+            double x = f == M - 1 || f == M + 1 ? 0 : 1e6 * (f - M);
+            eyes[3 * f] = x;
+            eyes[3 * f + 1] = eyes[3 * f + 2] = 0;
+            targets[3 * f] = x + 1;
+            targets[3 * f + 1] = targets[3 * f + 2] = 0;
+            fovs[f] = 30 + 30 * pnpr_test_uniform(&rng);
+        }
+        double turn = 20 * 3.14159265358979323846 / 180 * pnpr_test_uniform(&rng), az = 6.2831853 * pnpr_test_uniform(&rng);
+        double f1[3] = {cos(turn), sin(turn) * cos(az), sin(turn) * sin(az)};
+        for (int i = 0; i < 3; i++) eyes[3 * M + i] = 0.5 * pnpr_test_normal(&rng) / sqrt(3.0);
+        for (int i = 0; i < 3; i++) targets[3 * M + i] = eyes[3 * M + i] + f1[i];
+        CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, F, 100, 100), PNPR_OK);
+        CHECK_STATUS(pnpr_view_sample_init(&one, eyes + 3 * M, targets + 3 * M, fovs[M], 100, 100), PNPR_OK);
+        for (int k = 0; k < 200; k++) {
+            double p[3];
+            for (int i = 0; i < 3; i++) p[i] = eyes[3 * M + i] + 20 * (pnpr_test_uniform(&rng) - 0.5) + (i == 0 ? 10 : 0);
+            double z1 = pnpr_view_sample_depth(&one, p);
+            if (z1 <= 0) continue;
+            double z = pnpr_view_sample_depth(&v, p);
+            tried++;
+            missed += z <= 0;
+            deeper += z > z1 * (1 + 1e-9);
+        }
+    }
+    CHECK_MSG(tried > 1000 && missed == 0 && deeper == 0, "widened views: of %d points of frame %d, %d missed, %d deeper",
+              tried, M, missed, deeper);
+}
+
 /* A path's frames, more than views (pnpr_view_sample_init_frames): 127 frames, every second one a
  * view (frame f = 126 j / 63 = 2 j), each view standing for its neighbours.
  *   - Turning: eyes at the origin, frame f looking 2.5 f degrees about z, fov 2 (the cone's
  *     half-angle atan(1.15 sqrt 2 tan 1 deg) = 1.63 deg). A point at 2.5 degrees, 10 away, lies in
  *     frame 1's cone only; the views of frames 0 and 2 stand for it (half-angles 1.63 + 2.5) and
  *     see it at its depth 10 cos 2.5 deg. The views without widening would not see it.
- *   - Moving: frame f's eye at x = f / 2, all looking down +x, fov 90. A point at x = 70 lies 7
- *     ahead of the last eye; the last view stands for frame 125, 0.5 behind: its depth 7 - 0.5.
- *     A point 0.2 ahead of frame 1's eye (x = 0.7) gets at most 0.2, the nearest a frame sees it. */
+ *     (The least depth the frames between may see it at, its distance less their reach x the
+ *     cosine of their half-angle, is 10 cos 1.63 deg, more.)
+ *   - Moving: frame f's eye at x = f / 2, all looking down +x, fov 90 (half-angle atan(1.15 sqrt
+ *     2) = 58.4 deg). A point at x = 70 lies 7 ahead of the last eye; the last view stands for
+ *     frame 125, 0.5 behind: the least depth a point 6.5 from an eye has in a cone of 58.4 deg is
+ *     6.5 cos 58.4 deg. A point 0.2 ahead of frame 1's eye (x = 0.7) gets at most 0.2.
+ *   - Random frames around a view (turned up to 20 degrees, eyes up to 1 away) and random points
+ *     in their cones: the widened view sees every point, at most at that frame's depth. */
 static void test_frames(void)
 {
     enum { F = 127 };
@@ -135,9 +184,11 @@ static void test_frames(void)
     CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, F, 100, 100), PNPR_OK);
     const double ahead[3] = {70, 0, 0}, close[3] = {0.7, 0, 0};
     z = pnpr_view_sample_depth(&v, ahead);
-    CHECK_MSG(fabs(z - 6.5) < 1e-9, "moving: depth %.12g, expected 6.5", z);
+    const double cos_half = 1 / sqrt(1 + 1.15 * 1.15 * 2);
+    CHECK_MSG(fabs(z - 6.5 * cos_half) < 1e-9, "moving: depth %.12g, expected %.12g", z, 6.5 * cos_half);
     z = pnpr_view_sample_depth(&v, close);
     CHECK_MSG(z > 0 && z <= 0.2 + 1e-12, "moving: depth %g near frame 1's eye", z);
+    check_widened_holds();
     /* as many frames as views: no widening, the plain views' depths */
     CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, 3, 100, 100), PNPR_OK);
     CHECK(v.views == 3 && pnpr_view_sample_depth(&v, ahead) == 69);

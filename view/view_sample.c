@@ -32,6 +32,7 @@ static pnpr_status set_view(pnpr_view_sample *v, const double eye[3], const doub
         v->forward[i][k] = f[i] / len;
     }
     v->tan2[k] = tan_cone * tan_cone;
+    v->cos_own[k] = 1;
     return PNPR_OK;
 }
 
@@ -49,19 +50,23 @@ pnpr_status pnpr_view_sample_add_view(pnpr_view_sample *v, const double eye[3], 
     return set_view(v, eye, target, fov_deg, width, height);
 }
 
-/* View k also stands for cameras whose eyes lie within `reach` of its eye and whose cones reach
- * `half_angle` (radians) about its axis: its half-angle becomes at least that (at most 89.9
- * degrees), its apex moves back along its axis by reach / sin(half-angle), so that its cone holds
- * theirs, and a point's depth in it is its depth from the eye less `reach` (view_depths): the
- * nearest those cameras may see it. */
-static void widen(pnpr_view_sample *v, int k, double half_angle, double reach)
+/* View k also stands for cameras whose eyes lie within `reach` of its eye, whose cones reach
+ * `half_angle` (radians) about its axis, their own half-angles at most `own`: its half-angle
+ * becomes at least half_angle (at most 89.9 degrees), its apex moves back along its axis by
+ * reach / sin(half-angle), so that its cone holds theirs (a cone holds the ball of radius reach
+ * about the eye, and every cone from there turned within it). A point's depth in such a camera is
+ * at least (its distance from the eye - reach) x cos(own), the least a point in their cones may
+ * have: view_depths takes that, and at most the depth from the view's own eye. */
+static void widen(pnpr_view_sample *v, int k, double half_angle, double reach, double own)
 {
     const double most = 89.9 * PI / 180.0;
     double now = atan(sqrt(v->tan2[k])), a = half_angle < now ? now : half_angle < most ? half_angle : most;
     double t = tan(a), back = reach / sin(a);
     for (int i = 0; i < 3; i++) v->eye[i][k] -= back * v->forward[i][k];
     v->tan2[k] = t * t;
-    v->shift[k] = back + reach;
+    v->back[k] = back;
+    v->reach[k] = reach;
+    v->cos_own[k] = cos(own);
 }
 
 /* Frame f's unit direction into r_f; 0 when its eye and target are not apart and finite. */
@@ -94,7 +99,7 @@ pnpr_status pnpr_view_sample_init_frames(pnpr_view_sample *v, const double *eyes
     for (size_t j = 0; j < m && m < n; j++) { /* the frames between a view's neighbours */
         size_t f = kept_frame(j, m, n), lo = j ? kept_frame(j - 1, m, n) + 1 : 0;
         size_t hi = j + 1 < m ? kept_frame(j + 1, m, n) : n;
-        double fj[3], half = 0, reach = 0;
+        double fj[3], half = 0, reach = 0, own = 0;
         for (int i = 0; i < 3; i++) fj[i] = v->forward[i][j];
         for (size_t g = lo; g < hi; g++) {
             double fg[3], e2 = 0;
@@ -106,9 +111,10 @@ pnpr_status pnpr_view_sample_init_frames(pnpr_view_sample *v, const double *eyes
             for (int i = 0; i < 3; i++) e2 += (eyes[3 * g + i] - eyes[3 * f + i]) * (eyes[3 * g + i] - eyes[3 * f + i]);
             if (!isfinite(e2)) return PNPR_ERR_INVALID_ARGUMENT;
             if (a > half) half = a;
+            if (atan(t) > own) own = atan(t);
             if (sqrt(e2) > reach) reach = sqrt(e2);
         }
-        widen(v, (int)j, half, reach);
+        widen(v, (int)j, half, reach, own);
     }
     return PNPR_OK;
 }
@@ -120,8 +126,8 @@ static int views_rounded(const pnpr_view_sample *v)
 }
 
 /* The eye depth of p in each view that sees it, else 0 (NaN and Inf too: the comparisons fail); a
- * widened view's depth from its cone's apex less its shift, at least 1e-6 of it; in the slots up
- * to `views` rounded up to 4 (the slots after `views` see nothing): one loop without
+ * widened view's the least of the cameras it stands for (widen), at least 1e-6 of the depth from
+ * its apex; in the slots up to `views` rounded up to 4 (the slots after `views` see nothing): one loop without
  * branches (the compiler's vectors). */
 static void view_depths(const pnpr_view_sample *restrict v, const double *restrict p, double *restrict r_z)
 {
@@ -131,8 +137,12 @@ static void view_depths(const pnpr_view_sample *restrict v, const double *restri
         double z = dx * v->forward[0][k] + dy * v->forward[1][k] + dz * v->forward[2][k];
         double r2 = dx * dx + dy * dy + dz * dz - z * z;
         int seen = (z > 0) & (r2 <= z * z * v->tan2[k]); /* no branch: the loop vectorises */
-        double near = z - v->shift[k], least = 1e-6 * z; /* a widened view's depth (below) */
-        r_z[k] = seen ? (near > least ? near : least) : 0;
+        /* a widened view (widen): the least depth of the cameras it stands for; a plain one (back
+         * and reach 0, cos_own 1): its depth, as the distance is not less */
+        double b = v->back[k], e2 = dx * dx + dy * dy + dz * dz - 2.0 * b * z + b * b;
+        double from_eye = z - b, least = (sqrt(e2 > 0 ? e2 : 0) - v->reach[k]) * v->cos_own[k];
+        double depth = from_eye < least ? from_eye : least, floor = 1e-6 * z;
+        r_z[k] = seen ? (depth > floor ? depth : floor) : 0;
     }
 }
 

@@ -100,8 +100,9 @@ typedef struct pnpr_view_sample {
      * depth is never positive) */
     double eye[3][PNPR_VIEW_SAMPLE_VIEWS], forward[3][PNPR_VIEW_SAMPLE_VIEWS];
     double tan2[PNPR_VIEW_SAMPLE_VIEWS]; /* the squared tangent of each view's cone's half-angle */
-    double shift[PNPR_VIEW_SAMPLE_VIEWS]; /* a widened view (init_frames): its apex's distance behind
-                                           * the eye plus the reach of the frames it stands for */
+    /* a widened view (init_frames): its apex's distance behind the eye, the reach of the frames
+     * it stands for and the cosine of their largest own half-angle (a plain view: 0, 0, 1) */
+    double back[PNPR_VIEW_SAMPLE_VIEWS], reach[PNPR_VIEW_SAMPLE_VIEWS], cos_own[PNPR_VIEW_SAMPLE_VIEWS];
     double c;                  /* share = min(1, c / z^2); 0 until solved, HUGE_VAL: every point seen */
     pnpr_view_depths least;    /* each point's least depth among the views that see it */
     pnpr_view_depths *each;    /* NULL, or one histogram per view (caller-owned, `views` of them,
@@ -123,8 +124,9 @@ PNPR_NODISCARD pnpr_status pnpr_view_sample_add_view(pnpr_view_sample *v, const 
  * frames between it and its neighbours: its cone's half-angle grows by how far they turn (their
  * own half-angle plus the angle between the directions; at most 89.9 degrees), its apex moves
  * back along its axis by reach / sin(half-angle), reach the farthest of their eyes, so that its
- * cone holds theirs, and a point's depth in it is its depth from the eye less reach (at least
- * 1e-6 of its depth from the apex): the nearest those frames may see it. Empties v first (each:
+ * cone holds theirs, and a point's depth in it is the least those frames may see it at: (its
+ * distance from the eye - reach) x the cosine of their largest own half-angle, at most its depth
+ * from the eye (at least 1e-6 of its depth from the apex). Empties v first (each:
  * NULL). PNPR_ERR_INVALID_ARGUMENT when a frame is not a look-at view (eye and target apart and
  * finite, fov in (0, 180)) or n is 0. */
 PNPR_NODISCARD pnpr_status pnpr_view_sample_init_frames(pnpr_view_sample *v, const double *eyes,
