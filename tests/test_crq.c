@@ -143,10 +143,10 @@ static void check_widened_holds(void)
  * view (frame f = 126 j / 63 = 2 j), each view standing for its neighbours.
  *   - Turning: eyes at the origin, frame f looking 2.5 f degrees about z, fov 2 (the cone's
  *     half-angle atan(1.15 sqrt 2 tan 1 deg) = 1.63 deg). A point at 2.5 degrees, 10 away, lies in
- *     frame 1's cone only; the views of frames 0 and 2 stand for it (half-angles 1.63 + 2.5) and
- *     see it at its depth 10 cos 2.5 deg. The views without widening would not see it.
- *     (The least depth the frames between may see it at, its distance less their reach x the
- *     cosine of their half-angle, is 10 cos 1.63 deg, more.)
+ *     frame 1's cone only (on its axis, at depth 10); the views of frames 0 and 2 stand for it
+ *     (half-angles 1.63 + 2.5) and give it their own depth, 10 cos 2.5 deg, less than 10 (the
+ *     least depth the frames between may see it at, its distance x the cosine of their
+ *     half-angle, is 10 cos 1.63 deg, more). The views without widening would not see it.
  *   - Moving: frame f's eye at x = f / 2, all looking down +x, fov 90 (half-angle atan(1.15 sqrt
  *     2) = 58.4 deg). A point at x = 70 lies 7 ahead of the last eye; the last view stands for
  *     frame 125, 0.5 behind: the least depth a point 6.5 from an eye has in a cone of 58.4 deg is
@@ -188,6 +188,15 @@ static void test_frames(void)
     CHECK_MSG(fabs(z - 6.5 * cos_half) < 1e-9, "moving: depth %.12g, expected %.12g", z, 6.5 * cos_half);
     z = pnpr_view_sample_depth(&v, close);
     CHECK_MSG(z > 0 && z <= 0.2 + 1e-12, "moving: depth %g near frame 1's eye", z);
+    /* each view's own histogram is its frame's (the frame's cap): x = 62.8 lies 0.2 behind the last
+     * frame's eye, inside the last view's widened cone (its apex 0.59 behind) but not its frame's */
+    static pnpr_view_depths each[PNPR_VIEW_SAMPLE_VIEWS];
+    v.each = each;
+    const double behind_last[3] = {62.8, 0, 0};
+    pnpr_view_sample_add(&v, ahead);
+    pnpr_view_sample_add(&v, behind_last);
+    CHECK_MSG(each[63].visible == 1 && fabs(each[63].z_min - 7) < 1e-9 && v.least.visible == 2,
+              "the last view's own histogram: %llu depths from %g; %llu in view", (unsigned long long)each[63].visible, each[63].z_min, (unsigned long long)v.least.visible);
     check_widened_holds();
     /* as many frames as views: no widening, the plain views' depths */
     CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, 3, 100, 100), PNPR_OK);

@@ -31,7 +31,7 @@ static pnpr_status set_view(pnpr_view_sample *v, const double eye[3], const doub
         v->eye[i][k] = eye[i];
         v->forward[i][k] = f[i] / len;
     }
-    v->tan2[k] = tan_cone * tan_cone;
+    v->tan2[k] = v->tan2_own[k] = tan_cone * tan_cone;
     v->cos_own[k] = 1;
     return PNPR_OK;
 }
@@ -182,6 +182,23 @@ static void depths_add(pnpr_view_depths *h, double z)
     h->visible++;
 }
 
+/* The depth of p in each view's own frame (its eye and cone before widening), else 0: each view's
+ * histogram is its frame's, for the frame's cap (a widened view's depths are those of the frames
+ * it stands for, nearer). */
+static void own_depths(const pnpr_view_sample *restrict v, const double *restrict p, double *restrict r_z)
+{
+    const int slots = views_rounded(v);
+    for (int k = 0; k < slots; k++) {
+        double b = v->back[k];
+        double dx = p[0] - v->eye[0][k] - b * v->forward[0][k], dy = p[1] - v->eye[1][k] - b * v->forward[1][k],
+               dz = p[2] - v->eye[2][k] - b * v->forward[2][k];
+        double z = dx * v->forward[0][k] + dy * v->forward[1][k] + dz * v->forward[2][k];
+        double r2 = dx * dx + dy * dy + dz * dz - z * z;
+        int seen = (z > 0) & (r2 <= z * z * v->tan2_own[k]);
+        r_z[k] = seen ? z : 0;
+    }
+}
+
 void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3])
 {
     double z[PNPR_VIEW_SAMPLE_VIEWS];
@@ -189,9 +206,10 @@ void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3])
     double least = least_depth(z, views_rounded(v));
     if (!(least > 0)) return;
     depths_add(&v->least, least);
-    if (v->each && v->views > 1)
-        for (int k = 0; k < v->views; k++)
-            if (z[k] > 0) depths_add(&v->each[k], z[k]);
+    if (!v->each || v->views < 2) return;
+    own_depths(v, p, z);
+    for (int k = 0; k < v->views; k++)
+        if (z[k] > 0) depths_add(&v->each[k], z[k]);
 }
 
 /* The expected count for c: a bin gives c x its sum of 1/z^2, at most its count (exact unless the

@@ -78,8 +78,8 @@ size_t pnpr_crq_cells_drawn(const pnpr_crq_cells *q, const float *end, size_t st
  * the same way). c comes from a histogram of those depths (PNPR_VIEW_SAMPLE_BINS bins, 16 an
  * octave from 2^-64, each with its count and its sum of 1/z^2, exact but in the one or two bins
  * where the share reaches 1) so that the expected count is `want`.
- * Use: init with the first view, add the others (a camera path's frames: up to
- * PNPR_VIEW_SAMPLE_VIEWS of them, widened to stand for the frames between), add every point (a pass over the coordinates), solve, then keep
+ * Use: init with the first view and add the others, or init_frames with a camera path's frames (up
+ * to PNPR_VIEW_SAMPLE_VIEWS views, widened to stand for the frames between), add every point (a pass over the coordinates), solve, then keep
  * each point with its share (e.g. by a hash of its index). World coordinates throughout. */
 #define PNPR_VIEW_SAMPLE_BINS 2048
 #define PNPR_VIEW_SAMPLE_MARGIN 1.15
@@ -103,11 +103,12 @@ typedef struct pnpr_view_sample {
     /* a widened view (init_frames): its apex's distance behind the eye, the reach of the frames
      * it stands for and the cosine of their largest own half-angle (a plain view: 0, 0, 1) */
     double back[PNPR_VIEW_SAMPLE_VIEWS], reach[PNPR_VIEW_SAMPLE_VIEWS], cos_own[PNPR_VIEW_SAMPLE_VIEWS];
+    double tan2_own[PNPR_VIEW_SAMPLE_VIEWS]; /* the view's own cone before widening (its frame's) */
     double c;                  /* share = min(1, c / z^2); 0 until solved, HUGE_VAL: every point seen */
     pnpr_view_depths least;    /* each point's least depth among the views that see it */
     pnpr_view_depths *each;    /* NULL, or one histogram per view (caller-owned, `views` of them,
-                                * zeroed): each view's own depths, for the frame's cap of
-                                * pnpr_view_sample_solve with more than one view */
+                                * zeroed): the depths its own frame sees (before widening), for
+                                * the frame's cap of pnpr_view_sample_solve with more than one view */
 } pnpr_view_sample;
 
 /* A look-at view: eye and target apart and finite, fov_deg (vertical) in (0, 180), width and
@@ -124,7 +125,9 @@ PNPR_NODISCARD pnpr_status pnpr_view_sample_add_view(pnpr_view_sample *v, const 
  * frames between it and its neighbours: its cone's half-angle grows by how far they turn (their
  * own half-angle plus the angle between the directions; at most 89.9 degrees), its apex moves
  * back along its axis by reach / sin(half-angle), reach the farthest of their eyes, so that its
- * cone holds theirs, and a point's depth in it is the least those frames may see it at: (its
+ * cone holds theirs (unless a frame looks more than 89.9 degrees off the view's axis with its own
+ * half-angle: a path that whips round between two views loses what only that frame sees; its
+ * neighbours' views cover it on a smooth path), and a point's depth in it is the least those frames may see it at: (its
  * distance from the eye - reach) x the cosine of their largest own half-angle, at most its depth
  * from the eye (at least 1e-6 of its depth from the apex). Empties v first (each:
  * NULL). PNPR_ERR_INVALID_ARGUMENT when a frame is not a look-at view (eye and target apart and

@@ -124,7 +124,7 @@ typedef void (*cli_plan_fn)(const pnpr_cloud *header, void *user, pnpr_memory_pl
 typedef struct cli_sample_views {
     const pnpr_camera *cams;
     size_t count;
-    size_t (*from_preview)(const pnpr_cloud *preview, void *user, pnpr_camera **r_cams);
+    size_t (*from_preview)(pnpr_cloud *preview, void *user, pnpr_camera **r_cams);
     void *user;
 } cli_sample_views;
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,

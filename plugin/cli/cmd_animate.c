@@ -37,7 +37,8 @@ typedef struct anim_args {
     int have_duration, keep_frames, video;
     char dir[PNPR_OUTPUT_PATH_MAX];
     pnpr_camera_path path; /* the path file's (read before any work) or the preset's */
-    int path_made;         /* the preset's path is made (from a preview of a cloud that is sampled) */
+    int path_made;         /* 1: the path is made (a preset's from a preview of a cloud that is
+                            * sampled), -1: making it failed (said why) */
 } anim_args;
 
 #define ANIM_FPS 25 /* --fps: the default */
@@ -167,7 +168,7 @@ static int make_path(anim_args *r, const cli_render_opts *o, const pnpr_cloud *c
 {
     pnpr_error err = {0};
     pnpr_status st = PNPR_OK;
-    if (r->path_made) return 1;
+    if (r->path_made) return r->path_made > 0; /* made (or failed, said why) from a preview */
     if (!r->path_file) {
         pnpr_camera start;
         double up[3];
@@ -183,7 +184,6 @@ static int make_path(anim_args *r, const cli_render_opts *o, const pnpr_cloud *c
     return st == PNPR_OK;
 }
 
-#ifdef PNPR_HAVE_RENDER
 /* Frames of the path: an open path ends with its last key, a loop one frame before it. */
 static long frame_count(const pnpr_camera_path *path, double fps)
 {
@@ -192,6 +192,7 @@ static long frame_count(const pnpr_camera_path *path, double fps)
     return path->loop ? (n < 1 ? 1 : (long)n) : (long)n + 1;
 }
 
+#ifdef PNPR_HAVE_RENDER
 /* A PNG that was written to its end (IEND last) at the expected size. */
 static int frame_complete(const char *file, int w, int h)
 {
@@ -427,6 +428,8 @@ static int make_video(const anim_args *r, long n, int quiet)
     return 1;
 }
 
+#endif
+
 /* The cameras a sample of a cloud larger than memory follows (cli_read_fitting): every frame of the
  * path (a path file's, or a preset's once made), into *r_cams (malloc'd). Returns how many (0:
  * none, or a frame not evaluated: animate() says why). */
@@ -452,13 +455,18 @@ typedef struct preview_user {
 
 /* cli_sample_views.from_preview for a preset: its path from a uniform preview of a cloud that is
  * sampled (its start camera needs the cloud), then its frames' cameras. */
-static size_t preset_cameras(const pnpr_cloud *preview, void *user, pnpr_camera **r_cams)
+static size_t preset_cameras(pnpr_cloud *preview, void *user, pnpr_camera **r_cams)
 {
     preview_user *u = user;
     *r_cams = NULL;
-    return make_path(u->r, u->o, preview) ? sample_cameras(u->r, r_cams) : 0;
+    /* the outlier options, as the cloud read gets them (a preset fitted to far points would fly
+     * round them) */
+    if (cli_outliers_apply(&u->o->outliers, "animate", u->r->in, preview, 1, NULL) != 0 || !make_path(u->r, u->o, preview)) {
+        u->r->path_made = -1; /* said why: animate() does not make it again */
+        return 0;
+    }
+    return sample_cameras(u->r, r_cams);
 }
-#endif
 
 /* Without -o: the cloud (for a preset's start camera) and the path, written to --save-path.
  * Returns the exit code. */
@@ -466,7 +474,9 @@ static int save_path_only(cli_render_opts *o, anim_args *r)
 {
     cli_render_session s;
     memset(&s, 0, sizeof s);
-    int ok = (r->path_file || cli_render_load(&s, o, "animate", r->in, NULL)) && make_path(r, o, &s.cloud);
+    preview_user pu = {r, o}; /* a cloud that is sampled: the path from the preview, as with -o */
+    const cli_sample_views views = {NULL, 0, preset_cameras, &pu};
+    int ok = (r->path_file || cli_render_load(&s, o, "animate", r->in, &views)) && make_path(r, o, &s.cloud);
     cli_render_end(&s);
     if (ok && !o->quiet) fprintf(stderr, "wrote %s\n", r->save_path);
     return ok ? 0 : 1;
@@ -502,7 +512,7 @@ int cli_animate(int argc, char **argv)
     long n = 0;
     pnpr_camera *cams = NULL;
     preview_user pu = {&r, &o};
-    cli_sample_views views = {NULL, sample_cameras(&r, &cams), preset_cameras, &pu};
+    cli_sample_views views = {NULL, sample_cameras(&r, &cams), r.path_file ? NULL : preset_cameras, &pu};
     views.cams = cams;
     rc = cli_render_load(&s, &o, "animate", r.in, &views) && animate(&s, &o, &r, argc, argv, &n) ? 0 : 1;
     free(cams);
