@@ -48,6 +48,10 @@ static int keep_sample(void *user, uint64_t index, const double p[3])
  * record size, and the process's resident memory after reading is a little more (a sample that
  * fitted 150 MiB by 0.9 was refused by 1 MiB after reading). */
 #define SAMPLE_MARGIN 0.85
+/* What reading a sample holds beyond its points (the reader's buffers, the heap): a 400k-point
+ * file of 12-byte records sampled under 110M to 135M grew the process by 4 to 5 MiB more than its
+ * points, and was refused after reading by 1 to 2 MiB. */
+#define SAMPLE_RESERVE (8.0 * 1048576.0)
 
 /* The most points of `rec` bytes each (the cloud as read) that fit in `room` with the estimate of
  * `mp` for them (memory.h: the same figures as the check after reading); at most `points`. */
@@ -67,7 +71,7 @@ static double fitting_count(const pnpr_memory_plan *mp, double rec, double room,
 }
 
 /* The share of the file's points that fits, 1 when all do (decided from its size alone, without a
- * pass unless need_pass); 0 when it cannot tell (not a PLY). The pass over the coordinates calls
+ * pass unless need_pass); 0 when it cannot tell (not a PLY); -1 when not even one point does. The pass over the coordinates calls
  * `keep` with `user` (it counts, makes the views' histograms, or keeps a preview); *r_points: the
  * points seen (*seen after the pass); r_kept (NULL: freed): the points `keep` kept. */
 static double fitting_share(const char *in, const pnpr_memory_plan *mp, cli_plan_fn plan, void *plan_user,
@@ -91,8 +95,12 @@ static double fitting_share(const char *in, const pnpr_memory_plan *mp, cli_plan
     else pnpr_cloud_free(&none_read);
     *r_points = *seen;
     if (!*seen) return 1;
-    double rec = (double)sb.st_size / (double)*seen + 8.0, fit = fitting_count(&m, rec, room, *seen);
-    return fit >= (double)*seen ? 1 : fit > 0 ? SAMPLE_MARGIN * fit / (double)*seen : 0;
+    /* the cloud as read, a point: its record and 8 bytes, x 1.5 for the reader's arrays, which grow
+     * by doubling while a filtered stream's count is unknown (measured: 104 bytes a point for the
+     * farm's 64-byte records; at x 1 a sample sized to fit 200M was refused by 1 MiB) */
+    double rec = 1.5 * (double)sb.st_size / (double)*seen + 8.0;
+    double fit = fitting_count(&m, rec, room - SAMPLE_RESERVE, *seen);
+    return fit >= (double)*seen ? 1 : fit > 0 ? SAMPLE_MARGIN * fit / (double)*seen : -1;
 }
 
 /* ---- the views' sample: cameras given (crq.h) ---------------------------------------------- */
@@ -203,6 +211,14 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     } else if (!asked) {
         sample_keep count = {0, 0};
         share = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, 0, &points, NULL);
+    }
+    if (!asked && (by_view ? fit : share) < 0) { /* refused before reading the file */
+        char a[32];
+        fprintf(stderr, "pointnpr %s: %s: not even a sample of its %llu points fits in %s: drawing needs more "
+                        "(--memory-limit; docs/tiles.md)\n", cmd, in, (unsigned long long)points,
+                pnpr_memory_text(limit ? limit : pnpr_memory_available(), a, sizeof a));
+        free(vk.v.each);
+        return 0;
     }
     if (by_view) {
         if (!asked) share = fit;
