@@ -7,29 +7,35 @@
 
 #define PI 3.14159265358979323846
 
-/* The tangent of a view's cone's half-angle: its diagonal's, widened by PNPR_VIEW_SAMPLE_MARGIN. */
-static double cone_tan(double fov_deg, int width, int height)
+/* A look-at view's unit direction and the tangent of its cone's half-angle (its diagonal's,
+ * widened by PNPR_VIEW_SAMPLE_MARGIN); 0 unless eye and target are apart and finite, fov_deg in
+ * (0, 180), width and height > 0. */
+static int look_view(const double eye[3], const double target[3], double fov_deg, int width, int height,
+                     double r_f[3], double *r_tan)
 {
+    double f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
+    double len = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    if (!(len > 0) || !isfinite(len) || !isfinite(eye[0] + eye[1] + eye[2]) || !(fov_deg > 0 && fov_deg < 180) ||
+        width <= 0 || height <= 0)
+        return 0;
     double ty = tan(0.5 * fov_deg * PI / 180.0), tx = ty * width / height;
-    return PNPR_VIEW_SAMPLE_MARGIN * sqrt(tx * tx + ty * ty);
+    *r_tan = PNPR_VIEW_SAMPLE_MARGIN * sqrt(tx * tx + ty * ty);
+    for (int i = 0; i < 3; i++) r_f[i] = f[i] / len;
+    return isfinite(*r_tan);
 }
 
 /* One view into slot v->views. */
 static pnpr_status set_view(pnpr_view_sample *v, const double eye[3], const double target[3], double fov_deg,
                             int width, int height)
 {
-    if (!v || !eye || !target || v->views < 0 || v->views >= PNPR_VIEW_SAMPLE_VIEWS) return PNPR_ERR_INVALID_ARGUMENT;
-    double f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
-    double len = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-    if (!(len > 0) || !isfinite(len) || !isfinite(eye[0] + eye[1] + eye[2]) || !(fov_deg > 0 && fov_deg < 180) ||
-        width <= 0 || height <= 0)
+    double f[3], tan_cone;
+    if (!v || !eye || !target || v->views < 0 || v->views >= PNPR_VIEW_SAMPLE_VIEWS ||
+        !look_view(eye, target, fov_deg, width, height, f, &tan_cone))
         return PNPR_ERR_INVALID_ARGUMENT;
-    double tan_cone = cone_tan(fov_deg, width, height);
-    if (!isfinite(tan_cone)) return PNPR_ERR_INVALID_ARGUMENT;
     int k = v->views++;
     for (int i = 0; i < 3; i++) {
         v->eye[i][k] = eye[i];
-        v->forward[i][k] = f[i] / len;
+        v->forward[i][k] = f[i];
     }
     v->tan2[k] = v->tan2_own[k] = tan_cone * tan_cone;
     v->cos_own[k] = 1;
@@ -67,16 +73,7 @@ static void widen(pnpr_view_sample *v, int k, double half_angle, double reach, d
     v->back[k] = back;
     v->reach[k] = reach;
     v->cos_own[k] = cos(own);
-}
-
-/* Frame f's unit direction into r_f; 0 when its eye and target are not apart and finite. */
-static int frame_dir(const double *eyes, const double *targets, size_t f, double r_f[3])
-{
-    double d[3] = {targets[3 * f] - eyes[3 * f], targets[3 * f + 1] - eyes[3 * f + 1], targets[3 * f + 2] - eyes[3 * f + 2]};
-    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    if (!(len > 0) || !isfinite(len)) return 0;
-    for (int i = 0; i < 3; i++) r_f[i] = d[i] / len;
-    return 1;
+    v->widened = 1;
 }
 
 /* The frame of view j of m over n frames: spread evenly, the first and the last among them. */
@@ -102,17 +99,14 @@ pnpr_status pnpr_view_sample_init_frames(pnpr_view_sample *v, const double *eyes
         double fj[3], half = 0, reach = 0, own = 0;
         for (int i = 0; i < 3; i++) fj[i] = v->forward[i][j];
         for (size_t g = lo; g < hi; g++) {
-            double fg[3], e2 = 0;
-            double t = cone_tan(fovs[g], width, height);
-            if (!frame_dir(eyes, targets, g, fg) || !(fovs[g] > 0 && fovs[g] < 180) || !isfinite(t))
-                return PNPR_ERR_INVALID_ARGUMENT;
-            double c = fj[0] * fg[0] + fj[1] * fg[1] + fj[2] * fg[2];
-            double a = atan(t) + acos(c < -1 ? -1 : c > 1 ? 1 : c);
+            double fg[3], t, e2 = 0;
+            if (!look_view(eyes + 3 * g, targets + 3 * g, fovs[g], width, height, fg, &t)) return PNPR_ERR_INVALID_ARGUMENT;
+            double c = fj[0] * fg[0] + fj[1] * fg[1] + fj[2] * fg[2], cone = atan(t);
             for (int i = 0; i < 3; i++) e2 += (eyes[3 * g + i] - eyes[3 * f + i]) * (eyes[3 * g + i] - eyes[3 * f + i]);
             if (!isfinite(e2)) return PNPR_ERR_INVALID_ARGUMENT;
-            if (a > half) half = a;
-            if (atan(t) > own) own = atan(t);
-            if (sqrt(e2) > reach) reach = sqrt(e2);
+            half = fmax(half, cone + acos(c < -1 ? -1 : c > 1 ? 1 : c));
+            own = fmax(own, cone);
+            reach = fmax(reach, sqrt(e2));
         }
         widen(v, (int)j, half, reach, own);
     }
@@ -125,12 +119,33 @@ static int views_rounded(const pnpr_view_sample *v)
     return v->views <= 0 ? 0 : v->views >= PNPR_VIEW_SAMPLE_VIEWS ? PNPR_VIEW_SAMPLE_VIEWS : (v->views + 3) & ~3;
 }
 
+/* The depth of p in each view's own frame (its eye and cone before widening), else 0: each view's
+ * histogram is its frame's, for the frame's cap (a widened view's depths are those of the frames
+ * it stands for, nearer). */
+static void own_depths(const pnpr_view_sample *restrict v, const double *restrict p, double *restrict r_z)
+{
+    const int slots = views_rounded(v);
+    for (int k = 0; k < slots; k++) {
+        double b = v->back[k];
+        double dx = p[0] - v->eye[0][k] - b * v->forward[0][k], dy = p[1] - v->eye[1][k] - b * v->forward[1][k],
+               dz = p[2] - v->eye[2][k] - b * v->forward[2][k];
+        double z = dx * v->forward[0][k] + dy * v->forward[1][k] + dz * v->forward[2][k];
+        double r2 = dx * dx + dy * dy + dz * dz - z * z;
+        int seen = (z > 0) & (r2 <= z * z * v->tan2_own[k]);
+        r_z[k] = seen ? z : 0;
+    }
+}
+
 /* The eye depth of p in each view that sees it, else 0 (NaN and Inf too: the comparisons fail); a
  * widened view's the least of the cameras it stands for (widen), at least 1e-6 of the depth from
  * its apex; in the slots up to `views` rounded up to 4 (the slots after `views` see nothing): one loop without
  * branches (the compiler's vectors). */
 static void view_depths(const pnpr_view_sample *restrict v, const double *restrict p, double *restrict r_z)
 {
+    if (!v->widened) { /* the views are their frames': their depths, without the distance's root */
+        own_depths(v, p, r_z);
+        return;
+    }
     const int slots = views_rounded(v);
     for (int k = 0; k < slots; k++) {
         double dx = p[0] - v->eye[0][k], dy = p[1] - v->eye[1][k], dz = p[2] - v->eye[2][k];
@@ -182,23 +197,6 @@ static void depths_add(pnpr_view_depths *h, double z)
     h->visible++;
 }
 
-/* The depth of p in each view's own frame (its eye and cone before widening), else 0: each view's
- * histogram is its frame's, for the frame's cap (a widened view's depths are those of the frames
- * it stands for, nearer). */
-static void own_depths(const pnpr_view_sample *restrict v, const double *restrict p, double *restrict r_z)
-{
-    const int slots = views_rounded(v);
-    for (int k = 0; k < slots; k++) {
-        double b = v->back[k];
-        double dx = p[0] - v->eye[0][k] - b * v->forward[0][k], dy = p[1] - v->eye[1][k] - b * v->forward[1][k],
-               dz = p[2] - v->eye[2][k] - b * v->forward[2][k];
-        double z = dx * v->forward[0][k] + dy * v->forward[1][k] + dz * v->forward[2][k];
-        double r2 = dx * dx + dy * dy + dz * dz - z * z;
-        int seen = (z > 0) & (r2 <= z * z * v->tan2_own[k]);
-        r_z[k] = seen ? z : 0;
-    }
-}
-
 void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3])
 {
     double z[PNPR_VIEW_SAMPLE_VIEWS];
@@ -207,7 +205,7 @@ void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3])
     if (!(least > 0)) return;
     depths_add(&v->least, least);
     if (!v->each || v->views < 2) return;
-    own_depths(v, p, z);
+    if (v->widened) own_depths(v, p, z);
     for (int k = 0; k < v->views; k++)
         if (z[k] > 0) depths_add(&v->each[k], z[k]);
 }

@@ -104,6 +104,7 @@ typedef struct pnpr_view_sample {
      * it stands for and the cosine of their largest own half-angle (a plain view: 0, 0, 1) */
     double back[PNPR_VIEW_SAMPLE_VIEWS], reach[PNPR_VIEW_SAMPLE_VIEWS], cos_own[PNPR_VIEW_SAMPLE_VIEWS];
     double tan2_own[PNPR_VIEW_SAMPLE_VIEWS]; /* the view's own cone before widening (its frame's) */
+    int widened;               /* some view is widened (init_frames with more frames than views) */
     double c;                  /* share = min(1, c / z^2); 0 until solved, HUGE_VAL: every point seen */
     pnpr_view_depths least;    /* each point's least depth among the views that see it */
     pnpr_view_depths *each;    /* NULL, or one histogram per view (caller-owned, `views` of them,

@@ -511,9 +511,9 @@ int cli_animate(int argc, char **argv)
     cli_render_session s;
     long n = 0;
     pnpr_camera *cams = NULL;
+    size_t cam_count = sample_cameras(&r, &cams);
     preview_user pu = {&r, &o};
-    cli_sample_views views = {NULL, sample_cameras(&r, &cams), r.path_file ? NULL : preset_cameras, &pu};
-    views.cams = cams;
+    const cli_sample_views views = {cams, cam_count, r.path_file ? NULL : preset_cameras, &pu};
     rc = cli_render_load(&s, &o, "animate", r.in, &views) && animate(&s, &o, &r, argc, argv, &n) ? 0 : 1;
     free(cams);
     cli_render_end(&s);
