@@ -1,5 +1,7 @@
 /* The point cloud model: float offsets from a double origin, optional arrays, extra properties. */
 #include <pointnpr/cloud.h>
+
+#include "internal.h"
 #include <pointnpr/outliers.h>
 
 #include <math.h>
@@ -377,5 +379,39 @@ pnpr_status pnpr_cloud_keep(pnpr_cloud *cloud, const uint8_t *keep, size_t *r_re
         compact(cloud->props[k].data, pnpr_type_size(cloud->props[k].type), n, keep);
     cloud->count = m;
     if (r_removed) *r_removed = n - m;
+    return PNPR_OK;
+}
+
+/* Permutes n elements of `size` bytes through `scratch` (n * size bytes). forward: the element
+ * at position p moves to perm[p] (tree order -> input order); else the element at perm[p] moves
+ * to p (input order -> tree order). Out of place on purpose: independent scattered stores keep
+ * many cache misses in flight, where following permutation cycles in place would wait for each
+ * miss in turn (measured 0.8 s vs 0.1 s for the eight arrays of a 1M-point cloud). */
+void pnpr_permute(void *data, size_t size, size_t n, const uint32_t *perm, int forward, char *scratch)
+{
+    if (!data || n == 0) return;
+    const char *a = data;
+    if (forward)
+        for (size_t p = 0; p < n; p++) memcpy(scratch + (size_t)perm[p] * size, a + p * size, size);
+    else
+        for (size_t p = 0; p < n; p++) memcpy(scratch + p * size, a + (size_t)perm[p] * size, size);
+    memcpy(data, scratch, n * size);
+}
+
+pnpr_status pnpr_cloud_permute(pnpr_cloud *cloud, const uint32_t *perm)
+{
+    if (!cloud || (cloud->count && !perm) || cloud->faces.count) return PNPR_ERR_INVALID_ARGUMENT;
+    const size_t n = cloud->count;
+    if (n == 0) return PNPR_OK;
+    char *scratch = malloc(n * 3 * sizeof(double));
+    if (!scratch) return PNPR_ERR_OUT_OF_MEMORY;
+    pnpr_permute(cloud->xyz, 3 * sizeof(float), n, perm, 0, scratch);
+    pnpr_permute(cloud->src_xyz, 3 * sizeof(double), n, perm, 0, scratch);
+    pnpr_permute(cloud->rgb, 3, n, perm, 0, scratch);
+    pnpr_permute(cloud->normal, 3 * sizeof(float), n, perm, 0, scratch);
+    pnpr_permute(cloud->label, sizeof(uint32_t), n, perm, 0, scratch);
+    for (size_t k = 0; k < cloud->prop_count; k++)
+        pnpr_permute(cloud->props[k].data, pnpr_type_size(cloud->props[k].type), n, perm, 0, scratch);
+    free(scratch);
     return PNPR_OK;
 }

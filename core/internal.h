@@ -39,6 +39,10 @@ double pnpr_select_double(double *v, size_t n, size_t k);
 /* The median of v[0..n), n > 0: v[n / 2] of the sorted order (v is reordered, pnpr_select_float). */
 float pnpr_median_float(float *v, size_t n);
 
+/* Permutes n elements of `size` bytes (at most 24) through `scratch` (n * size bytes). forward: the element
+ * at position p moves to perm[p]; else the element at perm[p] moves to p (core/cloud.c). */
+void pnpr_permute(void *data, size_t size, size_t n, const uint32_t *perm, int forward, char *scratch);
+
 /* Monotonic clock in seconds. */
 double pnpr_now(void);
 

@@ -42,22 +42,6 @@ static pnpr_status stage_end(run *r, pnpr_status st)
     return st;
 }
 
-/* Permutes n elements of `size` bytes through `scratch` (n * size bytes). forward: the element
- * at position p moves to perm[p] (tree order -> input order); else the element at perm[p] moves
- * to p (input order -> tree order). Out of place on purpose: independent scattered stores keep
- * many cache misses in flight, where following permutation cycles in place would wait for each
- * miss in turn (measured 0.8 s vs 0.1 s for the eight arrays of a 1M-point cloud). */
-static void permute(void *data, size_t size, size_t n, const uint32_t *perm, int forward, char *scratch)
-{
-    if (!data || n == 0) return;
-    const char *a = data;
-    if (forward)
-        for (size_t p = 0; p < n; p++) memcpy(scratch + (size_t)perm[p] * size, a + p * size, size);
-    else
-        for (size_t p = 0; p < n; p++) memcpy(scratch + p * size, a + (size_t)perm[p] * size, size);
-    memcpy(data, scratch, n * size);
-}
-
 /* Forward permutation in place by following cycles with perm[] itself as the visited marker
  * (it is restored afterwards): slow, for the out-of-memory path only. */
 static void restore_in_place(void *data, size_t size, size_t n, uint32_t *perm)
@@ -212,8 +196,8 @@ static pnpr_status features_tree_order(feat_run *f)
     memcpy(cloud->xyz, f->xyz, m * 3 * sizeof(float));
     pnpr_free(f->xyz);
     f->xyz = cloud->xyz;
-    permute(cloud->rgb, 3, n, f->perm, 0, f->scratch);
-    if (f->keep_normals) permute(cloud->normal, 3 * sizeof(float), n, f->perm, 0, f->scratch);
+    pnpr_permute(cloud->rgb, 3, n, f->perm, 0, f->scratch);
+    if (f->keep_normals) pnpr_permute(cloud->normal, 3 * sizeof(float), n, f->perm, 0, f->scratch);
     f->permuted = 1;
     free(f->scratch);
     f->scratch = NULL;
@@ -302,12 +286,12 @@ static pnpr_status features_finish(feat_run *f, pnpr_status st)
         f->permuted = 0;
     }
     if (f->permuted) {
-        permute(cloud->xyz, 3 * sizeof(float), n, f->perm, 1, f->scratch);
-        permute(cloud->rgb, 3, n, f->perm, 1, f->scratch);
-        permute(cloud->normal, 3 * sizeof(float), n, f->perm, 1, f->scratch);
-        for (int i = 0; i < 5; i++) permute(f->out[i], sizeof(float), n, f->perm, 1, f->scratch);
-        permute(f->spacing, sizeof(float), n, f->perm, 1, f->scratch);
-        permute(f->cls, 1, n, f->perm, 1, f->scratch);
+        pnpr_permute(cloud->xyz, 3 * sizeof(float), n, f->perm, 1, f->scratch);
+        pnpr_permute(cloud->rgb, 3, n, f->perm, 1, f->scratch);
+        pnpr_permute(cloud->normal, 3 * sizeof(float), n, f->perm, 1, f->scratch);
+        for (int i = 0; i < 5; i++) pnpr_permute(f->out[i], sizeof(float), n, f->perm, 1, f->scratch);
+        pnpr_permute(f->spacing, sizeof(float), n, f->perm, 1, f->scratch);
+        pnpr_permute(f->cls, 1, n, f->perm, 1, f->scratch);
     }
     pnpr_kdtree_free(f->tree);
     if (f->xyz != cloud->xyz) pnpr_free(f->xyz);

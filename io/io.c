@@ -249,3 +249,14 @@ pnpr_status pnpr_io_write_path(const char *path, const pnpr_cloud *cloud, const 
     free(o);
     return st;
 }
+
+size_t pnpr_ply_type_size(const char *t, size_t n)
+{
+    static const char *const names[][2] = {{"char", "int8"}, {"uchar", "uint8"}, {"short", "int16"}, {"ushort", "uint16"},
+                                           {"int", "int32"}, {"uint", "uint32"}, {"float", "float32"}, {"double", "float64"}};
+    static const size_t sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+    for (int k = 0; k < 8; k++)
+        for (int a = 0; a < 2; a++)
+            if (strlen(names[k][a]) == n && !strncmp(t, names[k][a], n)) return sizes[k];
+    return 0;
+}

@@ -35,6 +35,9 @@ typedef pnpr_status (*pnpr_io_stream_writer)(pnpr_write_fn fn, void *user, const
 pnpr_status pnpr_io_write_path(const char *path, const pnpr_cloud *cloud, const pnpr_write_options *opts,
                                pnpr_error *err, const char *what, pnpr_io_stream_writer stream);
 
+/* The bytes of the PLY scalar type named by t[0..n) ("uchar", "uint8", "float", ...), 0 for none. */
+size_t pnpr_ply_type_size(const char *t, size_t n);
+
 /* a * b and a + b saturating at UINT64_MAX (size checks against the bytes present). */
 static inline uint64_t pnpr_mul_sat(uint64_t a, uint64_t b) { return a && b > UINT64_MAX / a ? UINT64_MAX : a * b; }
 static inline uint64_t pnpr_add_sat(uint64_t a, uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }

@@ -1170,22 +1170,31 @@ static pnpr_status filter_vertices(ply_reader *r, const pnpr_read_options *o, ui
     const size_t n = (size_t)v->count, rs = v->min_size;
     uint8_t *bits = calloc(n / 8 + 1, 1);
     if (!bits) return pnpr_io_fail(r->err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "read ply: out of memory");
-    size_t kept = 0;
+    size_t kept = 0, done = 0;
     ply_tick t;
     tick_init(&t, n);
-    for (size_t i = 0; i < n; i++) {
-        const uint8_t *rec = r->data + pos + i * rs;
-        double w[3];
-        float f;
-        for (int a = 0; a < 3; a++) load_value(rec + xyz[a]->offset, xyz[a]->type, r->swap, &w[a], &f);
-        if (o->keep(o->keep_user, i, w)) {
-            bits[i >> 3] |= (uint8_t)(1u << (i & 7));
-            kept++;
-        }
-        if ((i & 0xFFFF) == 0) drop_behind(r, pos + i * rs, i == 0);
-        if (tick(r, &t, i + 1, n)) {
+    const uint64_t all[2] = {0, n}, *range = o->ranges ? o->ranges : all;
+    for (size_t g = 0; g < (o->ranges ? o->range_count : 1); g++) {
+        if (range[2 * g] > range[2 * g + 1] || range[2 * g + 1] > n || (g && range[2 * g] < range[2 * g - 1])) {
             free(bits);
-            return cancelled(r, i + 1, n);
+            return pnpr_io_fail(r->err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
+                                "read ply: vertex range %zu [%llu, %llu) is not ascending within the %zu vertices", g,
+                                (unsigned long long)range[2 * g], (unsigned long long)range[2 * g + 1], n);
+        }
+        for (size_t i = (size_t)range[2 * g]; i < (size_t)range[2 * g + 1]; i++, done++) {
+            const uint8_t *rec = r->data + pos + i * rs;
+            double w[3];
+            float f;
+            for (int a = 0; a < 3; a++) load_value(rec + xyz[a]->offset, xyz[a]->type, r->swap, &w[a], &f);
+            if (o->keep(o->keep_user, i, w)) {
+                bits[i >> 3] |= (uint8_t)(1u << (i & 7));
+                kept++;
+            }
+            if ((done & 0xFFFF) == 0) drop_behind(r, pos + i * rs, done == 0);
+            if (tick(r, &t, done + 1, n)) {
+                free(bits);
+                return cancelled(r, done + 1, n);
+            }
         }
     }
     *r_bits = bits;

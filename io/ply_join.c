@@ -16,6 +16,8 @@
  * Choice: a padding comment rather than a zero-padded count ("element vertex 000042"): a reader
  * that parses the count with base 0 (C's strtol convention) would read zero-padded digits as
  * octal; every PLY reader skips comments. */
+#include "ply_join.h"
+
 #include "../core/internal.h"
 #include <pointnpr/io.h>
 #include <pointnpr/output.h>
@@ -27,15 +29,7 @@
 #define JOIN_HEADER_MAX ((size_t)1 << 20) /* a header longer than this is not pointnpr's */
 #define JOIN_COUNT_DIGITS 20              /* room for any uint64 count */
 
-typedef struct join_sink {
-    pnpr_output *out;
-    pnpr_mem_sink head;    /* this input's header while it is collected */
-    int in_records;        /* the header is done: records pass through */
-    char *first;           /* the first input's header, count "0", no padding (NUL-terminated) */
-    int mismatch;          /* a later header differs from the first's */
-    int too_long;
-    int no_memory;         /* collecting or comparing a header ran out of memory */
-} join_sink;
+
 
 /* h (len bytes, ending in "end_header\n") with its vertex count replaced by "0": a new string,
  * NULL when it has no "element vertex N" line or memory runs out. */
@@ -58,30 +52,33 @@ static char *zero_count(const unsigned char *h, size_t len)
 /* The output's header for `count` points: the first header with the count and the padding
  * comment before its first element line. Its length never depends on count. Returns 0 when
  * every byte was written. */
-static int put_header(join_sink *j, uint64_t count)
+int pnpr_join_header(pnpr_join_sink *j, uint64_t count)
 {
     char digits[32];
     int nd = snprintf(digits, sizeof digits, "%llu", (unsigned long long)count);
     const char *elem = strstr(j->first, "\nelement ") + 1, *vc = strstr(j->first, "\nelement vertex 0\n") + 1;
     char pad[JOIN_COUNT_DIGITS + 48];
     int np = snprintf(pad, sizeof pad, "comment joined: room for the count%*s\n", JOIN_COUNT_DIGITS - nd, "");
-    const char *vend = vc + strlen("element vertex 0");
+    const char *vend = vc + strlen("element vertex 0"), *end = j->first + strlen(j->first) - strlen("end_header\n");
+    const char *comment = j->extra_comment ? j->extra_comment : "", *elems = j->extra_elements ? j->extra_elements : "";
     int bad = pnpr_output_sink(j->out, j->first, (size_t)(elem - j->first)) ||
-              pnpr_output_sink(j->out, pad, (size_t)np) || pnpr_output_sink(j->out, elem, (size_t)(vc - elem)) ||
+              pnpr_output_sink(j->out, pad, (size_t)np) || pnpr_output_sink(j->out, comment, strlen(comment)) ||
+              pnpr_output_sink(j->out, elem, (size_t)(vc - elem)) ||
               pnpr_output_sink(j->out, "element vertex ", 15) || pnpr_output_sink(j->out, digits, (size_t)nd) ||
-              pnpr_output_sink(j->out, vend, strlen(vend));
+              pnpr_output_sink(j->out, vend, (size_t)(end - vend)) || pnpr_output_sink(j->out, elems, strlen(elems)) ||
+              pnpr_output_sink(j->out, end, strlen(end));
     return bad;
 }
 
 /* The header once complete: the first's is kept and written, a later one compared. */
-static int header_done(join_sink *j)
+static int header_done(pnpr_join_sink *j)
 {
     char *z = zero_count(j->head.data, j->head.size);
     j->head.size = 0;
     if (!z) { j->no_memory = 1; return 1; } /* the writer always writes "element vertex N" */
     if (!j->first) {
         j->first = z;
-        return put_header(j, 0);
+        return pnpr_join_header(j, 0);
     }
     j->mismatch = strcmp(z, j->first) != 0;
     free(z);
@@ -90,7 +87,7 @@ static int header_done(join_sink *j)
 
 static int join_write(void *user, const void *data, size_t size)
 {
-    join_sink *j = user;
+    pnpr_join_sink *j = user;
     const unsigned char *p = data;
     while (size && !j->in_records) {
         /* the writer gives the header in pieces: collect up to its end */
@@ -111,7 +108,7 @@ static int join_write(void *user, const void *data, size_t size)
 /* One input read and passed on; *r_points grows by its count. An empty input is skipped (a text
  * file without points has no columns to compare), unless it is the last and none had points:
  * then its header is the output's. */
-static pnpr_status join_one(join_sink *j, const char *path, const pnpr_join_options *o, int last, uint64_t *r_points,
+static pnpr_status join_one(pnpr_join_sink *j, const char *path, const pnpr_join_options *o, int last, uint64_t *r_points,
                             pnpr_error *err)
 {
     pnpr_cloud c = {0};
@@ -126,13 +123,20 @@ static pnpr_status join_one(join_sink *j, const char *path, const pnpr_join_opti
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: has faces; a mesh is joined in memory (pointnpr convert without --stream)",
                               path);
     }
-    pnpr_write_options wo = o->write;
+    st = pnpr_join_cloud(j, &c, &o->write, path, err);
+    *r_points += c.count;
+    pnpr_cloud_free(&c);
+    return st;
+}
+
+pnpr_status pnpr_join_cloud(pnpr_join_sink *j, const pnpr_cloud *c, const pnpr_write_options *write, const char *path,
+                            pnpr_error *err)
+{
+    pnpr_write_options wo = *write;
     wo.format = PNPR_FORMAT_PLY;
     wo.progress = (pnpr_progress){0};
     j->in_records = 0;
-    st = pnpr_write_ply_stream(join_write, j, &c, &wo, err);
-    *r_points += c.count;
-    pnpr_cloud_free(&c);
+    pnpr_status st = pnpr_write_ply_stream(join_write, j, c, &wo, err);
     if (j->no_memory) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory for its PLY header", path);
     if (j->mismatch)
         return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
@@ -180,7 +184,7 @@ pnpr_status pnpr_join_ply(const char *const *inputs, size_t count, const char *p
                               "%s: a join writes its vertex count last, into a regular file (not a device, pipe or "
                               "standard output)", path);
     }
-    join_sink j = {&out, {0}, 0, NULL, 0, 0, 0};
+    pnpr_join_sink j = {&out, {0}, 0, NULL, 0, 0, 0, NULL, NULL};
     uint64_t points = 0;
     for (size_t i = 0; st == PNPR_OK && i < count; i++) {
         if (pnpr_progress_report(&o.progress, "join", (double)i / (double)count))
@@ -190,7 +194,7 @@ pnpr_status pnpr_join_ply(const char *const *inputs, size_t count, const char *p
             st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "%s: %llu points after %s, more than one cloud holds (%u: 32-bit "
                                 "indices)", path, (unsigned long long)points, inputs[i], UINT32_MAX);
     }
-    if (st == PNPR_OK && (fflush(out.f) != 0 || fseek(out.f, 0, SEEK_SET) != 0 || put_header(&j, points)))
+    if (st == PNPR_OK && (fflush(out.f) != 0 || fseek(out.f, 0, SEEK_SET) != 0 || pnpr_join_header(&j, points)))
         st = PNPR_ERR_IO;
     if (st == PNPR_OK) pnpr_progress_report(&o.progress, "join", 1.0);
     free(j.head.data);

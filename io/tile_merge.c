@@ -12,6 +12,7 @@
 
 #include "../core/internal.h"
 #include "tile_merge.h"
+#include "io_util.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -61,17 +62,6 @@ typedef struct merge_run {
     size_t tile;               /* the tile being merged */
 } merge_run;
 
-static size_t ply_type_size(const char *t, size_t n)
-{
-    static const char *const names[][2] = {{"char", "int8"}, {"uchar", "uint8"}, {"short", "int16"}, {"ushort", "uint16"},
-                                           {"int", "int32"}, {"uint", "uint32"}, {"float", "float32"}, {"double", "float64"}};
-    static const size_t sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
-    for (int k = 0; k < 8; k++)
-        for (int a = 0; a < 2; a++)
-            if (strlen(names[k][a]) == n && !strncmp(t, names[k][a], n)) return sizes[k];
-    return 0;
-}
-
 /* The byte of "property float nx" in a vertex record of the layout sig (header_layout), -1 when
  * there is none or the floats are not little-endian as this machine's. */
 static long normal_offset(const char *sig)
@@ -84,7 +74,7 @@ static long normal_offset(const char *sig)
         const char *t = s + 9, *sp = strchr(t, ' ');
         if (!sp) return -1;
         if (!strncmp(sp + 1, "nx\n", 3)) return !strncmp(t, "float ", 6) ? off : -1;
-        size_t z = ply_type_size(t, (size_t)(sp - t));
+        size_t z = pnpr_ply_type_size(t, (size_t)(sp - t));
         if (!z) return -1;
         off += (long)z;
     }

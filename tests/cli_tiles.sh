@@ -4,7 +4,8 @@
 # the bodies of the results are byte-identical and all but a few points are certified; --tiles
 # sizes tiles from --memory-limit; refusals name the file and the reason; a folder of tiles joined
 # one at a time; render --sample draws a uniform sample, the same at every run; segment
-# --method components in tiles equals the run in memory.
+# --method components in tiles equals the run in memory; a file ordered for drawing samples as
+# the ordinary file does, reading part of it.
 # usage: cli_tiles.sh POINTNPR SCRATCH
 bin=$1
 dir=$2/cli_tiles
@@ -221,5 +222,41 @@ if built_with_render "$bin"; then
          [ ! -e "$dir/lim.png" ]' "a limit no sample fits is refused before reading"
   pointnpr render "$dir/ascii.ply" -o "$dir/bad.png" --size 160x120 --sample 0.25 2> "$dir/err.log"
   check '[ $? -eq 1 ] && grep -q "binary" "$dir/err.log"' "--sample of an ascii PLY is refused"
+
+  # a file ordered for drawing (convert --lod): every point again, and the samples by the view and
+  # the frames keep the same points in view as the pass over every point, reading only part of it
+  pointnpr convert "$dir/mem.ply" -o "$dir/lod.ply" --lod --memory-limit 60M 2> "$dir/lod.log"
+  check '[ $? -eq 0 ] && grep -q "14400 points ordered for drawing" "$dir/lod.log" &&
+         [ "$(pointnpr info "$dir/lod.ply" 2>&1 | grep -c "14400")" -ge 1 ]' "convert --lod writes the 14400 points, an ordinary PLY to info"
+  pointnpr render "$dir/lod.ply" -o "$dir/lod_view.png" --size 160x120 --sample 0.9 --eye 6,5,6 --target 6,5,0 2> "$dir/lod_view.log"
+  kept=$(sed -n 's/.*sample by the view .* of \([0-9]*\) of 14400 points.*/\1/p' "$dir/lod_view.log")
+  read_pc=$(sed -n 's/.*ordered for drawing: \([0-9.]*\)% of its points read.*/\1/p' "$dir/lod_view.log")
+  check '[ -n "$kept" ] && [ "$kept" = "$(sed -n "s/.*sample by the view .* of \([0-9]*\) of 14400 points.*/\1/p" "$dir/view.log")" ] &&
+         [ -n "$read_pc" ] && awk -v r="$read_pc" "BEGIN { exit !(r < 80) }"' \
+    "the sample by the view of the ordered file keeps the same $kept points in view, reading $read_pc% of them"
+  pointnpr animate "$dir/lod.ply" -o "$dir/lod_frames/" --camera-path "$dir/two.campath" --fps 1 --size 160x120 \
+    --sample 0.9 2> "$dir/lod_path.log"
+  check '[ "$(sed -n "s/.*sample by the frames. views .* of \([0-9]*\) of 14400 points.*/\1/p" "$dir/lod_path.log")" = \
+          "$(sed -n "s/.*sample by the frames. views .* of \([0-9]*\) of 14400 points.*/\1/p" "$dir/path.log")" ] &&
+         grep -q "ordered for drawing" "$dir/lod_path.log"' "the sample by a path's frames of the ordered file keeps the same points"
+  pointnpr render "$dir/lod.ply" -o "$dir/lod_u.png" --size 160x120 --sample 0.25 2> "$dir/lod_u.log"
+  kept=$(sed -n 's/.*uniform sample of \([0-9]*\) of 14400 points.*/\1/p' "$dir/lod_u.log")
+  pointnpr render "$dir/lod.ply" -o "$dir/lod_u2.png" --size 160x120 --sample 0.25 --quiet
+  check '[ "${kept:-0}" -gt 3240 ] && [ "${kept:-0}" -lt 3960 ] && cmp -s "$dir/lod_u.png" "$dir/lod_u2.png"' \
+    "--sample 0.25 of the ordered file keeps about 3600 points, the same at every run (got '$kept')"
+  pointnpr animate "$dir/lod.ply" -o "$dir/lod_orbit/" --orbit --duration 1 --fps 2 --size 160x120 --sample 0.9 2> "$dir/lod_orbit.log"
+  check '[ -s "$dir/lod_orbit/frame-00001.png" ] && grep -q "sample by the frames. views" "$dir/lod_orbit.log"' \
+    "animate --orbit of the ordered file samples by its frames"
+  # an index that lies (a run's count changed): a warning, and the file is read as an ordinary PLY
+  cp "$dir/lod.ply" "$dir/lod_bad.ply"
+  printf '\377' | dd of="$dir/lod_bad.ply" bs=1 seek=$(($(stat -c %s "$dir/lod.ply") - 2)) conv=notrunc 2> /dev/null
+  pointnpr render "$dir/lod_bad.ply" -o "$dir/lod_bad.png" --size 160x120 --sample 0.9 --eye 6,5,6 --target 6,5,0 2> "$dir/lod_bad.log"
+  check '[ $? -eq 0 ] && grep -q "lod_bad.ply: warning: its order for drawing cannot be used (.*index counts" "$dir/lod_bad.log" &&
+         grep -q "of $(sed -n "s/.*sample by the view .* of \([0-9]*\) of 14400.*/\1/p" "$dir/view.log") of 14400" "$dir/lod_bad.log"' \
+    "an ordered file whose index lies is read as an ordinary PLY, with a warning"
+  pointnpr convert "$dir/mem.ply" "$dir/in.ply" -o "$dir/lod2.ply" --lod 2> "$dir/err.log"
+  check '[ $? -eq 2 ] && grep -q "one binary PLY" "$dir/err.log" && [ ! -e "$dir/lod2.ply" ]' "convert --lod of two inputs is refused"
+  pointnpr convert "$dir/ascii.ply" -o "$dir/lod2.ply" --lod 2> "$dir/err.log"
+  check '[ $? -eq 1 ] && grep -q "ascii.ply.*binary" "$dir/err.log" && [ ! -e "$dir/lod2.ply" ]' "convert --lod of an ascii PLY is refused, naming it"
 fi
 exit $fail

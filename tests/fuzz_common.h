@@ -14,13 +14,13 @@
 typedef pnpr_mem_sink fuzz_sink;      /* the library's memory sink */
 #define fuzz_write pnpr_mem_sink_write
 
-static int fuzz_same_double(double a, double b)
+static inline int fuzz_same_double(double a, double b)
 {
     return (isnan(a) && isnan(b)) || a == b;
 }
 
 /* A failed read: the cloud must be all zero and the error must say something. */
-static void fuzz_check_failed(const pnpr_cloud *cloud, const pnpr_error *err)
+static inline void fuzz_check_failed(const pnpr_cloud *cloud, const pnpr_error *err)
 {
     pnpr_cloud zero;
     memset(&zero, 0, sizeof zero);
@@ -30,7 +30,7 @@ static void fuzz_check_failed(const pnpr_cloud *cloud, const pnpr_error *err)
 /* Faces and the viewpoint are compared when the format keeps them (PLY faces, PCD viewpoint). */
 enum { FUZZ_SAME_FACES = 1, FUZZ_SAME_VIEWPOINT = 2 };
 
-static void fuzz_check_same(const pnpr_cloud *a, const pnpr_cloud *b, int what)
+static inline void fuzz_check_same(const pnpr_cloud *a, const pnpr_cloud *b, int what)
 {
     if (a->count != b->count || a->prop_count != b->prop_count || !a->rgb != !b->rgb || !a->normal != !b->normal ||
         !a->label != !b->label)

@@ -207,6 +207,73 @@ static void test_frames(void)
     CHECK_STATUS(pnpr_view_sample_init_frames(&v, eyes, targets, fovs, 0, 100, 100), PNPR_ERR_INVALID_ARGUMENT);
 }
 
+/* Balls (the cells of a file ordered for drawing): known answers for one view, and every point
+ * of a random ball no more likely kept than the ball says, for plain and widened views. */
+static void test_balls(void)
+{
+    static pnpr_view_sample v;
+    const double eye[3] = {0, 0, 0}, target[3] = {1, 0, 0};
+    CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 60, 100, 100), PNPR_OK);
+    /* the cone's half-angle: atan(1.15 sqrt 2 tan 30 deg) = 43.2 deg */
+    const double t = 1.15 * sqrt(2.0) * tan(30 * 3.14159265358979323846 / 180);
+    const double ahead[3] = {10, 0, 0}, behind[3] = {-5, 0, 0}, around[3] = {0.5, 0, 0};
+    const double beside[3] = {10, 10 * t + 1.2, 0}, off[3] = {10, 10 * t + 1.6, 0};
+    pnpr_view_sample_add_ball(&v, ahead, 1, 40);
+    pnpr_view_sample_add_ball(&v, behind, 1, 7);
+    CHECK(v.least.visible == 40 && v.least.z_min == 9 && v.least.z_max == 9);
+    v.c = 0.5 * 81; /* a point at depth 9: share 0.5 */
+    CHECK_NEAR(pnpr_view_sample_ball_share(&v, ahead, 1), 0.5, 1e-12);
+    const double front[3] = {9, 0, 0};
+    CHECK_NEAR(pnpr_view_sample_share(&v, front), 0.5, 1e-12);
+    CHECK(pnpr_view_sample_ball_share(&v, behind, 1) == 0);
+    CHECK(pnpr_view_sample_ball_share(&v, around, 1) == 1); /* it holds the eye */
+    /* 1.2 beside the cone's edge (1.2 cos 43.2 deg = 0.87 from it): a ball of 1 reaches in, of 0.8 not */
+    CHECK(pnpr_view_sample_ball_share(&v, beside, 1) > 0);
+    CHECK(pnpr_view_sample_ball_share(&v, beside, 0.8) == 0);
+    CHECK(pnpr_view_sample_ball_share(&v, off, 1) == 0);
+    const double nan_c[3] = {NAN, 0, 0};
+    CHECK(pnpr_view_sample_ball_share(&v, nan_c, 1) == 0);
+
+    enum { F = 65 };
+    static pnpr_view_sample w;
+    static double eyes[3 * F], targets[3 * F], fovs[F];
+    pnpr_test_rng rng = {99};
+    int tried = 0, above = 0;
+    for (int trial = 0; trial < 40; trial++) {
+        for (int f = 0; f < F; f++) { /* a wandering, turning path */
+            double a = 0.05 * f + 0.3 * pnpr_test_uniform(&rng);
+            eyes[3 * f] = 0.3 * f;
+            eyes[3 * f + 1] = 2 * sin(0.1 * f);
+            eyes[3 * f + 2] = pnpr_test_uniform(&rng);
+            targets[3 * f] = eyes[3 * f] + cos(a);
+            targets[3 * f + 1] = eyes[3 * f + 1] + sin(a);
+            targets[3 * f + 2] = eyes[3 * f + 2] - 0.2;
+            fovs[f] = 20 + 40 * pnpr_test_uniform(&rng);
+        }
+        int frames = trial % 2 ? F : 20; /* widened views, or plain ones */
+        CHECK_STATUS(pnpr_view_sample_init_frames(&w, eyes, targets, fovs, (size_t)frames, 160, 90), PNPR_OK);
+        w.c = pow(10, 3 * pnpr_test_uniform(&rng) - 1);
+        for (int b = 0; b < 100; b++) {
+            double c[3], rho = 3 * pnpr_test_uniform(&rng);
+            for (int i = 0; i < 3; i++) c[i] = 40 * (pnpr_test_uniform(&rng) - 0.3);
+            double bs = pnpr_view_sample_ball_share(&w, c, rho);
+            for (int k = 0; k < 30; k++) {
+                double p[3], d[3], len = 0;
+                for (int i = 0; i < 3; i++) {
+                    d[i] = pnpr_test_normal(&rng);
+                    len += d[i] * d[i];
+                }
+                double r = rho * cbrt(pnpr_test_uniform(&rng)) / sqrt(len);
+                for (int i = 0; i < 3; i++) p[i] = c[i] + r * d[i];
+                double ps = pnpr_view_sample_share(&w, p);
+                tried += ps > 0;
+                above += ps > bs * (1 + 1e-9);
+            }
+        }
+    }
+    CHECK_MSG(tried > 3000 && above == 0, "of %d points in view, %d more likely kept than their ball", tried, above);
+}
+
 /* The grid over degenerate boxes: never more than PNPR_VIEW_CELLS_MAX cells, every finite point
  * counted once. A box of subnormal size and one whose extent overflows a float get one cell (they
  * had made 32768^3 and 32768^2 cells, written past the counts); a single point one; an ordinary
@@ -405,6 +472,7 @@ int main(void)
     if (!a || !b || !c || !group) return pnpr_test_finish("test_crq");
     test_cells();
     test_solve();
+    test_balls();
 
     /* one group: a permutation, deterministic, seed-dependent, not the identity */
     size_t starts[8];

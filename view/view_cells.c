@@ -30,36 +30,41 @@ static double grid_cells(const float bmin[3], const float bmax[3], float e)
     return n;
 }
 
-/* The smallest side (to float precision, by bisection) whose grid has at most
- * PNPR_VIEW_CELLS_MAX cells; `longest` (the box's longest side, finite, > 0) / 31 fits (32 cubes a
- * side at most, with rounding) unless it is subnormal: the caller checks. */
-static float grid_side(const float bmin[3], const float bmax[3], float longest)
+/* The smallest side (to float precision, by bisection) whose grid has at most `most` (8 to
+ * PNPR_VIEW_CELLS_MAX) cells; `longest` (the box's longest side, finite, > 0) / (k - 1), k the
+ * cube root of `most` rounded down, fits (k cubes a side at most, with rounding: 32768 cells,
+ * longest / 31) unless it is subnormal: the caller checks. */
+static float grid_side(const float bmin[3], const float bmax[3], float longest, double most)
 {
-    float lo = longest / (float)PNPR_VIEW_CELLS_MAX, hi = longest / 31.0f;
-    if (grid_cells(bmin, bmax, lo) <= PNPR_VIEW_CELLS_MAX) return lo; /* a line */
+    float lo = longest / (float)most, hi = longest / (float)(floor(cbrt(most) + 1e-9) - 1);
+    if (grid_cells(bmin, bmax, lo) <= most) return lo; /* a line */
     for (int it = 0; it < 64 && hi - lo > hi * 1e-6f; it++) {
         float mid = 0.5f * (lo + hi);
-        if (grid_cells(bmin, bmax, mid) <= PNPR_VIEW_CELLS_MAX) hi = mid;
+        if (grid_cells(bmin, bmax, mid) <= most) hi = mid;
         else lo = mid;
     }
     return hi;
 }
 
+void pnpr_view_cells_grid(const float bmin[3], const float bmax[3], uint32_t most, float *r_side, uint32_t r_n[3])
+{
+    float side = 0;
+    const double m = most > PNPR_VIEW_CELLS_MAX ? PNPR_VIEW_CELLS_MAX : most;
+    for (int a = 0; a < 3; a++) side = fmaxf(side, bmax[a] - bmin[a]);
+    float cell = side > 0 && isfinite(side) && m >= 8 ? grid_side(bmin, bmax, side, m) : 0;
+    /* a box too small or too large for float cubes (a side below the normal floats, an extent
+     * that overflows), empty, or fewer than 8 cells asked: one cell, every point clamped into it */
+    const int one = !(cell >= FLT_MIN) || !isfinite(1.0f / cell) || grid_cells(bmin, bmax, cell) > m;
+    *r_side = one ? 1 : cell;
+    for (int a = 0; a < 3; a++) r_n[a] = one ? 1 : axis_cells(bmax[a] - bmin[a], cell);
+}
+
 void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const float bmin[3], const float bmax[3])
 {
     memset(c, 0, sizeof *c);
-    float side = 0;
-    for (int a = 0; a < 3; a++) side = fmaxf(side, bmax[a] - bmin[a]);
-    c->cell = side > 0 && isfinite(side) ? grid_side(bmin, bmax, side) : 0;
-    /* a box too small or too large for float cubes (a side below the normal floats, an extent
-     * that overflows), or empty: one cell, every point clamped into it */
-    const int one = !(c->cell >= FLT_MIN) || !isfinite(1.0f / c->cell) || grid_cells(bmin, bmax, c->cell) > PNPR_VIEW_CELLS_MAX;
-    if (one) c->cell = 1;
+    pnpr_view_cells_grid(bmin, bmax, PNPR_VIEW_CELLS_MAX, &c->cell, c->n);
     c->inv = 1.0f / c->cell;
-    for (int a = 0; a < 3; a++) {
-        c->n[a] = one ? 1 : axis_cells(bmax[a] - bmin[a], c->cell);
-        c->min[a] = bmin[a];
-    }
+    for (int a = 0; a < 3; a++) c->min[a] = bmin[a];
     for (size_t i = 0; i < n; i++) {
         const float *p = xyz + 3 * i;
         if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) continue;

@@ -46,6 +46,11 @@ typedef struct pnpr_view_cells {
     uint32_t n[3];        /* cells along each axis, their product at most PNPR_VIEW_CELLS_MAX */
     uint32_t count[PNPR_VIEW_CELLS_MAX];
 } pnpr_view_cells;
+/* The grid over [bmin, bmax]: the smallest cubes (side *r_side) with at most `most` (at most
+ * PNPR_VIEW_CELLS_MAX) cells, r_n along each axis; one cell of side 1 for a box too small or too
+ * large for float cubes, or empty, or `most` below 8. The cells of a file ordered for drawing too
+ * (io/ply_lod.c). */
+void pnpr_view_cells_grid(const float bmin[3], const float bmax[3], uint32_t most, float *r_side, uint32_t r_n[3]);
 /* Counts the n finite points xyz into cells over [bmin, bmax] (points outside go to the edge
  * cells; non-finite ones are not counted). */
 void pnpr_view_cells_build(pnpr_view_cells *c, const float *xyz, size_t n, const float bmin[3], const float bmax[3]);

@@ -187,27 +187,36 @@ static int depth_bin(double z)
     return b < 0 ? 0 : b >= PNPR_VIEW_SAMPLE_BINS ? PNPR_VIEW_SAMPLE_BINS - 1 : (int)b;
 }
 
-static void depths_add(pnpr_view_depths *h, double z)
+static void depths_add(pnpr_view_depths *h, double z, uint64_t n)
 {
     int b = depth_bin(z);
     if (!h->visible || z < h->z_min) h->z_min = z;
     if (!h->visible || z > h->z_max) h->z_max = z;
-    h->count[b]++;
-    h->inv_z2[b] += 1.0 / (z * z);
-    h->visible++;
+    h->count[b] += n;
+    h->inv_z2[b] += (double)n / (z * z);
+    h->visible += n;
 }
 
-void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3])
+void pnpr_view_sample_add_n(pnpr_view_sample *v, const double p[3], uint64_t n)
 {
     double z[PNPR_VIEW_SAMPLE_VIEWS];
     view_depths(v, p, z);
     double least = least_depth(z, views_rounded(v));
     if (!(least > 0)) return;
-    depths_add(&v->least, least);
+    depths_add(&v->least, least, n);
     if (!v->each || v->views < 2) return;
     if (v->widened) own_depths(v, p, z);
     for (int k = 0; k < v->views; k++)
-        if (z[k] > 0) depths_add(&v->each[k], z[k]);
+        if (z[k] > 0) depths_add(&v->each[k], z[k], n);
+}
+
+void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3]) { pnpr_view_sample_add_n(v, p, 1); }
+
+void pnpr_view_sample_clear(pnpr_view_sample *v)
+{
+    memset(&v->least, 0, sizeof v->least);
+    for (int k = 0; v->each && k < v->views; k++) memset(&v->each[k], 0, sizeof v->each[k]);
+    v->c = 0;
 }
 
 /* The expected count for c: a bin gives c x its sum of 1/z^2, at most its count (exact unless the
@@ -256,6 +265,65 @@ double pnpr_view_sample_share(const pnpr_view_sample *v, const double p[3])
 {
     double z = pnpr_view_sample_depth(v, p);
     if (z == 0) return 0;
+    double s = v->c / (z * z);
+    return s < 1 ? s : 1;
+}
+
+/* ---- balls (the cells of a file ordered for drawing, pointnpr/lod.h) ---------------------- */
+
+/* The least depth a point within rho of c may have in view k when the view may see one: its own
+ * frame's cone (own) or the view's; 0 when it sees none, -1 when one may lie at any depth. A
+ * cone moved back along its axis by rho / sin(half-angle) holds every ball of radius rho about
+ * a point of the cone; the depth bounds are view_depths' less rho. */
+static double ball_view_depth(const pnpr_view_sample *v, int k, const double c[3], double rho, int own)
+{
+    double t2 = own ? v->tan2_own[k] : v->tan2[k], back = own ? 0 : v->back[k];
+    double shift = rho * sqrt((1.0 + t2) / t2), e[3], d[3], f[3], z = 0, r2 = 0, dist2 = 0;
+    for (int i = 0; i < 3; i++) {
+        f[i] = v->forward[i][k];
+        e[i] = v->eye[i][k] + v->back[k] * f[i]; /* the view's eye (its apex for a plain view) */
+        d[i] = c[i] - (own ? e[i] : v->eye[i][k]) + shift * f[i];
+        z += d[i] * f[i];
+        r2 += d[i] * d[i];
+        dist2 += (c[i] - e[i]) * (c[i] - e[i]);
+    }
+    r2 -= z * z;
+    if (!(z > 0) || !(r2 <= z * z * t2)) return 0;
+    double from_eye = z - shift - back - rho;
+    double least = own ? from_eye : (sqrt(dist2) - rho - v->reach[k]) * v->cos_own[k];
+    double depth = from_eye < least ? from_eye : least;
+    return depth > 0 ? depth : -1;
+}
+
+/* The least of the views' depths (ball_view_depth): 0 when none sees the ball, -1 when near. */
+static double ball_depth(const pnpr_view_sample *v, const double c[3], double rho)
+{
+    double least = HUGE_VAL;
+    if (!isfinite(c[0] + c[1] + c[2]) || !(rho >= 0) || !isfinite(rho)) return 0;
+    for (int k = 0; k < v->views; k++) {
+        double z = ball_view_depth(v, k, c, rho, 0);
+        if (z < 0) return -1;
+        if (z > 0 && z < least) least = z;
+    }
+    return least < HUGE_VAL ? least : 0;
+}
+
+void pnpr_view_sample_add_ball(pnpr_view_sample *v, const double c[3], double rho, uint64_t n)
+{
+    double z = ball_depth(v, c, rho);
+    if (z == 0 || n == 0) return;
+    depths_add(&v->least, z < 0 ? PNPR_VIEW_SAMPLE_NEAR : z, n);
+    for (int k = 0; v->each && v->views > 1 && k < v->views; k++) {
+        double zk = ball_view_depth(v, k, c, rho, 1);
+        if (zk != 0) depths_add(&v->each[k], zk < 0 ? PNPR_VIEW_SAMPLE_NEAR : zk, n);
+    }
+}
+
+double pnpr_view_sample_ball_share(const pnpr_view_sample *v, const double c[3], double rho)
+{
+    double z = ball_depth(v, c, rho);
+    if (z == 0) return 0;
+    if (z < 0) return 1;
     double s = v->c / (z * z);
     return s < 1 ? s : 1;
 }

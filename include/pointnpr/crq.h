@@ -139,6 +139,10 @@ PNPR_NODISCARD pnpr_status pnpr_view_sample_init_frames(pnpr_view_sample *v, con
 /* The least eye depth of p among the views that see it, else 0 (also for NaN and Inf). */
 double pnpr_view_sample_depth(const pnpr_view_sample *v, const double p[3]);
 void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3]);
+/* p standing for n points (a point of a uniform sample of 1/n of them). */
+void pnpr_view_sample_add_n(pnpr_view_sample *v, const double p[3], uint64_t n);
+/* Empties the histograms (each's too) and c; the views stay. */
+void pnpr_view_sample_clear(pnpr_view_sample *v);
 /* c for an expected count of `want` points (every point in view when fewer were added; none
  * when want is not positive), and when frame_want > 0 at most the c with which the frame that
  * needs the most draws frame_want points of its own: the largest of each view's own c (with one
@@ -147,6 +151,14 @@ void pnpr_view_sample_add(pnpr_view_sample *v, const double p[3]);
 void pnpr_view_sample_solve(pnpr_view_sample *v, double want, double frame_want);
 /* The share of p once solved: 0 out of view, else min(1, c / z^2). */
 double pnpr_view_sample_share(const pnpr_view_sample *v, const double p[3]);
+/* Balls instead of points (the cells of a file ordered for drawing, pointnpr/lod.h): add_ball
+ * adds n points at the least depth a point within rho of c may have in the views that may see
+ * one (at PNPR_VIEW_SAMPLE_NEAR when the ball reaches an eye), to each view's own histogram too;
+ * ball_share is at least the share of every point in the ball once solved (1 when it reaches an
+ * eye, 0 when no view sees any of it). */
+#define PNPR_VIEW_SAMPLE_NEAR 1e-100
+void pnpr_view_sample_add_ball(pnpr_view_sample *v, const double c[3], double rho, uint64_t n);
+double pnpr_view_sample_ball_share(const pnpr_view_sample *v, const double c[3], double rho);
 
 #ifdef __cplusplus
 }

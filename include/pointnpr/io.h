@@ -67,6 +67,12 @@ typedef struct pnpr_read_options {
      * vertices it returns nonzero for are kept, in file order, and faces are not read. */
     int (*keep)(void *user, uint64_t index, const double position[3]);
     void *keep_user;
+    /* With keep: only the vertices of these ranges are visited (range g: [ranges[2 g],
+     * ranges[2 g + 1]) of vertex indices, ascending, not overlapping); the others are skipped
+     * unread (a file ordered for drawing, pointnpr/lod.h). NULL = every vertex. A range beyond
+     * the vertices or out of order is PNPR_ERR_INVALID_ARGUMENT. */
+    const uint64_t *ranges;
+    size_t range_count;
     /* PLY with double (or int) coordinates: the origin of the float offsets (finite), instead of
      * the centre of the points' own box (pnpr_cloud_set_world); NULL = that centre. Tiles take
      * the whole file's origin this way, so that their floats are those of a run in memory. */

@@ -14,6 +14,7 @@
 #include "cli.h"
 
 #include <pointnpr/crq.h>
+#include <pointnpr/lod.h>
 #include <pointnpr/memory.h>
 #include <pointnpr/props.h>
 
@@ -23,25 +24,38 @@
 #include <string.h>
 #include <sys/stat.h>
 
+/* A file ordered for drawing (pointnpr/lod.h): the ranges a pass reads and each point's rank
+ * (pnpr_lod_rank), instead of every point and the hash of its index. */
+typedef struct lod_read {
+    int on;
+    pnpr_lod lod;
+    uint64_t *ranges;       /* 2 (cells + 1) values */
+    uint8_t *runs;          /* each cell's runs the ranges hold */
+    size_t count;           /* the ranges of the next pass */
+    size_t cursor;          /* the run of the last point ranked (pnpr_lod_run_at) */
+} lod_read;
+
+/* Whether the point of index i is in the sample of `share` (its rank below it). */
+static int point_kept(lod_read *lr, uint64_t i, double share)
+{
+    if (share >= 1) return 1;
+    if (!(share > 0)) return 0;
+    if (lr && lr->on) return pnpr_lod_rank(i, pnpr_lod_run_at(&lr->lod, i, &lr->cursor)) < share;
+    return pnpr_lod_hash(i) < (uint64_t)(share * 18446744073709551616.0);
+}
+
 typedef struct sample_keep {
     uint64_t seen;
-    uint64_t below; /* keep when the index's hash < below (of 2^64) */
+    double share;  /* keep when the point's rank < share (1: all) */
+    lod_read *lr;  /* NULL: an ordinary file */
 } sample_keep;
-
-static uint64_t mix64(uint64_t x) /* splitmix64's finaliser */
-{
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
 
 static int keep_sample(void *user, uint64_t index, const double p[3])
 {
     (void)p;
     sample_keep *s = user;
     s->seen = index + 1;
-    return s->below == UINT64_MAX || mix64(index) < s->below;
+    return point_kept(s->lr, index, s->share);
 }
 
 /* The share of what fits that a sample takes: the cloud as read is estimated from the file's
@@ -73,10 +87,12 @@ static double fitting_count(const pnpr_memory_plan *mp, double rec, double room,
 /* The share of the file's points that fits, 1 when all do (decided from its size alone, without a
  * pass unless need_pass); 0 when it cannot tell (not a PLY); -1 when not even one point does. The pass over the coordinates calls
  * `keep` with `user` (it counts, makes the views' histograms, or keeps a preview); *r_points: the
- * points seen (*seen after the pass); r_kept (NULL: freed): the points `keep` kept. */
+ * points seen (*seen after the pass); r_kept (NULL: freed): the points `keep` kept. A file ordered
+ * for drawing (lr on) is read in lr's ranges only (none: the pass reads its header alone), and
+ * its index counts its points. */
 static double fitting_share(const char *in, const pnpr_memory_plan *mp, cli_plan_fn plan, void *plan_user,
                             size_t limit, int (*keep)(void *, uint64_t, const double *), void *user,
-                            const uint64_t *seen, int need_pass, uint64_t *r_points, pnpr_cloud *r_kept)
+                            const uint64_t *seen, int need_pass, uint64_t *r_points, pnpr_cloud *r_kept, lod_read *lr)
 {
     struct stat sb;
     if (pnpr_format_from_path(in) != PNPR_FORMAT_PLY || stat(in, &sb) != 0 || !S_ISREG(sb.st_mode)) return 0;
@@ -86,6 +102,11 @@ static double fitting_share(const char *in, const pnpr_memory_plan *mp, cli_plan
     pnpr_read_options ro = {0};
     ro.keep = keep;
     ro.keep_user = user;
+    if (lr && lr->on) {
+        ro.ranges = lr->ranges;
+        ro.range_count = lr->count;
+        lr->cursor = 0;
+    }
     pnpr_cloud none_read = {0};
     pnpr_error err = {0};
     if (pnpr_read_file(in, &ro, &none_read, &err) != PNPR_OK) return 0; /* the real read says why */
@@ -93,14 +114,15 @@ static double fitting_share(const char *in, const pnpr_memory_plan *mp, cli_plan
     if (plan) plan(&none_read, plan_user, &m);
     if (r_kept) *r_kept = none_read;
     else pnpr_cloud_free(&none_read);
-    *r_points = *seen;
-    if (!*seen) return 1;
+    *r_points = lr && lr->on ? lr->lod.points : *seen;
+    if (!*r_points) return 1;
     /* the cloud as read, a point: its record and 8 bytes, x 1.5 for the reader's arrays, which grow
      * by doubling while a filtered stream's count is unknown (measured: 104 bytes a point for the
      * farm's 64-byte records; at x 1 a sample sized to fit 200M was refused by 1 MiB) */
-    double rec = 1.5 * (double)sb.st_size / (double)*seen + 8.0;
-    double fit = fitting_count(&m, rec, room - SAMPLE_RESERVE, *seen);
-    return fit >= (double)*seen ? 1 : fit > 0 ? SAMPLE_MARGIN * fit / (double)*seen : -1;
+    const double n = (double)*r_points;
+    double rec = 1.5 * (double)sb.st_size / n + 8.0;
+    double fit = fitting_count(&m, rec, room - SAMPLE_RESERVE, *r_points);
+    return fit >= n ? 1 : fit > 0 ? SAMPLE_MARGIN * fit / n : -1;
 }
 
 /* ---- the views' sample: cameras given (crq.h) ---------------------------------------------- */
@@ -109,15 +131,89 @@ typedef struct view_keep {
     uint64_t seen;
     int solved;           /* 0: the histogram pass (keeps nothing) */
     pnpr_view_sample v;
+    lod_read *lr;         /* NULL: an ordinary file */
 } view_keep;
 
 static int keep_view(void *user, uint64_t index, const double p[3])
 {
     view_keep *k = user;
     k->seen = index + 1;
-    if (!k->solved) { pnpr_view_sample_add(&k->v, p); return 0; }
-    double s = pnpr_view_sample_share(&k->v, p);
-    return s >= 1 || (s > 0 && mix64(index) < (uint64_t)(s * 18446744073709551616.0));
+    if (!k->solved) { /* a file ordered for drawing: a point read of m runs stands for 2^(L - m) */
+        lod_read *lr = k->lr;
+        uint64_t n = 1;
+        if (lr && lr->on) {
+            pnpr_lod_run_at(&lr->lod, index, &lr->cursor);
+            n = (uint64_t)1 << (PNPR_LOD_LEVELS - lr->runs[lr->cursor / PNPR_LOD_LEVELS]);
+        }
+        pnpr_view_sample_add_n(&k->v, p, n);
+        return 0;
+    }
+    return point_kept(k->lr, index, pnpr_view_sample_share(&k->v, p));
+}
+
+/* ---- a file ordered for drawing (lod.h) ----------------------------------------------------- */
+
+static void lod_end(lod_read *lr)
+{
+    pnpr_lod_free(&lr->lod);
+    free(lr->ranges);
+    free(lr->runs);
+    memset(lr, 0, sizeof *lr);
+}
+
+/* lr on when `in` is a file ordered for drawing (a warning when it says it is one but its index
+ * lies: it is read as an ordinary PLY then). Its first pass reads no range. */
+static void lod_begin(lod_read *lr, const char *in, int quiet)
+{
+    pnpr_error err = {0};
+    memset(lr, 0, sizeof *lr);
+    pnpr_status st = pnpr_lod_open(in, &lr->lod, &err);
+    const size_t cells = (size_t)lr->lod.cells + 1;
+    if (st == PNPR_OK && (!(lr->ranges = malloc(2 * cells * sizeof *lr->ranges)) || !(lr->runs = malloc(cells))))
+        st = PNPR_ERR_OUT_OF_MEMORY;
+    if (st == PNPR_OK) lr->on = 1;
+    else if (st != PNPR_ERR_UNSUPPORTED && !quiet) {
+        size_t n = strlen(in); /* the message names the file: once is enough */
+        const char *why = !strncmp(err.message, in, n) && !strncmp(err.message + n, ": ", 2) ? err.message + n + 2 : err.message;
+        fprintf(stderr, "%s: warning: its order for drawing cannot be used (%s); reading it as an ordinary PLY\n", in,
+                why[0] ? why : pnpr_status_string(st));
+    }
+    if (!lr->on) lod_end(lr);
+}
+
+
+/* The cells into the views' histograms, each with its points at the least depth one of them may
+ * have (instead of a pass over the points). */
+static void lod_add_cells(const lod_read *lr, pnpr_view_sample *v)
+{
+    const pnpr_lod *l = &lr->lod;
+    for (uint32_t k = 0; k < l->cells; k++) {
+        uint64_t n = l->start[((size_t)k + 1) * PNPR_LOD_LEVELS] - l->start[(size_t)k * PNPR_LOD_LEVELS];
+        double c[3], rho;
+        pnpr_lod_cell_ball(l, k, c, &rho);
+        if (n) pnpr_view_sample_add_ball(v, c, rho, n);
+    }
+}
+
+/* The ranges of the next pass: each cell's runs that the share of its points may reach, by the
+ * views (v solved) or `uniform` (v NULL; the points with a non-finite coordinate too). Returns the
+ * points they hold, or -1 when memory runs out. */
+static double lod_plan(lod_read *lr, const pnpr_view_sample *v, double uniform)
+{
+    const pnpr_lod *l = &lr->lod;
+    double *share = malloc(((size_t)l->cells + 1) * sizeof *share);
+    if (!share) return -1;
+    for (uint32_t k = 0; k < l->cells; k++) {
+        double c[3], rho;
+        pnpr_lod_cell_ball(l, k, c, &rho);
+        share[k] = v ? pnpr_view_sample_ball_share(v, c, rho) : uniform;
+    }
+    share[l->cells] = v ? 0 : uniform;
+    lr->count = pnpr_lod_ranges(l, share, lr->ranges, lr->runs);
+    free(share);
+    double n = 0;
+    for (size_t g = 0; g < lr->count; g++) n += (double)(lr->ranges[2 * g + 1] - lr->ranges[2 * g]);
+    return n;
 }
 
 /* The stored point spacing (the disk radii) grown by 1/sqrt of each point's share, as the spacing
@@ -177,17 +273,93 @@ static int preview_views(const char *in, const pnpr_memory_plan *mp, cli_plan_fn
                          int asked, const cli_sample_views *views, view_keep *vk, double *r_fit, uint64_t *r_points)
 {
     struct stat sb;
-    double most = stat(in, &sb) == 0 ? (double)sb.st_size / 12.0 : 0;
-    sample_keep count = {0, most > PREVIEW_POINTS ? (uint64_t)(PREVIEW_POINTS / most * 18446744073709551616.0) : UINT64_MAX};
+    double most = vk->lr->on ? (double)vk->lr->lod.points : stat(in, &sb) == 0 ? (double)sb.st_size / 12.0 : 0;
+    sample_keep count = {0, most > PREVIEW_POINTS ? PREVIEW_POINTS / most : 1, vk->lr};
+    if (vk->lr->on && lod_plan(vk->lr, NULL, count.share) < 0) return 0;
     pnpr_cloud preview = {0};
-    *r_fit = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, asked, r_points, &preview);
+    *r_fit = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, asked, r_points, &preview,
+                           vk->lr);
     pnpr_camera *cams = NULL;
     size_t n = (asked || (*r_fit > 0 && *r_fit < 1)) && preview.count ? views->from_preview(&preview, views->user, &cams) : 0;
     pnpr_cloud_free(&preview);
     int ok = n && init_views(vk, cams, n, mp->width, mp->height);
     free(cams);
-    if (ok) *r_fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, vk, &vk->seen, 1, r_points, NULL);
+    vk->lr->count = 0;
+    if (ok && vk->lr->on) lod_add_cells(vk->lr, &vk->v);
+    if (ok) *r_fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, vk, &vk->seen, 1, r_points, NULL, vk->lr);
     return ok;
+}
+
+/* A file ordered for drawing: the cells' bound (lod_add_cells) counts too many points in view,
+ * and a sample solved on it has too few. The views' histograms again, from the points of the
+ * runs that bound reaches (each standing for the points of its cell's runs not read), and c
+ * solved on them: *vk as the pass over every point would have left it, to sampling noise. */
+static int lod_refine(const char *cmd, const char *in, lod_read *lr, view_keep *vk, double want, double frame_want)
+{
+    if (lod_plan(lr, &vk->v, 1) < 0) {
+        fprintf(stderr, "pointnpr %s: %s: out of memory for the ranges to read\n", cmd, in);
+        return 0;
+    }
+    pnpr_view_sample_clear(&vk->v);
+    vk->solved = 0;
+    pnpr_read_options ro = {0};
+    ro.keep = keep_view;
+    ro.keep_user = vk;
+    ro.ranges = lr->ranges;
+    ro.range_count = lr->count;
+    lr->cursor = 0;
+    pnpr_cloud none = {0};
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_read_file(in, &ro, &none, &err);
+    pnpr_cloud_free(&none);
+    if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
+    pnpr_view_sample_solve(&vk->v, want, frame_want);
+    vk->solved = 1;
+    return 1;
+}
+
+/* The read of `share` of the file (all of it when 1): by the views of vk (NULL: uniform), in the
+ * ranges of a file ordered for drawing (lr on); the spacing grown and the sample reported. */
+static int read_sample(const char *cmd, const char *in, pnpr_read_options *ro, size_t limit, double share,
+                       view_keep *vk, lod_read *lr, int quiet, int asked, pnpr_cloud *cloud, float *r_tone_radius)
+{
+    pnpr_error err = {0};
+    sample_keep keep = {0, 1, lr};
+    double visited = -1;
+    if (share > 0 && share < 1) {
+        keep.share = share;
+        ro->keep = vk ? keep_view : keep_sample;
+        ro->keep_user = vk ? (void *)vk : (void *)&keep;
+        if (lr->on && (visited = lod_plan(lr, vk ? &vk->v : NULL, share)) < 0) {
+            fprintf(stderr, "pointnpr %s: %s: out of memory for the ranges to read\n", cmd, in);
+            return 0;
+        }
+        ro->ranges = lr->on ? lr->ranges : NULL;
+        ro->range_count = lr->on ? lr->count : 0;
+        lr->cursor = 0;
+    } else if (!cli_memory_check_file(cmd, in, limit)) {
+        return 0;
+    }
+    pnpr_status st = pnpr_read_file(in, ro, cloud, &err);
+    if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
+    if (!ro->keep) return 1;
+    uint64_t points = lr->on ? lr->lod.points : vk ? vk->seen : keep.seen;
+    double kept = points ? (double)cloud->count / (double)points : 1;
+    *r_tone_radius = grow_spacing(cloud, vk ? &vk->v : NULL, kept);
+    char a[32], how[96] = "";
+    const char *what = !vk                ? "a uniform sample"
+                       : vk->v.views > 1 ? "a sample by the frames' views (points near a camera kept, far and unseen ones thinned)"
+                                         : "a sample by the view (points near the camera kept, far and unseen ones thinned)";
+    if (visited >= 0)
+        snprintf(how, sizeof how, "; ordered for drawing: %.1f%% of its points read", 100.0 * visited / (double)(points ? points : 1));
+    if (!quiet && asked)
+        fprintf(stderr, "%s: drawing %s of %zu of %llu points (%.1f%%, --sample%s)\n", in, what, cloud->count,
+                (unsigned long long)points, 100.0 * kept, how);
+    else if (!quiet)
+        fprintf(stderr, "%s: %llu points do not fit in %s: drawing %s of %zu (%.1f%%%s; docs/tiles.md)\n", in,
+                (unsigned long long)points, pnpr_memory_text(limit ? limit : pnpr_memory_available(), a, sizeof a), what,
+                cloud->count, 100.0 * kept, how);
+    return 1;
 }
 
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
@@ -196,36 +368,39 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
 {
     *r_tone_radius = 0;
     pnpr_read_options ro = *opts;
-    pnpr_error err = {0};
     uint64_t points = 0;
     const int asked = share > 0 && share < 1, ply = pnpr_format_from_path(in) == PNPR_FORMAT_PLY;
+    lod_read lr = {0};
+    if (ply) lod_begin(&lr, in, quiet);
     view_keep vk = {0};
+    vk.lr = &lr;
     int by_view = ply && views && init_views(&vk, views->cams, views->count, mp->width, mp->height);
     double fit = 0;
     if (by_view) {
-        fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, &vk, &vk.seen, asked, &points, NULL);
+        if (lr.on) lod_add_cells(&lr, &vk.v);
+        fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, &vk, &vk.seen, asked, &points, NULL, &lr);
         if (asked && !points) by_view = 0; /* no pass (not a regular file): the uniform share asked */
     } else if (ply && views && views->from_preview && !views->count) {
         by_view = preview_views(in, mp, plan, plan_user, limit, asked, views, &vk, &fit, &points);
         if (!asked && !by_view) share = fit;
     } else if (!asked) {
-        sample_keep count = {0, 0};
-        share = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, 0, &points, NULL);
+        sample_keep count = {0, 0, &lr};
+        share = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, 0, &points, NULL, &lr);
     }
+    int ok = 1;
     if (!asked && (by_view ? fit : share) < 0) { /* refused before reading the file */
         char a[32];
         fprintf(stderr, "pointnpr %s: %s: not even a sample of its %llu points fits in %s: drawing needs more "
                         "(--memory-limit; docs/tiles.md)\n", cmd, in, (unsigned long long)points,
                 pnpr_memory_text(limit ? limit : pnpr_memory_available(), a, sizeof a));
-        free(vk.v.each);
-        return 0;
-    }
-    if (by_view) {
+        ok = 0;
+    } else if (by_view) {
         if (!asked) share = fit;
         /* each frame's share at most what it draws (the screen-space budget thins by depth too, but
          * a larger sample costs reading and upload) */
         pnpr_view_sample_solve(&vk.v, share * (double)points, asked ? 0 : frame_points);
         vk.solved = 1;
+        if (lr.on && share < 1) ok = lod_refine(cmd, in, &lr, &vk, share * (double)points, asked ? 0 : frame_points);
         if (points && !vk.v.least.visible)
             fprintf(stderr, "%s: warning: none of its %llu points is in view of the camera%s (they lie behind "
                             "the eye or outside the field of view)\n", in, (unsigned long long)points,
@@ -233,30 +408,7 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     }
     free(vk.v.each); /* read by the solve only */
     vk.v.each = NULL;
-    sample_keep keep = {0, UINT64_MAX};
-    if (share > 0 && share < 1) {
-        keep.below = (uint64_t)(share * 18446744073709551616.0);
-        ro.keep = by_view ? keep_view : keep_sample;
-        ro.keep_user = by_view ? (void *)&vk : (void *)&keep;
-    } else if (!cli_memory_check_file(cmd, in, limit)) {
-        return 0;
-    }
-    pnpr_status st = pnpr_read_file(in, &ro, cloud, &err);
-    if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
-    if (!ro.keep) return 1;
-    points = by_view ? vk.seen : keep.seen;
-    double kept = points ? (double)cloud->count / (double)points : 1;
-    *r_tone_radius = grow_spacing(cloud, by_view ? &vk.v : NULL, kept);
-    char a[32];
-    const char *what = !by_view          ? "a uniform sample"
-                       : vk.v.views > 1 ? "a sample by the frames' views (points near a camera kept, far and unseen ones thinned)"
-                                       : "a sample by the view (points near the camera kept, far and unseen ones thinned)";
-    if (!quiet && asked)
-        fprintf(stderr, "%s: drawing %s of %zu of %llu points (%.1f%%, --sample)\n", in, what, cloud->count,
-                (unsigned long long)points, 100.0 * kept);
-    else if (!quiet)
-        fprintf(stderr, "%s: %llu points do not fit in %s: drawing %s of %zu (%.1f%%; docs/tiles.md)\n", in,
-                (unsigned long long)points, pnpr_memory_text(limit ? limit : pnpr_memory_available(), a, sizeof a), what,
-                cloud->count, 100.0 * kept);
-    return 1;
+    if (ok) ok = read_sample(cmd, in, &ro, limit, share, by_view ? &vk : NULL, &lr, quiet, asked, cloud, r_tone_radius);
+    lod_end(&lr);
+    return ok;
 }

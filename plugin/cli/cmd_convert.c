@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "cli_opts.h"
 
+#include <pointnpr/lod.h>
 #include <pointnpr/memory.h>
 
 #include <dirent.h>
@@ -27,6 +28,7 @@ typedef struct convert_args {
     pnpr_ply_encoding encoding;
     int encoding_set;
     int stream;
+    int lod;
 } convert_args;
 
 static int parse_output(void *a, const char *cmd, const char *v)
@@ -60,6 +62,9 @@ static const cli_opt convert_opts[] = {
     {"--stream", NULL, CLI_FLAG, offsetof(convert_args, stream), 0, 0, 0, 0, NULL, NULL, NULL,
      "PLY: join the inputs one at a time (memory: one input), as when they would not fit in memory "
      "together; they must have the same properties and no faces (docs/tiles.md)"},
+    {"--lod", NULL, CLI_FLAG, offsetof(convert_args, lod), 0, 0, 0, 0, NULL, NULL, NULL,
+     "one binary PLY to a .ply file ordered for drawing: render and animate then read only what a view "
+     "needs of a cloud larger than memory (docs/tiles.md)"},
 };
 
 static void usage(FILE *f)
@@ -200,6 +205,28 @@ static int convert_streamed(const path_list *inputs, const char *out, const char
     return 0;
 }
 
+/* IN ordered for drawing into OUT (pnpr_lod_write), in chunks that fit the memory. */
+static int convert_lod(const char *in, const char *out, size_t limit, int quiet)
+{
+    if (!cli_check_output("convert", out, &in, 1, 1)) return 1;
+    pnpr_lod_options lo = {0};
+    double room = (limit ? (double)limit : (double)pnpr_memory_available()) - (double)pnpr_memory_resident();
+    lo.memory = room > 16.0 * 1048576.0 ? (size_t)(room - 8.0 * 1048576.0) : 8u << 20;
+    cli_progress_state ps = {{0}, 0, 0};
+    lo.progress.fn = quiet ? NULL : cli_progress_stderr;
+    lo.progress.user = &ps;
+    uint64_t points = 0;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_lod_write(in, out, &lo, &points, &err);
+    if (st != PNPR_OK) {
+        cli_report_error("convert", st, &err);
+        fprintf(stderr, "pointnpr convert: nothing written\n");
+        return 1;
+    }
+    if (!quiet) fprintf(stderr, "wrote %s: %llu points ordered for drawing\n", out, (unsigned long long)points);
+    return 0;
+}
+
 int cli_convert(int argc, char **argv)
 {
     convert_args A;
@@ -248,8 +275,19 @@ int cli_convert(int argc, char **argv)
             rc = 2;
         }
     }
+    if (rc == 0 && A.lod && (args.count != 1 || pnpr_format_from_path(out) != PNPR_FORMAT_PLY || cli_output_is_stream(out) ||
+                             A.stream || wo.encoding != PNPR_PLY_BINARY_LE)) {
+        fprintf(stderr, "pointnpr convert: --lod orders one binary PLY into a binary .ply file (not --stream, --ascii or "
+                        "--big-endian)\n");
+        rc = 2;
+    }
     if (rc == 2) usage(stderr);
     if (rc != 0) { list_free(&args); return rc; }
+    if (A.lod) {
+        rc = convert_lod(args.items[0], out, memory_limit, quiet);
+        list_free(&args);
+        return rc;
+    }
 
     /* inputs: files as given, directories expanded */
     path_list inputs = {0};

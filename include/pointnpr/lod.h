@@ -1,0 +1,101 @@
+/* pointnpr — lod.h: a PLY file ordered for drawing (io/ply_lod.c; docs/tiles.md "A file ordered
+ * for drawing").
+ *
+ * `pointnpr convert IN.ply -o OUT.ply --lod` writes the points of IN again, every one, in an
+ * order that lets `render` and `animate` read only what a view needs from a cloud larger than
+ * memory, in the spirit of Potree's octree (Schütz 2016) but flat:
+ *  - the cells: the smallest cubes, at most PNPR_VIEW_CELLS_MAX of them, over the box of the
+ *    finite points within the far-outlier limit of their robust centre (outliers.h, from a stride
+ *    sample) (the renderer's grid, view/view_cells.c); one more cell last for the points outside
+ *    the grid: far outliers and non-finite coordinates (a view reads all of them);
+ *  - in each cell, PNPR_LOD_LEVELS runs by a rank of the point: its source index's hash, a number
+ *    in [0, 1). Run 0 holds ranks below 2^-(L-1), run j > 0 ranks in [2^(j-L), 2^(j+1-L)): a
+ *    prefix of a cell's runs is a uniform sample of it, which doubles with each run;
+ *  - a point read keeps a rank of its own, uniform in its run's range (pnpr_lod_rank), so that a
+ *    sample keeps a point exactly when its rank is below its share: the same points whatever the
+ *    ranges read, as long as they hold every run whose lower bound is below the share.
+ * The file stays an ordinary binary little-endian PLY (every reader reads every point): a header
+ * comment holds the grid ("comment pnpr_lod 1 levels L grid NX NY NZ side S origin X Y Z") and an
+ * element after the vertices, `pnpr_lod_run` with one `uint count` per run (cell by cell), the
+ * index. Choice: one file rather than a folder of nodes (Potree's): nothing to keep together,
+ * and MeshLab opens it. */
+#ifndef POINTNPR_LOD_H
+#define POINTNPR_LOD_H
+
+#include <pointnpr/core.h>
+#include <pointnpr/io.h>
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PNPR_LOD_LEVELS 16
+#define PNPR_LOD_VERSION 1
+
+typedef struct pnpr_lod {
+    uint64_t points;    /* vertices (fewer than 2^32) */
+    double origin[3];   /* the grid's corner (world coordinates) */
+    double side;        /* a cell's side */
+    uint32_t n[3];      /* cells along each axis */
+    uint32_t cells;     /* n[0] n[1] n[2]; cell `cells` holds the points with a non-finite coordinate */
+    uint32_t *start;    /* (cells + 1) x PNPR_LOD_LEVELS + 1 entries: run r's first vertex (cell k's
+                         * run j is r = k L + j), the last the vertex count */
+} pnpr_lod;
+
+typedef struct pnpr_lod_options {
+    size_t memory;       /* bytes the points held at once may take: chunks of whole cells, each
+                          * point its record x 1.5 and 40 bytes to order it (0: all at once) */
+    pnpr_progress progress; /* stages "lod scan" (the passes over the input) and "lod write" */
+} pnpr_lod_options;
+
+/* Writes the points of the binary PLY `in` (fixed-size records) to `out` ordered for drawing:
+ * two passes over `in` (its box, the runs' counts), then one more for each chunk of cells that
+ * fits in `memory`. Every property of every point is kept (records as pointnpr convert
+ * writes them); out is written as every output is (output.h), never over in. *r_points: the
+ * points written. */
+PNPR_NODISCARD pnpr_status pnpr_lod_write(const char *in, const char *out, const pnpr_lod_options *opts,
+                                          uint64_t *r_points, pnpr_error *err);
+
+/* The order of the file at path (its header and index; the points are not read).
+ * PNPR_ERR_UNSUPPORTED when it is not a file ordered for drawing (no pnpr_lod comment: an
+ * ordinary PLY, or another format); PNPR_ERR_FORMAT, naming the file and what is wrong, when it
+ * says it is one but its header or index lies (counts that do not add up, a grid out of range, a
+ * truncated index). Release with pnpr_lod_free. */
+PNPR_NODISCARD pnpr_status pnpr_lod_open(const char *path, pnpr_lod *r_lod, pnpr_error *err);
+/* The same from a whole file in memory. */
+PNPR_NODISCARD pnpr_status pnpr_lod_parse(const void *data, size_t size, pnpr_lod *r_lod, pnpr_error *err);
+void pnpr_lod_free(pnpr_lod *lod);
+
+/* The cell of world point p: lod->cells when a coordinate is not finite or p lies outside the
+ * grid (a far outlier). */
+uint32_t pnpr_lod_cell(const pnpr_lod *lod, const double p[3]);
+/* A ball that holds every point of cell k < lod->cells. */
+void pnpr_lod_cell_ball(const pnpr_lod *lod, uint32_t k, double r_centre[3], double *r_radius);
+/* The hash that samples points by their index (splitmix64's finaliser): the samples of
+ * render and animate and the runs of a file ordered for drawing. */
+uint64_t pnpr_lod_hash(uint64_t i);
+/* The run (0 .. PNPR_LOD_LEVELS - 1) of the point of source index i (by its hash). */
+int pnpr_lod_run_of(uint64_t i);
+/* Run j's ranks: [low, high). */
+double pnpr_lod_run_low(int j);
+double pnpr_lod_run_high(int j);
+/* The rank of vertex v of the file, of run j: uniform in the run's range, by v's hash. */
+double pnpr_lod_rank(uint64_t v, int j);
+
+/* The vertex ranges to read (pnpr_read_options.ranges) for each cell's share: cell k's runs whose
+ * lower bound is below share[k] (share: cells + 1 values; 0 reads nothing of the cell), adjacent
+ * ranges merged. r_ranges: room for 2 (cells + 1) values; r_runs (NULL: none): each cell's runs
+ * read, m of them being the sample of ranks below 2^(m - PNPR_LOD_LEVELS). Returns the ranges
+ * written. */
+size_t pnpr_lod_ranges(const pnpr_lod *lod, const double *share, uint64_t *r_ranges, uint8_t *r_runs);
+/* The run of vertex v: *cursor (start at 0) is the run of the previous call, for calls in
+ * ascending v (each call then costs O(1) amortised); v < lod->points. */
+int pnpr_lod_run_at(const pnpr_lod *lod, uint64_t v, size_t *cursor);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,317 @@
+/* A PLY file ordered for drawing (pointnpr/lod.h): the runs' ranks, the writer's order against
+ * the points' own cells and source indices (carried as a property), the same file whatever the
+ * chunks, every point kept, the ranges' reads equal to a pass over every point, and the header
+ * and index's lies refused. */
+#include "testutil.h"
+
+#include <pointnpr/io.h>
+#include <pointnpr/lod.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DIR PNPR_TEST_SCRATCH "/lod"
+
+/* The runs hold halves: run j > 0 about 2^(j-L) of the points, run 0 2^(1-L); ranks in range. */
+static void test_runs(void)
+{
+    const int n = 1 << 20;
+    int count[PNPR_LOD_LEVELS] = {0};
+    for (int i = 0; i < n; i++) {
+        int j = pnpr_lod_run_of((uint64_t)i);
+        CHECK(j >= 0 && j < PNPR_LOD_LEVELS);
+        count[j]++;
+        double r = pnpr_lod_rank((uint64_t)i * 7919u, j);
+        CHECK(r >= pnpr_lod_run_low(j) && r < pnpr_lod_run_high(j));
+    }
+    CHECK_NEAR(count[15] / (double)n, 0.5, 0.003);
+    CHECK_NEAR(count[14] / (double)n, 0.25, 0.003);
+    CHECK_NEAR(count[10] / (double)n, 1.0 / 64, 0.001);
+    CHECK_NEAR(count[0] / (double)n, 1.0 / 32768, 20.0 / n);
+    CHECK(pnpr_lod_run_low(0) == 0 && pnpr_lod_run_high(0) == ldexp(1, 1 - PNPR_LOD_LEVELS));
+    CHECK(pnpr_lod_run_low(15) == 0.5 && pnpr_lod_run_high(15) == 1.0);
+}
+
+/* A georeferenced scene: a 120 x 80 grid of double points around (5e5, 4.2e6, 100) on a slope,
+ * with colours, a source index ("idx") and an intensity; duplicates, points with NaN and Inf,
+ * a far outlier. */
+static size_t make_scene(pnpr_cloud *c)
+{
+    const size_t grid = 120 * 80, n = grid + 40;
+    CHECK_STATUS(pnpr_cloud_alloc(c, n), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_alloc_rgb(c), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(c, "idx", PNPR_TYPE_UINT32, NULL), PNPR_OK);
+    CHECK_STATUS(pnpr_cloud_add_property(c, "intensity", PNPR_TYPE_UINT16, NULL), PNPR_OK);
+    double *w = malloc(3 * n * sizeof *w);
+    pnpr_test_rng rng = {77};
+    for (size_t i = 0; i < n; i++) {
+        size_t g = i < grid ? i : i % 17; /* 40 more: duplicates of the first points */
+        double x = 5e5 + 0.5 * (double)(g % 120) + 0.1 * pnpr_test_uniform(&rng);
+        double y = 4.2e6 + 0.5 * (double)(g / 120);
+        w[3 * i] = x;
+        w[3 * i + 1] = y;
+        w[3 * i + 2] = 100 + 0.2 * (x - 5e5);
+        if (i >= grid) memcpy(w + 3 * i, w + 3 * g, 3 * sizeof *w);
+        ((uint32_t *)c->props[0].data)[i] = (uint32_t)i;
+        ((uint16_t *)c->props[1].data)[i] = (uint16_t)(i * 31);
+        for (int k = 0; k < 3; k++) c->rgb[3 * i + (size_t)k] = (uint8_t)(i * (size_t)(k + 3));
+    }
+    w[3 * 5] = NAN;          /* point 5: NaN x */
+    w[3 * 6 + 2] = INFINITY; /* point 6: Inf z */
+    w[3 * 7] = 5e5 + 3e4;    /* point 7: 30 km east */
+    CHECK_STATUS(pnpr_cloud_set_world(c, w), PNPR_OK);
+    free(w);
+    return n;
+}
+
+static void write_input(const char *path, const pnpr_cloud *c)
+{
+    pnpr_write_options wo = {0};
+    wo.force_double = 1;
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_write_file(path, c, &wo, &err), PNPR_OK);
+}
+
+static int same_file(const char *a, const char *b)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int same = fa && fb, ca, cb;
+    while (same && (ca = fgetc(fa)) == (cb = fgetc(fb)) && ca != EOF) {}
+    same = same && ca == cb;
+    if (fa) fclose(fa);
+    if (fb) fclose(fb);
+    return same;
+}
+
+/* The order: every vertex in its cell's run, by its source index's run, file order within a run;
+ * every point kept once with its properties. */
+static void check_order(const pnpr_lod *l, const pnpr_cloud *in, const pnpr_cloud *out)
+{
+    CHECK(out->count == in->count && l->points == in->count);
+    const pnpr_property *idx = pnpr_cloud_find_property(out, "idx"), *it = pnpr_cloud_find_property(out, "intensity");
+    CHECK(idx && it);
+    if (!idx || !it) return;
+    const uint32_t *src = idx->data;
+    uint8_t *seen = calloc(in->count, 1);
+    size_t cursor = 0, bad = 0;
+    for (size_t v = 0; v < out->count; v++) {
+        double p[3], q[3];
+        pnpr_cloud_world(out, v, p);
+        uint32_t s = src[v];
+        CHECK(s < in->count && !seen[s]);
+        if (s >= in->count || seen[s]) continue;
+        seen[s] = 1;
+        pnpr_cloud_world(in, s, q);
+        int j = pnpr_lod_run_at(l, v, &cursor);
+        size_t cell = cursor / PNPR_LOD_LEVELS;
+        bad += !(memcmp(p, q, sizeof p) == 0 || (isnan(p[0]) && isnan(q[0]))) ||
+               ((const uint16_t *)it->data)[v] != (uint16_t)(s * 31) || memcmp(out->rgb + 3 * v, in->rgb + 3 * s, 3) ||
+               j != pnpr_lod_run_of(s) || cell != pnpr_lod_cell(l, p) ||
+               (v > 0 && l->start[cursor] < v && src[v - 1] > s); /* file order within a run */
+    }
+    CHECK_MSG(bad == 0, "%zu points out of place or changed", bad);
+    free(seen);
+    /* NaN, Inf and the far outlier in the last cell: 3 of them, each in its run */
+    double p[3];
+    for (size_t i = 5; i <= 7; i++) {
+        pnpr_cloud_world(in, i, p);
+        CHECK(pnpr_lod_cell(l, p) == l->cells);
+    }
+    CHECK(l->start[((size_t)l->cells + 1) * PNPR_LOD_LEVELS] - l->start[(size_t)l->cells * PNPR_LOD_LEVELS] == 3);
+}
+
+typedef struct ranked {
+    const pnpr_lod *l;
+    size_t cursor, visited;
+    const double *cell_share; /* a point's share: its cell's x a fraction by its coordinates */
+    uint8_t *kept;
+} ranked;
+
+static double point_share(const ranked *r, const double p[3])
+{
+    uint32_t k = pnpr_lod_cell(r->l, p);
+    double f = isfinite(p[0] + p[1]) ? 0.5 + 0.5 * fabs(sin(p[0] * 3.1 + p[1])) : 1;
+    return r->cell_share[k] * f;
+}
+
+static int keep_ranked(void *user, uint64_t v, const double p[3])
+{
+    ranked *r = user;
+    r->visited++;
+    int kept = pnpr_lod_rank(v, pnpr_lod_run_at(r->l, v, &r->cursor)) < point_share(r, p);
+    if (kept) r->kept[v] = 1;
+    return kept;
+}
+
+/* The ranges of random cell shares read exactly the points a pass over every point keeps, and
+ * visit only the points of the ranges. */
+static void check_ranges(const char *path, const pnpr_lod *l)
+{
+    const size_t cells = (size_t)l->cells + 1;
+    double *share = malloc(cells * sizeof *share);
+    uint64_t *ranges = malloc(2 * cells * sizeof *ranges);
+    uint8_t *runs = malloc(cells), *a = calloc(l->points, 1), *b = calloc(l->points, 1);
+    pnpr_test_rng rng = {5};
+    for (size_t k = 0; k < cells; k++) {
+        double u = pnpr_test_uniform(&rng);
+        share[k] = u < 0.1 ? 0 : u < 0.2 ? 1 : pow(2.0, -14.0 * pnpr_test_uniform(&rng));
+    }
+    size_t m = pnpr_lod_ranges(l, share, ranges, runs), in_ranges = 0;
+    for (size_t g = 0; g < m; g++) {
+        CHECK(ranges[2 * g] < ranges[2 * g + 1] && (g == 0 || ranges[2 * g] > ranges[2 * g - 1]));
+        in_ranges += (size_t)(ranges[2 * g + 1] - ranges[2 * g]);
+    }
+    for (size_t k = 0; k < cells; k++) /* the runs read: those whose lower bound is below the share */
+        CHECK(runs[k] == 0 ? share[k] == 0 : share[k] > pnpr_lod_run_low(runs[k] - 1) &&
+                                                 (runs[k] == PNPR_LOD_LEVELS || share[k] <= pnpr_lod_run_low(runs[k])));
+    ranked ra = {l, 0, 0, share, a}, rb = {l, 0, 0, share, b};
+    pnpr_read_options ro = {0};
+    ro.keep = keep_ranked;
+    ro.keep_user = &ra;
+    ro.ranges = ranges;
+    ro.range_count = m;
+    pnpr_cloud ca = {0}, cb = {0};
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_read_file(path, &ro, &ca, &err), PNPR_OK);
+    ro.keep_user = &rb;
+    ro.ranges = NULL;
+    CHECK_STATUS(pnpr_read_file(path, &ro, &cb, &err), PNPR_OK);
+    CHECK(ra.visited == in_ranges && rb.visited == l->points);
+    CHECK(ca.count == cb.count && ca.count > 100 && ca.count < l->points / 2);
+    CHECK(memcmp(a, b, l->points) == 0);
+    printf("ranges: %zu of %zu cells' runs, %zu of %llu points visited, %zu kept\n", m, cells, in_ranges,
+           (unsigned long long)l->points, ca.count);
+    /* ranges out of order or beyond the vertices */
+    uint64_t bad[4] = {10, 20, 15, 30}, beyond[2] = {0, l->points + 1};
+    ro.ranges = bad;
+    ro.range_count = 2;
+    pnpr_cloud none = {0};
+    CHECK_STATUS(pnpr_read_file(path, &ro, &none, &err), PNPR_ERR_INVALID_ARGUMENT);
+    ro.ranges = beyond;
+    ro.range_count = 1;
+    CHECK_STATUS(pnpr_read_file(path, &ro, &none, &err), PNPR_ERR_INVALID_ARGUMENT);
+    pnpr_cloud_free(&ca);
+    pnpr_cloud_free(&cb);
+    free(share);
+    free(ranges);
+    free(runs);
+    free(a);
+    free(b);
+}
+
+static void test_write(void)
+{
+    pnpr_cloud in = {0}, out = {0};
+    make_scene(&in);
+    write_input(DIR "/scene.ply", &in);
+    pnpr_lod_options o = {0};
+    pnpr_error err = {0};
+    uint64_t points = 0;
+    CHECK_STATUS(pnpr_lod_write(DIR "/scene.ply", DIR "/scene_lod.ply", &o, &points, &err), PNPR_OK);
+    CHECK(points == in.count);
+    o.memory = 40000; /* chunks of about 400 points: whole cells, many passes */
+    CHECK_STATUS(pnpr_lod_write(DIR "/scene.ply", DIR "/scene_lod2.ply", &o, &points, &err), PNPR_OK);
+    CHECK(same_file(DIR "/scene_lod.ply", DIR "/scene_lod2.ply"));
+    pnpr_lod l = {0};
+    CHECK_STATUS(pnpr_lod_open(DIR "/scene_lod.ply", &l, &err), PNPR_OK);
+    /* the grid over the 60 x 40 x 12 m of the scene, not the outlier 30 km away */
+    CHECK(l.cells == l.n[0] * l.n[1] * l.n[2] && l.cells <= 9640 / 8 && l.cells > 9640 / 16);
+    CHECK(l.side * l.n[0] >= 59.5 && l.side * (l.n[0] - 1) < 60.2 && l.side * l.n[1] >= 39.5);
+    printf("grid %u x %u x %u of %g\n", l.n[0], l.n[1], l.n[2], l.side);
+    CHECK_STATUS(pnpr_read_file(DIR "/scene_lod.ply", NULL, &out, &err), PNPR_OK); /* an ordinary PLY too */
+    check_order(&l, &in, &out);
+    check_ranges(DIR "/scene_lod.ply", &l);
+    /* never over its input; an ordered file ordered again is the same */
+    CHECK_STATUS(pnpr_lod_write(DIR "/scene.ply", DIR "/scene.ply", &o, &points, &err), PNPR_ERR_INVALID_ARGUMENT);
+    CHECK(pnpr_test_temporaries(DIR, "scene.ply") == 0);
+    pnpr_lod_free(&l);
+    pnpr_cloud_free(&in);
+    pnpr_cloud_free(&out);
+}
+
+/* Empty, one point, only NaN: a file with one cell (and the non-finite one), opened again. */
+static void test_small(void)
+{
+    for (int kind = 0; kind < 3; kind++) {
+        pnpr_cloud c = {0};
+        size_t n = kind == 0 ? 0 : kind == 1 ? 1 : 3;
+        CHECK_STATUS(pnpr_cloud_alloc(&c, n), PNPR_OK);
+        for (size_t i = 0; i < 3 * n; i++) c.xyz[i] = kind == 2 ? NAN : 1.5f;
+        write_input(DIR "/small.ply", &c);
+        pnpr_error err = {0};
+        uint64_t points = 99;
+        CHECK_STATUS(pnpr_lod_write(DIR "/small.ply", DIR "/small_lod.ply", NULL, &points, &err), PNPR_OK);
+        CHECK(points == n);
+        pnpr_lod l = {0};
+        CHECK_STATUS(pnpr_lod_open(DIR "/small_lod.ply", &l, &err), PNPR_OK);
+        CHECK(l.cells == 1 && l.points == n);
+        CHECK(l.start[PNPR_LOD_LEVELS] == (kind == 2 ? 0 : n)); /* the non-finite points in cell 1 */
+        pnpr_lod_free(&l);
+        pnpr_cloud_free(&c);
+    }
+    /* an ascii input cannot be read by ranges */
+    FILE *f = fopen(DIR "/ascii.ply", "w");
+    fputs("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 2 3\n", f);
+    fclose(f);
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_lod_write(DIR "/ascii.ply", DIR "/ascii_lod.ply", NULL, NULL, &err), PNPR_ERR_UNSUPPORTED);
+    CHECK_MSG(strstr(err.message, "ascii.ply") != NULL, "%s", err.message);
+}
+
+/* The header and index's lies: each refused with what is wrong (FORMAT), an ordinary PLY and
+ * another version UNSUPPORTED. */
+static void test_lies(void)
+{
+    const char *head = "ply\nformat binary_little_endian 1.0\ncomment pnpr_lod %s\nelement vertex %d\nproperty float x\n"
+                       "property float y\nproperty float z\nelement pnpr_lod_run %d\nproperty uint count\nend_header\n";
+    struct {
+        const char *grid;
+        int vertices, runs, sum, truncate;
+        pnpr_status st;
+        const char *says;
+    } c[] = {
+        {"1 levels 16 grid 1 1 1 side 1 origin 0 0 0", 2, 32, 2, 0, PNPR_OK, ""},
+        {"1 levels 16 grid 1 1 1 side 1 origin 0 0 0", 2, 32, 3, 0, PNPR_ERR_FORMAT, "index counts 3 points"},
+        {"1 levels 16 grid 1 1 1 side 1 origin 0 0 0", 2, 32, 2, 1, PNPR_ERR_FORMAT, "truncated"},
+        {"1 levels 16 grid 1 1 1 side 1 origin 0 0 0", 2, 48, 2, 0, PNPR_ERR_FORMAT, "48 runs where its grid has 32"},
+        {"1 levels 16 grid 200 200 1 side 1 origin 0 0 0", 2, 32, 2, 0, PNPR_ERR_FORMAT, "not 1 to 32768"},
+        {"1 levels 16 grid 1 1 1 side nan origin 0 0 0", 2, 32, 2, 0, PNPR_ERR_FORMAT, "not 1 to 32768"},
+        {"1 levels 16 grid 1 1 1 side 1 origin 0 0", 2, 32, 2, 0, PNPR_ERR_FORMAT, "is not"},
+        {"2 levels 16 grid 1 1 1 side 1 origin 0 0 0", 2, 32, 2, 0, PNPR_ERR_UNSUPPORTED, "version 2"},
+    };
+    for (size_t t = 0; t < sizeof c / sizeof c[0]; t++) {
+        char h[512];
+        int len = snprintf(h, sizeof h, head, c[t].grid, c[t].vertices, c[t].runs);
+        size_t size = (size_t)len + 12u * (size_t)c[t].vertices + 4u * (size_t)c[t].runs;
+        unsigned char *d = calloc(size, 1);
+        memcpy(d, h, (size_t)len);
+        d[(size_t)len + 12u * (size_t)c[t].vertices] = (unsigned char)c[t].sum; /* all in run 0 of cell 0 */
+        pnpr_lod l = {0};
+        pnpr_error err = {0};
+        CHECK_STATUS(pnpr_lod_parse(d, size - (c[t].truncate ? 3 : 0), &l, &err), c[t].st);
+        CHECK_MSG(strstr(err.message, c[t].says) != NULL, "case %zu: %s", t, err.message);
+        if (c[t].st == PNPR_OK) CHECK(l.points == 2 && l.start[1] == 2 && l.start[32] == 2);
+        pnpr_lod_free(&l);
+        free(d);
+    }
+    const char *plain = "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nend_header\n";
+    pnpr_lod l = {0};
+    pnpr_error err = {0};
+    CHECK_STATUS(pnpr_lod_parse(plain, strlen(plain), &l, &err), PNPR_ERR_UNSUPPORTED);
+    const char *ascii = "ply\nformat ascii 1.0\ncomment pnpr_lod 1 levels 16 grid 1 1 1 side 1 origin 0 0 0\n"
+                        "element vertex 0\nproperty float x\nelement pnpr_lod_run 32\nproperty uint count\nend_header\n";
+    CHECK_STATUS(pnpr_lod_parse(ascii, strlen(ascii), &l, &err), PNPR_ERR_FORMAT);
+    CHECK_MSG(strstr(err.message, "little-endian") != NULL, "%s", err.message);
+}
+
+int main(void)
+{
+    if (system("rm -rf '" DIR "' && mkdir -p '" DIR "'") != 0) return 1;
+    test_runs();
+    test_write();
+    test_small();
+    test_lies();
+    return pnpr_test_finish("test_lod");
+}
