@@ -3,6 +3,8 @@
 #include "cli.h"
 #include "cli_opts.h"
 
+#include <pointnpr/lod.h>
+
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -130,6 +132,30 @@ static const char *type_name(pnpr_type t)
     return s[0] ? s : "unknown";
 }
 
+/* A file ordered for drawing (lod.h): its grid and how full its cells are; or why its order
+ * cannot be used. */
+static void print_lod(const char *in)
+{
+    pnpr_lod l;
+    pnpr_error err = {0};
+    pnpr_status st = pnpr_lod_open(in, &l, &err);
+    if (st == PNPR_ERR_UNSUPPORTED && !strstr(err.message, "version")) return;
+    if (st != PNPR_OK) {
+        printf("drawing:     its order for drawing cannot be used: %s\n", err.message);
+        return;
+    }
+    uint32_t used = 0, most = 0;
+    for (uint32_t k = 0; k < l.cells; k++) {
+        uint32_t n = l.start[((size_t)k + 1) * PNPR_LOD_LEVELS] - l.start[(size_t)k * PNPR_LOD_LEVELS];
+        used += n > 0;
+        most = n > most ? n : most;
+    }
+    uint32_t outside = l.start[((size_t)l.cells + 1) * PNPR_LOD_LEVELS] - l.start[(size_t)l.cells * PNPR_LOD_LEVELS];
+    printf("drawing:     ordered for drawing: %u x %u x %u cells of %.6g (%u holding points, at most %u), %u points "
+           "outside them (far or not finite)\n", l.n[0], l.n[1], l.n[2], l.side, used, most, outside);
+    pnpr_lod_free(&l);
+}
+
 int cli_info(int argc, char **argv)
 {
     const char *in = NULL;
@@ -209,6 +235,7 @@ int cli_info(int argc, char **argv)
     printf("faces:       %zu\n", c.faces.count);
     if (c.has_viewpoint)
         printf("viewpoint:   %.3f %.3f %.3f\n", c.viewpoint[0], c.viewpoint[1], c.viewpoint[2]);
+    print_lod(in);
     pnpr_cloud_free(&c);
     return 0;
 }
