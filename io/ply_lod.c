@@ -101,6 +101,14 @@ int pnpr_lod_run_at(const pnpr_lod *l, uint64_t v, size_t *cursor)
     return (int)(r % LOD_L);
 }
 
+int pnpr_lod_kept(const pnpr_lod *l, uint64_t v, size_t *cursor, double share)
+{
+    if (share >= 1) return 1;
+    if (!(share > 0)) return 0;
+    if (l) return pnpr_lod_rank(v, pnpr_lod_run_at(l, v, cursor)) < share;
+    return pnpr_lod_hash(v) < (uint64_t)(share * 18446744073709551616.0);
+}
+
 void pnpr_lod_free(pnpr_lod *l)
 {
     if (!l) return;
@@ -539,6 +547,70 @@ pnpr_status pnpr_lod_write(const char *in, const char *out_path, const pnpr_lod_
     if (st == PNPR_OK && r_points) *r_points = l.points;
     free(s.counts);
     free(s.sample);
+    pnpr_lod_free(&l);
+    return st;
+}
+
+/* ---- a uniform sample -------------------------------------------------------------------- */
+
+typedef struct sample_read {
+    const pnpr_lod *l;    /* NULL: an ordinary file */
+    size_t cursor;
+    double share;         /* 0: the counting pass */
+    uint64_t seen;
+} sample_read;
+
+static int keep_uniform(void *user, uint64_t v, const double p[3])
+{
+    (void)p;
+    sample_read *s = user;
+    s->seen = v + 1;
+    return s->share > 0 && pnpr_lod_kept(s->l, v, &s->cursor, s->share);
+}
+
+pnpr_status pnpr_lod_read_sample(const char *path, uint64_t points, const pnpr_read_options *opts, pnpr_cloud *cloud,
+                                 uint64_t *r_total, int *r_ordered, pnpr_error *err)
+{
+    if (r_total) *r_total = 0;
+    if (r_ordered) *r_ordered = 0;
+    if (!path || !cloud || (opts && opts->keep))
+        return pnpr_error_set(err, PNPR_ERR_INVALID_ARGUMENT, "sample: no path or cloud, or a point filter given");
+    pnpr_lod l = {0};
+    pnpr_error lerr = {0};
+    const int ordered = pnpr_lod_open(path, &l, &lerr) == PNPR_OK;
+    sample_read s = {ordered ? &l : NULL, 0, 0, 0};
+    pnpr_read_options ro = opts ? *opts : (pnpr_read_options){0};
+    ro.keep = keep_uniform;
+    ro.keep_user = &s;
+    pnpr_status st = PNPR_OK;
+    uint64_t total = l.points;
+    if (!ordered) { /* a pass over the coordinates counts the points */
+        pnpr_cloud none = {0};
+        pnpr_read_options count = ro;
+        count.progress = (pnpr_progress){0};
+        st = pnpr_read_file(path, &count, &none, err);
+        pnpr_cloud_free(&none);
+        total = s.seen;
+    }
+    s.share = total > points ? (double)points / (double)total : 1;
+    double *share = NULL;
+    uint64_t *ranges = NULL;
+    if (st == PNPR_OK && ordered) {
+        const size_t cells = (size_t)l.cells + 1;
+        share = malloc(cells * sizeof *share);
+        ranges = malloc(2 * cells * sizeof *ranges);
+        if (!share || !ranges) st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory for its ranges", path);
+        for (size_t k = 0; st == PNPR_OK && k < cells; k++) share[k] = s.share;
+        if (st == PNPR_OK) {
+            ro.ranges = ranges;
+            ro.range_count = pnpr_lod_ranges(&l, share, ranges, NULL);
+        }
+    }
+    if (st == PNPR_OK) st = pnpr_read_file(path, &ro, cloud, err);
+    if (st == PNPR_OK && r_total) *r_total = total;
+    if (st == PNPR_OK && r_ordered) *r_ordered = ordered;
+    free(share);
+    free(ranges);
     pnpr_lod_free(&l);
     return st;
 }

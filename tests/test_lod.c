@@ -231,6 +231,39 @@ static void test_write(void)
     pnpr_cloud_free(&out);
 }
 
+/* A uniform sample for viewing (pnpr_lod_read_sample): of the ordered file, the points whose
+ * rank is below the share, reading part of it; of the ordinary file, by the hash of the index;
+ * every point when asked for more. */
+static void test_sample(void)
+{
+    const double share = 2000.0 / 9640.0;
+    for (int ordered = 0; ordered < 2; ordered++) {
+        const char *path = ordered ? DIR "/scene_lod.ply" : DIR "/scene.ply";
+        pnpr_cloud c = {0}, all = {0};
+        pnpr_error err = {0};
+        uint64_t total = 0;
+        int used = -1;
+        CHECK_STATUS(pnpr_lod_read_sample(path, 2000, NULL, &c, &total, &used, &err), PNPR_OK);
+        CHECK(total == 9640 && used == ordered);
+        CHECK_MSG(c.count > 1800 && c.count < 2200, "%zu points for 2000", c.count);
+        CHECK_STATUS(pnpr_read_file(path, NULL, &all, &err), PNPR_OK);
+        pnpr_lod l = {0};
+        if (ordered) CHECK_STATUS(pnpr_lod_open(path, &l, &err), PNPR_OK);
+        size_t cursor = 0, j = 0, bad = 0;
+        const pnpr_property *a = pnpr_cloud_find_property(&all, "idx"), *b = pnpr_cloud_find_property(&c, "idx");
+        for (size_t v = 0; a && b && v < all.count; v++) /* the kept ones, in file order */
+            if (pnpr_lod_kept(ordered ? &l : NULL, v, &cursor, share))
+                bad += j >= c.count || ((const uint32_t *)a->data)[v] != ((const uint32_t *)b->data)[j++];
+        CHECK_MSG(a && b && bad == 0 && j == c.count, "%zu of %zu differ", bad, j);
+        pnpr_cloud_free(&c);
+        CHECK_STATUS(pnpr_lod_read_sample(path, 20000, NULL, &c, &total, &used, &err), PNPR_OK);
+        CHECK(c.count == 9640);
+        pnpr_cloud_free(&c);
+        pnpr_cloud_free(&all);
+        pnpr_lod_free(&l);
+    }
+}
+
 /* Empty, one point, only NaN: a file with one cell (and the non-finite one), opened again. */
 static void test_small(void)
 {
@@ -311,6 +344,7 @@ int main(void)
     if (system("rm -rf '" DIR "' && mkdir -p '" DIR "'") != 0) return 1;
     test_runs();
     test_write();
+    test_sample();
     test_small();
     test_lies();
     return pnpr_test_finish("test_lod");

@@ -95,6 +95,24 @@ size_t pnpr_lod_ranges(const pnpr_lod *lod, const double *share, uint64_t *r_ran
  * ascending v (each call then costs O(1) amortised); v < lod->points. */
 int pnpr_lod_run_at(const pnpr_lod *lod, uint64_t v, size_t *cursor);
 
+/* Whether vertex v is in the sample of `share`: its rank below the share. lod NULL: an ordinary
+ * file, whose rank is the hash of v (pnpr_lod_hash); else v's rank in its run (pnpr_lod_run_at's
+ * cursor, for ascending v). */
+int pnpr_lod_kept(const pnpr_lod *lod, uint64_t v, size_t *cursor, double share);
+
+/* The points a sample opened for viewing holds unless asked for another count (MeshLab's "NPR:
+ * Open a sample of a large PLY"). */
+#define PNPR_LOD_SAMPLE_POINTS 5000000
+
+/* A uniform sample of about `points` of the binary PLY at path (every point when it has no more):
+ * each point kept when its rank is below points / its count, read through the point filter
+ * (opts: progress; no keep). A file ordered for drawing reads only the runs that share reaches;
+ * another file takes a pass over its coordinates to count them first (one whose index lies is read
+ * so). *r_total (may be NULL): the file's points; *r_ordered (may be NULL): 1 when the order
+ * was used. */
+PNPR_NODISCARD pnpr_status pnpr_lod_read_sample(const char *path, uint64_t points, const pnpr_read_options *opts,
+                                                pnpr_cloud *cloud, uint64_t *r_total, int *r_ordered, pnpr_error *err);
+
 #ifdef __cplusplus
 }
 #endif

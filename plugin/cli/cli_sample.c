@@ -38,10 +38,7 @@ typedef struct lod_read {
 /* Whether the point of index i is in the sample of `share` (its rank below it). */
 static int point_kept(lod_read *lr, uint64_t i, double share)
 {
-    if (share >= 1) return 1;
-    if (!(share > 0)) return 0;
-    if (lr && lr->on) return pnpr_lod_rank(i, pnpr_lod_run_at(&lr->lod, i, &lr->cursor)) < share;
-    return pnpr_lod_hash(i) < (uint64_t)(share * 18446744073709551616.0);
+    return pnpr_lod_kept(lr && lr->on ? &lr->lod : NULL, i, lr ? &lr->cursor : NULL, share);
 }
 
 typedef struct sample_keep {

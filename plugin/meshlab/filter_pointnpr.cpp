@@ -14,6 +14,7 @@
 #include <pointnpr/features.h>
 #include <pointnpr/knn.h>
 #include <pointnpr/lines.h>
+#include <pointnpr/lod.h>
 #include <pointnpr/options.h>
 #include <pointnpr/outliers.h>
 #include <pointnpr/segment.h>
@@ -31,6 +32,8 @@
 #include <vector>
 
 #include <QElapsedTimer>
+#include <QFile>
+#include <QFileInfo>
 
 /* Owns a pnpr_cloud for the duration of a call (freed on every path, exceptions included). */
 struct CloudGuard {
@@ -225,7 +228,8 @@ FloatPrecision floatPrecision(const pnpr_cloud &cloud)
 
 FilterPointnprPlugin::FilterPointnprPlugin()
 {
-    typeList << FP_FEATURES << FP_SELECT_FEATURES << FP_PROFILE_LINES << FP_SEGMENT_JSEG << FP_SEGMENT_GROW << FP_LAYER_STYLE;
+    typeList << FP_FEATURES << FP_SELECT_FEATURES << FP_PROFILE_LINES << FP_SEGMENT_JSEG << FP_SEGMENT_GROW << FP_LAYER_STYLE
+             << FP_OPEN_SAMPLE;
     for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
 }
 
@@ -243,6 +247,7 @@ QString FilterPointnprPlugin::filterName(FilterIDType filter) const
     case FP_SEGMENT_JSEG: return "NPR: Segment (JSEG)";
     case FP_SEGMENT_GROW: return "NPR: Segment (connected components / colour region growing)";
     case FP_LAYER_STYLE: return "NPR: Set layer style";
+    case FP_OPEN_SAMPLE: return "NPR: Open a sample of a large PLY";
     default: return QString();
     }
 }
@@ -303,6 +308,14 @@ QString FilterPointnprPlugin::filterInfo(FilterIDType filter) const
                "visibility. <i>The decoration's Style</i> returns the layer to the decoration's own Style "
                "parameter. The choice is kept with the layer (a per-mesh attribute) for this session; it "
                "changes nothing else in the layer.";
+    case FP_OPEN_SAMPLE:
+        return "Opens a <b>uniform sample</b> of a binary PLY too large for MeshLab's memory as a <b>new layer</b>: "
+               "about the asked number of points, each kept by a hash of its place in the file (the same points "
+               "at every run). A file ordered for drawing (<tt>pointnpr convert IN.ply -o OUT.ply --lod</tt>) is "
+               "read only where the sample lies; another binary PLY takes a pass over its coordinates first. "
+               "Positions, normals and colours are kept, and the feature properties of <tt>pointnpr features</tt> "
+               "become vertex quality and the attributes the other NPR filters and the NPR render decoration "
+               "read.<br>See docs/tiles.md, \"A file ordered for drawing\".";
     default: return QString();
     }
 }
@@ -314,9 +327,9 @@ MeshFilterInterface::FilterClass FilterPointnprPlugin::getClass(QAction *a)
     return MeshFilterInterface::PointSet;
 }
 
-MeshFilterInterface::FILTER_ARITY FilterPointnprPlugin::filterArity(QAction *) const
+MeshFilterInterface::FILTER_ARITY FilterPointnprPlugin::filterArity(QAction *a) const
 {
-    return SINGLE_MESH;
+    return ID(a) == FP_OPEN_SAMPLE ? NONE : SINGLE_MESH; /* it opens a layer of its own */
 }
 
 int FilterPointnprPlugin::getPreConditions(QAction *) const
@@ -327,7 +340,8 @@ int FilterPointnprPlugin::getPreConditions(QAction *) const
 int FilterPointnprPlugin::postCondition(QAction *a) const
 {
     if (ID(a) == FP_SELECT_FEATURES) return MeshModel::MM_VERTFLAGSELECT;
-    if (ID(a) == FP_PROFILE_LINES || ID(a) == FP_LAYER_STYLE) return MeshModel::MM_NONE; /* a new layer / an attribute */
+    if (ID(a) == FP_PROFILE_LINES || ID(a) == FP_LAYER_STYLE || ID(a) == FP_OPEN_SAMPLE)
+        return MeshModel::MM_NONE; /* a new layer / an attribute */
     if (ID(a) == FP_SEGMENT_JSEG || ID(a) == FP_SEGMENT_GROW)
         return MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR;
     return MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTNORMAL | MeshModel::MM_VERTCOLOR;
@@ -608,6 +622,13 @@ void FilterPointnprPlugin::initParameterSet(QAction *a, MeshModel &m, RichParame
                               "Style parameter."));
         break;
     }
+    case FP_OPEN_SAMPLE:
+        par.addParam(RichOpenFile("file", QString(), QStringList() << "*.ply", "PLY file",
+                                  "A binary PLY (what pointnpr writes), best ordered for drawing "
+                                  "(pointnpr convert IN.ply -o OUT.ply --lod)."));
+        par.addParam(RichInt("points", PNPR_LOD_SAMPLE_POINTS, "Points",
+                             "About this many points of the file are opened (all of them when it has no more)."));
+        break;
     default: break;
     }
 }
@@ -631,6 +652,7 @@ bool FilterPointnprPlugin::applyFilter(QAction *a, MeshDocument &md, const RichP
         case FP_SEGMENT_JSEG: return segment(md, par, cb, true);
         case FP_SEGMENT_GROW: return segment(md, par, cb, false);
         case FP_LAYER_STYLE: return layerStyle(md, par);
+        case FP_OPEN_SAMPLE: return openSample(md, par, cb);
         default: return fail("unknown filter");
         }
     } catch (const std::bad_alloc &) {
@@ -776,6 +798,56 @@ bool FilterPointnprPlugin::runFeatures(LayerCloud &lc, pnpr_features_options &fo
 
 /* ---- NPR: Compute feature degree and classify points ------------------------------------- */
 
+namespace {
+/* The cloud's features (feature_degree ... properties, as the library and the files name them)
+ * into the layer: vertex quality = degree, the attributes feature_class, feature_confidence and
+ * feature_dir on vertex verts[i] for cloud point i (every other vertex 0), normals when
+ * withNormals, the class palette when colorByClass; counts per class; the stamp written. False
+ * (nothing changed) when the cloud lacks a feature property, or normals asked for. */
+bool storeFeatures(MeshModel &mm, const std::vector<CMeshO::VertexPointer> &verts, const pnpr_cloud &cloud,
+                   bool withNormals, bool colorByClass, size_t counts[4])
+{
+    CMeshO &m = mm.cm;
+    const pnpr_property *pDeg = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DEGREE);
+    const pnpr_property *pCls = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_CLASS);
+    const pnpr_property *pConf = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_CONFIDENCE);
+    const pnpr_property *pDx = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_X);
+    const pnpr_property *pDy = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Y);
+    const pnpr_property *pDz = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Z);
+    if (!pDeg || !pCls || !pConf || !pDx || !pDy || !pDz || (withNormals && !cloud.normal)) return false;
+    mm.updateDataMask(MeshModel::MM_VERTQUALITY);
+    auto hClass = attributeOfType<float>(m, kAttrClass);
+    auto hConf = attributeOfType<float>(m, kAttrConfidence);
+    auto hDir = attributeOfType<vcg::Point3f>(m, kAttrDir);
+    if (colorByClass) mm.updateDataMask(MeshModel::MM_VERTCOLOR);
+    /* every vertex, deleted ones included, gets defined attribute values */
+    for (CMeshO::VertexIterator vi = m.vert.begin(); vi != m.vert.end(); ++vi) {
+        hClass[vi] = 0.0f;
+        hConf[vi] = 0.0f;
+        hDir[vi] = vcg::Point3f(0, 0, 0);
+    }
+    for (size_t i = 0; i < verts.size(); i++) {
+        CMeshO::VertexPointer v = verts[i];
+        const double deg = pnpr_type_get(pDeg->type, pDeg->data, i);
+        int cls = static_cast<int>(pnpr_type_get(pCls->type, pCls->data, i));
+        if (cls < 0 || cls > 3) cls = 0;
+        counts[cls]++;
+        v->Q() = static_cast<float>(deg);
+        hClass[v] = static_cast<float>(cls);
+        hConf[v] = static_cast<float>(pnpr_type_get(pConf->type, pConf->data, i));
+        hDir[v] = vcg::Point3f(static_cast<float>(pnpr_type_get(pDx->type, pDx->data, i)),
+                               static_cast<float>(pnpr_type_get(pDy->type, pDy->data, i)),
+                               static_cast<float>(pnpr_type_get(pDz->type, pDz->data, i)));
+        if (withNormals)
+            v->N() = Point3m(cloud.normal[3 * i], cloud.normal[3 * i + 1], cloud.normal[3 * i + 2]);
+        if (colorByClass)
+            v->C() = vcg::Color4b(kPalette[cls][0], kPalette[cls][1], kPalette[cls][2], 255);
+    }
+    pnpr_meshlab::writeStamp(m); /* what readers check the attributes against (vcg_attributes.h) */
+    return true;
+}
+} // namespace
+
 bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
 {
     MeshModel *mm = md.mm();
@@ -815,50 +887,13 @@ bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameter
     double seconds = 0;
     if (!runFeatures(lc, fo, pb, stats, seconds)) return false;
 
-    const pnpr_property *pDeg = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DEGREE);
-    const pnpr_property *pCls = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_CLASS);
-    const pnpr_property *pConf = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_CONFIDENCE);
-    const pnpr_property *pDx = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_X);
-    const pnpr_property *pDy = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Y);
-    const pnpr_property *pDz = pnpr_cloud_find_property(&cloud, PNPR_PROP_FEATURE_DIR_Z);
-    if (!pDeg || !pCls || !pConf || !pDx || !pDy || !pDz || !cloud.normal)
-        return fail("internal error: the library returned no feature properties");
-
     /* ---- write back (nothing above touched the layer) ---- */
     if (pnpr_meshlab::dropStaleAttributes(m))
         Log("pointnpr: layer '%s': dropped the attributes of an older version of the layer (reloaded or edited)",
             qUtf8Printable(layer));
-    mm->updateDataMask(MeshModel::MM_VERTQUALITY);
-    auto hClass = attributeOfType<float>(m, kAttrClass);
-    auto hConf = attributeOfType<float>(m, kAttrConfidence);
-    auto hDir = attributeOfType<vcg::Point3f>(m, kAttrDir);
-    if (colorByClass) mm->updateDataMask(MeshModel::MM_VERTCOLOR);
-    /* every vertex, deleted ones included, gets defined attribute values */
-    for (CMeshO::VertexIterator vi = m.vert.begin(); vi != m.vert.end(); ++vi) {
-        hClass[vi] = 0.0f;
-        hConf[vi] = 0.0f;
-        hDir[vi] = vcg::Point3f(0, 0, 0);
-    }
     size_t counts[4] = {0, 0, 0, 0};
-    for (size_t i = 0; i < n; i++) {
-        CMeshO::VertexPointer v = lc.verts[i];
-        const double deg = pnpr_type_get(pDeg->type, pDeg->data, i);
-        int cls = static_cast<int>(pnpr_type_get(pCls->type, pCls->data, i));
-        if (cls < 0 || cls > 3) cls = 0;
-        counts[cls]++;
-        v->Q() = static_cast<float>(deg);
-        hClass[v] = static_cast<float>(cls);
-        hConf[v] = static_cast<float>(pnpr_type_get(pConf->type, pConf->data, i));
-        hDir[v] = vcg::Point3f(static_cast<float>(pnpr_type_get(pDx->type, pDx->data, i)),
-                               static_cast<float>(pnpr_type_get(pDy->type, pDy->data, i)),
-                               static_cast<float>(pnpr_type_get(pDz->type, pDz->data, i)));
-        if (!keepNormals)
-            v->N() = Point3m(cloud.normal[3 * i], cloud.normal[3 * i + 1], cloud.normal[3 * i + 2]);
-        if (colorByClass)
-            v->C() = vcg::Color4b(kPalette[cls][0], kPalette[cls][1], kPalette[cls][2], 255);
-    }
-
-    pnpr_meshlab::writeStamp(m); /* what readers check the attributes against (vcg_attributes.h) */
+    if (!storeFeatures(*mm, lc.verts, cloud, !keepNormals, colorByClass, counts))
+        return fail("internal error: the library returned no feature properties");
     Log("pointnpr: layer '%s': %zu points (%zu valid), k %u, threshold %.3f%s, %s colour, normals %s",
         qUtf8Printable(layer), n, stats.valid_points, stats.k_used, stats.threshold_used,
         threshold > 0 ? "" : " (automatic)", hasColor ? "with" : "without",
@@ -1315,5 +1350,65 @@ bool FilterPointnprPlugin::layerStyle(MeshDocument &md, const RichParameterList 
     else
         Log("pointnpr: layer '%s' is drawn in the %s style by the NPR render decoration", qUtf8Printable(mm->label()),
             pnpr_style_name((pnpr_style)(choice - 1)));
+    return true;
+}
+
+bool FilterPointnprPlugin::openSample(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
+{
+    const QString file = par.getOpenFileName("file");
+    const int points = par.getInt("points");
+    if (file.isEmpty()) return fail("no file given: choose a binary PLY");
+    if (points <= 0) return fail(QString("the points must be > 0 (got %1)").arg(points));
+
+    /* ---- read (nothing in the document changes before it succeeds) ---- */
+    ProgressBridge pb = makeBridge(cb, 0, 90, false, "NPR open sample");
+    pnpr_read_options ro;
+    std::memset(&ro, 0, sizeof ro);
+    ro.progress.fn = progressToMeshLab;
+    ro.progress.user = &pb;
+    CloudGuard g;
+    pnpr_error err;
+    std::memset(&err, 0, sizeof err);
+    uint64_t total = 0;
+    int ordered = 0;
+    QElapsedTimer timer;
+    timer.start();
+    const QByteArray path = QFile::encodeName(file);
+    pnpr_status st = pnpr_lod_read_sample(path.constData(), static_cast<uint64_t>(points), &ro, &g.cloud, &total,
+                                          &ordered, &err);
+    if (st != PNPR_OK) return fail(QString::fromUtf8(err.message) + "; no layer was added");
+    const pnpr_cloud &c = g.cloud;
+    if (c.count == 0) return fail(QString("%1 has no points; no layer was added").arg(file));
+    if (c.count > static_cast<size_t>(std::numeric_limits<int>::max()))
+        return fail("too many points for one MeshLab layer; ask for fewer");
+
+    /* ---- the new layer: world coordinates, normals, colours, the features when the file has them ---- */
+    MeshModel *out = md.addNewMesh("", QFileInfo(file).fileName() + " sample", true);
+    if (!out) return fail("MeshLab could not add a layer");
+    CMeshO &o = out->cm;
+    out->updateDataMask(MeshModel::MM_VERTNORMAL);
+    if (c.rgb) out->updateDataMask(MeshModel::MM_VERTCOLOR);
+    CMeshO::VertexIterator vi = vcg::tri::Allocator<CMeshO>::AddVertices(o, c.count);
+    std::vector<CMeshO::VertexPointer> verts(c.count);
+    for (size_t i = 0; i < c.count; i++, ++vi) {
+        double w[3];
+        pnpr_cloud_world(&c, i, w);
+        vi->P() = Point3m(static_cast<Scalarm>(w[0]), static_cast<Scalarm>(w[1]), static_cast<Scalarm>(w[2]));
+        vi->N() = c.normal ? Point3m(c.normal[3 * i], c.normal[3 * i + 1], c.normal[3 * i + 2]) : Point3m(0, 0, 0);
+        if (c.rgb) vi->C() = vcg::Color4b(c.rgb[3 * i], c.rgb[3 * i + 1], c.rgb[3 * i + 2], 255);
+        verts[i] = &*vi;
+    }
+    size_t counts[4] = {0, 0, 0, 0};
+    const bool features = storeFeatures(*out, verts, c, false, false, counts);
+    vcg::tri::UpdateBounding<CMeshO>::Box(o);
+    Log("pointnpr: new layer '%s': %zu of the %llu points of %s (%.1f%%), %s; %.2f s",
+        qUtf8Printable(out->label()), c.count, static_cast<unsigned long long>(total), qUtf8Printable(file),
+        total ? 100.0 * static_cast<double>(c.count) / static_cast<double>(total) : 100.0,
+        ordered ? "ordered for drawing: only the runs of the sample were read" : "a pass over every point first",
+        timer.elapsed() / 1000.0);
+    if (features)
+        Log("pointnpr: the file's features kept: vertex quality = feature degree, attributes feature_class, "
+            "feature_confidence, feature_dir (%zu feature points)", counts[1] + counts[2]);
+    if (cb) cb(100, "NPR open sample: done");
     return true;
 }

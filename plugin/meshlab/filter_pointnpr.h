@@ -20,7 +20,8 @@ class FilterPointnprPlugin : public QObject, public MeshFilterInterface
     Q_INTERFACES(MeshFilterInterface)
 
 public:
-    enum { FP_FEATURES, FP_SELECT_FEATURES, FP_PROFILE_LINES, FP_SEGMENT_JSEG, FP_SEGMENT_GROW, FP_LAYER_STYLE };
+    enum { FP_FEATURES, FP_SELECT_FEATURES, FP_PROFILE_LINES, FP_SEGMENT_JSEG, FP_SEGMENT_GROW, FP_LAYER_STYLE,
+           FP_OPEN_SAMPLE };
 
     FilterPointnprPlugin();
 
@@ -41,6 +42,7 @@ private:
     bool profileLines(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
     bool segment(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb, bool jseg);
     bool layerStyle(MeshDocument &md, const RichParameterList &par);
+    bool openSample(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
     bool fail(const QString &message);
 
     /* shared by the filters: the current layer -> pnpr_cloud, the feature analysis */

@@ -2,7 +2,7 @@
 # MeshLab plugin tests: runs the filters of libfilter_pointnpr.so inside Debian's meshlabserver.
 #
 #   tests/meshlab/run.sh TEST PLUGIN_SO POINTNPR_CLI WORKDIR [DECORATE_SO]
-#     TEST: load | cube | offset | select | robust | lion | lines | segment | decorate | decorate_styles | snapshot
+#     TEST: load | cube | offset | select | robust | lion | lines | segment | sample | decorate | decorate_styles | snapshot
 #     DECORATE_SO: libdecorate_pointnpr.so ("NPR render"), also put into the host's plugins/;
 #     the decorate test runs the MeshLab GUI (/usr/bin/meshlab) under Xvfb.
 #
@@ -826,6 +826,39 @@ select)
       END { printf "directional + dithering: %d selected, mismatches %d\n", sel, bad; exit bad == 0 && sel > 0 ? 0 : 1 }' \
       "$T/add-a.ply" || fail "add to selection"
   fi
+  ;;
+
+sample)
+  # NPR: Open a sample of a large PLY: a 40 000-point roof (a ridge at x = 1) with the features of pointnpr, as
+  # written and ordered for drawing: about the asked 5 000 points in a new layer (saved as the
+  # current one), on the roof, the file's features as vertex quality (the ridge's points alone
+  # above 0.05); a missing file and a bad count refused, no layer added.
+  awk 'BEGIN { n = 200; print "ply\nformat ascii 1.0\nelement vertex " n * n
+    print "property float x\nproperty float y\nproperty float z\nend_header"
+    for (j = 0; j < n; j++) for (i = 0; i < n; i++) printf "%g %g %g\n", i * 0.01, j * 0.01, 0.5 * (i > 100 ? i - 100 : 100 - i) * 0.01 }' > "$T/plane.txt.ply"
+  "$CLI" features "$T/plane.txt.ply" -o "$T/plane.ply" --quiet || die "pointnpr features failed"
+  "$CLI" convert "$T/plane.ply" -o "$T/plane_lod.ply" --lod --quiet || die "pointnpr convert --lod failed"
+  cube_ply "$T/cube.ply" 1 10 0 0 0 # the layer MeshLab opens with
+  open_xml() { printf ' <filter name="NPR: Open a sample of a large PLY">\n  <Param type="RichOpenFile" name="file" value="%s" exts_cardinality="1" exts_val0="*.ply"/>\n  <Param type="RichInt" name="points" value="%s"/>\n </filter>\n' "$1" "$2"; }
+  for f in plane plane_lod; do
+    mlx "$T/$f.mlx" "$(open_xml "$T/$f.ply" 5000)"
+    mlserver "$f" -i "$T/cube.ply" -o "$T/${f}_s.ply" -m vq vn -s "$T/$f.mlx" || continue
+    expect_rc "$f" 0
+    expect_log "$f" "new layer '$f.ply sample': [0-9]+ of the 40000 points"
+    expect_log "$f" "the file's features kept"
+    to_ascii "$T/${f}_s.ply" "$T/${f}_a.ply" || continue
+    awk '/^property/ && !b { col[$NF] = np++ } /^end_header/ { b = 1; next }
+      b { n++; q = $(col["quality"] + 1); if (q > 0.05) { edge++; if ($1 < 0.9 || $1 > 1.1) off++ } if ($1 < 0 || $1 > 2 || $2 < 0 || $2 > 2) out++ }
+      END { printf "sample: %d points, %d of quality > 0.05 (%d off the ridge), %d outside the roof\n", n, edge, off, out
+            exit (n > 4500 && n < 5500 && edge > 20 && edge < n / 4 && off == 0 && out == 0) ? 0 : 1 }' "$T/${f}_a.ply" ||
+      fail "'$f': not about 5000 points of the roof with its features (above)"
+  done
+  expect_log plane "a pass over every point first"
+  expect_log plane_lod "ordered for drawing: only the runs of the sample were read"
+  mlx "$T/none.mlx" "$(open_xml "$T/none.ply" 5000)"
+  mlserver none -i "$T/cube.ply" -o "$T/none_s.ply" -s "$T/none.mlx" && expect_rc none 255 && expect_log none "none.ply.*no layer was added"
+  mlx "$T/zero.mlx" "$(open_xml "$T/plane_lod.ply" 0)"
+  mlserver zero -i "$T/cube.ply" -o "$T/zero_s.ply" -s "$T/zero.mlx" && expect_rc zero 255 && expect_log zero "the points must be > 0"
   ;;
 
 robust)
