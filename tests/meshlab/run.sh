@@ -728,7 +728,7 @@ load)
   [[ -f "$T/filters.html" ]] || die "meshlabserver -d wrote no filter list"
   for f in "NPR: Compute feature degree and classify points" "NPR: Select feature points" "NPR: Profile lines" \
            "NPR: Segment (JSEG)" "NPR: Segment (connected components / colour region growing)" \
-           "NPR: Set layer style"; do
+           "NPR: Set layer style" "NPR: Open a sample of a large PLY"; do
     grep -qF "$f" "$T/filters.html" || fail "filter '$f' is not registered"
   done
   # the list shows each parameter's type and description
@@ -740,7 +740,7 @@ load)
            "Bool:Join at corners" "Bool:Recompute features" "Int:Segment count (hierarchy)" "Float:Hierarchy threshold" \
            "Int:Colour classes" "Float:Class merge distance" "Float:Seed factor" "Float:Region merge distance" \
            "Int:Minimum segment size" "Bool:Colour vertices by segment" "Bool:Label to vertex quality" "Enum:Method" \
-           "Float:Neighbour distance" "Float:Point colour distance" "Enum:Style"; do
+           "Float:Neighbour distance" "Float:Point colour distance" "Enum:Style" "FileName:PLY file" "Int:Points"; do
     grep -qF "\c ${p%%:*}  </TD> <TD> ${p#*:} </TD>" "$T/filters.html" || fail "parameter '$p' missing from the filter list"
   done
   # the same plugin loaded into the interactive host's plugin folder layout works with a script too
