@@ -1170,17 +1170,21 @@ static pnpr_status filter_vertices(ply_reader *r, const pnpr_read_options *o, ui
     const size_t n = (size_t)v->count, rs = v->min_size;
     uint8_t *bits = calloc(n / 8 + 1, 1);
     if (!bits) return pnpr_io_fail(r->err, PNPR_ERR_OUT_OF_MEMORY, 0, -1, "read ply: out of memory");
-    size_t kept = 0, done = 0;
-    ply_tick t;
-    tick_init(&t, n);
+    size_t kept = 0, done = 0, visits = 0;
     const uint64_t all[2] = {0, n}, *range = o->ranges ? o->ranges : all;
-    for (size_t g = 0; g < (o->ranges ? o->range_count : 1); g++) {
+    const size_t groups = o->ranges ? o->range_count : 1;
+    for (size_t g = 0; g < groups; g++) { /* checked before keep sees a point */
         if (range[2 * g] > range[2 * g + 1] || range[2 * g + 1] > n || (g && range[2 * g] < range[2 * g - 1])) {
             free(bits);
             return pnpr_io_fail(r->err, PNPR_ERR_INVALID_ARGUMENT, 0, -1,
                                 "read ply: vertex range %zu [%llu, %llu) is not ascending within the %zu vertices", g,
                                 (unsigned long long)range[2 * g], (unsigned long long)range[2 * g + 1], n);
         }
+        visits += (size_t)(range[2 * g + 1] - range[2 * g]);
+    }
+    ply_tick t;
+    tick_init(&t, visits);
+    for (size_t g = 0; g < groups; g++) {
         for (size_t i = (size_t)range[2 * g]; i < (size_t)range[2 * g + 1]; i++, done++) {
             const uint8_t *rec = r->data + pos + i * rs;
             double w[3];
@@ -1191,9 +1195,9 @@ static pnpr_status filter_vertices(ply_reader *r, const pnpr_read_options *o, ui
                 kept++;
             }
             if ((done & 0xFFFF) == 0) drop_behind(r, pos + i * rs, done == 0);
-            if (tick(r, &t, done + 1, n)) {
+            if (tick(r, &t, done + 1, visits)) {
                 free(bits);
-                return cancelled(r, done + 1, n);
+                return cancelled(r, done + 1, visits);
             }
         }
     }
@@ -1291,7 +1295,9 @@ static pnpr_status ply_read(const void *data, size_t size, const pnpr_read_optio
         r.err = err;
         r.fb = fb;
         size_t count = (size_t)h.vertex->count;
-        if (!r.dry && opts && opts->keep) {
+        if (opts && opts->ranges && !opts->keep)
+            st = pnpr_io_fail(err, PNPR_ERR_INVALID_ARGUMENT, 0, -1, "read ply: vertex ranges without a point filter (keep)");
+        else if (!r.dry && opts && opts->keep) {
             st = filter_vertices(&r, opts, &kept, &count);
             h.face = NULL; /* a tile has no faces */
         }

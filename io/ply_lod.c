@@ -2,7 +2,8 @@
  * drawing"): its grid and runs, the header and index parser, and the writer.
  *
  * The writer reads its input through the point filter (io/ply.c): one pass for the box of the
- * finite points, one for the runs' counts, then one per chunk of whole cells, which it holds,
+ * finite points and a stride sample (one more for the box of the points that are not far outliers
+ * when the sample holds some), one for the runs' counts, then one per chunk of whole cells, which it holds,
  * orders by cell and run (a counting sort, stable: file order within a run) and writes through
  * the join's sink (io/ply_join.c), so that the records are those `pointnpr convert` writes. The
  * index goes after the vertices, the header is written again at the end with the count. */
@@ -15,6 +16,8 @@
 #include <pointnpr/lod.h>
 #include <pointnpr/outliers.h>
 
+#include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -173,7 +176,8 @@ static void header_line(lod_header *h, const char *s, const char *e, int *elem)
         const char *sp = memchr(rest, ' ', (size_t)(e - rest));
         size_t z = sp ? pnpr_ply_type_size(rest, (size_t)(sp - rest)) : 0;
         if (*elem == 1 && z && !memchr(sp + 1, ' ', (size_t)(e - sp - 1)) && sp + 1 < e) h->record += z;
-        else if (*elem == 2 && z == 4 && (sp - rest == 4 ? !memcmp(rest, "uint", 4) : !memcmp(rest, "uint32", 6)) &&
+        else if (*elem == 2 && z == 4 && ((sp - rest == 4 && !memcmp(rest, "uint", 4)) ||
+                                          (sp - rest == 6 && !memcmp(rest, "uint32", 6))) &&
                  e - sp - 1 == 5 && !memcmp(sp + 1, "count", 5))
             *elem = 3;
         else if (!h->why[0]) snprintf(h->why, sizeof h->why, "a property that is not a vertex scalar or the runs' uint count");
@@ -214,18 +218,52 @@ static pnpr_status parse_header(const char *d, size_t size, lod_header *h, pnpr_
     return pnpr_error_set(err, PNPR_ERR_UNSUPPORTED, "not a file ordered for drawing");
 }
 
-/* The grid of the pnpr_lod comment into l. */
+/* The next space-separated token of *t as an unsigned integer at most `most` (1); 0 when it is
+ * not one. */
+static int next_uint(const char **t, unsigned long most, unsigned *r)
+{
+    char *end;
+    if (**t < '0' || **t > '9') return 0;
+    errno = 0;
+    unsigned long v = strtoul(*t, &end, 10);
+    if (errno || v > most || (*end != ' ' && *end != '\0')) return 0;
+    *r = (unsigned)v;
+    *t = *end ? end + 1 : end;
+    return 1;
+}
+
+static int next_double(const char **t, double *r)
+{
+    char *end;
+    *r = strtod(*t, &end);
+    if (end == *t || (*end != ' ' && *end != '\0')) return 0;
+    *t = *end ? end + 1 : end;
+    return 1;
+}
+
+static int next_word(const char **t, const char *w)
+{
+    size_t n = strlen(w);
+    if (strncmp(*t, w, n) || (*t)[n] != ' ') return 0;
+    *t += n + 1;
+    return 1;
+}
+
+/* The grid of the pnpr_lod comment into l: "1 levels L grid NX NY NZ side S origin X Y Z". */
 static pnpr_status parse_grid(const lod_header *h, pnpr_lod *l, pnpr_error *err)
 {
     char text[512];
     if (h->comment_len >= sizeof text) return pnpr_error_set(err, PNPR_ERR_FORMAT, "its pnpr_lod comment is too long");
     memcpy(text, h->comment, h->comment_len);
     text[h->comment_len] = '\0';
+    const char *t = text;
     unsigned version = 0, levels = 0, n[3] = {0, 0, 0};
-    int used = 0;
-    int got = sscanf(text, "%u levels %u grid %u %u %u side %lf origin %lf %lf %lf%n", &version, &levels, &n[0], &n[1],
-                     &n[2], &l->side, &l->origin[0], &l->origin[1], &l->origin[2], &used);
-    if (got != 9 || text[used] != '\0')
+    int ok = next_uint(&t, 1000, &version) && next_word(&t, "levels") && next_uint(&t, 1000, &levels) &&
+             next_word(&t, "grid");
+    for (int a = 0; a < 3 && ok; a++) ok = next_uint(&t, PNPR_VIEW_CELLS_MAX + 1, &n[a]);
+    ok = ok && next_word(&t, "side") && next_double(&t, &l->side) && next_word(&t, "origin");
+    for (int a = 0; a < 3 && ok; a++) ok = next_double(&t, &l->origin[a]);
+    if (!ok || *t)
         return pnpr_error_set(err, PNPR_ERR_FORMAT,
                               "its pnpr_lod comment is not \"%d levels L grid NX NY NZ side S origin X Y Z\"",
                               PNPR_LOD_VERSION);
@@ -234,11 +272,13 @@ static pnpr_status parse_grid(const lod_header *h, pnpr_lod *l, pnpr_error *err)
                               "ordered for drawing by version %u with %u levels; this pointnpr reads version %d with %d "
                               "(write it again: pointnpr convert --lod)", version, levels, PNPR_LOD_VERSION, LOD_L);
     double cells = (double)n[0] * n[1] * n[2];
-    if (!n[0] || !n[1] || !n[2] || cells > PNPR_VIEW_CELLS_MAX || !(l->side > 0) || !isfinite(l->side) ||
-        !isfinite(l->origin[0] + l->origin[1] + l->origin[2]))
+    int finite = l->side > 0 && isfinite(l->side); /* every cell's corner a finite double */
+    for (int a = 0; a < 3; a++) finite = finite && isfinite(l->origin[a] + l->side * n[a]) && isfinite(l->origin[a]);
+    if (!n[0] || !n[1] || !n[2] || cells > PNPR_VIEW_CELLS_MAX || !finite)
         return pnpr_error_set(err, PNPR_ERR_FORMAT,
-                              "its grid (%u x %u x %u cells of side %g) is not 1 to %d finite cells", n[0], n[1], n[2],
-                              l->side, PNPR_VIEW_CELLS_MAX);
+                              "its grid (%u x %u x %u cells of side %g from %g %g %g) is not 1 to %d cells of finite "
+                              "corners", n[0], n[1], n[2], l->side, l->origin[0], l->origin[1], l->origin[2],
+                              PNPR_VIEW_CELLS_MAX);
     memcpy(l->n, n, sizeof n);
     l->cells = n[0] * n[1] * n[2];
     return PNPR_OK;
@@ -316,6 +356,8 @@ typedef struct lod_scan {
     uint64_t step;
     uint64_t *counts;      /* the runs' pass: each run's points */
     uint32_t c0, c1;       /* a chunk's pass: its cells [c0, c1) */
+    const pnpr_outlier_info *far; /* the inlier pass: the far-outlier frame */
+    uint64_t inliers;
     uint32_t *key;         /* each point kept: its run, counted from the chunk's first */
     size_t nkey, cap;
 } lod_scan;
@@ -369,34 +411,55 @@ static pnpr_status scan_pass(const char *in, int (*keep)(void *, uint64_t, const
     return st;
 }
 
-/* The grid (view/view_cells.c's cells) over the box of the stride sample's points that are not
- * far outliers (outliers.h; every finite point when the sample holds them all): the points
- * outside it go to the last cell, with the non-finite ones. */
-static void lod_grid(lod_scan *s, pnpr_lod *l)
+/* The box pass again when the stride sample holds far outliers (outliers.h): the box of the
+ * points that are not far by its frame. */
+static int scan_inliers(void *u, uint64_t i, const double p[3])
+{
+    (void)i;
+    lod_scan *s = u;
+    if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]) || pnpr_outlier_is_far(s->far, p)) return 0;
+    for (int a = 0; a < 3; a++) {
+        if (!s->inliers || p[a] < s->lo[a]) s->lo[a] = p[a];
+        if (!s->inliers || p[a] > s->hi[a]) s->hi[a] = p[a];
+    }
+    s->inliers++;
+    return 0;
+}
+
+/* The box the grid covers: every finite point's when the stride sample holds no far outlier (as
+ * `info` judges them: outliers.h), else that of the points not far by the sample's frame (one
+ * pass more). The points outside it, far outliers, go to the last cell with the non-finite ones. */
+static pnpr_status lod_box(const char *in, lod_scan *s, pnpr_error *err)
+{
+    pnpr_outlier_info far = {{0, 0, 0}, 0, INFINITY, 0, 0, 0};
+    if (!s->m || pnpr_outlier_frame_of_sample(s->sample, s->m, &far) != PNPR_OK) return PNPR_OK;
+    size_t any = 0;
+    for (size_t i = 0; i < s->m; i++) any += pnpr_outlier_is_far(&far, s->sample + 3 * i);
+    if (!any) return PNPR_OK;
+    s->far = &far;
+    s->inliers = 0;
+    pnpr_status st = scan_pass(in, scan_inliers, s, NULL, err);
+    s->far = NULL;
+    return st;
+}
+
+/* The grid (view/view_cells.c's cells) over the box: at most a cell for LOD_POINTS_PER_CELL
+ * points; a single cell covers the box too (side: its longest extent). */
+static void lod_grid(const lod_scan *s, pnpr_lod *l)
 {
     float zero[3] = {0, 0, 0}, ext[3];
-    pnpr_outlier_info far = {{0, 0, 0}, 0, INFINITY, 0, 0, 0};
-    if (s->m && pnpr_outlier_frame_of_sample(s->sample, s->m, &far) == PNPR_OK) {
-        size_t in = 0;
-        for (size_t i = 0; i < s->m; i++) {
-            const double *p = s->sample + 3 * i;
-            if (pnpr_outlier_is_far(&far, p)) continue;
-            for (int a = 0; a < 3; a++) {
-                if (!in || p[a] < s->lo[a]) s->lo[a] = p[a];
-                if (!in || p[a] > s->hi[a]) s->hi[a] = p[a];
-            }
-            in++;
-        }
-    }
+    double longest = 0;
     for (int a = 0; a < 3; a++) { /* 1e-5 more: the box's far faces inside the float grid */
-        ext[a] = s->finite ? (float)((s->hi[a] - s->lo[a]) * (1 + 1e-5)) : 0.0f;
+        double e = s->finite ? (s->hi[a] - s->lo[a]) * (1 + 1e-5) : 0.0;
+        ext[a] = (float)e;
+        longest = e > longest ? e : longest;
         l->origin[a] = s->finite ? s->lo[a] : 0.0;
     }
     float side;
     uint64_t most = s->finite / LOD_POINTS_PER_CELL; /* a cell's 16 runs, 64 bytes, for 8 points at least */
     pnpr_view_cells_grid(zero, ext, most < PNPR_VIEW_CELLS_MAX ? (uint32_t)most : PNPR_VIEW_CELLS_MAX, &side, l->n);
-    l->side = side;
     l->cells = l->n[0] * l->n[1] * l->n[2];
+    l->side = l->cells > 1 ? side : longest > 0 && isfinite(longest) ? longest : longest > 0 ? DBL_MAX : 1.0;
 }
 
 /* The points of cells [c0, c1) (`count` of them), ordered by cell and run, into the output. */
@@ -479,14 +542,44 @@ static int write_index(pnpr_output *out, const pnpr_lod *l)
     return 0;
 }
 
+/* A file ordered for drawing holds points only: an input with faces (or any element but its
+ * vertices) is refused, naming them, rather than written without them. Reads the header alone. */
+static pnpr_status points_only(const char *in, pnpr_error *err)
+{
+    pnpr_file_bytes fb;
+    pnpr_status st = pnpr_file_bytes_open(in, &fb, err);
+    if (st != PNPR_OK) return st;
+    const char *d = (const char *)fb.data;
+    size_t pos = 0, cap = fb.size < LOD_HEADER_MAX ? fb.size : LOD_HEADER_MAX;
+    while (st == PNPR_OK && pos < cap) {
+        const char *s = d + pos, *nl = memchr(s, '\n', cap - pos), *rest;
+        if (!nl) break;
+        const char *e = nl > s && nl[-1] == '\r' ? nl - 1 : nl;
+        pos = (size_t)(nl - d) + 1;
+        if (e - s == 10 && !memcmp(s, "end_header", 10)) break;
+        if (!word(s, e, "element", &rest)) continue;
+        const char *sp = memchr(rest, ' ', (size_t)(e - rest));
+        uint64_t n = 0;
+        if (sp && parse_count(sp + 1, e, &n) && n > 0 && !(sp - rest == 6 && !memcmp(rest, "vertex", 6)))
+            st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
+                                "%s: holds %llu %.*s besides its points; a file ordered for drawing holds points only "
+                                "(render and animate read the file as it is)", in, (unsigned long long)n, (int)(sp - rest), rest);
+    }
+    pnpr_file_bytes_close(&fb);
+    return st;
+}
+
 /* The passes over `in` for the box and the runs: l's grid and starts. */
 static pnpr_status plan_lod(const char *in, const pnpr_lod_options *o, lod_scan *s, pnpr_lod *l, pnpr_error *err)
 {
+    pnpr_status st0 = points_only(in, err);
+    if (st0 != PNPR_OK) return st0;
     s->step = 1;
     if (!(s->sample = malloc(3 * LOD_SAMPLES * sizeof *s->sample)))
         return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "out of memory for the sample");
     pnpr_status st = scan_pass(in, scan_box, s, NULL, err);
     if (st != PNPR_OK) return st;
+    if ((st = lod_box(in, s, err)) != PNPR_OK) return st;
     if (pnpr_progress_report(&o->progress, "lod scan", 0.5)) return pnpr_error_set(err, PNPR_ERR_CANCELLED, "cancelled");
     lod_grid(s, l);
     const size_t runs = ((size_t)l->cells + 1) * LOD_L;

@@ -247,6 +247,19 @@ if built_with_render "$bin"; then
   pointnpr animate "$dir/lod.ply" -o "$dir/lod_orbit/" --orbit --duration 1 --fps 2 --size 160x120 --sample 0.9 2> "$dir/lod_orbit.log"
   check '[ -s "$dir/lod_orbit/frame-00001.png" ] && grep -q "sample by the frames. views" "$dir/lod_orbit.log"' \
     "animate --orbit of the ordered file samples by its frames"
+  # far outliers in view (20 points 2 km below the camera, straight ahead) lie outside the grid,
+  # in its last cell: the view reads them all and keeps them as the ordinary file does
+  awk 'NR == 3 { print "element vertex 14420"; next } { print } END { for (i = 0; i < 20; i++) printf "%g 5 -2000\n", 5.9 + i * 0.01 }' \
+    "$dir/ascii.ply" > "$dir/far.txt.ply"
+  pointnpr convert "$dir/far.txt.ply" -o "$dir/far.ply" --quiet && pointnpr convert "$dir/far.ply" -o "$dir/far_lod.ply" --lod --quiet
+  for f in far far_lod; do
+    pointnpr render "$dir/$f.ply" -o "$dir/$f.png" --size 160x120 --sample 0.9 --eye 6,5,6 --target 6,5,0 2> "$dir/$f.log"
+  done
+  kept=$(sed -n 's/.*sample by the view .* of \([0-9]*\) of 14420 points.*/\1/p' "$dir/far_lod.log")
+  check '[ -n "$kept" ] && [ "$kept" = "$(sed -n "s/.*sample by the view .* of \([0-9]*\) of 14420 points.*/\1/p" "$dir/far.log")" ] &&
+         [ "$kept" = $(( $(sed -n "s/.*sample by the view .* of \([0-9]*\) of 14400 points.*/\1/p" "$dir/view.log") + 20 )) ] &&
+         pointnpr info "$dir/far_lod.ply" | grep -q "20 points outside them"' \
+    "far outliers in view, outside the ordered file's grid, are kept as the ordinary file keeps them (got '$kept')"
   # an index that lies (a run's count changed): a warning, and the file is read as an ordinary PLY
   cp "$dir/lod.ply" "$dir/lod_bad.ply"
   printf '\377' | dd of="$dir/lod_bad.ply" bs=1 seek=$(($(stat -c %s "$dir/lod.ply") - 2)) conv=notrunc 2> /dev/null

@@ -116,10 +116,12 @@ PNPR_NODISCARD pnpr_status pnpr_cloud_append(pnpr_cloud *dst, const pnpr_cloud *
 /* Removes the points with keep[i] == 0 (count entries) from every per-point array and extra
  * property, keeping the order of the others; faces with a removed corner are dropped, the others
  * re-indexed. r_removed (may be NULL) receives how many points went. */
-/* Reorders the points: point p becomes the point perm[p] was (perm: a permutation of
- * 0..count-1). Not for a cloud with faces (PNPR_ERR_INVALID_ARGUMENT). */
-PNPR_NODISCARD pnpr_status pnpr_cloud_permute(pnpr_cloud *cloud, const uint32_t *perm);
 PNPR_NODISCARD pnpr_status pnpr_cloud_keep(pnpr_cloud *cloud, const uint8_t *keep, size_t *r_removed);
+
+/* Reorders the points: point p becomes the point perm[p] was. perm must be a permutation of
+ * 0..count-1 (not checked: an index repeated copies a point twice, one out of range reads out of
+ * bounds). Not for a cloud with faces (PNPR_ERR_INVALID_ARGUMENT). */
+PNPR_NODISCARD pnpr_status pnpr_cloud_permute(pnpr_cloud *cloud, const uint32_t *perm);
 
 /* Bounding box of the finite offsets; returns the number of finite points. */
 size_t pnpr_cloud_bounds(const pnpr_cloud *cloud, float r_min[3], float r_max[3]);

@@ -70,7 +70,8 @@ typedef struct pnpr_read_options {
     /* With keep: only the vertices of these ranges are visited (range g: [ranges[2 g],
      * ranges[2 g + 1]) of vertex indices, ascending, not overlapping); the others are skipped
      * unread (a file ordered for drawing, pointnpr/lod.h). NULL = every vertex. A range beyond
-     * the vertices or out of order is PNPR_ERR_INVALID_ARGUMENT. */
+     * the vertices or out of order, or ranges without keep, is PNPR_ERR_INVALID_ARGUMENT, before
+     * keep sees a point. */
     const uint64_t *ranges;
     size_t range_count;
     /* PLY with double (or int) coordinates: the origin of the float offsets (finite), instead of

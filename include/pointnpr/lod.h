@@ -4,10 +4,11 @@
  * `pointnpr convert IN.ply -o OUT.ply --lod` writes the points of IN again, every one, in an
  * order that lets `render` and `animate` read only what a view needs from a cloud larger than
  * memory, in the spirit of Potree's octree (Schütz 2016) but flat:
- *  - the cells: the smallest cubes, at most PNPR_VIEW_CELLS_MAX of them, over the box of the
- *    finite points within the far-outlier limit of their robust centre (outliers.h, from a stride
- *    sample) (the renderer's grid, view/view_cells.c); one more cell last for the points outside
- *    the grid: far outliers and non-finite coordinates (a view reads all of them);
+ *  - the cells: the smallest cubes, at most PNPR_VIEW_CELLS_MAX of them and at most one for 8
+ *    points, over the box of the finite points that are not far outliers (outliers.h: the robust
+ *    centre and extent of a stride sample) (the renderer's grid, view/view_cells.c); one more
+ *    cell last for the far outliers and the points with a non-finite coordinate (a view reads all
+ *    of them);
  *  - in each cell, PNPR_LOD_LEVELS runs by a rank of the point: its source index's hash, a number
  *    in [0, 1). Run 0 holds ranks below 2^-(L-1), run j > 0 ranks in [2^(j-L), 2^(j+1-L)): a
  *    prefix of a cell's runs is a uniform sample of it, which doubles with each run;
@@ -52,7 +53,8 @@ typedef struct pnpr_lod_options {
 } pnpr_lod_options;
 
 /* Writes the points of the binary PLY `in` (fixed-size records) to `out` ordered for drawing:
- * two passes over `in` (its box, the runs' counts), then one more for each chunk of cells that
+ * two passes over `in` (its box, the runs' counts; one more for the box without the far outliers
+ * when there are some), then one more for each chunk of cells that
  * fits in `memory`. Every property of every point is kept (records as pointnpr convert
  * writes them); out is written as every output is (output.h), never over in. *r_points: the
  * points written. */

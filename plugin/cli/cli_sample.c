@@ -180,7 +180,8 @@ static void lod_begin(lod_read *lr, const char *in, int quiet)
 
 
 /* The cells into the views' histograms, each with its points at the least depth one of them may
- * have (instead of a pass over the points). */
+ * have (instead of a pass over the points); not the last (far outliers, non-finite), which
+ * lod_refine reads whole. */
 static void lod_add_cells(const lod_read *lr, pnpr_view_sample *v)
 {
     const pnpr_lod *l = &lr->lod;
@@ -193,8 +194,9 @@ static void lod_add_cells(const lod_read *lr, pnpr_view_sample *v)
 }
 
 /* The ranges of the next pass: each cell's runs that the share of its points may reach, by the
- * views (v solved) or `uniform` (v NULL; the points with a non-finite coordinate too). Returns the
- * points they hold, or -1 when memory runs out. */
+ * views (v solved) or `uniform` (v NULL). The last cell (far outliers, non-finite coordinates) is
+ * read whole by the views: each of its points is judged by its own share. Returns the points the
+ * ranges hold, or -1 when memory runs out. */
 static double lod_plan(lod_read *lr, const pnpr_view_sample *v, double uniform)
 {
     const pnpr_lod *l = &lr->lod;
@@ -205,7 +207,7 @@ static double lod_plan(lod_read *lr, const pnpr_view_sample *v, double uniform)
         pnpr_lod_cell_ball(l, k, c, &rho);
         share[k] = v ? pnpr_view_sample_ball_share(v, c, rho) : uniform;
     }
-    share[l->cells] = v ? 0 : uniform;
+    share[l->cells] = v ? 1 : uniform;
     lr->count = pnpr_lod_ranges(l, share, lr->ranges, lr->runs);
     free(share);
     double n = 0;
@@ -272,7 +274,10 @@ static int preview_views(const char *in, const pnpr_memory_plan *mp, cli_plan_fn
     struct stat sb;
     double most = vk->lr->on ? (double)vk->lr->lod.points : stat(in, &sb) == 0 ? (double)sb.st_size / 12.0 : 0;
     sample_keep count = {0, most > PREVIEW_POINTS ? PREVIEW_POINTS / most : 1, vk->lr};
-    if (vk->lr->on && lod_plan(vk->lr, NULL, count.share) < 0) return 0;
+    if (vk->lr->on && lod_plan(vk->lr, NULL, count.share) < 0) {
+        *r_fit = 0; /* the read says what does not fit */
+        return 0;
+    }
     pnpr_cloud preview = {0};
     *r_fit = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, asked, r_points, &preview,
                            vk->lr);
@@ -359,6 +364,35 @@ static int read_sample(const char *cmd, const char *in, pnpr_read_options *ro, s
     return 1;
 }
 
+/* The share that fits, by the views when there are (*r_by_view: vk's views, their histograms
+ * made) or uniform (*r_share; the asked one stays), and the points (*r_points): returns what
+ * fits (< 0: not even a sample; the uniform share, or the views' fit). */
+static double plan_sample(const char *in, const pnpr_memory_plan *mp, cli_plan_fn plan, void *plan_user, size_t limit,
+                          const cli_sample_views *views, int asked, lod_read *lr, view_keep *vk, int *r_by_view,
+                          double *r_share, uint64_t *r_points)
+{
+    const int ply = pnpr_format_from_path(in) == PNPR_FORMAT_PLY;
+    double fit = 0;
+    vk->lr = lr;
+    *r_by_view = ply && views && init_views(vk, views->cams, views->count, mp->width, mp->height);
+    if (*r_by_view) {
+        if (lr->on) lod_add_cells(lr, &vk->v);
+        fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, vk, &vk->seen, asked, r_points, NULL, lr);
+        if (asked && !*r_points) *r_by_view = 0; /* no pass (not a regular file): the uniform share asked */
+        return fit;
+    }
+    if (ply && views && views->from_preview && !views->count) {
+        *r_by_view = preview_views(in, mp, plan, plan_user, limit, asked, views, vk, &fit, r_points);
+        if (!asked && !*r_by_view) *r_share = fit;
+        return fit;
+    }
+    if (!asked) {
+        sample_keep count = {0, 0, lr};
+        *r_share = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, 0, r_points, NULL, lr);
+    }
+    return *r_share;
+}
+
 int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *opts, const pnpr_memory_plan *mp,
                      cli_plan_fn plan, void *plan_user, size_t limit, double share, const cli_sample_views *views,
                      double frame_points, int quiet, pnpr_cloud *cloud, float *r_tone_radius)
@@ -370,22 +404,18 @@ int cli_read_fitting(const char *cmd, const char *in, const pnpr_read_options *o
     lod_read lr = {0};
     if (ply) lod_begin(&lr, in, quiet);
     view_keep vk = {0};
-    vk.lr = &lr;
-    int by_view = ply && views && init_views(&vk, views->cams, views->count, mp->width, mp->height);
-    double fit = 0;
-    if (by_view) {
-        if (lr.on) lod_add_cells(&lr, &vk.v);
-        fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, &vk, &vk.seen, asked, &points, NULL, &lr);
-        if (asked && !points) by_view = 0; /* no pass (not a regular file): the uniform share asked */
-    } else if (ply && views && views->from_preview && !views->count) {
-        by_view = preview_views(in, mp, plan, plan_user, limit, asked, views, &vk, &fit, &points);
-        if (!asked && !by_view) share = fit;
-    } else if (!asked) {
-        sample_keep count = {0, 0, &lr};
-        share = fitting_share(in, mp, plan, plan_user, limit, keep_sample, &count, &count.seen, 0, &points, NULL, &lr);
+    int by_view = 0;
+    const double asked_share = share;
+    double fit = plan_sample(in, mp, plan, plan_user, limit, views, asked, &lr, &vk, &by_view, &share, &points);
+    if (!asked && fit < 0 && lr.on) { /* the order's index took the room: the ordinary read may fit */
+        lod_end(&lr);
+        free(vk.v.each);
+        memset(&vk, 0, sizeof vk);
+        share = asked_share;
+        fit = plan_sample(in, mp, plan, plan_user, limit, views, asked, &lr, &vk, &by_view, &share, &points);
     }
     int ok = 1;
-    if (!asked && (by_view ? fit : share) < 0) { /* refused before reading the file */
+    if (!asked && fit < 0) { /* refused before reading the file */
         char a[32];
         fprintf(stderr, "pointnpr %s: %s: not even a sample of its %llu points fits in %s: drawing needs more "
                         "(--memory-limit; docs/tiles.md)\n", cmd, in, (unsigned long long)points,
