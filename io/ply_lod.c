@@ -495,26 +495,52 @@ static pnpr_status write_chunk(const char *in, pnpr_join_sink *j, lod_scan *s, u
     return st;
 }
 
-/* The chunks (whole cells, at most `most` points unless one cell holds more), each written. */
+/* The most points a chunk holds in `memory` bytes (0: all), whole cells; a point's bytes: its
+ * record (the file's share), the reader's growth, its key, order and scratch. */
+static uint64_t chunk_points(const char *in, const pnpr_lod *l, size_t memory)
+{
+    struct stat sb;
+    double rec = stat(in, &sb) == 0 && l->points ? (double)sb.st_size / (double)l->points : 64.0;
+    double fit = memory ? (double)memory / (1.5 * rec + 40.0) : 0;
+    return !memory ? UINT64_MAX : fit >= 1 ? (uint64_t)fit : 1;
+}
+
+/* The end of the chunk from cell c0: whole cells up to `most` points (one cell at least);
+ * *r_count its points. */
+static uint32_t chunk_end(const pnpr_lod *l, uint32_t c0, uint64_t most, uint64_t *r_count)
+{
+    uint64_t count = 0;
+    uint32_t c1 = c0;
+    while (c1 <= l->cells) {
+        uint64_t n = l->start[((size_t)c1 + 1) * LOD_L] - l->start[(size_t)c1 * LOD_L];
+        if (c1 > c0 && count + n > most) break;
+        count += n;
+        c1++;
+    }
+    *r_count = count;
+    return c1;
+}
+
+/* The chunks' passes over the input. */
+static size_t chunk_passes(const pnpr_lod *l, uint64_t most)
+{
+    size_t passes = 0;
+    uint64_t count;
+    for (uint32_t c0 = 0; c0 <= l->cells; c0 = chunk_end(l, c0, most, &count)) passes++;
+    return passes;
+}
+
+/* The chunks, each written. */
 static pnpr_status write_chunks(const char *in, pnpr_join_sink *j, lod_scan *s, const pnpr_lod_options *o,
                                 pnpr_error *err)
 {
     const pnpr_lod *l = s->l;
-    struct stat sb; /* a point's bytes: its record (the file's share), the reader's growth, key, order, scratch */
-    double rec = stat(in, &sb) == 0 && l->points ? (double)sb.st_size / (double)l->points : 64.0;
-    double each = 1.5 * rec + 40.0, fit = o->memory ? (double)o->memory / each : 0;
-    const uint64_t most = !o->memory ? UINT64_MAX : fit >= 1 ? (uint64_t)fit : 1;
+    const uint64_t most = chunk_points(in, l, o->memory);
     uint32_t c0 = 0;
     pnpr_status st = PNPR_OK;
     while (st == PNPR_OK && c0 <= l->cells) {
         uint64_t count = 0;
-        uint32_t c1 = c0;
-        while (c1 <= l->cells) {
-            uint64_t n = l->start[((size_t)c1 + 1) * LOD_L] - l->start[(size_t)c1 * LOD_L];
-            if (c1 > c0 && count + n > most) break;
-            count += n;
-            c1++;
-        }
+        uint32_t c1 = chunk_end(l, c0, most, &count);
         s->c0 = c0;
         s->c1 = c1;
         st = write_chunk(in, j, s, count, err);
@@ -611,7 +637,13 @@ pnpr_status pnpr_lod_write(const char *in, const char *out_path, const pnpr_lod_
     if (st != PNPR_OK) return st;
     lod_scan s = {0};
     pnpr_lod l = {0};
-    if ((st = plan_lod(in, &o, &s, &l, err)) != PNPR_OK) {
+    st = plan_lod(in, &o, &s, &l, err);
+    const size_t passes = st == PNPR_OK && o.max_passes ? chunk_passes(&l, chunk_points(in, &l, o.memory)) : 0;
+    if (passes > o.max_passes)
+        st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY,
+                            "%s: %zu chunks of whole cells would fit the memory given, a pass over the file each (at "
+                            "most %zu asked): give more memory", in, passes, o.max_passes);
+    if (st != PNPR_OK) {
         if (!strstr(err ? err->message : "", in)) pnpr_error_prefix_path(err, in);
         free(s.counts);
         free(s.sample);

@@ -219,6 +219,11 @@ static void test_write(void)
     CHECK_STATUS(pnpr_lod_write(DIR "/scene.ply", DIR "/scene_lod.ply", &o, &points, &err), PNPR_OK);
     CHECK(points == in.count);
     o.memory = 40000; /* chunks of about 400 points: whole cells, many passes */
+    o.max_passes = 5;  /* refused before writing */
+    CHECK_STATUS(pnpr_lod_write(DIR "/scene.ply", DIR "/scene_lod2.ply", &o, &points, &err), PNPR_ERR_OUT_OF_MEMORY);
+    CHECK_MSG(strstr(err.message, "give more memory") != NULL && pnpr_test_temporaries(DIR, "scene_lod2.ply") == 0,
+              "%s", err.message);
+    o.max_passes = 0;
     CHECK_STATUS(pnpr_lod_write(DIR "/scene.ply", DIR "/scene_lod2.ply", &o, &points, &err), PNPR_OK);
     CHECK(same_file(DIR "/scene_lod.ply", DIR "/scene_lod2.ply"));
     pnpr_lod l = {0};

@@ -49,6 +49,8 @@ typedef struct pnpr_lod {
 typedef struct pnpr_lod_options {
     size_t memory;       /* bytes the points held at once may take: chunks of whole cells, each
                           * point its record x 1.5 and 40 bytes to order it (0: all at once) */
+    size_t max_passes;   /* refuse (PNPR_ERR_OUT_OF_MEMORY, before writing) when the chunks would
+                          * take more passes over the input than this (0: any number) */
     pnpr_progress progress; /* stages "lod scan" (the passes over the input) and "lod write" */
 } pnpr_lod_options;
 

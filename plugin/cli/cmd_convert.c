@@ -205,13 +205,17 @@ static int convert_streamed(const path_list *inputs, const char *out, const char
     return 0;
 }
 
-/* IN ordered for drawing into OUT (pnpr_lod_write), in chunks that fit the memory. */
+/* IN ordered for drawing into OUT (pnpr_lod_write), in chunks that fit the memory; refused
+ * before writing when they would take more than this many passes over IN (a 200M cloud under 4G
+ * takes 4; under a tiny limit it would be thousands). */
+#define CONVERT_LOD_PASSES 64
 static int convert_lod(const char *in, const char *out, size_t limit, int quiet)
 {
     if (!cli_check_output("convert", out, &in, 1, 1)) return 1;
     pnpr_lod_options lo = {0};
     double room = (limit ? (double)limit : (double)pnpr_memory_available()) - (double)pnpr_memory_resident();
     lo.memory = room > 16.0 * 1048576.0 ? (size_t)(room - 8.0 * 1048576.0) : 8u << 20;
+    lo.max_passes = CONVERT_LOD_PASSES;
     cli_progress_state ps = {{0}, 0, 0};
     lo.progress.fn = quiet ? NULL : cli_progress_stderr;
     lo.progress.user = &ps;
