@@ -1382,10 +1382,16 @@ bool FilterPointnprPlugin::openSample(MeshDocument &md, const RichParameterList 
     if (c.count > static_cast<size_t>(std::numeric_limits<int>::max()))
         return fail("too many points for one MeshLab layer; ask for fewer");
 
-    /* ---- the new layer: world coordinates, normals, colours, the features when the file has them ---- */
+    /* ---- the new layer: positions from the cloud's origin, which the layer's transformation
+     * holds (MeshLab's floats at 4.2e6 step by 0.5: world coordinates would lose what a scan's
+     * spacing needs; the decoration applies the transformation in double), normals, colours,
+     * the features when the file has them ---- */
     MeshModel *out = md.addNewMesh("", QFileInfo(file).fileName() + " sample", true);
     if (!out) return fail("MeshLab could not add a layer");
     CMeshO &o = out->cm;
+    Scalarm at[3]; /* the origin as the float matrix holds it exactly */
+    for (int k = 0; k < 3; k++) at[k] = static_cast<Scalarm>(c.origin[k]);
+    o.Tr.SetTranslate(at[0], at[1], at[2]);
     out->updateDataMask(MeshModel::MM_VERTNORMAL);
     if (c.rgb) out->updateDataMask(MeshModel::MM_VERTCOLOR);
     CMeshO::VertexIterator vi = vcg::tri::Allocator<CMeshO>::AddVertices(o, c.count);
@@ -1393,7 +1399,8 @@ bool FilterPointnprPlugin::openSample(MeshDocument &md, const RichParameterList 
     for (size_t i = 0; i < c.count; i++, ++vi) {
         double w[3];
         pnpr_cloud_world(&c, i, w);
-        vi->P() = Point3m(static_cast<Scalarm>(w[0]), static_cast<Scalarm>(w[1]), static_cast<Scalarm>(w[2]));
+        vi->P() = Point3m(static_cast<Scalarm>(w[0] - at[0]), static_cast<Scalarm>(w[1] - at[1]),
+                          static_cast<Scalarm>(w[2] - at[2]));
         vi->N() = c.normal ? Point3m(c.normal[3 * i], c.normal[3 * i + 1], c.normal[3 * i + 2]) : Point3m(0, 0, 0);
         if (c.rgb) vi->C() = vcg::Color4b(c.rgb[3 * i], c.rgb[3 * i + 1], c.rgb[3 * i + 2], 255);
         verts[i] = &*vi;
@@ -1406,6 +1413,9 @@ bool FilterPointnprPlugin::openSample(MeshDocument &md, const RichParameterList 
         total ? 100.0 * static_cast<double>(c.count) / static_cast<double>(total) : 100.0,
         ordered ? "ordered for drawing: only the runs of the sample were read" : "a pass over every point first",
         timer.elapsed() / 1000.0);
+    Log("pointnpr: its positions are offsets from %.3f %.3f %.3f, the layer's transformation (MeshLab's float "
+        "coordinates keep their precision there)", static_cast<double>(at[0]), static_cast<double>(at[1]),
+        static_cast<double>(at[2]));
     if (features)
         Log("pointnpr: the file's features kept: vertex quality = feature degree, attributes feature_class, "
             "feature_confidence, feature_dir (%zu feature points)", counts[1] + counts[2]);

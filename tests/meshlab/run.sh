@@ -853,6 +853,27 @@ sample)
             exit (n > 4500 && n < 5500 && edge > 20 && edge < n / 4 && off == 0 && out == 0) ? 0 : 1 }' "$T/${f}_a.ply" ||
       fail "'$f': not about 5000 points of the roof with its features (above)"
   done
+  # the same roof at (5e5, 4.2e6, 100) in doubles, without features: the layer holds offsets from
+  # its transformation, so MeshLab's floats (a step of 0.5 at 4.2e6) keep the 0.01 spacing, and the
+  # features filter on the layer finds the ridge (on world floats it would find nothing: see
+  # meshlab_offset)
+  awk 'BEGIN { n = 200; print "ply\nformat ascii 1.0\nelement vertex " n * n
+    print "property double x\nproperty double y\nproperty double z\nend_header"
+    for (j = 0; j < n; j++) for (i = 0; i < n; i++)
+      printf "%.2f %.2f %.3f\n", 500000 + i * 0.01, 4200000 + j * 0.01, 100 + 0.5 * (i > 100 ? i - 100 : 100 - i) * 0.01 }' > "$T/geo.txt.ply"
+  "$CLI" convert "$T/geo.txt.ply" -o "$T/geo_bin.ply" --quiet && "$CLI" convert "$T/geo_bin.ply" -o "$T/geo.ply" --lod --quiet ||
+    die "pointnpr convert --lod failed"
+  mlx "$T/geo.mlx" "$(open_xml "$T/geo.ply" 5000)" "$(features_xml)"
+  if mlserver geo -i "$T/cube.ply" -o "$T/geo_s.ply" -m vq -s "$T/geo.mlx" && expect_rc geo 0 &&
+    to_ascii "$T/geo_s.ply" "$T/geo_a.ply"; then
+    expect_log geo "its positions are offsets from 500001\.000 4200001\.000 100\.[0-9]*, the layer's transformation"
+    awk '/^property/ && !b { col[$NF] = np++ } /^end_header/ { b = 1; next }
+      b { n++; k = $1 " " $2; if (!(k in seen)) { seen[k] = 1; d++ } q = $(col["quality"] + 1)
+          if (q > 0.05) { edge++; if ($1 < -0.1 || $1 > 0.1) off++ } }
+      END { printf "georeferenced sample: %d points on %d distinct x y, %d of quality > 0.05 (%d off the ridge)\n", n, d, edge, off
+            exit (n > 4500 && d == n && edge > 20 && off == 0) ? 0 : 1 }' "$T/geo_a.ply" ||
+      fail "the georeferenced sample lost its precision or its ridge (above)"
+  fi
   expect_log plane "a pass over every point first"
   expect_log plane_lod "ordered for drawing: only the runs of the sample were read"
   mlx "$T/none.mlx" "$(open_xml "$T/none.ply" 5000)"
