@@ -79,6 +79,9 @@ echo "== profile lines: scaling 10k..1M directional points" >&2
 echo "== the sample by a camera path's views: cost a point (docs/tiles.md)" >&2
 "$build/bench/bench_view_sample" 4000000 | tee "$out/view_sample.md"
 
+echo "== a view of a cloud larger than its limit, from the file as written and ordered for drawing (bench/lod.sh)" >&2
+bash bench/lod.sh "$build" "$out/lod" | tee "$out/lod.md"
+
 echo "== normals at growing coordinate offsets: Open3D (ours: tests/test_stability)" >&2
 /usr/bin/python3 bench/open3d_offset.py 20000 | tee "$out/open3d_offset.md"
 
