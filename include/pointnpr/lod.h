@@ -41,7 +41,8 @@ typedef struct pnpr_lod {
     double origin[3];   /* the grid's corner (world coordinates) */
     double side;        /* a cell's side */
     uint32_t n[3];      /* cells along each axis */
-    uint32_t cells;     /* n[0] n[1] n[2]; cell `cells` holds the points with a non-finite coordinate */
+    uint32_t cells;     /* n[0] n[1] n[2]; cell `cells` holds the far outliers and the points with a
+                         * non-finite coordinate */
     uint32_t *start;    /* (cells + 1) x PNPR_LOD_LEVELS + 1 entries: run r's first vertex (cell k's
                          * run j is r = k L + j), the last the vertex count */
 } pnpr_lod;
@@ -56,10 +57,10 @@ typedef struct pnpr_lod_options {
 
 /* Writes the points of the binary PLY `in` (fixed-size records) to `out` ordered for drawing:
  * two passes over `in` (its box, the runs' counts; one more for the box without the far outliers
- * when there are some), then one more for each chunk of cells that
- * fits in `memory`. Every property of every point is kept (records as pointnpr convert
- * writes them); out is written as every output is (output.h), never over in. *r_points: the
- * points written. */
+ * when there are some), then one more for each chunk of cells that fits in `memory`. Every
+ * property of every point is kept (records as pointnpr convert writes them); out is written as
+ * every output is (output.h), never over in. A file with faces or any element but its vertices is
+ * refused (PNPR_ERR_UNSUPPORTED, naming them). *r_points: the points written. */
 PNPR_NODISCARD pnpr_status pnpr_lod_write(const char *in, const char *out, const pnpr_lod_options *opts,
                                           uint64_t *r_points, pnpr_error *err);
 
