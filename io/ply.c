@@ -708,12 +708,18 @@ static void tick_init(ply_tick *t, size_t count)
     t->left = t->step;
 }
 
-static int tick(ply_reader *r, ply_tick *t, size_t done, size_t count)
+/* k more vertices done (done of count in all): a report when the countdown runs out. */
+static int tick_by(ply_reader *r, ply_tick *t, size_t k, size_t done, size_t count)
 {
-    if (--t->left) return 0;
+    if (t->left > k) {
+        t->left -= k;
+        return 0;
+    }
     t->left = t->step;
     return pnpr_progress_report(r->progress, "read ply", (double)done / (double)count);
 }
+
+static int tick(ply_reader *r, ply_tick *t, size_t done, size_t count) { return tick_by(r, t, 1, done, count); }
 
 /* Appends index v to face storage (capacity grows by doubling; the total stays < 2^32). */
 static int push_index(ply_reader *r, uint32_t v)
@@ -763,6 +769,15 @@ static pnpr_status binary_fixed(ply_reader *r, const ply_elem *e, size_t *pos)
             if (e->props[k].role != ROLE_SKIP) slots[ns++] = &e->props[k];
         tick_init(&t, n);
         for (size_t i = 0, j = 0; i < n; i++) {
+            uint64_t none = 1; /* 64 vertices from i, none kept: one step (a sample of a file ordered
+                                * for drawing keeps a few runs of 200M vertices) */
+            if (r->kept && (i & 63) == 0 && n - i >= 64) memcpy(&none, r->kept + (i >> 3), sizeof none);
+            if (!none) {
+                if ((i & 0xFFFF) == 0) drop_behind(r, *pos + i * rs, i == 0);
+                if (tick_by(r, &t, 64, i + 64, n)) return cancelled(r, i + 64, n);
+                i += 63;
+                continue;
+            }
             const uint8_t *rec = base + i * rs;
             for (size_t k = 0; k < ns && (!r->kept || (r->kept[i >> 3] >> (i & 7) & 1)); k++) {
                 const ply_prop *p = slots[k];
