@@ -153,6 +153,31 @@ static int parse_count(const char *s, const char *e, uint64_t *r)
     return 1;
 }
 
+/* The next line of the header d[0..cap) from *pos: [*r_s, *r_e) without its end (\n or \r\n);
+ * 0 when no whole line is left. */
+static int header_next(const char *d, size_t cap, size_t *pos, const char **r_s, const char **r_e)
+{
+    const char *s = d + *pos, *nl = *pos < cap ? memchr(s, '\n', cap - *pos) : NULL;
+    if (!nl) return 0;
+    *r_s = s;
+    *r_e = nl > s && nl[-1] == '\r' ? nl - 1 : nl;
+    *pos = (size_t)(nl - d) + 1;
+    return 1;
+}
+
+/* Whether line [s, e) is "element NAME N": its name [*r_name, + *r_len) and count. */
+static int element_line(const char *s, const char *e, const char **r_name, size_t *r_len, uint64_t *r_count)
+{
+    const char *rest, *sp;
+    if (!word(s, e, "element", &rest) || !(sp = memchr(rest, ' ', (size_t)(e - rest))) || !parse_count(sp + 1, e, r_count))
+        return 0;
+    *r_name = rest;
+    *r_len = (size_t)(sp - rest);
+    return 1;
+}
+
+static int named(const char *name, size_t len, const char *w) { return len == strlen(w) && !memcmp(name, w, len); }
+
 /* One header line [s, e) after "format": elements and properties in the order lod.h says. */
 static void header_line(lod_header *h, const char *s, const char *e, int *elem)
 {
@@ -166,19 +191,19 @@ static void header_line(lod_header *h, const char *s, const char *e, int *elem)
         }
     } else if (word(s, e, "obj_info", &rest)) {
     } else if (word(s, e, "element", &rest)) {
-        const char *sp = memchr(rest, ' ', (size_t)(e - rest));
+        const char *name = NULL;
+        size_t len = 0;
         uint64_t n = 0;
-        int ok = sp && parse_count(sp + 1, e, &n);
-        if (*elem == 0 && ok && (size_t)(sp - rest) == 6 && !memcmp(rest, "vertex", 6)) h->vertices = n, *elem = 1;
-        else if (*elem == 1 && ok && (size_t)(sp - rest) == 12 && !memcmp(rest, "pnpr_lod_run", 12)) h->runs = n, *elem = 2;
+        int ok = element_line(s, e, &name, &len, &n);
+        if (*elem == 0 && ok && named(name, len, "vertex")) h->vertices = n, *elem = 1;
+        else if (*elem == 1 && ok && named(name, len, "pnpr_lod_run")) h->runs = n, *elem = 2;
         else if (!h->why[0]) snprintf(h->why, sizeof h->why, "elements other than vertex, then pnpr_lod_run");
     } else if (word(s, e, "property", &rest)) {
         const char *sp = memchr(rest, ' ', (size_t)(e - rest));
         size_t z = sp ? pnpr_ply_type_size(rest, (size_t)(sp - rest)) : 0;
         if (*elem == 1 && z && !memchr(sp + 1, ' ', (size_t)(e - sp - 1)) && sp + 1 < e) h->record += z;
-        else if (*elem == 2 && z == 4 && ((sp - rest == 4 && !memcmp(rest, "uint", 4)) ||
-                                          (sp - rest == 6 && !memcmp(rest, "uint32", 6))) &&
-                 e - sp - 1 == 5 && !memcmp(sp + 1, "count", 5))
+        else if (*elem == 2 && z == 4 && (named(rest, (size_t)(sp - rest), "uint") || named(rest, (size_t)(sp - rest), "uint32")) &&
+                 named(sp + 1, (size_t)(e - sp - 1), "count"))
             *elem = 3;
         else if (!h->why[0]) snprintf(h->why, sizeof h->why, "a property that is not a vertex scalar or the runs' uint count");
     } else if (!h->why[0]) {
@@ -193,11 +218,8 @@ static pnpr_status parse_header(const char *d, size_t size, lod_header *h, pnpr_
     memset(h, 0, sizeof *h);
     size_t pos = 0, cap = size < LOD_HEADER_MAX ? size : LOD_HEADER_MAX;
     int line = 0, elem = 0, binary_le = 0;
-    while (pos < cap) {
-        const char *s = d + pos, *nl = memchr(s, '\n', cap - pos);
-        if (!nl) break;
-        const char *e = nl > s && nl[-1] == '\r' ? nl - 1 : nl;
-        pos = (size_t)(nl - d) + 1;
+    const char *s, *e;
+    while (header_next(d, cap, &pos, &s, &e)) {
         line++;
         if (line == 1) {
             if (e - s != 3 || memcmp(s, "ply", 3)) break;
@@ -512,7 +534,7 @@ static uint32_t chunk_end(const pnpr_lod *l, uint32_t c0, uint64_t most, uint64_
     uint64_t count = 0;
     uint32_t c1 = c0;
     while (c1 <= l->cells) {
-        uint64_t n = l->start[((size_t)c1 + 1) * LOD_L] - l->start[(size_t)c1 * LOD_L];
+        uint64_t n = pnpr_lod_cell_points(l, c1);
         if (c1 > c0 && count + n > most) break;
         count += n;
         c1++;
@@ -577,20 +599,14 @@ static pnpr_status points_only(const char *in, pnpr_error *err)
     if (st != PNPR_OK) return st;
     const char *d = (const char *)fb.data;
     size_t pos = 0, cap = fb.size < LOD_HEADER_MAX ? fb.size : LOD_HEADER_MAX;
-    while (st == PNPR_OK && pos < cap) {
-        const char *s = d + pos, *nl = memchr(s, '\n', cap - pos), *rest;
-        if (!nl) break;
-        const char *e = nl > s && nl[-1] == '\r' ? nl - 1 : nl;
-        pos = (size_t)(nl - d) + 1;
-        if (e - s == 10 && !memcmp(s, "end_header", 10)) break;
-        if (!word(s, e, "element", &rest)) continue;
-        const char *sp = memchr(rest, ' ', (size_t)(e - rest));
-        uint64_t n = 0;
-        if (sp && parse_count(sp + 1, e, &n) && n > 0 && !(sp - rest == 6 && !memcmp(rest, "vertex", 6)))
+    const char *s, *e, *name;
+    size_t len;
+    uint64_t n;
+    while (st == PNPR_OK && header_next(d, cap, &pos, &s, &e) && !(e - s == 10 && !memcmp(s, "end_header", 10)))
+        if (element_line(s, e, &name, &len, &n) && n > 0 && !named(name, len, "vertex"))
             st = pnpr_error_set(err, PNPR_ERR_UNSUPPORTED,
                                 "%s: holds %llu %.*s besides its points; a file ordered for drawing holds points only "
-                                "(render and animate read the file as it is)", in, (unsigned long long)n, (int)(sp - rest), rest);
-    }
+                                "(render and animate read the file as it is)", in, (unsigned long long)n, (int)len, name);
     pnpr_file_bytes_close(&fb);
     return st;
 }

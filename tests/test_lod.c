@@ -119,7 +119,7 @@ static void check_order(const pnpr_lod *l, const pnpr_cloud *in, const pnpr_clou
         pnpr_cloud_world(in, i, p);
         CHECK(pnpr_lod_cell(l, p) == l->cells);
     }
-    CHECK(l->start[((size_t)l->cells + 1) * PNPR_LOD_LEVELS] - l->start[(size_t)l->cells * PNPR_LOD_LEVELS] == 3);
+    CHECK(pnpr_lod_cell_points(l, l->cells) == 3);
 }
 
 typedef struct ranked {
@@ -395,9 +395,7 @@ static void test_faces_and_box(void)
     CHECK_STATUS(pnpr_lod_write(DIR "/rows.ply", DIR "/rows_lod.ply", NULL, NULL, &err), PNPR_OK);
     pnpr_lod l = {0};
     CHECK_STATUS(pnpr_lod_open(DIR "/rows_lod.ply", &l, &err), PNPR_OK);
-    const size_t last = (size_t)l.cells * PNPR_LOD_LEVELS;
-    CHECK_MSG(l.start[last + PNPR_LOD_LEVELS] - l.start[last] == 0, "%u points outside the grid",
-              l.start[last + PNPR_LOD_LEVELS] - l.start[last]);
+    CHECK_MSG(pnpr_lod_cell_points(&l, l.cells) == 0, "%u points outside the grid", pnpr_lod_cell_points(&l, l.cells));
     pnpr_lod_free(&l);
 }
 

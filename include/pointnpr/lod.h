@@ -77,6 +77,11 @@ void pnpr_lod_free(pnpr_lod *lod);
 /* The cell of world point p: lod->cells when a coordinate is not finite or p lies outside the
  * grid (a far outlier). */
 uint32_t pnpr_lod_cell(const pnpr_lod *lod, const double p[3]);
+/* The points of cell k (k = lod->cells: the far outliers and non-finite points). */
+static inline uint32_t pnpr_lod_cell_points(const pnpr_lod *lod, uint32_t k)
+{
+    return lod->start[((size_t)k + 1) * PNPR_LOD_LEVELS] - lod->start[(size_t)k * PNPR_LOD_LEVELS];
+}
 /* A ball that holds every point of cell k < lod->cells. */
 void pnpr_lod_cell_ball(const pnpr_lod *lod, uint32_t k, double r_centre[3], double *r_radius);
 /* The hash that samples points by their index (splitmix64's finaliser): the samples of

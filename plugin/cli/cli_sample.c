@@ -178,7 +178,6 @@ static void lod_begin(lod_read *lr, const char *in, int quiet)
     if (!lr->on) lod_end(lr);
 }
 
-
 /* The cells into the views' histograms, each with its points at the least depth one of them may
  * have (instead of a pass over the points); not the last (far outliers, non-finite), which
  * lod_refine reads whole. */
@@ -186,7 +185,7 @@ static void lod_add_cells(const lod_read *lr, pnpr_view_sample *v)
 {
     const pnpr_lod *l = &lr->lod;
     for (uint32_t k = 0; k < l->cells; k++) {
-        uint64_t n = l->start[((size_t)k + 1) * PNPR_LOD_LEVELS] - l->start[(size_t)k * PNPR_LOD_LEVELS];
+        uint64_t n = pnpr_lod_cell_points(l, k);
         double c[3], rho;
         pnpr_lod_cell_ball(l, k, c, &rho);
         if (n) pnpr_view_sample_add_ball(v, c, rho, n);

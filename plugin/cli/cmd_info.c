@@ -146,11 +146,11 @@ static void print_lod(const char *in)
     }
     uint32_t used = 0, most = 0;
     for (uint32_t k = 0; k < l.cells; k++) {
-        uint32_t n = l.start[((size_t)k + 1) * PNPR_LOD_LEVELS] - l.start[(size_t)k * PNPR_LOD_LEVELS];
+        uint32_t n = pnpr_lod_cell_points(&l, k);
         used += n > 0;
         most = n > most ? n : most;
     }
-    uint32_t outside = l.start[((size_t)l.cells + 1) * PNPR_LOD_LEVELS] - l.start[(size_t)l.cells * PNPR_LOD_LEVELS];
+    uint32_t outside = pnpr_lod_cell_points(&l, l.cells);
     printf("drawing:     ordered for drawing: %u x %u x %u cells of %.6g (%u holding points, at most %u), %u points "
            "outside them (far or not finite)\n", l.n[0], l.n[1], l.n[2], l.side, used, most, outside);
     pnpr_lod_free(&l);
