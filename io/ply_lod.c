@@ -384,15 +384,21 @@ typedef struct lod_scan {
     size_t nkey, cap;
 } lod_scan;
 
+/* s's box grown by p, the box of the `before` points already in it (0: p alone). */
+static void box_grow(lod_scan *s, uint64_t before, const double p[3])
+{
+    for (int a = 0; a < 3; a++) {
+        if (!before || p[a] < s->lo[a]) s->lo[a] = p[a];
+        if (!before || p[a] > s->hi[a]) s->hi[a] = p[a];
+    }
+}
+
 static int scan_box(void *u, uint64_t i, const double p[3])
 {
     (void)i;
     lod_scan *s = u;
     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) return 0;
-    for (int a = 0; a < 3; a++) {
-        if (!s->finite || p[a] < s->lo[a]) s->lo[a] = p[a];
-        if (!s->finite || p[a] > s->hi[a]) s->hi[a] = p[a];
-    }
+    box_grow(s, s->finite, p);
     if (s->finite++ % s->step) return 0;
     if (s->m == LOD_SAMPLES) { /* every other one: the stride doubles */
         for (size_t k = 1; 2 * k < LOD_SAMPLES; k++) memcpy(s->sample + 3 * k, s->sample + 6 * k, 3 * sizeof *p);
@@ -440,10 +446,7 @@ static int scan_inliers(void *u, uint64_t i, const double p[3])
     (void)i;
     lod_scan *s = u;
     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]) || pnpr_outlier_is_far(s->far, p)) return 0;
-    for (int a = 0; a < 3; a++) {
-        if (!s->inliers || p[a] < s->lo[a]) s->lo[a] = p[a];
-        if (!s->inliers || p[a] > s->hi[a]) s->hi[a] = p[a];
-    }
+    box_grow(s, s->inliers, p);
     s->inliers++;
     return 0;
 }
