@@ -276,6 +276,85 @@ static void test_sample(void)
     }
 }
 
+/* A sample by a view (pnpr_lod_read_view): of both files, exactly the points whose rank is below
+ * their share by the solved view (the ranges miss none), about the count asked, kept in proportion
+ * to the share (near points more than far ones), none out of view; progress over both passes, and
+ * a cancel. */
+typedef struct progress_log {
+    double last;
+    int reports, backwards, cancel_at;
+} progress_log;
+
+static int log_progress(void *user, const char *stage, double f)
+{
+    progress_log *g = user;
+    g->backwards += f < g->last || strcmp(stage, "sample") != 0;
+    g->last = f;
+    return g->cancel_at && ++g->reports >= g->cancel_at;
+}
+
+static void test_view(void)
+{
+    const double eye[3] = {5e5 + 20, 4.2e6 + 20, 120}, target[3] = {5e5 + 50, 4.2e6 + 20, 108};
+    double c_of[2] = {0, 0};
+    for (int ordered = 0; ordered < 2; ordered++) {
+        const char *path = ordered ? DIR "/scene_lod.ply" : DIR "/scene.ply";
+        pnpr_view_sample v;
+        CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 50, 640, 480), PNPR_OK);
+        pnpr_cloud c = {0}, all = {0};
+        pnpr_error err = {0};
+        pnpr_lod_read_info info;
+        progress_log g = {0, 0, 0, 0};
+        pnpr_read_options ro = {0};
+        ro.progress = (pnpr_progress){log_progress, &g};
+        CHECK_STATUS(pnpr_lod_read_view(path, &v, 1500, &ro, &c, &info, &err), PNPR_OK);
+        CHECK_MSG(info.total == 9640 && info.ordered == ordered && g.backwards == 0 && g.last > 0.99, "%llu %d %d %g", (unsigned long long)info.total, info.ordered, g.backwards, g.last);
+        CHECK_MSG(c.count > 1300 && c.count < 1700, "%zu points for 1500", c.count);
+        CHECK_MSG(info.in_view > 3000 && info.in_view < 8000, "%llu in view", (unsigned long long)info.in_view);
+        CHECK(ordered ? info.visited < 9640 / 2 : info.visited == 9640);
+        c_of[ordered] = v.c;
+        printf("view, %s file: %zu kept of %llu in view, %llu visited, c %g\n", ordered ? "ordered" : "ordinary", c.count,
+               (unsigned long long)info.in_view, (unsigned long long)info.visited, v.c);
+        /* the rule over every point */
+        CHECK_STATUS(pnpr_read_file(path, NULL, &all, &err), PNPR_OK);
+        pnpr_lod l = {0};
+        if (ordered) CHECK_STATUS(pnpr_lod_open(path, &l, &err), PNPR_OK);
+        size_t cursor = 0, j = 0, bad = 0, unseen = 0;
+        double mid_share = 0, mid_kept = 0, near_kept = 0, near = 0;
+        const pnpr_property *a = pnpr_cloud_find_property(&all, "idx"), *b = pnpr_cloud_find_property(&c, "idx");
+        for (size_t i = 0; a && b && i < all.count; i++) {
+            double w[3];
+            pnpr_cloud_world(&all, i, w);
+            double share = pnpr_view_sample_share(&v, w);
+            int kept = pnpr_lod_kept(ordered ? &l : NULL, i, &cursor, share);
+            if (kept) bad += j >= c.count || ((const uint32_t *)a->data)[i] != ((const uint32_t *)b->data)[j++];
+            unseen += kept && !(share > 0);
+            if (share > 0.05 && share < 0.5) { mid_share += share; mid_kept += kept; }
+            if (share >= 1) { near++; near_kept += kept; }
+        }
+        CHECK_MSG(a && b && bad == 0 && j == c.count && unseen == 0, "%zu of %zu differ, %zu unseen", bad, j, unseen);
+        CHECK_MSG(mid_share > 100 && fabs(mid_kept / mid_share - 1) < 0.15, "kept %g for shares summing to %g", mid_kept,
+                  mid_share);
+        CHECK_MSG(near > 50 && near_kept == near, "%g of %g near points", near_kept, near);
+        pnpr_cloud_free(&c);
+        pnpr_cloud_free(&all);
+        pnpr_lod_free(&l);
+        /* none asked: none kept; a cancel in the second pass */
+        CHECK_STATUS(pnpr_lod_read_view(path, &v, 0, NULL, &c, &info, &err), PNPR_OK);
+        CHECK(c.count == 0);
+        g = (progress_log){0, 0, 0, 3};
+        CHECK_STATUS(pnpr_lod_read_view(path, &v, 1500, &ro, &c, &info, &err), PNPR_ERR_CANCELLED);
+        pnpr_cloud_free(&c);
+        /* no view, a point filter of the caller's */
+        pnpr_view_sample none = {0};
+        CHECK_STATUS(pnpr_lod_read_view(path, &none, 10, NULL, &c, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
+        ro.keep = keep_ranked;
+        CHECK_STATUS(pnpr_lod_read_view(path, &v, 10, &ro, &c, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
+    }
+    /* the order's estimate of c against the pass over every point */
+    CHECK_MSG(fabs(c_of[1] / c_of[0] - 1) < 0.1, "c %g ordered, %g ordinary", c_of[1], c_of[0]);
+}
+
 /* Empty, one point, only NaN: a file with one cell (and the non-finite one), opened again. */
 static void test_small(void)
 {
@@ -405,6 +484,7 @@ int main(void)
     test_runs();
     test_write();
     test_sample();
+    test_view();
     test_small();
     test_lies();
     test_faces_and_box();

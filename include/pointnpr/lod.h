@@ -24,6 +24,7 @@
 #define POINTNPR_LOD_H
 
 #include <pointnpr/core.h>
+#include <pointnpr/crq.h>
 #include <pointnpr/io.h>
 
 #include <stddef.h>
@@ -122,6 +123,49 @@ int pnpr_lod_kept(const pnpr_lod *lod, uint64_t v, size_t *cursor, double share)
  * was used. */
 PNPR_NODISCARD pnpr_status pnpr_lod_read_sample(const char *path, uint64_t points, const pnpr_read_options *opts,
                                                 pnpr_cloud *cloud, uint64_t *r_total, int *r_ordered, pnpr_error *err);
+
+/* ---- a sample by views (io/lod_read.c): render and animate with cameras, the MeshLab
+ * decoration's stream ------------------------------------------------------------------------ */
+
+/* The cells into v's histograms (crq.h), each with its points at the least depth one of them may
+ * have in the views: a bound that counts too many points in view (c solved on it is too small),
+ * without reading a point. Not the last cell (far outliers, non-finite), which the passes read
+ * whole. */
+void pnpr_lod_add_cells(const pnpr_lod *lod, pnpr_view_sample *v);
+/* The ranges of a pass (r_ranges: 2 (cells + 1) values, r_runs: cells + 1, *r_count: the ranges):
+ * each cell's runs that the share of its points may reach, by the views of v once solved (its
+ * ball's share, pnpr_view_sample_ball_share; the last cell whole) or `uniform` (v NULL). Returns
+ * the points the ranges hold, or -1 when memory runs out. */
+double pnpr_lod_plan_ranges(const pnpr_lod *lod, const pnpr_view_sample *v, double uniform, uint64_t *r_ranges,
+                            uint8_t *r_runs, size_t *r_count);
+/* v solved on the cells' bound (pnpr_lod_add_cells, pnpr_view_sample_solve) made again from the
+ * points of the runs that bound reaches, each standing for the points of its cell's runs not read,
+ * and solved for want (and frame_want, pnpr_view_sample_solve): c as a pass over every point of
+ * the file at path would give it, to sampling noise. One pass over those ranges (progress may be
+ * NULL). */
+PNPR_NODISCARD pnpr_status pnpr_lod_view_refine(const char *path, const pnpr_lod *lod, pnpr_view_sample *v,
+                                                double want, double frame_want, const pnpr_progress *progress,
+                                                pnpr_error *err);
+
+typedef struct pnpr_lod_read_info {
+    uint64_t total;    /* the file's points */
+    uint64_t visited;  /* the points of the ranges the last pass read (ordered), else total */
+    uint64_t in_view;  /* the points some view sees (estimated from the runs read when ordered) */
+    int ordered;       /* 1: the file's order was used */
+} pnpr_lod_read_info;
+
+/* A sample of about `points` of the binary PLY at path for the views of v (pnpr_view_sample_init,
+ * add_view or init_frames, no points added: its histograms and c are filled here), as render
+ * draws a cloud larger than memory from a camera: every point kept whose rank is below its share
+ * min(1, c / z^2) (0 out of view), c solved so that about `points` are kept (every point in view
+ * when they are fewer; none for 0). A file ordered for drawing: the cells' bound, a pass over the
+ * runs it reaches (pnpr_lod_view_refine), then the read of the runs the share reaches. Another
+ * binary PLY: a pass over the coordinates, then the read. opts: progress over both passes
+ * (stage "sample"; cancelling stops at the next report with PNPR_ERR_CANCELLED), the origin;
+ * no keep, no ranges. *r_info (may be NULL) on success. */
+PNPR_NODISCARD pnpr_status pnpr_lod_read_view(const char *path, pnpr_view_sample *v, uint64_t points,
+                                              const pnpr_read_options *opts, pnpr_cloud *cloud,
+                                              pnpr_lod_read_info *r_info, pnpr_error *err);
 
 #ifdef __cplusplus
 }

@@ -135,14 +135,8 @@ static int keep_view(void *user, uint64_t index, const double p[3])
 {
     view_keep *k = user;
     k->seen = index + 1;
-    if (!k->solved) { /* a file ordered for drawing: a point read of m runs stands for 2^(L - m) */
-        lod_read *lr = k->lr;
-        uint64_t n = 1;
-        if (lr && lr->on) {
-            pnpr_lod_run_at(&lr->lod, index, &lr->cursor);
-            n = (uint64_t)1 << (PNPR_LOD_LEVELS - lr->runs[lr->cursor / PNPR_LOD_LEVELS]);
-        }
-        pnpr_view_sample_add_n(&k->v, p, n);
+    if (!k->solved) {
+        pnpr_view_sample_add(&k->v, p);
         return 0;
     }
     return point_kept(k->lr, index, pnpr_view_sample_share(&k->v, p));
@@ -178,40 +172,11 @@ static void lod_begin(lod_read *lr, const char *in, int quiet)
     if (!lr->on) lod_end(lr);
 }
 
-/* The cells into the views' histograms, each with its points at the least depth one of them may
- * have (instead of a pass over the points); not the last (far outliers, non-finite), which
- * lod_refine reads whole. */
-static void lod_add_cells(const lod_read *lr, pnpr_view_sample *v)
-{
-    const pnpr_lod *l = &lr->lod;
-    for (uint32_t k = 0; k < l->cells; k++) {
-        uint64_t n = pnpr_lod_cell_points(l, k);
-        double c[3], rho;
-        pnpr_lod_cell_ball(l, k, c, &rho);
-        if (n) pnpr_view_sample_add_ball(v, c, rho, n);
-    }
-}
-
-/* The ranges of the next pass: each cell's runs that the share of its points may reach, by the
- * views (v solved) or `uniform` (v NULL). The last cell (far outliers, non-finite coordinates) is
- * read whole by the views: each of its points is judged by its own share. Returns the points the
- * ranges hold, or -1 when memory runs out. */
+/* The ranges of the next pass (pnpr_lod_plan_ranges): by the views of v solved, or `uniform`
+ * (v NULL). Returns the points the ranges hold, or -1 when memory runs out. */
 static double lod_plan(lod_read *lr, const pnpr_view_sample *v, double uniform)
 {
-    const pnpr_lod *l = &lr->lod;
-    double *share = malloc(((size_t)l->cells + 1) * sizeof *share);
-    if (!share) return -1;
-    for (uint32_t k = 0; k < l->cells; k++) {
-        double c[3], rho;
-        pnpr_lod_cell_ball(l, k, c, &rho);
-        share[k] = v ? pnpr_view_sample_ball_share(v, c, rho) : uniform;
-    }
-    share[l->cells] = v ? 1 : uniform;
-    lr->count = pnpr_lod_ranges(l, share, lr->ranges, lr->runs);
-    free(share);
-    double n = 0;
-    for (size_t g = 0; g < lr->count; g++) n += (double)(lr->ranges[2 * g + 1] - lr->ranges[2 * g]);
-    return n;
+    return pnpr_lod_plan_ranges(&lr->lod, v, uniform, lr->ranges, lr->runs, &lr->count);
 }
 
 /* The stored point spacing (the disk radii) grown by 1/sqrt of each point's share, as the spacing
@@ -286,36 +251,19 @@ static int preview_views(const char *in, const pnpr_memory_plan *mp, cli_plan_fn
     int ok = n && init_views(vk, cams, n, mp->width, mp->height);
     free(cams);
     vk->lr->count = 0;
-    if (ok && vk->lr->on) lod_add_cells(vk->lr, &vk->v);
+    if (ok && vk->lr->on) pnpr_lod_add_cells(&vk->lr->lod, &vk->v);
     if (ok) *r_fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, vk, &vk->seen, 1, r_points, NULL, vk->lr);
     return ok;
 }
 
-/* A file ordered for drawing: the cells' bound (lod_add_cells) counts too many points in view,
- * and a sample solved on it has too few. The views' histograms again, from the points of the
- * runs that bound reaches (each standing for the points of its cell's runs not read), and c
- * solved on them: *vk as the pass over every point would have left it, to sampling noise. */
+/* A file ordered for drawing: the cells' bound (pnpr_lod_add_cells) counts too many points in
+ * view, and a sample solved on it has too few: c solved again from the runs it reaches
+ * (pnpr_lod_view_refine). */
 static int lod_refine(const char *cmd, const char *in, lod_read *lr, view_keep *vk, double want, double frame_want)
 {
-    if (lod_plan(lr, &vk->v, 1) < 0) {
-        fprintf(stderr, "pointnpr %s: %s: out of memory for the ranges to read\n", cmd, in);
-        return 0;
-    }
-    pnpr_view_sample_clear(&vk->v);
-    vk->solved = 0;
-    pnpr_read_options ro = {0};
-    ro.keep = keep_view;
-    ro.keep_user = vk;
-    ro.ranges = lr->ranges;
-    ro.range_count = lr->count;
-    lr->cursor = 0;
-    pnpr_cloud none = {0};
     pnpr_error err = {0};
-    pnpr_status st = pnpr_read_file(in, &ro, &none, &err);
-    pnpr_cloud_free(&none);
+    pnpr_status st = pnpr_lod_view_refine(in, &lr->lod, &vk->v, want, frame_want, NULL, &err);
     if (st != PNPR_OK) { cli_report_error(cmd, st, &err); return 0; }
-    pnpr_view_sample_solve(&vk->v, want, frame_want);
-    vk->solved = 1;
     return 1;
 }
 
@@ -375,7 +323,7 @@ static double plan_sample(const char *in, const pnpr_memory_plan *mp, cli_plan_f
     vk->lr = lr;
     *r_by_view = ply && views && init_views(vk, views->cams, views->count, mp->width, mp->height);
     if (*r_by_view) {
-        if (lr->on) lod_add_cells(lr, &vk->v);
+        if (lr->on) pnpr_lod_add_cells(&lr->lod, &vk->v);
         fit = fitting_share(in, mp, plan, plan_user, limit, keep_view, vk, &vk->seen, asked, r_points, NULL, lr);
         if (asked && !*r_points) *r_by_view = 0; /* no pass (not a regular file): the uniform share asked */
         return fit;
