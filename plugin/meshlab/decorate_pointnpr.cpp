@@ -21,6 +21,7 @@
 #include "decorate_pointnpr.h"
 #include "decorate_glcontext.h"
 #include "decorate_stages.h"
+#include "decorate_stream.h"
 #include "vcg_attributes.h"
 
 #include <pointnpr/effects.h>
@@ -91,6 +92,7 @@ const char *const kEffects = "PointNPR::Effects";
 const char *const kEffectsFile = "PointNPR::EffectsFile";
 const char *const kStyleMapFile = "PointNPR::StyleMapFile";
 const char *const kEffectsPreview = "PointNPR::EffectsPreview";
+const char *const kStream = "PointNPR::StreamSamples";
 
 /* enum index -> renderer style (the order shown in the dialog; new styles go at the end so that
  * saved indices keep their meaning). The labels are the library's names (pnpr_style_name). */
@@ -206,6 +208,7 @@ struct DecorateContextState {
     QString lastLayerStyles;      /* the styles per layer logged last */
     bool testStylesSet = false;   /* test hook PNPR_MESHLAB_TEST_LAYER_STYLES applied */
     bool testClassSet = false;    /* test hook PNPR_MESHLAB_TEST_LAYER_CLASS applied */
+    bool testSampleSet = false;   /* test hook PNPR_MESHLAB_TEST_SAMPLE_OF applied */
     int infoStage = 0, infoFrames = 0; /* test hook PNPR_MESHLAB_TEST_INFOBOX: 0 undrawn frame next, 1 drawn, 2 done */
     int dragPhase = 0;            /* test hook PNPR_MESHLAB_TEST_DRAG: 1 dragging, 2 released, 3 done */
     int dragFrames = 0;
@@ -262,6 +265,11 @@ struct DecorateContextState {
     pnpr_style_map smap;          /* the style map file of smapKey (count 0 and no default: none) */
     QString smapKey;
     std::vector<unsigned char> fxPixels, fxRows; /* the effects frame, top row first / bottom first */
+    std::vector<std::unique_ptr<pnpr_meshlab::LayerStream>> streams; /* the sample layers streamed by the view */
+    std::unique_ptr<pnpr_meshlab::StreamJob> streamJob; /* the view's read running (one at a time) */
+    uint64_t streamGen = 0;       /* a stream taken over or dropped: the layers are merged again */
+    bool streamBusy = false;      /* a stream runs or a layer's view is not read yet (the snapshot hook waits) */
+    QTimer *streamPoll = nullptr; /* while a stream runs: the status line, a repaint when done */
     DecorateContextState()
     {
         std::memset(&cloud, 0, sizeof cloud);
@@ -291,6 +299,8 @@ DecoratePointnprPlugin::DecoratePointnprPlugin()
 static void freeState(DecorateContextState *s, void *ctx)
 {
     s->job.reset(); /* cancels the computation and waits for it */
+    s->streamJob.reset(); /* cancels the stream's read and waits for it */
+    delete s->streamPoll;
     delete s->poll;
     delete s->keys.data();
     if (s->renderer && pnpr_meshlab::currentGLContext() == ctx) pnpr_renderer_destroy(s->renderer);
@@ -525,6 +535,12 @@ void DecoratePointnprPlugin::initGlobalParameterSet(QAction *, RichParameterList
             par.addParam(RichOpenFile(kEffectsFile, QString(), QStringList() << "*.fx" << "*.txt" << "*",
                                       "Effects file", "the pipeline file read when the effects are 'pipeline "
                                       "file' (read again when it changes)"));
+        if (!par.hasParameter(kStream))
+            par.addParam(RichBool(kStream, true, "Stream samples",
+                                  "a layer opened by 'NPR: Open a sample of a large PLY' from a file ordered for drawing "
+                                  "(pointnpr convert --lod) is read again for each view the camera rests at, as many "
+                                  "points as the layer holds: near points kept, far and unseen ones thinned (the layer "
+                                  "itself is not changed); off: the layer's own points"));
         if (!par.hasParameter(kEffectsPreview))
             par.addParam(RichFloat(kEffectsPreview, 0.5f, "Effects preview",
                                    QString("effects layers at this fraction of the viewport while the camera moves "
@@ -613,6 +629,7 @@ struct Params {
     QString effects;          /* "" none, a preset's name, or "file:PATH" */
     QString styleMap;         /* "" none, or the style map file's path */
     float effectsPreview = 0.5f;
+    bool stream = true;       /* sample layers streamed by the view (decorate_stream.h) */
 };
 
 Params readParams(const RichParameterList *par)
@@ -656,6 +673,7 @@ Params readParams(const RichParameterList *par)
         }
         if (par->hasParameter(kEffectsPreview)) p.effectsPreview = par->getFloat(kEffectsPreview);
         if (par->hasParameter(kStyleMapFile)) p.styleMap = par->getOpenFileName(kStyleMapFile);
+        if (par->hasParameter(kStream)) p.stream = par->getBool(kStream);
     }
     if (!(p.effectsPreview >= PNPR_EFFECTS_SCALE_MIN && p.effectsPreview <= 1)) p.effectsPreview = 0.5f;
     if (!pnpr_option_in_range(drawOption("line-width"), p.lineWidth)) p.lineWidth = 0; /* the default */
@@ -715,12 +733,83 @@ struct LayerAttributes {
     CMeshO::PerVertexAttributeHandle<float> cls, seg;
     CMeshO::PerVertexAttributeHandle<Point3m> dir;
     bool hasClass = false, hasSeg = false, stale = false;
+    LayerAttributes() = default;
     explicit LayerAttributes(CMeshO &m)
     {
         stale = pnpr_meshlab::checkStamp(m) == pnpr_meshlab::StampState::Stale;
         if (stale) return;
         hasClass = findAttribute<float>(m, PNPR_PROP_FEATURE_CLASS, cls) && findAttribute<Point3m>(m, PNPR_PROP_FEATURE_DIR, dir);
         hasSeg = findAttribute<float>(m, PNPR_PROP_SEGMENT, seg);
+    }
+};
+
+/* One point as buildCloud merges it, in the layer's coordinates (before its Tr). */
+struct PointIn {
+    double p[3], n[3], dir[3];
+    uint8_t rgb[3];
+    float cls, seg;
+};
+
+/* One drawn layer's points: MeshLab's vertices, or its stream (a view's sample of the file the
+ * layer samples, decorate_stream.h), whose positions are the file's less the layer's origin, in
+ * double. */
+struct LayerPoints {
+    MeshModel *mm = nullptr;
+    const pnpr_meshlab::LayerStream *stream = nullptr;
+    mutable LayerAttributes attrs; /* vcglib's handles read through non-const operator[] */
+    size_t count = 0;
+    bool colour = false, normals = false;
+    const pnpr_property *cls = nullptr, *dir[3] = {nullptr, nullptr, nullptr};
+
+    LayerPoints(MeshModel *m, const pnpr_meshlab::LayerStream *st) : mm(m), stream(st && st->cloud.count ? st : nullptr)
+    {
+        if (stream) {
+            const pnpr_cloud &c = stream->cloud;
+            count = c.count;
+            colour = c.rgb != nullptr;
+            normals = c.normal != nullptr;
+            cls = pnpr_cloud_find_property(&c, PNPR_PROP_FEATURE_CLASS);
+            dir[0] = pnpr_cloud_find_property(&c, PNPR_PROP_FEATURE_DIR_X);
+            dir[1] = pnpr_cloud_find_property(&c, PNPR_PROP_FEATURE_DIR_Y);
+            dir[2] = pnpr_cloud_find_property(&c, PNPR_PROP_FEATURE_DIR_Z);
+            attrs.hasClass = cls && dir[0] && dir[1] && dir[2];
+            attrs.hasSeg = c.label != nullptr;
+            return;
+        }
+        count = (size_t)mm->cm.vn;
+        colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
+        normals = meaningfulNormals(mm);
+        attrs = LayerAttributes(mm->cm);
+    }
+    size_t entries() const { return stream ? stream->cloud.count : mm->cm.vert.size(); }
+    /* Point i (of entries()), false for a deleted vertex. */
+    bool read(size_t i, PointIn &r) const
+    {
+        if (stream) {
+            const pnpr_cloud &c = stream->cloud;
+            double w[3];
+            pnpr_cloud_world(&c, i, w);
+            for (int a = 0; a < 3; a++) {
+                r.p[a] = w[a] - stream->origin[a];
+                r.n[a] = normals ? c.normal[3 * i + a] : 0;
+                r.dir[a] = attrs.hasClass ? pnpr_type_get(dir[a]->type, dir[a]->data, i) : 0;
+                r.rgb[a] = colour ? c.rgb[3 * i + a] : 180;
+            }
+            r.cls = attrs.hasClass ? (float)pnpr_type_get(cls->type, cls->data, i) : 0;
+            r.seg = attrs.hasSeg && c.label[i] < 16777216u ? (float)c.label[i] : 0;
+            return true;
+        }
+        const CVertexO &v = mm->cm.vert[i];
+        if (v.IsD()) return false;
+        for (int a = 0; a < 3; a++) {
+            r.p[a] = v.cP()[a];
+            r.n[a] = v.cN()[a];
+            r.dir[a] = attrs.hasClass ? attrs.dir[i][a] : 0;
+            r.rgb[a] = colour ? v.cC()[a] : 180;
+        }
+        r.cls = attrs.hasClass ? attrs.cls[i] : 0;
+        r.seg = attrs.hasSeg ? attrs.seg[i] : 0;
+        return true;
     }
 };
 
@@ -750,26 +839,30 @@ const char *const kLayerKey = "meshlab_layer";
  * colours, meaningful normals and (when every layer has them) feature classes. Segment labels:
  * when any layer has them, each layer's are kept, offset past the previous layer's, and a layer
  * without them is one segment (said in the note). Several layers: kLayerKey. */
-pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures, OwnClasses &own, QString &note)
+pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_meshlab::LayerStream>> &streams,
+                       pnpr_cloud &cloud, bool &layerFeatures, OwnClasses &own, QString &note)
 {
     pnpr_cloud_free(&cloud);
     own = OwnClasses();
-    std::vector<MeshModel *> layers;
+    std::vector<LayerPoints> layers;
     size_t total = 0;
     bool anyColour = false, allClass = true, anyClass = false, anySeg = false, allNormals = true;
     QStringList withClass;
-    std::vector<LayerAttributes> attrs; /* per drawn layer (its stamp is checked once) */
     size_t meshes = 0;
-    QStringList stale, oneSegment;
+    QStringList stale, oneSegment, streamed;
     for (MeshModel *mm : md.meshList) {
         if (!isDrawnLayer(mm)) continue;
-        layers.push_back(mm);
+        const pnpr_meshlab::LayerStream *st = nullptr;
+        for (const auto &ls : streams)
+            if (ls->meshId == mm->id()) st = ls.get();
+        layers.emplace_back(mm, st);
+        const LayerPoints &lp = layers.back();
+        if (lp.stream) streamed << QString("'%1'").arg(mm->label());
         meshes += mm->cm.fn > 0;
-        total += (size_t)mm->cm.vn;
-        anyColour |= mm->hasDataMask(MeshModel::MM_VERTCOLOR);
-        if (allNormals && !meaningfulNormals(mm)) allNormals = false;
-        attrs.emplace_back(mm->cm);
-        const LayerAttributes &la = attrs.back();
+        total += lp.count;
+        anyColour |= lp.colour;
+        allNormals &= lp.normals;
+        const LayerAttributes &la = lp.attrs;
         if (la.stale) stale << QString("'%1'").arg(mm->label());
         allClass &= la.hasClass;
         anyClass |= la.hasClass;
@@ -789,7 +882,8 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
     size_t j = 0;
     uint32_t labelBase = 0;
     for (size_t li = 0; li < layers.size(); li++) {
-        MeshModel *mm = layers[li];
+        const LayerPoints &lp = layers[li];
+        MeshModel *mm = lp.mm;
         CMeshO &m = mm->cm;
         double T[4][4];
         for (int r = 0; r < 4; r++)
@@ -800,37 +894,36 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
             for (int c = 0; c < 3; c++)
                 C[r][c] = T[(r + 1) % 3][(c + 1) % 3] * T[(r + 2) % 3][(c + 2) % 3] -
                           T[(r + 1) % 3][(c + 2) % 3] * T[(r + 2) % 3][(c + 1) % 3];
-        bool colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
-        LayerAttributes &la = attrs[li];
+        const LayerAttributes &la = lp.attrs;
         if (anySeg && !la.hasSeg) oneSegment << QString("'%1'").arg(mm->label());
         uint32_t maxLabel = 0;
-        for (size_t i = 0; i < m.vert.size() && j < total; i++) {
-            const CVertexO &v = m.vert[i];
-            if (v.IsD()) continue;
-            double p[3] = {v.cP()[0], v.cP()[1], v.cP()[2]};
+        PointIn v;
+        for (size_t i = 0; i < lp.entries() && j < total; i++) {
+            if (!lp.read(i, v)) continue;
+            const double *p = v.p;
             double w = T[3][0] * p[0] + T[3][1] * p[1] + T[3][2] * p[2] + T[3][3];
             if (!(w != 0)) w = 1;
             for (int r = 0; r < 3; r++) world[3 * j + r] = (T[r][0] * p[0] + T[r][1] * p[1] + T[r][2] * p[2] + T[r][3]) / w;
-            if (anyColour) {
-                for (int c = 0; c < 3; c++) rgb[3 * j + c] = colour ? v.cC()[c] : 180;
-            }
+            if (anyColour) std::memcpy(&rgb[3 * j], v.rgb, 3);
             if (la.hasClass) {
                 if (!own.has.empty()) own.has[j] = 1;
-                float c = la.cls[i];
+                float c = v.cls;
                 cls[j] = (c >= 0 && c <= 3) ? (uint8_t)std::lround(c) : 0;
-                double d[3] = {la.dir[i][0], la.dir[i][1], la.dir[i][2]}, t[3], n = 0;
+                const double *d = v.dir;
+                double t[3], n = 0;
                 for (int r = 0; r < 3; r++) { t[r] = T[r][0] * d[0] + T[r][1] * d[1] + T[r][2] * d[2]; n += t[r] * t[r]; }
                 n = std::sqrt(n);
                 for (int r = 0; r < 3; r++) dir[3 * j + r] = n > 0 && std::isfinite(n) ? (float)(t[r] / n) : 0.0f;
             }
             if (allNormals) {
-                double n[3] = {v.cN()[0], v.cN()[1], v.cN()[2]}, t[3], len = 0;
+                const double *n = v.n;
+                double t[3], len = 0;
                 for (int r = 0; r < 3; r++) { t[r] = C[r][0] * n[0] + C[r][1] * n[1] + C[r][2] * n[2]; len += t[r] * t[r]; }
                 len = std::sqrt(len);
                 for (int r = 0; r < 3; r++) normal[3 * j + r] = len > 0 && std::isfinite(len) ? (float)(t[r] / len) : 0.0f;
             }
             if (anySeg) {
-                float sv = la.hasSeg ? la.seg[i] : 0.0f;
+                float sv = la.hasSeg ? v.seg : 0.0f;
                 uint32_t l = (sv >= 0 && sv < 16777216.0f) ? (uint32_t)sv : 0;
                 label[j] = labelBase + l;
                 maxLabel = std::max(maxLabel, l);
@@ -893,6 +986,7 @@ pnpr_status buildCloud(MeshDocument &md, pnpr_cloud &cloud, bool &layerFeatures,
                .arg(stale.isEmpty() ? QString()
                                     : QString("; the attributes of %1 belong to an older version of the layer (reloaded or "
                                               "edited): left out").arg(stale.join(", ")));
+    if (!streamed.isEmpty()) note += QString("; %1 streamed for the view").arg(streamed.join(", "));
     return st;
 }
 
@@ -1252,12 +1346,12 @@ static QString styleNames(uint32_t bits)
  * old layers is cancelled first). Returns false when there is nothing to draw. */
 static bool refreshLayers(MeshDocument &md, DecorateContextState *s, const Reporter &report)
 {
-    uint64_t sig = layerSignature(md);
+    uint64_t sig = layerSignature(md) ^ (s->streamGen * 0x9E3779B97F4A7C15ull);
     if (s->built && sig == s->signature) return !s->uploadFailed && s->cloud.count > 0;
     s->job.reset(); /* cancels and waits: its results would be those of the old layers */
     QElapsedTimer t;
     t.start();
-    pnpr_status st = buildCloud(md, s->cloud, s->layerFeatures, s->ownClasses, s->layersNote);
+    pnpr_status st = buildCloud(md, s->streams, s->cloud, s->layerFeatures, s->ownClasses, s->layersNote);
     s->built = true;
     s->signature = sig;
     s->needUpload = true;
@@ -1532,6 +1626,150 @@ static void finishJob(DecorateContextState *s, const Reporter &report)
     s->cancelRequested = false;
 }
 
+/* ---- a sample layer streamed by the view (decorate_stream.h) ------------------------------- */
+
+/* test-only: PNPR_MESHLAB_TEST_STREAM_OUT=PATH writes each sample taken over to PATH (ascii PLY)
+ * (tests/meshlab/run.sh 'stream') */
+static void testWriteStream(const pnpr_cloud &c)
+{
+    const char *out = std::getenv("PNPR_MESHLAB_TEST_STREAM_OUT");
+    if (!out) return;
+    pnpr_write_options wo;
+    std::memset(&wo, 0, sizeof wo);
+    wo.encoding = PNPR_PLY_ASCII;
+    pnpr_error err{};
+    if (pnpr_write_file(out, &c, &wo, &err) != PNPR_OK) std::fprintf(stderr, "pointnpr decorator: %s\n", err.message);
+}
+
+/* A finished read taken over (GUI thread): its layer draws the new sample from this frame on
+ * (streamGen: the layers are merged again). A cancelled read is dropped; a failed one is logged
+ * and not retried for that view. */
+static void takeStream(DecorateContextState *s, const Reporter &report)
+{
+    if (!s->streamJob || !s->streamJob->done()) return;
+    pnpr_meshlab::StreamJob &j = *s->streamJob;
+    j.join();
+    for (auto &ls : s->streams) {
+        if (ls->meshId != j.meshId || ls->path != j.path) continue;
+        if (j.status == PNPR_OK) {
+            std::swap(ls->cloud, j.cloud);
+            ls->view = j.view;
+            s->streamGen++;
+            const pnpr_lod_read_info &in = j.info;
+            report(QString("streamed %1 of the %2 points of %3 for the view (%4 asked, about %5 in view; %6% of the "
+                           "file read; %7 ms)")
+                       .arg(ls->cloud.count).arg(in.total).arg(QString::fromLocal8Bit(j.path.c_str())).arg(j.points)
+                       .arg(in.in_view).arg(in.total ? 100.0 * (double)in.visited / (double)in.total : 0.0, 0, 'f', 1)
+                       .arg(j.elapsedMs), false);
+            testWriteStream(ls->cloud);
+        } else if (j.status != PNPR_ERR_CANCELLED) {
+            ls->view = j.view; /* not retried for this view */
+            report(QString("cannot stream %1 for the view: %2 (the last sample stays)")
+                       .arg(QString::fromLocal8Bit(j.path.c_str())).arg(QString::fromStdString(j.message)), true);
+        }
+    }
+    s->streamJob.reset();
+}
+
+/* Every 100 ms while a stream runs: the status line; a repaint once done (the next frame takes
+ * the sample over, or starts the read of the view now on screen). */
+static void pollStream(DecorateContextState *s)
+{
+    QMainWindow *mw = s->widget ? qobject_cast<QMainWindow *>(s->widget->window()) : nullptr;
+    QStatusBar *sb = mw ? mw->statusBar() : nullptr;
+    if (!s->streamJob || s->streamJob->done()) {
+        s->streamPoll->stop();
+        if (sb && sb->currentMessage().startsWith("NPR render: reading")) sb->clearMessage();
+        if (s->widget) s->widget->update();
+        return;
+    }
+    if (sb && !(s->job && !s->job->done()))
+        sb->showMessage(QString("NPR render: reading the view's points %1%").arg((int)std::lround(100 * s->streamJob->fraction())));
+}
+
+/* The layer's stream, kept when it samples the same file from the same origin, else new. */
+static std::unique_ptr<pnpr_meshlab::LayerStream> streamOf(DecorateContextState *s, int id, const std::string &path,
+                                                           const double origin[3])
+{
+    for (auto &ls : s->streams)
+        if (ls && ls->meshId == id && ls->path == path && std::memcmp(ls->origin, origin, sizeof ls->origin) == 0)
+            return std::move(ls);
+    std::unique_ptr<pnpr_meshlab::LayerStream> ls(new pnpr_meshlab::LayerStream);
+    ls->meshId = id;
+    ls->path = path;
+    std::memcpy(ls->origin, origin, sizeof ls->origin);
+    return ls;
+}
+
+/* Whether the file of ls is ordered for drawing, found once (logged when it is not). */
+static bool streamable(pnpr_meshlab::LayerStream &ls, const QString &label, const Reporter &report)
+{
+    if (ls.ordered < 0) {
+        pnpr_lod l;
+        std::memset(&l, 0, sizeof l);
+        pnpr_error err{};
+        pnpr_status st = pnpr_lod_open(ls.path.c_str(), &l, &err);
+        pnpr_lod_free(&l);
+        ls.ordered = st == PNPR_OK;
+        if (st != PNPR_OK)
+            report(QString("layer '%1' is a sample of %2, which is %3: the layer is drawn as it is, not streamed by the "
+                           "view (pointnpr convert --lod orders a file for drawing; docs/meshlab.md)")
+                       .arg(label).arg(QString::fromLocal8Bit(ls.path.c_str()))
+                       .arg(st == PNPR_ERR_UNSUPPORTED ? QString("not ordered for drawing") : status(st, err)), false);
+    }
+    return ls.ordered == 1;
+}
+
+/* After a frame: the sample layers whose file is ordered for drawing get the view now on screen
+ * read for them when the camera rests (one read at a time; a read of an older view is cancelled,
+ * and so is any read while the camera moves). Layers no longer drawn, edited (stale stamp) or with
+ * the stream off go back to their own vertices. */
+static void planStream(MeshDocument &md, DecorateContextState *s, bool on, const double mv[16], const double P[16],
+                       const GLint vp[4], bool moving, const Reporter &report)
+{
+    std::vector<std::unique_ptr<pnpr_meshlab::LayerStream>> kept;
+    for (MeshModel *mm : md.meshList) {
+        std::string path;
+        double origin[3];
+        if (on && isDrawnLayer(mm) && pnpr_meshlab::sampleSource(mm->cm, path, origin))
+            kept.push_back(streamOf(s, mm->id(), path, origin));
+    }
+    for (auto &ls : s->streams)
+        if (ls && ls->cloud.count) s->streamGen++; /* a sample drawn no more */
+    s->streams = std::move(kept);
+    if (moving && s->streamJob) s->streamJob->cancel();
+    s->streamBusy = s->streamJob != nullptr;
+    if (moving) return;
+    for (auto &ls : s->streams) {
+        MeshModel *mm = md.getMesh(ls->meshId);
+        if (!mm || !streamable(*ls, mm->label(), report)) continue;
+        double T[4][4];
+        for (int r = 0; r < 4; r++)
+            for (int c = 0; c < 4; c++) T[r][c] = mm->cm.Tr[r][c];
+        pnpr_meshlab::StreamView v;
+        if (!pnpr_meshlab::streamViewOf(mv, P, vp[2], vp[3], T, ls->origin, v) || v == ls->view) continue;
+        s->streamBusy = true;
+        if (s->streamJob) { /* one at a time: an older view's read stops, this one starts when it has */
+            if (s->streamJob->meshId != ls->meshId || s->streamJob->view != v) s->streamJob->cancel();
+            continue;
+        }
+        std::unique_ptr<pnpr_meshlab::StreamJob> job(new pnpr_meshlab::StreamJob);
+        std::string why;
+        if (!job->start(ls->meshId, ls->path, v, (uint64_t)mm->cm.vn, why)) {
+            ls->view = v;
+            report(QString::fromStdString(why), true);
+            continue;
+        }
+        s->streamJob = std::move(job);
+        if (!s->streamPoll) {
+            s->streamPoll = new QTimer;
+            s->streamPoll->setInterval(100);
+            QObject::connect(s->streamPoll, &QTimer::timeout, [s] { try { pollStream(s); } catch (...) {} });
+        }
+        s->streamPoll->start();
+    }
+}
+
 /* test-only (PNPR_MESHLAB_TEST_INFOBOX): once MeshLab has finished the frame (its info box drawn
  * over ours), writes PREFIX-under-NAME (the viewport as the overlay found it) and PREFIX-host-NAME
  * (the frame shown), NAME plain (stage 0, undrawn) or npr (stage 1), and asks for the next frame. */
@@ -1663,6 +1901,20 @@ static void applyTestLayerHooks(MeshDocument &md, DecorateContextState *s)
             }
         }
     }
+    /* test-only: PNPR_MESHLAB_TEST_SAMPLE_OF=PATH makes the first drawn layer a sample of PATH (origin
+     * 0), as "NPR: Open a sample of a large PLY" does (tests/meshlab/run.sh 'stream') */
+    if (const char *so = std::getenv("PNPR_MESHLAB_TEST_SAMPLE_OF")) {
+        if (!s->testSampleSet) {
+            s->testSampleSet = true;
+            for (MeshModel *mm : md.meshList) {
+                if (!isDrawnLayer(mm)) continue;
+                const double origin[3] = {0, 0, 0};
+                pnpr_meshlab::setSampleSource(mm->cm, so, origin);
+                pnpr_meshlab::writeStamp(mm->cm);
+                break;
+            }
+        }
+    }
     /* test-only: PNPR_MESHLAB_TEST_LAYER_STYLES=cartoon,points gives the drawn layers, in order, their
      * own styles as the filter "NPR: Set layer style" does (tests/meshlab/run.sh 'layers') */
     if (const char *tls = std::getenv("PNPR_MESHLAB_TEST_LAYER_STYLES")) {
@@ -1786,6 +2038,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (s->fxKey != fxKeyBefore && !fxMsg.isEmpty()) report(fxMsg, !fxOn);
 
     applyTestLayerHooks(md, s);
+    takeStream(s, report);
     if (!refreshLayers(md, s, report)) return; /* nothing to draw over MeshLab's own frame */
     QString smapMsg, smapKeyBefore = s->smapKey;
     bool mapOn = !fxOn && loadStyleMap(s, prm.styleMap, smapMsg);
@@ -1887,7 +2140,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
 
     const char *snap = std::getenv("PNPR_MESHLAB_SNAPSHOT");
     /* test mode: the snapshot is taken on the 3rd frame with unchanged matrices */
-    bool takeSnap = snap && !s->snapshotDone && !moving && ++s->frames >= 3 &&
+    bool takeSnap = snap && !s->snapshotDone && !moving && !s->streamBusy && ++s->frames >= 3 &&
                     !(std::getenv("PNPR_MESHLAB_TEST_INFOBOX") && s->infoStage < 2); /* after the info box frames */
     std::vector<unsigned char> plain, npr;
 
@@ -1952,6 +2205,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         report(QString("draw (%1) failed: %2").arg(fxDraw ? QString("effects") : styleNames(ls.bits)).arg(status(st, err)), true);
         return;
     }
+    if (!tile) planStream(md, s, prm.stream, mv, P, vp, moving, report);
     if (!tile && !moving && !fxDraw) {
         s->restCam = cm;
         s->restW = vp[2];

@@ -7,6 +7,7 @@
 #include <pointnpr/props.h>
 
 #include <cstdint>
+#include <string>
 
 #include <typeindex>
 #include <typeinfo>
@@ -108,6 +109,29 @@ inline bool layerStyle(CMeshO &m, int &r_style)
 
 /* style < 0: the layer takes the decorator's Style again. */
 inline void setLayerStyle(CMeshO &m, int style) { setMeshValue<int>(m, kLayerStyleName, style < 0 ? -1 : style); }
+
+/* The file a layer is a sample of (per-mesh attributes; set by "NPR: Open a sample of a large
+ * PLY", read by the decorator, which streams the file by the view when it is ordered for drawing:
+ * decorate_stream.h): its path (local 8-bit) and the origin the layer's positions are offsets
+ * from. The layer's stamp vouches for them: an edited layer (stale stamp) is drawn as it is. */
+const char *const kSampleFileName = "pnpr_sample_file";
+const char *const kSampleOriginName = "pnpr_sample_origin";
+
+inline void setSampleSource(CMeshO &m, const std::string &path, const double origin[3])
+{
+    setMeshValue<std::string>(m, kSampleFileName, path);
+    setMeshValue<vcg::Point3d>(m, kSampleOriginName, vcg::Point3d(origin[0], origin[1], origin[2]));
+}
+
+inline bool sampleSource(CMeshO &m, std::string &r_path, double r_origin[3])
+{
+    vcg::Point3d o;
+    if (!meshValue<std::string>(m, kSampleFileName, r_path) || r_path.empty() ||
+        !meshValue<vcg::Point3d>(m, kSampleOriginName, o) || checkStamp(m) != StampState::Valid)
+        return false;
+    for (int a = 0; a < 3; a++) r_origin[a] = o[a];
+    return true;
+}
 
 /* Before a filter writes some of the attributes and a new stamp: the others, when they belong to an
  * older version of the layer, go (a new stamp would otherwise vouch for them). True when they went. */

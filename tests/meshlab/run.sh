@@ -2,7 +2,7 @@
 # MeshLab plugin tests: runs the filters of libfilter_pointnpr.so inside Debian's meshlabserver.
 #
 #   tests/meshlab/run.sh TEST PLUGIN_SO POINTNPR_CLI WORKDIR [DECORATE_SO]
-#     TEST: load | cube | offset | select | robust | lion | lines | segment | sample | decorate | decorate_styles | snapshot
+#     TEST: load | cube | offset | select | robust | lion | lines | segment | sample | decorate | decorate_styles | snapshot | stream
 #     DECORATE_SO: libdecorate_pointnpr.so ("NPR render"), also put into the host's plugins/;
 #     the decorate test runs the MeshLab GUI (/usr/bin/meshlab) under Xvfb.
 #
@@ -1249,6 +1249,57 @@ decorate)
   log "aerial: ink of the field's pixels ${ink_def:-?}; $(grep ^points "$T/aerial-camera.txt" 2> /dev/null)"
   holds aerial "default sketchy not a black shape: ink < 0.5 of the field's pixels" "${ink_def:-1} < 0.5"
   expect_log meshlayer "pointnpr decorator: uploaded 15002 points from 1 layer\\(s\\) \\(1 mesh layer\\(s\\): their vertices\\)"
+  ;;
+
+stream)
+  # A sample layer streamed by the view (docs/meshlab.md): a 400 000-point box, 2 x 2 x 20 along
+  # z, ordered for drawing; the GUI opens a uniform sample of 20 000 of its points, which the test
+  # hook marks as a sample of the ordered file with origin 0 (PNPR_MESHLAB_TEST_SAMPLE_OF, as "NPR:
+  # Open a sample of a large PLY" marks its layer). MeshLab's first view looks down -z at the box:
+  # its near end is about 3x closer than its far end. The decorator reads the view's sample: about
+  # 20 000 points, every one a point of the file, the near fifth kept denser than the far fifth by
+  # the ratio of the sums of 1/depth^2 over the file's points there (a share c / z^2, the depths
+  # from the frame's modelview), where the uniform layer has them alike; the frame is drawn from
+  # that sample. The same layer marked as a sample of the file as written (not ordered): drawn as
+  # it is, said once.
+  [[ -n "$DECORATE" ]] || die "no decorate plugin given (5th argument)"
+  [[ -x "$GUI_BIN" ]] || die "$GUI_BIN not found (packaging/install-deps.sh installs meshlab)"
+  ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
+  awk 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
+    BEGIN { S = 11; n = 400000; print "ply\nformat ascii 1.0\nelement vertex " n
+      print "property float x\nproperty float y\nproperty float z\nend_header"
+      for (i = 0; i < n; i++) printf "%.3f %.3f %.3f\n", 2 * rnd() - 1, 2 * rnd() - 1, 20 * rnd() - 10 }' > "$T/box.txt.ply"
+  "$CLI" convert "$T/box.txt.ply" -o "$T/box.ply" --quiet && "$CLI" convert "$T/box.ply" -o "$T/box_lod.ply" --lod --quiet ||
+    die "pointnpr convert --lod failed"
+  awk '/^element vertex/ { $3 = 20000 } /^end_header/ { print; b = 1; next } !b { print; next } (++k % 20) == 0' \
+    "$T/box.txt.ply" > "$T/layer.ply"
+  GUI_POINTS=20000 GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_STREAM_OUT="$T/streamed.ply")
+  if gui stream points "$T/layer.ply"; then
+    expect_log stream "pointnpr decorator: streamed [0-9]+ of the 400000 points of .*box_lod.ply for the view \\(20000 asked"
+    expect_log stream "pointnpr decorator: uploaded [0-9]+ points from 1 layer\\(s\\).*'layer.ply' streamed for the view"
+    got=$(sed -n 's/.*pointnpr decorator: streamed \([0-9]*\) of the 400000 points.*/\1/p' "$T/stream.log" | tail -n 1)
+    grep -q "^points ${got:-x} drawn " "$T/stream-camera.txt" ||
+      fail "'stream': the frame did not draw the streamed sample ($(grep ^points "$T/stream-camera.txt"), streamed ${got:-none})"
+    to_ascii "$T/streamed.ply" "$T/streamed_a.ply" &&
+      awk 'function key(a, b, c) { return sprintf("%d %d %d", a * 1000 + (a < 0 ? -0.5 : 0.5), b * 1000 + (b < 0 ? -0.5 : 0.5), c * 1000 + (c < 0 ? -0.5 : 0.5)) }
+        FILENAME ~ /camera.txt$/ { if ($1 == "modelview") for (k = 0; k < 16; k++) mv[k] = $(k + 2); next }
+        /^end_header/ { b[FILENAME] = 1; next }
+        !b[FILENAME] { next }
+        FILENAME ~ /box.txt.ply$/ { inbox[key($1, $2, $3)] = 1; d = -(mv[2] * $1 + mv[6] * $2 + mv[10] * $3 + mv[14])
+                                   if ($3 > 6) { wn += 1 / (d * d); fn++ } if ($3 < -6) { wf += 1 / (d * d); ff++ } next }
+        { n++; if (!(key($1, $2, $3) in inbox)) bad++; if ($3 > 6) kn++; if ($3 < -6) kf++ }
+        END { want = wn / wf; got = kn / (kf ? kf : 1)
+              printf "stream: %d points, %d not in the file; near fifth %d, far fifth %d: ratio %.2f for %.2f by 1/depth^2 (file %d, %d)\n", n, bad, kn, kf, got, want, fn, ff
+              exit (n > 17000 && n < 23000 && bad == 0 && want > 2 && got > 0.85 * want && got < 1.15 * want) ? 0 : 1 }' \
+        "$T/stream-camera.txt" "$T/box.txt.ply" "$T/streamed_a.ply" ||
+      fail "'stream': the sample is not the view's (above)"
+  fi
+  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box.ply")
+  gui unordered points "$T/layer.ply"
+  GUI_ENV=() GUI_POINTS=''
+  expect_log unordered "layer 'layer.ply' is a sample of .*box.ply, which is not ordered for drawing: the layer is drawn as it is"
+  expect_no_log unordered "streamed [0-9]+ of"
+  [[ $(grep -c "pointnpr decorator: .*which is not ordered for drawing" "$T/unordered.log") == 1 ]] || fail "'unordered': not said once"
   ;;
 
 decorate_styles)
