@@ -268,6 +268,9 @@ struct DecorateContextState {
     std::vector<std::unique_ptr<pnpr_meshlab::LayerStream>> streams; /* the sample layers streamed by the view */
     std::unique_ptr<pnpr_meshlab::StreamJob> streamJob; /* the view's read running (one at a time) */
     uint64_t streamGen = 0;       /* a stream taken over or dropped: the layers are merged again */
+    uint64_t layersSig = 0;       /* layerSignature of the layers merged (the stream's part left out) */
+    bool drawPrevious = false;    /* merged again for a stream alone: while the stages run on the new
+                                   * sample, the renderer's previous one is drawn (not MeshLab's points) */
     bool streamBusy = false;      /* a stream runs or a layer's view is not read yet (the snapshot hook waits) */
     QTimer *streamPoll = nullptr; /* while a stream runs: the status line, a repaint when done */
     DecorateContextState()
@@ -1346,8 +1349,10 @@ static QString styleNames(uint32_t bits)
  * old layers is cancelled first). Returns false when there is nothing to draw. */
 static bool refreshLayers(MeshDocument &md, DecorateContextState *s, const Reporter &report)
 {
-    uint64_t sig = layerSignature(md) ^ (s->streamGen * 0x9E3779B97F4A7C15ull);
+    const uint64_t lsig = layerSignature(md), sig = lsig ^ (s->streamGen * 0x9E3779B97F4A7C15ull);
     if (s->built && sig == s->signature) return !s->uploadFailed && s->cloud.count > 0;
+    s->drawPrevious = s->built && lsig == s->layersSig && s->uploads > 0 && !s->uploadFailed && !s->needUpload;
+    s->layersSig = lsig;
     s->job.reset(); /* cancels and waits: its results would be those of the old layers */
     QElapsedTimer t;
     t.start();
@@ -1523,7 +1528,7 @@ static void pollJob(DecorateContextState *s)
 }
 
 /* Starts the plan's stages on a worker thread over a copy of the cloud. */
-static void startJob(DecorateContextState *s, const pnpr_meshlab::StageRequest &rq, const Reporter &report)
+static void startJob(DecorateContextState *s, const pnpr_meshlab::StageRequest &rq, bool previous, const Reporter &report)
 {
     std::unique_ptr<pnpr_meshlab::StageJob> job(new pnpr_meshlab::StageJob);
     std::string why;
@@ -1557,8 +1562,9 @@ static void startJob(DecorateContextState *s, const pnpr_meshlab::StageRequest &
     if (rq.brush) what << "brush";
     if (rq.tree) what << "hierarchy";
     if (rq.lines) what << "profile lines";
-    report(QString("computing %1 for the %2 style in the background (%3 points): MeshLab's own points meanwhile, Esc cancels")
-               .arg(what.join(", ")).arg(QString::fromStdString(rq.style)).arg(s->cloud.count), false);
+    report(QString("computing %1 for the %2 style in the background (%3 points): %4 meanwhile, Esc cancels")
+               .arg(what.join(", ")).arg(QString::fromStdString(rq.style)).arg(s->cloud.count)
+               .arg(previous ? "the previous sample" : "MeshLab's own points"), false);
     if (std::getenv("PNPR_MESHLAB_TEST_EVENTS") && s->widget) {
         s->synthetic.start();
         QCoreApplication::postEvent(s->widget.data(), new QEvent(JobKeys::kSynthetic));
@@ -1901,14 +1907,18 @@ static void applyTestLayerHooks(MeshDocument &md, DecorateContextState *s)
             }
         }
     }
-    /* test-only: PNPR_MESHLAB_TEST_SAMPLE_OF=PATH makes the first drawn layer a sample of PATH (origin
-     * 0), as "NPR: Open a sample of a large PLY" does (tests/meshlab/run.sh 'stream') */
+    /* test-only: PNPR_MESHLAB_TEST_SAMPLE_OF=PATH makes the first drawn layer a sample of PATH, its
+     * vertices offsets from PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="X Y Z" (default 0 0 0; the layer's Tr
+     * from a project file places them there), as "NPR: Open a sample of a large PLY" makes its
+     * layer (tests/meshlab/run.sh 'stream') */
     if (const char *so = std::getenv("PNPR_MESHLAB_TEST_SAMPLE_OF")) {
         if (!s->testSampleSet) {
             s->testSampleSet = true;
             for (MeshModel *mm : md.meshList) {
                 if (!isDrawnLayer(mm)) continue;
-                const double origin[3] = {0, 0, 0};
+                double origin[3] = {0, 0, 0};
+                if (const char *o = std::getenv("PNPR_MESHLAB_TEST_SAMPLE_ORIGIN"))
+                    std::sscanf(o, "%lf %lf %lf", &origin[0], &origin[1], &origin[2]);
                 pnpr_meshlab::setSampleSource(mm->cm, so, origin);
                 pnpr_meshlab::writeStamp(mm->cm);
                 break;
@@ -2062,11 +2072,14 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         pnpr_plan plan;
         if (!makePlan(s, prm, ls.bits, tone, plan, report)) return;
         pnpr_meshlab::StageRequest rq = stageRequest(s, plan, tone, styleNames(ls.bits));
-        if (rq.any()) startJob(s, rq, report);
+        if (rq.any()) startJob(s, rq, s->drawPrevious && !(ls.bits & (1u << PNPR_STYLE_HIERARCHY)), report);
     }
     /* While computing, MeshLab's own frame (its plain points) stays: nothing is uploaded or drawn,
-     * so the GUI thread is free (an upload's spacing kNN would hold it as long as the features). */
-    if (s->job) return;
+     * so the GUI thread is free (an upload's spacing kNN would hold it as long as the features).
+     * After a new stream alone, the renderer's previous sample is drawn meanwhile (not uploaded
+     * again; not for the hierarchy style, whose tree went with the old sample). */
+    const bool previous = s->job && s->drawPrevious && !(ls.bits & (1u << PNPR_STYLE_HIERARCHY));
+    if (s->job && !previous) return;
     /* plain points after a cancel (the style lacks what it needs) */
     bool plainPoints = s->cancelled;
     /* painterly's data (12-neighbour lists, colour passes: 4x the upload time and memory) only
@@ -2075,8 +2088,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     if (paints && s->skippedPainterly) s->needUpload = true;
     bool keyed = !plainPoints && !ls.map.empty() && !ls.bySegment; /* styles per layer: the map reads the layer index */
     if (keyed != s->keyedUpload) s->needUpload = true; /* the key: the layer index, or the segments */
-    if (!uploadIfNeeded(s, tone, paints, keyed, report)) return;
-    if (s->linesPending) {
+    if (!previous && !uploadIfNeeded(s, tone, paints, keyed, report)) return;
+    if (!s->job) s->drawPrevious = false;
+    if (s->linesPending && !previous) {
         s->linesPending = false;
         pnpr_status st = pnpr_renderer_set_lines(s->renderer, &s->lines, &err);
         if (st != PNPR_OK) report("profile lines failed: " + status(st, err), true);

@@ -1253,49 +1253,66 @@ decorate)
 
 stream)
   # A sample layer streamed by the view (docs/meshlab.md): a 400 000-point box, 2 x 2 x 20 along
-  # z, ordered for drawing; the GUI opens a uniform sample of 20 000 of its points, which the test
-  # hook marks as a sample of the ordered file with origin 0 (PNPR_MESHLAB_TEST_SAMPLE_OF, as "NPR:
-  # Open a sample of a large PLY" marks its layer). MeshLab's first view looks down -z at the box:
-  # its near end is about 3x closer than its far end. The decorator reads the view's sample: about
-  # 20 000 points, every one a point of the file, the near fifth kept denser than the far fifth by
-  # the ratio of the sums of 1/depth^2 over the file's points there (a share c / z^2, the depths
-  # from the frame's modelview), where the uniform layer has them alike; the frame is drawn from
-  # that sample. The same layer marked as a sample of the file as written (not ordered): drawn as
-  # it is, said once.
+  # z, at (5e5, 4.2e6, 100) in doubles, ordered for drawing; the GUI opens a uniform sample of
+  # 20 000 of its points as offsets from that origin, which the test hooks place there by the
+  # layer's Tr and mark as a sample of the ordered file (PNPR_MESHLAB_TEST_SAMPLE_OF and _ORIGIN,
+  # as "NPR: Open a sample of a large PLY" makes its layer). MeshLab's first view looks down -z at
+  # the box: its near end is about 3x closer than its far end. The decorator reads the view's
+  # sample: about 20 000 points, every one a point of the file, the near fifth kept denser than the
+  # far fifth by the ratio of the sums of 1/depth^2 over the file's points there (a share c / z^2,
+  # the depths from the frame's modelview), where the uniform layer has them alike; the frame is
+  # drawn from that sample. After a drag (the reads of the moving views cancelled), the sample of
+  # the view where the camera rests, by the same measure. The same layer marked as a sample of the
+  # file as written (not ordered): drawn as it is, said once.
   [[ -n "$DECORATE" ]] || die "no decorate plugin given (5th argument)"
   [[ -x "$GUI_BIN" ]] || die "$GUI_BIN not found (packaging/install-deps.sh installs meshlab)"
   ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
   awk 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
     BEGIN { S = 11; n = 400000; print "ply\nformat ascii 1.0\nelement vertex " n
-      print "property float x\nproperty float y\nproperty float z\nend_header"
-      for (i = 0; i < n; i++) printf "%.3f %.3f %.3f\n", 2 * rnd() - 1, 2 * rnd() - 1, 20 * rnd() - 10 }' > "$T/box.txt.ply"
+      print "property double x\nproperty double y\nproperty double z\nend_header"
+      for (i = 0; i < n; i++) printf "%.3f %.3f %.3f\n", 500000 + 2 * rnd() - 1, 4200000 + 2 * rnd() - 1, 100 + 20 * rnd() - 10 }' > "$T/box.txt.ply"
   "$CLI" convert "$T/box.txt.ply" -o "$T/box.ply" --quiet && "$CLI" convert "$T/box.ply" -o "$T/box_lod.ply" --lod --quiet ||
     die "pointnpr convert --lod failed"
-  awk '/^element vertex/ { $3 = 20000 } /^end_header/ { print; b = 1; next } !b { print; next } (++k % 20) == 0' \
-    "$T/box.txt.ply" > "$T/layer.ply"
-  GUI_POINTS=20000 GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_STREAM_OUT="$T/streamed.ply")
-  if gui stream points "$T/layer.ply"; then
-    expect_log stream "pointnpr decorator: streamed [0-9]+ of the 400000 points of .*box_lod.ply for the view \\(20000 asked"
-    expect_log stream "pointnpr decorator: uploaded [0-9]+ points from 1 layer\\(s\\).*'layer.ply' streamed for the view"
-    got=$(sed -n 's/.*pointnpr decorator: streamed \([0-9]*\) of the 400000 points.*/\1/p' "$T/stream.log" | tail -n 1)
-    grep -q "^points ${got:-x} drawn " "$T/stream-camera.txt" ||
-      fail "'stream': the frame did not draw the streamed sample ($(grep ^points "$T/stream-camera.txt"), streamed ${got:-none})"
-    to_ascii "$T/streamed.ply" "$T/streamed_a.ply" &&
-      awk 'function key(a, b, c) { return sprintf("%d %d %d", a * 1000 + (a < 0 ? -0.5 : 0.5), b * 1000 + (b < 0 ? -0.5 : 0.5), c * 1000 + (c < 0 ? -0.5 : 0.5)) }
+  awk '/^element vertex/ { $3 = 20000 } /^end_header/ { print; b = 1; next } !b { print; next }
+    (++k % 20) == 0 { printf "%.3f %.3f %.3f\n", $1 - 500000, $2 - 4200000, $3 - 100 }' "$T/box.txt.ply" > "$T/layer.ply"
+  printf '<!DOCTYPE MeshLabDocument>\n<MeshLabProject>\n <MeshGroup>\n  <MLMesh label="layer.ply" filename="layer.ply" visible="1">\n   <MLMatrix44>\n1 0 0 500000 \n0 1 0 4200000 \n0 0 1 100 \n0 0 0 1 \n</MLMatrix44>\n  </MLMesh>\n </MeshGroup>\n <RasterGroup/>\n</MeshLabProject>\n' > "$T/layer.mlp"
+  # stream_check NAME MIN: the sample streamed last is the view's of NAME's frame, its near/far
+  # ratio at least MIN by 1/depth^2
+  stream_check() {
+    expect_log "$1" "pointnpr decorator: streamed [0-9]+ of the 400000 points of .*box_lod.ply for the view \\(20000 asked"
+    expect_log "$1" "pointnpr decorator: uploaded [0-9]+ points from 1 layer\\(s\\).*'layer.ply' streamed for the view"
+    local got
+    got=$(sed -n 's/.*pointnpr decorator: streamed \([0-9]*\) of the 400000 points.*/\1/p' "$T/$1.log" | tail -n 1)
+    grep -q "^points ${got:-x} drawn " "$T/$1-camera.txt" ||
+      fail "'$1': the frame did not draw the streamed sample ($(grep ^points "$T/$1-camera.txt"), streamed ${got:-none})"
+    to_ascii "$T/$1-sample.ply" "$T/$1-sample_a.ply" &&
+      awk -v name="$1" -v min="$2" 'function key(a, b, c) { return sprintf("%.0f %.0f %.0f", a * 1000, b * 1000, c * 1000) }
         FILENAME ~ /camera.txt$/ { if ($1 == "modelview") for (k = 0; k < 16; k++) mv[k] = $(k + 2); next }
         /^end_header/ { b[FILENAME] = 1; next }
         !b[FILENAME] { next }
         FILENAME ~ /box.txt.ply$/ { inbox[key($1, $2, $3)] = 1; d = -(mv[2] * $1 + mv[6] * $2 + mv[10] * $3 + mv[14])
-                                   if ($3 > 6) { wn += 1 / (d * d); fn++ } if ($3 < -6) { wf += 1 / (d * d); ff++ } next }
-        { n++; if (!(key($1, $2, $3) in inbox)) bad++; if ($3 > 6) kn++; if ($3 < -6) kf++ }
+                                   if ($3 > 106) { wn += 1 / (d * d); fn++ } if ($3 < 94) { wf += 1 / (d * d); ff++ } next }
+        { n++; if (!(key($1, $2, $3) in inbox)) bad++; if ($3 > 106) kn++; if ($3 < 94) kf++ }
         END { want = wn / wf; got = kn / (kf ? kf : 1)
-              printf "stream: %d points, %d not in the file; near fifth %d, far fifth %d: ratio %.2f for %.2f by 1/depth^2 (file %d, %d)\n", n, bad, kn, kf, got, want, fn, ff
-              exit (n > 17000 && n < 23000 && bad == 0 && want > 2 && got > 0.85 * want && got < 1.15 * want) ? 0 : 1 }' \
-        "$T/stream-camera.txt" "$T/box.txt.ply" "$T/streamed_a.ply" ||
-      fail "'stream': the sample is not the view's (above)"
-  fi
-  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box.ply")
-  gui unordered points "$T/layer.ply"
+              printf "%s: %d points, %d not in the file; near fifth %d, far fifth %d: ratio %.2f for %.2f by 1/depth^2 (file %d, %d)\n", name, n, bad, kn, kf, got, want, fn, ff
+              exit (n > 17000 && n < 23000 && bad == 0 && want >= min && got > 0.85 * want && got < 1.15 * want) ? 0 : 1 }' \
+        "$T/$1-camera.txt" "$T/box.txt.ply" "$T/$1-sample_a.ply" ||
+      fail "'$1': the sample is not the view's (above)"
+  }
+  GUI_POINTS=20000
+  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
+           PNPR_MESHLAB_TEST_STREAM_OUT="$T/stream-sample.ply")
+  gui stream points "$T/layer.mlp" && stream_check stream 2
+  # the normals of the new sample are computed in the background, the first sample drawn meanwhile
+  expect_log stream "computing features for the points style in the background \\(20000 points\\): MeshLab's own points meanwhile"
+  expect_log stream "computing features for the points style in the background \\([0-9]+ points\\): the previous sample meanwhile"
+  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
+           PNPR_MESHLAB_TEST_STREAM_OUT="$T/drag-sample.ply" PNPR_MESHLAB_TEST_DRAG=1) GUI_WAIT="$T/drag-drag.txt"
+  gui drag points "$T/layer.mlp" && stream_check drag 0
+  GUI_WAIT=''
+  cmp -s "$T/stream-camera.txt" "$T/drag-camera.txt" && fail "'drag': the view did not change"
+  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100")
+  gui unordered points "$T/layer.mlp"
   GUI_ENV=() GUI_POINTS=''
   expect_log unordered "layer 'layer.ply' is a sample of .*box.ply, which is not ordered for drawing: the layer is drawn as it is"
   expect_no_log unordered "streamed [0-9]+ of"
