@@ -49,6 +49,7 @@
 #include <QStatusBar>
 #include <QLineEdit>
 #include <QMouseEvent>
+#include <QWheelEvent>
 #include <QPushButton>
 #include <QSpinBox>
 #include <QPointer>
@@ -209,6 +210,7 @@ struct DecorateContextState {
     bool testStylesSet = false;   /* test hook PNPR_MESHLAB_TEST_LAYER_STYLES applied */
     bool testClassSet = false;    /* test hook PNPR_MESHLAB_TEST_LAYER_CLASS applied */
     bool testSampleSet = false;   /* test hook PNPR_MESHLAB_TEST_SAMPLE_OF applied */
+    bool testWheelDone = false;   /* test hook PNPR_MESHLAB_TEST_WHEEL applied */
     int infoStage = 0, infoFrames = 0; /* test hook PNPR_MESHLAB_TEST_INFOBOX: 0 undrawn frame next, 1 drawn, 2 done */
     int dragPhase = 0;            /* test hook PNPR_MESHLAB_TEST_DRAG: 1 dragging, 2 released, 3 done */
     int dragFrames = 0;
@@ -2154,7 +2156,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
 
     const char *snap = std::getenv("PNPR_MESHLAB_SNAPSHOT");
     /* test mode: the snapshot is taken on the 3rd frame with unchanged matrices */
-    bool takeSnap = snap && !s->snapshotDone && !moving && !s->streamBusy && ++s->frames >= 3 &&
+    bool takeSnap = snap && !s->snapshotDone && !moving && !s->streamBusy && !s->job && ++s->frames >= 3 &&
                     !(std::getenv("PNPR_MESHLAB_TEST_INFOBOX") && s->infoStage < 2); /* after the info box frames */
     std::vector<unsigned char> plain, npr;
 
@@ -2238,6 +2240,17 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
                          .arg(moving ? " (preview while moving)" : ""), false);
     if (moving && s->settle) s->settle->start(300); /* a full-budget frame once the camera rests */
     if (std::getenv("PNPR_MESHLAB_TEST_DRAG")) testDragFrame(s, moving, stats.points_drawn);
+    /* test-only: PNPR_MESHLAB_TEST_WHEEL=N turns the mouse wheel N notches (zooms in) at the first
+     * frame at rest (tests/meshlab/run.sh 'stream') */
+    if (const char *wh = std::getenv("PNPR_MESHLAB_TEST_WHEEL")) {
+        if (!s->testWheelDone && !moving && s->widget) {
+            s->testWheelDone = true;
+            QPointF c(s->widget->width() / 2.0, s->widget->height() / 2.0);
+            for (int i = 0; i < std::min(50, std::max(0, std::atoi(wh))); i++)
+                QCoreApplication::postEvent(s->widget.data(), new QWheelEvent(c, QPointF(s->widget->mapToGlobal(c.toPoint())), QPoint(), QPoint(0, -120),
+                                                                              Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false));
+        }
+    }
 
     if (snap && !s->snapshotDone) {
         if (takeSnap && !plain.empty() && !npr.empty()) {

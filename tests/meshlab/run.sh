@@ -1311,6 +1311,34 @@ stream)
   gui drag points "$T/layer.mlp" && stream_check drag 0
   GUI_WAIT=''
   cmp -s "$T/stream-camera.txt" "$T/drag-camera.txt" && fail "'drag': the view did not change"
+  # zoomed in (the wheel, 16 notches) on a plate of 400 000 points, 20 x 20 across the view: the
+  # view's cone holds fewer points than the layer's 20 000, so the stream holds every one of them:
+  # each point of the file inside the viewport, where the layer has about a twentieth
+  awk 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
+    BEGIN { S = 13; n = 400000; print "ply\nformat ascii 1.0\nelement vertex " n
+      print "property double x\nproperty double y\nproperty double z\nend_header"
+      for (i = 0; i < n; i++) printf "%.3f %.3f %.3f\n", 500000 + 20 * rnd() - 10, 4200000 + 20 * rnd() - 10, 100 + 0.2 * rnd() - 0.1 }' > "$T/plate.txt.ply"
+  "$CLI" convert "$T/plate.txt.ply" -o "$T/plate.ply" --quiet && "$CLI" convert "$T/plate.ply" -o "$T/plate_lod.ply" --lod --quiet ||
+    die "pointnpr convert --lod failed"
+  awk '/^element vertex/ { $3 = 20000 } /^end_header/ { print; b = 1; next } !b { print; next }
+    (++k % 20) == 0 { printf "%.3f %.3f %.3f\n", $1 - 500000, $2 - 4200000, $3 - 100 }' "$T/plate.txt.ply" > "$T/plate_layer.ply"
+  sed 's/layer\.ply/plate_layer.ply/g' "$T/layer.mlp" > "$T/plate.mlp"
+  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/plate_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
+           PNPR_MESHLAB_TEST_STREAM_OUT="$T/zoom-sample.ply" PNPR_MESHLAB_TEST_WHEEL=16)
+  if gui zoom points "$T/plate.mlp" && to_ascii "$T/zoom-sample.ply" "$T/zoom-sample_a.ply"; then
+    awk 'FILENAME ~ /camera.txt$/ { if ($1 == "modelview") for (k = 0; k < 16; k++) mv[k] = $(k + 2)
+                                    if ($1 == "projection") for (k = 0; k < 16; k++) pr[k] = $(k + 2); next }
+      /^end_header/ { b[FILENAME] = 1; next }
+      !b[FILENAME] { next }
+      { x = $1; y = $2; z = $3; if (FILENAME ~ /layer.ply$/) { x += 500000; y += 4200000; z += 100 }
+        for (r = 0; r < 4; r++) e[r] = mv[r] * x + mv[4 + r] * y + mv[8 + r] * z + mv[12 + r]
+        for (r = 0; r < 4; r++) c[r] = pr[r] * e[0] + pr[4 + r] * e[1] + pr[8 + r] * e[2] + pr[12 + r] * e[3]
+        inv = c[3] > 0 && c[0] <= c[3] && c[0] >= -c[3] && c[1] <= c[3] && c[1] >= -c[3]
+        if (FILENAME ~ /plate.txt.ply$/) { fv += inv } else if (FILENAME ~ /layer.ply$/) { ln++; lv += inv } else { sn++; sv += inv } }
+      END { printf "zoom: streamed %d points, %d in the viewport, of the file'"'"'s %d there; the layer %d, %d in it\n", sn, sv, fv, ln, lv
+            exit (sn < 20000 && fv > 500 && sv == fv && lv < fv / 10) ? 0 : 1 }' \
+      "$T/zoom-camera.txt" "$T/plate.txt.ply" "$T/plate_layer.ply" "$T/zoom-sample_a.ply" || fail "'zoom': the stream does not follow the zoomed view (above)"
+  fi
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100")
   gui unordered points "$T/layer.mlp"
   GUI_ENV=() GUI_POINTS=''
