@@ -1557,6 +1557,33 @@ decorate_styles)
   expect_log badmap "pointnpr decorator: style map file: .*badmap.txt:1: .*; drawn without"
   ;;
 
+streampic)
+  # Not a test (no ctest entry): the picture of docs/meshlab.md, "A sample layer streamed by the
+  # view". PNPR_STREAM_INPUT: a PLY ordered for drawing (pointnpr convert --lod); a uniform sample
+  # of a twentieth of its points (x y z red green blue, offsets from PNPR_STREAM_ORIGIN="X Y Z",
+  # placed there by a project file's Tr) opened in the GUI, zoomed in by PNPR_STREAM_WHEEL notches
+  # (default 8), drawn in PNPR_STREAM_STYLE (default sketchy): snapshots streampic-layer-npr.png
+  # (the layer as it is) and streampic-stream-npr.png (streamed).
+  [[ -n "$DECORATE" && -f "${PNPR_STREAM_INPUT:-}" ]] ||
+    die "usage: PNPR_STREAM_INPUT=FILE.ply PNPR_STREAM_ORIGIN='X Y Z' run.sh streampic PLUGIN CLI WORKDIR DECORATE"
+  ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
+  read -r ox oy oz <<< "${PNPR_STREAM_ORIGIN:-0 0 0}"
+  to_ascii "$PNPR_STREAM_INPUT" "$T/input_a.ply" || die "cannot read $PNPR_STREAM_INPUT"
+  awk -v ox="$ox" -v oy="$oy" -v oz="$oz" '/^element vertex/ { n = $3 } /^property/ && !b { col[$NF] = np++ }
+    /^end_header/ { b = 1; m = int(n / 20); print "ply\nformat ascii 1.0\nelement vertex " m
+      print "property float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header"; next }
+    b && (++k % 20) == 0 && k <= 20 * m { printf "%.3f %.3f %.3f %d %d %d\n", $1 - ox, $2 - oy, $3 - oz, $(col["red"] + 1), $(col["green"] + 1), $(col["blue"] + 1) }' \
+    "$T/input_a.ply" > "$T/layer.ply"
+  printf '<!DOCTYPE MeshLabDocument>\n<MeshLabProject>\n <MeshGroup>\n  <MLMesh label="layer.ply" filename="layer.ply" visible="1">\n   <MLMatrix44>\n1 0 0 %s \n0 1 0 %s \n0 0 1 %s \n0 0 0 1 \n</MLMatrix44>\n  </MLMesh>\n </MeshGroup>\n <RasterGroup/>\n</MeshLabProject>\n' "$ox" "$oy" "$oz" > "$T/layer.mlp"
+  GUI_POINTS=$(awk '/^element vertex/ { print $3; exit }' "$T/layer.ply")
+  GUI_ENV=(PNPR_MESHLAB_TEST_WHEEL="${PNPR_STREAM_WHEEL:-8}")
+  gui streampic-layer "${PNPR_STREAM_STYLE:-sketchy}" "$T/layer.mlp"
+  GUI_ENV=(PNPR_MESHLAB_TEST_WHEEL="${PNPR_STREAM_WHEEL:-8}" PNPR_MESHLAB_TEST_SAMPLE_OF="$PNPR_STREAM_INPUT"
+           PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="$ox $oy $oz")
+  gui streampic-stream "${PNPR_STREAM_STYLE:-sketchy}" "$T/layer.mlp"
+  grep -h "streamed\|^points" "$T/streampic-stream.log" "$T"/streampic-*-camera.txt
+  ;;
+
 drag)
   # Not a test (no ctest entry): the frame rates of docs/meshlab.md. The GUI on PNPR_DRAG_INPUT (a
   # PLY), the decorator in each of PNPR_DRAG_STYLES (default "points sketchy"): once a frame at
