@@ -56,6 +56,35 @@ static void check_ranges(const uint8_t *data, size_t size, const pnpr_lod *l)
     free(runs);
 }
 
+/* The view's pieces on whatever grid parsed (huge sides, far origins): the cells as balls, a
+ * solve, the ranges a share reaches, valid and within the points. */
+static void check_view(const pnpr_lod *l)
+{
+    double eye[3], target[3];
+    for (int a = 0; a < 3; a++) {
+        target[a] = l->origin[a] + 0.5 * l->side * (double)l->n[a];
+        eye[a] = target[a] - (a == 2 ? -3.0 : 2.0) * l->side * (double)l->n[a] - 1.0;
+    }
+    pnpr_view_sample v;
+    if (pnpr_view_sample_init(&v, eye, target, 50, 640, 480) != PNPR_OK) return; /* not finite: no view */
+    pnpr_lod_add_cells(l, &v);
+    pnpr_view_sample_solve(&v, (double)l->points / 3.0, 0);
+    const size_t cells = (size_t)l->cells + 1;
+    uint64_t *ranges = malloc(2 * cells * sizeof *ranges);
+    uint8_t *runs = malloc(cells);
+    if (!ranges || !runs) abort();
+    size_t m = 0;
+    double n = pnpr_lod_plan_ranges(l, &v, 1, ranges, runs, &m);
+    double sum = 0;
+    for (size_t g = 0; g < m; g++) {
+        if (ranges[2 * g] >= ranges[2 * g + 1] || ranges[2 * g + 1] > l->points) abort();
+        sum += (double)(ranges[2 * g + 1] - ranges[2 * g]);
+    }
+    if (n != sum || n > (double)l->points) abort();
+    free(ranges);
+    free(runs);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     pnpr_lod l;
@@ -77,6 +106,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (j != (int)(cursor % PNPR_LOD_LEVELS) || l.start[cursor] > v || l.start[cursor + 1] <= v) abort();
     }
     check_ranges(data, size, &l);
+    check_view(&l);
     pnpr_lod_free(&l);
     return 0;
 }
