@@ -7,6 +7,7 @@
  * (pnpr_lod_kept) is below its share, so both kinds of file keep the same rule. */
 #include "../core/internal.h"
 #include <pointnpr/lod.h>
+#include <pointnpr/props.h>
 
 #include <math.h>
 #include <stdlib.h>
@@ -133,6 +134,31 @@ pnpr_status pnpr_lod_view_refine(const char *path, const pnpr_lod *l, pnpr_view_
     free(ranges);
     free(runs);
     return st;
+}
+
+/* ---- the spacing of a sample ---------------------------------------------------------------- */
+
+float pnpr_lod_grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double uniform)
+{
+    pnpr_property *sp = pnpr_cloud_find_property(cloud, PNPR_PROP_POINT_SPACING);
+    if (!sp || sp->type != PNPR_TYPE_FLOAT32) return 0;
+    double sum = 0, weight = 0;
+    for (size_t i = 0; i < cloud->count; i++) {
+        double share = uniform;
+        if (v) {
+            double w[3];
+            pnpr_cloud_world(cloud, i, w);
+            share = pnpr_view_sample_share(v, w);
+        }
+        if (!(share > 0) || share > 1) share = 1;
+        float *s = (float *)sp->data + i;
+        if (isfinite(*s) && *s >= 0) {
+            sum += *s / share;
+            weight += 1 / share;
+        }
+        if (share < 1) *s /= (float)sqrt(share);
+    }
+    return weight > 0 ? (float)(sum / weight) : 0;
 }
 
 /* ---- a sample by views ---------------------------------------------------------------------- */

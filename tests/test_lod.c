@@ -6,6 +6,7 @@
 
 #include <pointnpr/io.h>
 #include <pointnpr/lod.h>
+#include <pointnpr/props.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -350,6 +351,43 @@ static void test_view(void)
         CHECK_STATUS(pnpr_lod_read_view(path, &none, 10, NULL, &c, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
         ro.keep = keep_ranked;
         CHECK_STATUS(pnpr_lod_read_view(path, &v, 10, &ro, &c, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);
+    }
+    /* the stored spacing of a sample grows by 1/sqrt of each point's share; the estimate of the
+     * whole cloud's mean weighs each point by 1/share */
+    {
+        pnpr_view_sample v;
+        CHECK_STATUS(pnpr_view_sample_init(&v, eye, target, 50, 640, 480), PNPR_OK);
+        pnpr_cloud c = {0}, all = {0};
+        pnpr_error err = {0};
+        CHECK_STATUS(pnpr_lod_read_view(DIR "/scene_lod.ply", &v, 1500, NULL, &c, NULL, &err), PNPR_OK);
+        CHECK_STATUS(pnpr_cloud_add_property(&c, PNPR_PROP_POINT_SPACING, PNPR_TYPE_FLOAT32, NULL), PNPR_OK);
+        pnpr_property *sp = pnpr_cloud_find_property(&c, PNPR_PROP_POINT_SPACING);
+        double sum = 0, weight = 0;
+        for (size_t i = 0; i < c.count; i++) {
+            ((float *)sp->data)[i] = 0.5f + 0.25f * (float)(i % 3);
+            double w[3];
+            pnpr_cloud_world(&c, i, w);
+            double share = pnpr_view_sample_share(&v, w);
+            sum += ((float *)sp->data)[i] / share;
+            weight += 1 / share;
+        }
+        float tone = pnpr_lod_grow_spacing(&c, &v, 1);
+        CHECK_MSG(fabsf(tone - (float)(sum / weight)) < 1e-4f && tone > 0.5f && tone < 1.0f, "tone radius %g", tone);
+        size_t bad = 0, grown = 0;
+        for (size_t i = 0; i < c.count; i++) {
+            double w[3];
+            pnpr_cloud_world(&c, i, w);
+            double share = pnpr_view_sample_share(&v, w), want = (0.5 + 0.25 * (double)(i % 3)) / sqrt(share < 1 ? share : 1);
+            bad += fabs(((float *)sp->data)[i] - want) > 1e-5 * want;
+            grown += share < 1;
+        }
+        CHECK_MSG(bad == 0 && grown > c.count / 2, "%zu wrong, %zu grown of %zu", bad, grown, c.count);
+        /* uniform: 1/4 doubles every spacing; no stored spacing: 0, nothing changed */
+        float before = ((float *)sp->data)[0];
+        pnpr_lod_grow_spacing(&c, NULL, 0.25);
+        CHECK(fabsf(((float *)sp->data)[0] - 2 * before) < 1e-6f);
+        CHECK(pnpr_lod_grow_spacing(&all, NULL, 0.5) == 0);
+        pnpr_cloud_free(&c);
     }
     /* the order's estimate of c against the pass over every point */
     CHECK_MSG(fabs(c_of[1] / c_of[0] - 1) < 0.1, "c %g ordered, %g ordinary", c_of[1], c_of[0]);

@@ -147,6 +147,14 @@ PNPR_NODISCARD pnpr_status pnpr_lod_view_refine(const char *path, const pnpr_lod
                                                 double want, double frame_want, const pnpr_progress *progress,
                                                 pnpr_error *err);
 
+/* The stored point spacing (PNPR_PROP_POINT_SPACING, float; the renderer's disk radii) of a
+ * sample grown by 1/sqrt of each point's share, as the spacing of a thinned surface grows: the
+ * share by the views of v once solved, or `uniform` (v NULL). Returns the whole cloud's mean
+ * spacing as the sample estimates it (each point standing for 1/share of them, with its spacing
+ * before growing): the tone hatches' length (pnpr_upload_options.tone_radius), which the grown
+ * spacing would stretch; 0 without a stored spacing. */
+float pnpr_lod_grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double uniform);
+
 typedef struct pnpr_lod_read_info {
     uint64_t total;    /* the file's points */
     uint64_t visited;  /* the points of the ranges the last pass read (ordered), else total */

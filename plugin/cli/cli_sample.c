@@ -16,7 +16,6 @@
 #include <pointnpr/crq.h>
 #include <pointnpr/lod.h>
 #include <pointnpr/memory.h>
-#include <pointnpr/props.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -179,34 +178,6 @@ static double lod_plan(lod_read *lr, const pnpr_view_sample *v, double uniform)
     return pnpr_lod_plan_ranges(&lr->lod, v, uniform, lr->ranges, lr->runs, &lr->count);
 }
 
-/* The stored point spacing (the disk radii) grown by 1/sqrt of each point's share, as the spacing
- * of a thinned surface grows: `uniform`, or the view's share of the point. Returns the whole
- * cloud's mean spacing as the sample estimates it (each point standing for 1/share of them, with
- * its spacing before growing), 0 without a stored spacing: the tone hatches' length, which the
- * grown spacing would stretch (pnpr_upload_options.tone_radius). */
-static float grow_spacing(pnpr_cloud *cloud, const pnpr_view_sample *v, double uniform)
-{
-    pnpr_property *sp = pnpr_cloud_find_property(cloud, PNPR_PROP_POINT_SPACING);
-    if (!sp || sp->type != PNPR_TYPE_FLOAT32) return 0;
-    double sum = 0, weight = 0;
-    for (size_t i = 0; i < cloud->count; i++) {
-        double share = uniform;
-        if (v) {
-            double w[3];
-            pnpr_cloud_world(cloud, i, w);
-            share = pnpr_view_sample_share(v, w);
-        }
-        if (!(share > 0) || share > 1) share = 1;
-        float *s = (float *)sp->data + i;
-        if (isfinite(*s) && *s >= 0) {
-            sum += *s / share;
-            weight += 1 / share;
-        }
-        if (share < 1) *s /= (float)sqrt(share);
-    }
-    return weight > 0 ? (float)(sum / weight) : 0;
-}
-
 /* The views of the cameras (the frames to draw) into k, each view's own histogram when there are
  * several (the frame's cap); 0 when there are none, or one is not a look-at view (the frame would
  * not draw either). */
@@ -294,7 +265,7 @@ static int read_sample(const char *cmd, const char *in, pnpr_read_options *ro, s
     if (!ro->keep) return 1;
     uint64_t points = lr->on ? lr->lod.points : vk ? vk->seen : keep.seen;
     double kept = points ? (double)cloud->count / (double)points : 1;
-    *r_tone_radius = grow_spacing(cloud, vk ? &vk->v : NULL, kept);
+    *r_tone_radius = pnpr_lod_grow_spacing(cloud, vk ? &vk->v : NULL, kept);
     char a[32], how[96] = "";
     const char *what = !vk                ? "a uniform sample"
                        : vk->v.views > 1 ? "a sample by the frames' views (points near a camera kept, far and unseen ones thinned)"

@@ -271,6 +271,7 @@ struct DecorateContextState {
     std::unique_ptr<pnpr_meshlab::StreamJob> streamJob; /* the view's read running (one at a time) */
     uint64_t streamGen = 0;       /* a stream taken over or dropped: the layers are merged again */
     uint64_t layersSig = 0;       /* layerSignature of the layers merged (the stream's part left out) */
+    float toneRadius = 0;         /* the streams' estimate of their files' mean spacing (buildCloud; 0: none) */
     bool drawPrevious = false;    /* merged again for a stream alone: while the stages run on the new
                                    * sample, the renderer's previous one is drawn (not MeshLab's points) */
     bool streamBusy = false;      /* a stream runs or a layer's view is not read yet (the snapshot hook waits) */
@@ -752,7 +753,7 @@ struct LayerAttributes {
 struct PointIn {
     double p[3], n[3], dir[3];
     uint8_t rgb[3];
-    float cls, seg;
+    float cls, seg, spacing;
 };
 
 /* One drawn layer's points: MeshLab's vertices, or its stream (a view's sample of the file the
@@ -765,6 +766,7 @@ struct LayerPoints {
     size_t count = 0;
     bool colour = false, normals = false;
     const pnpr_property *cls = nullptr, *dir[3] = {nullptr, nullptr, nullptr};
+    const pnpr_property *spacing = nullptr; /* a stream's stored spacing (float), grown by its share */
 
     LayerPoints(MeshModel *m, const pnpr_meshlab::LayerStream *st) : mm(m), stream(st && st->cloud.count ? st : nullptr)
     {
@@ -779,6 +781,8 @@ struct LayerPoints {
             dir[2] = pnpr_cloud_find_property(&c, PNPR_PROP_FEATURE_DIR_Z);
             attrs.hasClass = cls && dir[0] && dir[1] && dir[2];
             attrs.hasSeg = c.label != nullptr;
+            spacing = pnpr_cloud_find_property(&c, PNPR_PROP_POINT_SPACING);
+            if (spacing && spacing->type != PNPR_TYPE_FLOAT32) spacing = nullptr;
             return;
         }
         count = (size_t)mm->cm.vn;
@@ -802,6 +806,7 @@ struct LayerPoints {
             }
             r.cls = attrs.hasClass ? (float)pnpr_type_get(cls->type, cls->data, i) : 0;
             r.seg = attrs.hasSeg && c.label[i] < 16777216u ? (float)c.label[i] : 0;
+            r.spacing = spacing ? ((const float *)spacing->data)[i] : 0;
             return true;
         }
         const CVertexO &v = mm->cm.vert[i];
@@ -814,6 +819,7 @@ struct LayerPoints {
         }
         r.cls = attrs.hasClass ? attrs.cls[i] : 0;
         r.seg = attrs.hasSeg ? attrs.seg[i] : 0;
+        r.spacing = 0;
         return true;
     }
 };
@@ -845,16 +851,18 @@ const char *const kLayerKey = "meshlab_layer";
  * when any layer has them, each layer's are kept, offset past the previous layer's, and a layer
  * without them is one segment (said in the note). Several layers: kLayerKey. */
 pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_meshlab::LayerStream>> &streams,
-                       pnpr_cloud &cloud, bool &layerFeatures, OwnClasses &own, QString &note)
+                       pnpr_cloud &cloud, bool &layerFeatures, OwnClasses &own, float &toneRadius, QString &note)
 {
+    toneRadius = 0;
     pnpr_cloud_free(&cloud);
     own = OwnClasses();
     std::vector<LayerPoints> layers;
     size_t total = 0;
-    bool anyColour = false, allClass = true, anyClass = false, anySeg = false, allNormals = true;
+    bool anyColour = false, allClass = true, anyClass = false, anySeg = false, allNormals = true, allSpacing = true;
     QStringList withClass;
     size_t meshes = 0;
     QStringList stale, oneSegment, streamed;
+    double toneSum = 0; /* the streams' tone radii (in scene units), weighted by their points */
     for (MeshModel *mm : md.meshList) {
         if (!isDrawnLayer(mm)) continue;
         const pnpr_meshlab::LayerStream *st = nullptr;
@@ -867,6 +875,7 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
         total += lp.count;
         anyColour |= lp.colour;
         allNormals &= lp.normals;
+        allSpacing &= lp.spacing != nullptr;
         const LayerAttributes &la = lp.attrs;
         if (la.stale) stale << QString("'%1'").arg(mm->label());
         allClass &= la.hasClass;
@@ -884,6 +893,7 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
     std::vector<uint32_t> label(anySeg ? total : 0);
     std::vector<uint32_t> layerIndex(layers.size() > 1 ? total : 0);
     std::vector<float> normal(allNormals ? 3 * total : 0);
+    std::vector<float> spacing(allSpacing ? total : 0);
     size_t j = 0;
     uint32_t labelBase = 0;
     for (size_t li = 0; li < layers.size(); li++) {
@@ -899,6 +909,9 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
             for (int c = 0; c < 3; c++)
                 C[r][c] = T[(r + 1) % 3][(c + 1) % 3] * T[(r + 2) % 3][(c + 2) % 3] -
                           T[(r + 1) % 3][(c + 2) % 3] * T[(r + 2) % 3][(c + 1) % 3];
+        /* lengths grow with Tr's scale (the cube root of its upper 3x3's determinant) */
+        const double scale = std::cbrt(std::fabs(T[0][0] * C[0][0] + T[0][1] * C[0][1] + T[0][2] * C[0][2]));
+        if (allSpacing) toneSum += (double)lp.stream->toneRadius * scale * (double)lp.count;
         const LayerAttributes &la = lp.attrs;
         if (anySeg && !la.hasSeg) oneSegment << QString("'%1'").arg(mm->label());
         uint32_t maxLabel = 0;
@@ -933,6 +946,7 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
                 label[j] = labelBase + l;
                 maxLabel = std::max(maxLabel, l);
             }
+            if (allSpacing) spacing[j] = (float)(v.spacing * scale);
             if (!layerIndex.empty()) layerIndex[j] = (uint32_t)li;
             j++;
         }
@@ -955,6 +969,10 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
     if (st == PNPR_OK && allNormals && (st = pnpr_cloud_alloc_normals(&cloud)) == PNPR_OK)
         std::memcpy(cloud.normal, normal.data(), 3 * j * sizeof(float));
     pnpr_property *pk = nullptr;
+    if (st == PNPR_OK && allSpacing && (st = pnpr_cloud_add_property(&cloud, PNPR_PROP_POINT_SPACING, PNPR_TYPE_FLOAT32, &pk)) == PNPR_OK) {
+        std::memcpy(pk->data, spacing.data(), j * sizeof(float));
+        toneRadius = j && toneSum > 0 && std::isfinite(toneSum) ? (float)(toneSum / (double)j) : 0;
+    }
     if (st == PNPR_OK && !layerIndex.empty() && (st = pnpr_cloud_add_property(&cloud, kLayerKey, PNPR_TYPE_UINT32, &pk)) == PNPR_OK)
         std::memcpy(pk->data, layerIndex.data(), j * sizeof(uint32_t));
     if (st == PNPR_OK && allClass) {
@@ -991,7 +1009,9 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
                .arg(stale.isEmpty() ? QString()
                                     : QString("; the attributes of %1 belong to an older version of the layer (reloaded or "
                                               "edited): left out").arg(stale.join(", ")));
-    if (!streamed.isEmpty()) note += QString("; %1 streamed for the view").arg(streamed.join(", "));
+    if (!streamed.isEmpty())
+        note += QString("; %1 streamed for the view%2").arg(streamed.join(", "))
+                    .arg(allSpacing ? ", point spacing from the file grown by the view's share" : "");
     return st;
 }
 
@@ -1358,7 +1378,7 @@ static bool refreshLayers(MeshDocument &md, DecorateContextState *s, const Repor
     s->job.reset(); /* cancels and waits: its results would be those of the old layers */
     QElapsedTimer t;
     t.start();
-    pnpr_status st = buildCloud(md, s->streams, s->cloud, s->layerFeatures, s->ownClasses, s->layersNote);
+    pnpr_status st = buildCloud(md, s->streams, s->cloud, s->layerFeatures, s->ownClasses, s->toneRadius, s->layersNote);
     s->built = true;
     s->signature = sig;
     s->needUpload = true;
@@ -1661,6 +1681,7 @@ static void takeStream(DecorateContextState *s, const Reporter &report)
         if (ls->meshId != j.meshId || ls->path != j.path) continue;
         if (j.status == PNPR_OK) {
             std::swap(ls->cloud, j.cloud);
+            ls->toneRadius = j.toneRadius;
             ls->view = j.view;
             s->streamGen++;
             const pnpr_lod_read_info &in = j.info;
@@ -1955,6 +1976,7 @@ static bool uploadIfNeeded(DecorateContextState *s, const pnpr_tone_options &ton
         pnpr_upload_options uo;
         std::memset(&uo, 0, sizeof uo);
         uo.tone = tone; /* colourless clouds: greys lit from the scene's up */
+        uo.tone_radius = s->toneRadius; /* a stream's spacing grows by its share: the hatches keep the file's */
         uo.skip_painterly = !paints;
         s->skippedPainterly = !paints;
         uo.style_key = keyed ? kLayerKey : nullptr;

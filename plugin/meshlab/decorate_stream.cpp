@@ -116,6 +116,7 @@ void StreamJob::run()
         ro.progress.user = this;
         status = pnpr_lod_read_view(path.c_str(), &vs, points, &ro, &cloud, &info, &err);
     }
+    if (status == PNPR_OK) toneRadius = pnpr_lod_grow_spacing(&cloud, &vs, 1); /* the disk radii of a thinned surface */
     if (status != PNPR_OK) {
         message = err.message[0] ? err.message : pnpr_status_string(status);
         pnpr_cloud_free(&cloud);

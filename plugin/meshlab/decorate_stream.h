@@ -41,7 +41,9 @@ struct LayerStream {
     std::string path;          /* the file (local 8-bit) */
     double origin[3] = {0, 0, 0};
     int ordered = -1;          /* the file is ordered for drawing: -1 not checked yet */
-    pnpr_cloud cloud{};        /* the sample of `view` (count 0: none yet: the layer's vertices) */
+    pnpr_cloud cloud{};        /* the sample of `view` (count 0: none yet: the layer's vertices),
+                                * its stored point spacing grown by the view's share */
+    float toneRadius = 0;      /* the file's mean spacing as the sample estimates it (0: none) */
     StreamView view;           /* the view of cloud */
     StreamView wanted;         /* the view asked for last */
     LayerStream() = default;
@@ -71,6 +73,7 @@ public:
     std::string message;        /* the library's, when status is not PNPR_OK */
     pnpr_cloud cloud{};
     pnpr_lod_read_info info{};
+    float toneRadius = 0;       /* pnpr_lod_grow_spacing's estimate (0: no stored spacing) */
     long elapsedMs = 0;
 
 private:

@@ -1311,15 +1311,16 @@ stream)
   gui drag points "$T/layer.mlp" && stream_check drag 0
   GUI_WAIT=''
   cmp -s "$T/stream-camera.txt" "$T/drag-camera.txt" && fail "'drag': the view did not change"
-  # zoomed in (the wheel, 16 notches) on a plate of 400 000 points, 20 x 20 across the view: the
-  # view's cone holds fewer points than the layer's 20 000, so the stream holds every one of them:
-  # each point of the file inside the viewport, where the layer has about a twentieth
+  # zoomed in (the wheel, 16 notches) on a plate of 400 000 points, 20 x 20 across the view, with
+  # the features of pointnpr: the view's cone holds fewer points than the layer's 20 000, so the
+  # stream holds every one of them: each point of the file inside the viewport, where the layer
+  # has about a twentieth; the file's point spacing is uploaded (no kNN of the decorator's own)
   awk 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
     BEGIN { S = 13; n = 400000; print "ply\nformat ascii 1.0\nelement vertex " n
       print "property double x\nproperty double y\nproperty double z\nend_header"
       for (i = 0; i < n; i++) printf "%.3f %.3f %.3f\n", 500000 + 20 * rnd() - 10, 4200000 + 20 * rnd() - 10, 100 + 0.2 * rnd() - 0.1 }' > "$T/plate.txt.ply"
-  "$CLI" convert "$T/plate.txt.ply" -o "$T/plate.ply" --quiet && "$CLI" convert "$T/plate.ply" -o "$T/plate_lod.ply" --lod --quiet ||
-    die "pointnpr convert --lod failed"
+  "$CLI" features "$T/plate.txt.ply" -o "$T/plate.ply" --quiet && "$CLI" convert "$T/plate.ply" -o "$T/plate_lod.ply" --lod --quiet ||
+    die "pointnpr features or convert --lod failed"
   awk '/^element vertex/ { $3 = 20000 } /^end_header/ { print; b = 1; next } !b { print; next }
     (++k % 20) == 0 { printf "%.3f %.3f %.3f\n", $1 - 500000, $2 - 4200000, $3 - 100 }' "$T/plate.txt.ply" > "$T/plate_layer.ply"
   sed 's/layer\.ply/plate_layer.ply/g' "$T/layer.mlp" > "$T/plate.mlp"
@@ -1338,6 +1339,7 @@ stream)
       END { printf "zoom: streamed %d points, %d in the viewport, of the file'"'"'s %d there; the layer %d, %d in it\n", sn, sv, fv, ln, lv
             exit (sn < 20000 && fv > 500 && sv == fv && lv < fv / 10) ? 0 : 1 }' \
       "$T/zoom-camera.txt" "$T/plate.txt.ply" "$T/plate_layer.ply" "$T/zoom-sample_a.ply" || fail "'zoom': the stream does not follow the zoomed view (above)"
+    expect_log zoom "uploaded [0-9]+ points from 1 layer\\(s\\).*'plate_layer.ply' streamed for the view, point spacing from the file grown by the view's share"
   fi
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100")
   gui unordered points "$T/layer.mlp"
