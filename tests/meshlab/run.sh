@@ -1267,20 +1267,28 @@ stream)
   [[ -n "$DECORATE" ]] || die "no decorate plugin given (5th argument)"
   [[ -x "$GUI_BIN" ]] || die "$GUI_BIN not found (packaging/install-deps.sh installs meshlab)"
   ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
-  awk 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
-    BEGIN { S = 11; n = 400000; print "ply\nformat ascii 1.0\nelement vertex " n
-      print "property double x\nproperty double y\nproperty double z\nend_header"
-      for (i = 0; i < n; i++) printf "%.3f %.3f %.3f\n", 500000 + 2 * rnd() - 1, 4200000 + 2 * rnd() - 1, 100 + 20 * rnd() - 10 }' > "$T/box.txt.ply"
-  "$CLI" convert "$T/box.txt.ply" -o "$T/box.ply" --quiet && "$CLI" convert "$T/box.ply" -o "$T/box_lod.ply" --lod --quiet ||
-    die "pointnpr convert --lod failed"
-  awk '/^element vertex/ { $3 = 20000 } /^end_header/ { print; b = 1; next } !b { print; next }
-    (++k % 20) == 0 { printf "%.3f %.3f %.3f\n", $1 - 500000, $2 - 4200000, $3 - 100 }' "$T/box.txt.ply" > "$T/layer.ply"
-  printf '<!DOCTYPE MeshLabDocument>\n<MeshLabProject>\n <MeshGroup>\n  <MLMesh label="layer.ply" filename="layer.ply" visible="1">\n   <MLMatrix44>\n1 0 0 500000 \n0 1 0 4200000 \n0 0 1 100 \n0 0 0 1 \n</MLMatrix44>\n  </MLMesh>\n </MeshGroup>\n <RasterGroup/>\n</MeshLabProject>\n' > "$T/layer.mlp"
+  # stream_scene NAME SEED HX HY HZ TOOL: 400 000 random points in the box of half-sides HX HY HZ
+  # around (5e5, 4.2e6, 100), in doubles (NAME.txt.ply); TOOL (convert, or features) writes
+  # NAME.ply, then NAME_lod.ply ordered for drawing; NAME_layer.ply: every 20th point as offsets
+  # from that origin, and NAME.mlp, a project placing it there by its Tr
+  stream_scene() {
+    awk -v S="$2" -v hx="$3" -v hy="$4" -v hz="$5" 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
+      BEGIN { n = 400000; print "ply\nformat ascii 1.0\nelement vertex " n
+        print "property double x\nproperty double y\nproperty double z\nend_header"
+        for (i = 0; i < n; i++) printf "%.3f %.3f %.3f\n", 500000 + hx * (2 * rnd() - 1), 4200000 + hy * (2 * rnd() - 1), 100 + hz * (2 * rnd() - 1) }' > "$T/$1.txt.ply"
+    "$CLI" "$6" "$T/$1.txt.ply" -o "$T/$1.ply" --quiet && "$CLI" convert "$T/$1.ply" -o "$T/$1_lod.ply" --lod --quiet ||
+      die "pointnpr $6 or convert --lod failed"
+    awk '/^element vertex/ { $3 = 20000 } /^end_header/ { print; b = 1; next } !b { print; next }
+      (++k % 20) == 0 { printf "%.3f %.3f %.3f\n", $1 - 500000, $2 - 4200000, $3 - 100 }' "$T/$1.txt.ply" > "$T/$1_layer.ply"
+    printf '<!DOCTYPE MeshLabDocument>\n<MeshLabProject>\n <MeshGroup>\n  <MLMesh label="%s" filename="%s" visible="1">\n   <MLMatrix44>\n1 0 0 500000 \n0 1 0 4200000 \n0 0 1 100 \n0 0 0 1 \n</MLMatrix44>\n  </MLMesh>\n </MeshGroup>\n <RasterGroup/>\n</MeshLabProject>\n' \
+      "$1_layer.ply" "$1_layer.ply" > "$T/$1.mlp"
+  }
+  stream_scene box 11 1 1 10 convert
   # stream_check NAME MIN: the sample streamed last is the view's of NAME's frame, its near/far
   # ratio at least MIN by 1/depth^2
   stream_check() {
     expect_log "$1" "pointnpr decorator: streamed [0-9]+ of the 400000 points of .*box_lod.ply for the view \\(20000 asked"
-    expect_log "$1" "pointnpr decorator: uploaded [0-9]+ points from 1 layer\\(s\\).*'layer.ply' streamed for the view"
+    expect_log "$1" "pointnpr decorator: uploaded [0-9]+ points from 1 layer\\(s\\).*'box_layer.ply' streamed for the view"
     local got
     got=$(sed -n 's/.*pointnpr decorator: streamed \([0-9]*\) of the 400000 points.*/\1/p' "$T/$1.log" | tail -n 1)
     grep -q "^points ${got:-x} drawn " "$T/$1-camera.txt" ||
@@ -1302,28 +1310,20 @@ stream)
   GUI_POINTS=20000
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
            PNPR_MESHLAB_TEST_STREAM_OUT="$T/stream-sample.ply")
-  gui stream points "$T/layer.mlp" && stream_check stream 2
+  gui stream points "$T/box.mlp" && stream_check stream 2
   # the normals of the new sample are computed in the background, the first sample drawn meanwhile
   expect_log stream "computing features for the points style in the background \\(20000 points\\): MeshLab's own points meanwhile"
   expect_log stream "computing features for the points style in the background \\([0-9]+ points\\): the previous sample meanwhile"
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
            PNPR_MESHLAB_TEST_STREAM_OUT="$T/drag-sample.ply" PNPR_MESHLAB_TEST_DRAG=1) GUI_WAIT="$T/drag-drag.txt"
-  gui drag points "$T/layer.mlp" && stream_check drag 0
+  gui drag points "$T/box.mlp" && stream_check drag 0
   GUI_WAIT=''
   cmp -s "$T/stream-camera.txt" "$T/drag-camera.txt" && fail "'drag': the view did not change"
   # zoomed in (the wheel, 16 notches) on a plate of 400 000 points, 20 x 20 across the view, with
   # the features of pointnpr: the view's cone holds fewer points than the layer's 20 000, so the
   # stream holds every one of them: each point of the file inside the viewport, where the layer
   # has about a twentieth; the file's point spacing is uploaded (no kNN of the decorator's own)
-  awk 'function rnd() { S = (S * 16807) % 2147483647; return S / 2147483647 }
-    BEGIN { S = 13; n = 400000; print "ply\nformat ascii 1.0\nelement vertex " n
-      print "property double x\nproperty double y\nproperty double z\nend_header"
-      for (i = 0; i < n; i++) printf "%.3f %.3f %.3f\n", 500000 + 20 * rnd() - 10, 4200000 + 20 * rnd() - 10, 100 + 0.2 * rnd() - 0.1 }' > "$T/plate.txt.ply"
-  "$CLI" features "$T/plate.txt.ply" -o "$T/plate.ply" --quiet && "$CLI" convert "$T/plate.ply" -o "$T/plate_lod.ply" --lod --quiet ||
-    die "pointnpr features or convert --lod failed"
-  awk '/^element vertex/ { $3 = 20000 } /^end_header/ { print; b = 1; next } !b { print; next }
-    (++k % 20) == 0 { printf "%.3f %.3f %.3f\n", $1 - 500000, $2 - 4200000, $3 - 100 }' "$T/plate.txt.ply" > "$T/plate_layer.ply"
-  sed 's/layer\.ply/plate_layer.ply/g' "$T/layer.mlp" > "$T/plate.mlp"
+  stream_scene plate 13 10 10 0.1 features
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/plate_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
            PNPR_MESHLAB_TEST_STREAM_OUT="$T/zoom-sample.ply" PNPR_MESHLAB_TEST_WHEEL=16)
   if gui zoom points "$T/plate.mlp" && to_ascii "$T/zoom-sample.ply" "$T/zoom-sample_a.ply"; then
@@ -1342,9 +1342,9 @@ stream)
     expect_log zoom "uploaded [0-9]+ points from 1 layer\\(s\\).*'plate_layer.ply' streamed for the view, point spacing from the file grown by the view's share"
   fi
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100")
-  gui unordered points "$T/layer.mlp"
+  gui unordered points "$T/box.mlp"
   GUI_ENV=() GUI_POINTS=''
-  expect_log unordered "layer 'layer.ply' is a sample of .*box.ply, which is not ordered for drawing: the layer is drawn as it is"
+  expect_log unordered "layer 'box_layer.ply' is a sample of .*box.ply, which is not ordered for drawing: the layer is drawn as it is"
   expect_no_log unordered "streamed [0-9]+ of"
   [[ $(grep -c "pointnpr decorator: .*which is not ordered for drawing" "$T/unordered.log") == 1 ]] || fail "'unordered': not said once"
   ;;
