@@ -182,7 +182,6 @@ static int keep_view(void *user, uint64_t i, const double p[3])
     return pnpr_lod_kept(r->l, i, &r->cursor, pnpr_view_sample_share(r->v, p));
 }
 
-
 pnpr_status pnpr_lod_read_view(const char *path, pnpr_view_sample *v, uint64_t points, const pnpr_read_options *opts,
                                pnpr_cloud *cloud, pnpr_lod_read_info *r_info, pnpr_error *err)
 {
@@ -221,7 +220,8 @@ pnpr_status pnpr_lod_read_view(const char *path, pnpr_view_sample *v, uint64_t p
         info.total = info.visited = r.seen;
         pnpr_view_sample_solve(v, (double)points, 0);
     }
-    info.in_view = v->least.visible;
+    /* an estimate when ordered (the runs read stand for the others): at most the points */
+    info.in_view = v->least.visible < info.total ? v->least.visible : info.total;
     r.solved = 1;
     r.cursor = 0;
     pass_progress pp2;

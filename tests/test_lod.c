@@ -294,6 +294,19 @@ static int log_progress(void *user, const char *stage, double f)
     return g->cancel_at && ++g->reports >= g->cancel_at;
 }
 
+typedef struct count_log {
+    int first, all; /* reports below 0.5 (the first of two passes), all reports */
+} count_log;
+
+static int count_progress(void *user, const char *stage, double f)
+{
+    (void)stage;
+    count_log *n = user;
+    n->first += f < 0.5;
+    n->all++;
+    return 0;
+}
+
 static void test_view(void)
 {
     const double eye[3] = {5e5 + 20, 4.2e6 + 20, 120}, target[3] = {5e5 + 50, 4.2e6 + 20, 108};
@@ -340,12 +353,27 @@ static void test_view(void)
         pnpr_cloud_free(&c);
         pnpr_cloud_free(&all);
         pnpr_lod_free(&l);
-        /* none asked: none kept; a cancel in the second pass */
+        /* none asked: none kept; a cancel in the first pass and in the second */
         CHECK_STATUS(pnpr_lod_read_view(path, &v, 0, NULL, &c, &info, &err), PNPR_OK);
-        CHECK(c.count == 0);
-        g = (progress_log){0, 0, 0, 3};
-        CHECK_STATUS(pnpr_lod_read_view(path, &v, 1500, &ro, &c, &info, &err), PNPR_ERR_CANCELLED);
-        pnpr_cloud_free(&c);
+        CHECK(c.count == 0 && info.in_view <= info.total);
+        int first = 0, reports = 0; /* the reports of the first pass, of both */
+        {
+            count_log n = {0, 0};
+            ro.progress = (pnpr_progress){count_progress, &n};
+            CHECK_STATUS(pnpr_lod_read_view(path, &v, 1500, &ro, &c, &info, &err), PNPR_OK);
+            pnpr_cloud_free(&c);
+            first = n.first;
+            reports = n.all;
+            ro.progress = (pnpr_progress){log_progress, &g};
+        }
+        CHECK_MSG(first >= 2 && reports > first + 1, "%d reports, %d in the first pass", reports, first);
+        const int at[2] = {2, first + 1};
+        for (int k = 0; k < 2; k++) {
+            g = (progress_log){0, 0, 0, at[k]};
+            CHECK_STATUS(pnpr_lod_read_view(path, &v, 1500, &ro, &c, &info, &err), PNPR_ERR_CANCELLED);
+            CHECK(c.count == 0 && (k == 0 ? g.last < 0.5 : g.last >= 0.5));
+            pnpr_cloud_free(&c);
+        }
         /* no view, a point filter of the caller's */
         pnpr_view_sample none = {0};
         CHECK_STATUS(pnpr_lod_read_view(path, &none, 10, NULL, &c, NULL, &err), PNPR_ERR_INVALID_ARGUMENT);

@@ -272,6 +272,9 @@ struct DecorateContextState {
     uint64_t streamGen = 0;       /* a stream taken over or dropped: the layers are merged again */
     uint64_t layersSig = 0;       /* layerSignature of the layers merged (the stream's part left out) */
     float toneRadius = 0;         /* the streams' estimate of their files' mean spacing (buildCloud; 0: none) */
+    bool uploaded = false;        /* the renderer holds an upload of the layers of uploadedLayersSig */
+    uint64_t uploadedLayersSig = 0; /* (the streams' part left out) for the styles of uploadedStyles */
+    uint32_t uploadedStyles = 0;
     bool drawPrevious = false;    /* merged again for a stream alone: while the stages run on the new
                                    * sample, the renderer's previous one is drawn (not MeshLab's points) */
     bool streamBusy = false;      /* a stream runs or a layer's view is not read yet (the snapshot hook waits) */
@@ -764,7 +767,7 @@ struct LayerPoints {
     const pnpr_meshlab::LayerStream *stream = nullptr;
     mutable LayerAttributes attrs; /* vcglib's handles read through non-const operator[] */
     size_t count = 0;
-    bool colour = false, normals = false;
+    bool colour = false, normals = false; /* normals: a stream's (a layer's are judged by meaningfulNormals) */
     const pnpr_property *cls = nullptr, *dir[3] = {nullptr, nullptr, nullptr};
     const pnpr_property *spacing = nullptr; /* a stream's stored spacing (float), grown by its share */
 
@@ -787,7 +790,6 @@ struct LayerPoints {
         }
         count = (size_t)mm->cm.vn;
         colour = mm->hasDataMask(MeshModel::MM_VERTCOLOR);
-        normals = meaningfulNormals(mm);
         attrs = LayerAttributes(mm->cm);
     }
     size_t entries() const { return stream ? stream->cloud.count : mm->cm.vert.size(); }
@@ -874,7 +876,7 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
         meshes += mm->cm.fn > 0;
         total += lp.count;
         anyColour |= lp.colour;
-        allNormals &= lp.normals;
+        allNormals = allNormals && (lp.stream ? lp.normals : meaningfulNormals(mm)); /* a pass over the layer: once needed */
         allSpacing &= lp.spacing != nullptr;
         const LayerAttributes &la = lp.attrs;
         if (la.stale) stale << QString("'%1'").arg(mm->label());
@@ -1373,7 +1375,7 @@ static bool refreshLayers(MeshDocument &md, DecorateContextState *s, const Repor
 {
     const uint64_t lsig = layerSignature(md), sig = lsig ^ (s->streamGen * 0x9E3779B97F4A7C15ull);
     if (s->built && sig == s->signature) return !s->uploadFailed && s->cloud.count > 0;
-    s->drawPrevious = s->built && lsig == s->layersSig && s->uploads > 0 && !s->uploadFailed && !s->needUpload;
+    s->drawPrevious = s->uploaded && !s->uploadFailed && lsig == s->uploadedLayersSig;
     s->layersSig = lsig;
     s->job.reset(); /* cancels and waits: its results would be those of the old layers */
     QElapsedTimer t;
@@ -1669,6 +1671,14 @@ static void testWriteStream(const pnpr_cloud &c)
     if (pnpr_write_file(out, &c, &wo, &err) != PNPR_OK) std::fprintf(stderr, "pointnpr decorator: %s\n", err.message);
 }
 
+/* The layer's own vertices drawn again (its sample was of another view). */
+static void dropSample(DecorateContextState *s, pnpr_meshlab::LayerStream &ls)
+{
+    if (ls.cloud.count) s->streamGen++;
+    pnpr_cloud_free(&ls.cloud);
+    ls.toneRadius = 0;
+}
+
 /* A finished read taken over (GUI thread): its layer draws the new sample from this frame on
  * (streamGen: the layers are merged again). A cancelled read is dropped; a failed one is logged
  * and not retried for that view. */
@@ -1693,7 +1703,8 @@ static void takeStream(DecorateContextState *s, const Reporter &report)
             testWriteStream(ls->cloud);
         } else if (j.status != PNPR_ERR_CANCELLED) {
             ls->view = j.view; /* not retried for this view */
-            report(QString("cannot stream %1 for the view: %2 (the last sample stays)")
+            dropSample(s, *ls);
+            report(QString("cannot stream %1 for the view: %2 (the layer is drawn as it is)")
                        .arg(QString::fromLocal8Bit(j.path.c_str())).arg(QString::fromStdString(j.message)), true);
         }
     }
@@ -1750,9 +1761,11 @@ static bool streamable(pnpr_meshlab::LayerStream &ls, const QString &label, cons
 }
 
 /* After a frame: the sample layers whose file is ordered for drawing get the view now on screen
- * read for them when the camera rests (one read at a time; a read of an older view is cancelled,
- * and so is any read while the camera moves). Layers no longer drawn, edited (stale stamp) or with
- * the stream off go back to their own vertices. */
+ * read for them when the camera rests (one read at a time, none while the stages run on the last
+ * sample; a read of an older view is cancelled, and so is any read while the camera moves).
+ * Layers no longer drawn, edited (stale stamp) or with the stream off go back to their own
+ * vertices, and so does a layer whose view cannot be streamed (orthographic, a transformation
+ * that is not a similarity): a sample of another view would lack what this one sees. */
 static void planStream(MeshDocument &md, DecorateContextState *s, bool on, const double mv[16], const double P[16],
                        const GLint vp[4], bool moving, const Reporter &report)
 {
@@ -1766,7 +1779,9 @@ static void planStream(MeshDocument &md, DecorateContextState *s, bool on, const
     for (auto &ls : s->streams)
         if (ls && ls->cloud.count) s->streamGen++; /* a sample drawn no more */
     s->streams = std::move(kept);
-    if (moving && s->streamJob) s->streamJob->cancel();
+    bool jobKept = false; /* the running read is for a layer still streamed */
+    for (auto &ls : s->streams) jobKept |= s->streamJob && s->streamJob->meshId == ls->meshId && s->streamJob->path == ls->path;
+    if (s->streamJob && (moving || !jobKept)) s->streamJob->cancel();
     s->streamBusy = s->streamJob != nullptr;
     if (moving) return;
     for (auto &ls : s->streams) {
@@ -1776,12 +1791,20 @@ static void planStream(MeshDocument &md, DecorateContextState *s, bool on, const
         for (int r = 0; r < 4; r++)
             for (int c = 0; c < 4; c++) T[r][c] = mm->cm.Tr[r][c];
         pnpr_meshlab::StreamView v;
-        if (!pnpr_meshlab::streamViewOf(mv, P, vp[2], vp[3], T, ls->origin, v) || v == ls->view) continue;
+        if (!pnpr_meshlab::streamViewOf(mv, P, vp[2], vp[3], T, ls->origin, v)) {
+            report(QString("the view of layer '%1' cannot be streamed (an orthographic view, or a transformation "
+                           "that is not a similarity): the layer is drawn as it is").arg(mm->label()), false);
+            dropSample(s, *ls);
+            ls->view = pnpr_meshlab::StreamView();
+            continue;
+        }
+        if (v == ls->view) continue;
         s->streamBusy = true;
         if (s->streamJob) { /* one at a time: an older view's read stops, this one starts when it has */
             if (s->streamJob->meshId != ls->meshId || s->streamJob->view != v) s->streamJob->cancel();
             continue;
         }
+        if (s->job) continue; /* the stages on the last sample first: its frame, then the next read */
         std::unique_ptr<pnpr_meshlab::StreamJob> job(new pnpr_meshlab::StreamJob);
         std::string why;
         if (!job->start(ls->meshId, ls->path, v, (uint64_t)mm->cm.vn, why)) {
@@ -1968,7 +1991,7 @@ static void applyTestLayerHooks(MeshDocument &md, DecorateContextState *s)
 /* Uploads the cloud when it changed (with painterly's data when a frame paints, keyed by the
  * layer index for styles per layer); false when the upload failed (logged). */
 static bool uploadIfNeeded(DecorateContextState *s, const pnpr_tone_options &tone, bool paints, bool keyed,
-                           const Reporter &report)
+                           uint32_t styles, const Reporter &report)
 {
     if (s->needUpload) {
         QElapsedTimer t;
@@ -1992,6 +2015,9 @@ static bool uploadIfNeeded(DecorateContextState *s, const pnpr_tone_options &ton
         }
         report(QString("uploaded %1 (layers read in %2 ms, upload %3 ms)").arg(s->layersNote).arg(s->layersMs).arg(t.elapsed()),
                false);
+        s->uploaded = true;
+        s->uploadedLayersSig = s->layersSig;
+        s->uploadedStyles = styles;
     }
     return true;
 }
@@ -2054,6 +2080,14 @@ static pnpr_draw_options frameOptions(DecorateContextState *s, const Params &prm
     return o;
 }
 
+/* Whether the renderer's previous upload is drawn while the stages run on a new stream: the same
+ * layers (the streams' part aside), uploaded for these styles and this key, not the hierarchy. */
+static bool drawsPrevious(const DecorateContextState *s, uint32_t styles, bool keyed)
+{
+    return s->drawPrevious && styles == s->uploadedStyles && keyed == s->keyedUpload &&
+           !(styles & (1u << PNPR_STYLE_HIERARCHY));
+}
+
 void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par, GLLogStream &lg)
 {
     void *ctx = pnpr_meshlab::currentGLContext();
@@ -2096,23 +2130,24 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
         pnpr_plan plan;
         if (!makePlan(s, prm, ls.bits, tone, plan, report)) return;
         pnpr_meshlab::StageRequest rq = stageRequest(s, plan, tone, styleNames(ls.bits));
-        if (rq.any()) startJob(s, rq, s->drawPrevious && !(ls.bits & (1u << PNPR_STYLE_HIERARCHY)), report);
+        if (rq.any()) startJob(s, rq, drawsPrevious(s, ls.bits, !s->cancelled && !ls.map.empty() && !ls.bySegment), report);
     }
-    /* While computing, MeshLab's own frame (its plain points) stays: nothing is uploaded or drawn,
-     * so the GUI thread is free (an upload's spacing kNN would hold it as long as the features).
-     * After a new stream alone, the renderer's previous sample is drawn meanwhile (not uploaded
-     * again; not for the hierarchy style, whose tree went with the old sample). */
-    const bool previous = s->job && s->drawPrevious && !(ls.bits & (1u << PNPR_STYLE_HIERARCHY));
-    if (s->job && !previous) return;
     /* plain points after a cancel (the style lacks what it needs) */
     bool plainPoints = s->cancelled;
     /* painterly's data (12-neighbour lists, colour passes: 4x the upload time and memory) only
      * for a frame that paints; a later painterly frame uploads again */
     bool paints = !plainPoints && (ls.bits & (1u << PNPR_STYLE_PAINTERLY));
-    if (paints && s->skippedPainterly) s->needUpload = true;
     bool keyed = !plainPoints && !ls.map.empty() && !ls.bySegment; /* styles per layer: the map reads the layer index */
+    /* While computing, MeshLab's own frame (its plain points) stays: nothing is uploaded or drawn,
+     * so the GUI thread is free (an upload's spacing kNN would hold it as long as the features).
+     * After a new stream alone, the renderer's previous sample of the same layers is drawn
+     * meanwhile, for the styles it was uploaded for (not uploaded again; not for the hierarchy
+     * style, whose tree went with the old sample). */
+    const bool previous = s->job && drawsPrevious(s, ls.bits, keyed);
+    if (s->job && !previous) return;
+    if (paints && s->skippedPainterly) s->needUpload = true;
     if (keyed != s->keyedUpload) s->needUpload = true; /* the key: the layer index, or the segments */
-    if (!previous && !uploadIfNeeded(s, tone, paints, keyed, report)) return;
+    if (!previous && !uploadIfNeeded(s, tone, paints, keyed, ls.bits, report)) return;
     if (!s->job) s->drawPrevious = false;
     if (s->linesPending && !previous) {
         s->linesPending = false;
@@ -2240,6 +2275,7 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
     glPopClientAttrib();
     glPopAttrib();
     if (st != PNPR_OK) {
+        if (previous) return; /* the previous upload cannot draw this frame: MeshLab's points until the stages end */
         report(QString("draw (%1) failed: %2").arg(fxDraw ? QString("effects") : styleNames(ls.bits)).arg(status(st, err)), true);
         return;
     }
@@ -2262,8 +2298,9 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
                          .arg(moving ? " (preview while moving)" : ""), false);
     if (moving && s->settle) s->settle->start(300); /* a full-budget frame once the camera rests */
     if (std::getenv("PNPR_MESHLAB_TEST_DRAG")) testDragFrame(s, moving, stats.points_drawn);
-    /* test-only: PNPR_MESHLAB_TEST_WHEEL=N turns the mouse wheel N notches (zooms in) at the first
-     * frame at rest (tests/meshlab/run.sh 'stream') */
+    /* test-only: PNPR_MESHLAB_TEST_WHEEL=N turns the mouse wheel N notches (zooms in) at the
+     * first frame at rest, then with PNPR_MESHLAB_TEST_ORTHO toggles MeshLab's orthographic
+     * camera (tests/meshlab/run.sh 'stream') */
     if (const char *wh = std::getenv("PNPR_MESHLAB_TEST_WHEEL")) {
         if (!s->testWheelDone && !moving && s->widget) {
             s->testWheelDone = true;
@@ -2271,6 +2308,13 @@ void DecoratePointnprPlugin::draw(MeshDocument &md, const RichParameterList *par
             for (int i = 0; i < std::min(50, std::max(0, std::atoi(wh))); i++)
                 QCoreApplication::postEvent(s->widget.data(), new QWheelEvent(c, QPointF(s->widget->mapToGlobal(c.toPoint())), QPoint(), QPoint(0, -120),
                                                                               Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false));
+            QMainWindow *mw = qobject_cast<QMainWindow *>(s->widget->window());
+            if (std::getenv("PNPR_MESHLAB_TEST_ORTHO") && mw) /* MeshLab's View > Toggle Orthographic Camera */
+                for (QAction *a : mw->findChildren<QAction *>())
+                    if (a->text() == "Toggle Orthographic Camera") {
+                        QTimer::singleShot(0, a, &QAction::trigger);
+                        break;
+                    }
         }
     }
 

@@ -55,6 +55,14 @@ bool streamViewOf(const double mv[16], const double P[16], int width, int height
         tt[r0] = Tr[r0][3];
     }
     if (!invert3(A, Ai) || !invert3(T, Ti)) return false;
+    /* a similarity (rotation, mirror, uniform scale): the field of view carries over; another
+     * transformation would widen or narrow it unevenly */
+    double n0 = T[0][0] * T[0][0] + T[1][0] * T[1][0] + T[2][0] * T[2][0];
+    for (int a = 0; a < 3; a++)
+        for (int b = a; b < 3; b++) {
+            double dot = T[0][a] * T[0][b] + T[1][a] * T[1][b] + T[2][a] * T[2][b];
+            if (std::fabs(dot - (a == b ? n0 : 0.0)) > 1e-6 * n0) return false;
+        }
     /* in MeshLab's world: the eye (eye space origin) and a point ahead (eye space (0, 0, -1)) */
     const double zero[3] = {0, 0, 0}, ahead[3] = {0, 0, -1};
     double eyeW[3], aheadW[3];

@@ -31,7 +31,8 @@ struct StreamView {
  * file of a layer whose vertices are the file's points less `origin`, placed by its Tr (row-major,
  * as vcg's Matrix44): the eye and a point ahead of it mapped back through Tr, the vertical field
  * of view from the projection. False for an orthographic or off-centre projection, a singular
- * modelview or Tr, or a view that is not finite (the layer is then drawn as it is). */
+ * modelview, a Tr that is not a similarity (rotation, mirror, uniform scale and translation: the
+ * cone would not carry over), or a view that is not finite (the layer is then drawn as it is). */
 bool streamViewOf(const double mv[16], const double P[16], int width, int height, const double Tr[4][4],
                   const double origin[3], StreamView &r);
 

@@ -799,6 +799,19 @@ bool FilterPointnprPlugin::runFeatures(LayerCloud &lc, pnpr_features_options &fo
 /* ---- NPR: Compute feature degree and classify points ------------------------------------- */
 
 namespace {
+/* Before a filter writes new attributes: those of an older version of the layer dropped
+ * (pnpr_meshlab::dropStaleAttributes), and what the log says of it (empty: nothing dropped). */
+QString dropStale(CMeshO &m, const QString &layer)
+{
+    std::string path;
+    const bool sample = pnpr_meshlab::meshValue<std::string>(m, pnpr_meshlab::kSampleFileName, path);
+    if (!pnpr_meshlab::dropStaleAttributes(m)) return QString();
+    return QString("pointnpr: layer '%1': dropped the attributes of an older version of the layer (reloaded or edited)%2")
+        .arg(layer)
+        .arg(sample ? "; as edited it is no longer a sample of its file: the NPR render decoration draws it as it is"
+                    : "");
+}
+
 /* The cloud's features (feature_degree ... properties, as the library and the files name them)
  * into the layer: vertex quality = degree, the attributes feature_class, feature_confidence and
  * feature_dir on vertex verts[i] for cloud point i (every other vertex 0), normals when
@@ -888,9 +901,8 @@ bool FilterPointnprPlugin::computeFeatures(MeshDocument &md, const RichParameter
     if (!runFeatures(lc, fo, pb, stats, seconds)) return false;
 
     /* ---- write back (nothing above touched the layer) ---- */
-    if (pnpr_meshlab::dropStaleAttributes(m))
-        Log("pointnpr: layer '%s': dropped the attributes of an older version of the layer (reloaded or edited)",
-            qUtf8Printable(layer));
+    const QString dropped = dropStale(m, layer);
+    if (!dropped.isEmpty()) Log("%s", qUtf8Printable(dropped));
     size_t counts[4] = {0, 0, 0, 0};
     if (!storeFeatures(*mm, lc.verts, cloud, !keepNormals, colorByClass, counts))
         return fail("internal error: the library returned no feature properties");
@@ -1290,9 +1302,8 @@ bool FilterPointnprPlugin::segment(MeshDocument &md, const RichParameterList &pa
     }
 
     /* ---- write back (nothing above touched the layer) ---- */
-    if (pnpr_meshlab::dropStaleAttributes(m))
-        Log("pointnpr: layer '%s': dropped the attributes of an older version of the layer (reloaded or edited)",
-            qUtf8Printable(layer));
+    const QString dropped = dropStale(m, layer);
+    if (!dropped.isEmpty()) Log("%s", qUtf8Printable(dropped));
     auto hSeg = attributeOfType<float>(m, kAttrSegment);
     for (CMeshO::VertexIterator vi = m.vert.begin(); vi != m.vert.end(); ++vi) hSeg[vi] = -1.0f;
     if (toQuality) mm->updateDataMask(MeshModel::MM_VERTQUALITY);

@@ -143,6 +143,17 @@ inline bool dropStaleAttributes(CMeshO &m)
     /* typed: vcglib's by-name deletion casts per-mesh attributes to the per-element base class */
     auto h = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<long long>(m, kStampName);
     vcg::tri::Allocator<CMeshO>::DeletePerMeshAttribute<long long>(m, h);
+    /* an edited sample is no longer the file's: a later stamp must not vouch for streaming it */
+    std::string path;
+    if (meshValue<std::string>(m, kSampleFileName, path)) {
+        auto hf = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<std::string>(m, kSampleFileName);
+        vcg::tri::Allocator<CMeshO>::DeletePerMeshAttribute<std::string>(m, hf);
+    }
+    vcg::Point3d o;
+    if (meshValue<vcg::Point3d>(m, kSampleOriginName, o)) {
+        auto ho = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<vcg::Point3d>(m, kSampleOriginName);
+        vcg::tri::Allocator<CMeshO>::DeletePerMeshAttribute<vcg::Point3d>(m, ho);
+    }
     return true;
 }
 

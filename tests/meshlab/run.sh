@@ -874,6 +874,11 @@ sample)
             exit (n > 4500 && d == n && edge > 20 && off == 0) ? 0 : 1 }' "$T/geo_a.ply" ||
       fail "the georeferenced sample lost its precision or its ridge (above)"
   fi
+  # an edited sample (a filter moved its points) is no longer the file's: computing its features
+  # drops the file it samples, so that the decoration draws it as edited
+  mlx "$T/edited.mlx" "$(open_xml "$T/plane_lod.ply" 5000)" '<filter name="Transform: Translate, Center, set Origin"><Param type="RichEnum" name="traslMethod" value="0" enum_cardinality="3"/><Param type="RichDynamicFloat" name="axisX" value="0.25" min="-10" max="10"/><Param type="RichDynamicFloat" name="axisY" value="0" min="-10" max="10"/><Param type="RichDynamicFloat" name="axisZ" value="0" min="-10" max="10"/><Param type="RichPoint3f" name="newOrigin" x="0" y="0" z="0"/><Param type="RichBool" name="Freeze" value="true"/><Param type="RichBool" name="allLayers" value="false"/></filter>' "$(features_xml)"
+  mlserver edited -i "$T/cube.ply" -o "$T/edited_s.ply" -s "$T/edited.mlx" && expect_rc edited 0 &&
+    expect_log edited "dropped the attributes of an older version of the layer \\(reloaded or edited\\); as edited it is no longer a sample of its file"
   # MeshLab's own importer opens the ordered file whole (the index element skipped)
   if mlserver import -i "$T/plane_lod.ply" -o "$T/import.ply" && expect_rc import 0 && to_ascii "$T/import.ply" "$T/import_a.ply"; then
     grep -q '^element vertex 40000$' "$T/import_a.ply" || fail "MeshLab did not open the 40000 points of the ordered file"
@@ -1340,6 +1345,15 @@ stream)
             exit (sn < 20000 && fv > 500 && sv == fv && lv < fv / 10) ? 0 : 1 }' \
       "$T/zoom-camera.txt" "$T/plate.txt.ply" "$T/plate_layer.ply" "$T/zoom-sample_a.ply" || fail "'zoom': the stream does not follow the zoomed view (above)"
     expect_log zoom "uploaded [0-9]+ points from 1 layer\\(s\\).*'plate_layer.ply' streamed for the view, point spacing from the file grown by the view's share"
+  fi
+  # orthographic (MeshLab's Toggle Orthographic Camera after the first view was streamed): that
+  # sample would lack what this view sees; the layer is drawn as it is, said
+  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
+           PNPR_MESHLAB_TEST_WHEEL=0 PNPR_MESHLAB_TEST_ORTHO=1)
+  if gui ortho points "$T/box.mlp"; then
+    expect_log ortho "the view of layer 'box_layer.ply' cannot be streamed \\(an orthographic view"
+    grep -q "^points 20000 drawn " "$T/ortho-camera.txt" || fail "'ortho': not the layer's own points ($(grep ^points "$T/ortho-camera.txt"))"
+    awk '$1 == "projection" { exit ($17 == 1 && $13 == 0) ? 0 : 1 }' "$T/ortho-camera.txt" || fail "'ortho': the view is not orthographic"
   fi
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100")
   gui unordered points "$T/box.mlp"
