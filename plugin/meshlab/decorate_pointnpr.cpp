@@ -865,6 +865,7 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
     size_t meshes = 0;
     QStringList stale, oneSegment, streamed;
     double toneSum = 0; /* the streams' tone radii (in scene units), weighted by their points */
+    bool measured = false; /* some stream's spacing was measured on its sample (its file had none) */
     for (MeshModel *mm : md.meshList) {
         if (!isDrawnLayer(mm)) continue;
         const pnpr_meshlab::LayerStream *st = nullptr;
@@ -873,6 +874,7 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
         layers.emplace_back(mm, st);
         const LayerPoints &lp = layers.back();
         if (lp.stream) streamed << QString("'%1'").arg(mm->label());
+        measured |= lp.stream && lp.stream->spacingMeasured;
         meshes += mm->cm.fn > 0;
         total += lp.count;
         anyColour |= lp.colour;
@@ -1013,7 +1015,8 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
                                               "edited): left out").arg(stale.join(", ")));
     if (!streamed.isEmpty())
         note += QString("; %1 streamed for the view%2").arg(streamed.join(", "))
-                    .arg(allSpacing ? ", point spacing from the file grown by the view's share" : "");
+                    .arg(!allSpacing ? "" : measured ? ", the sample's point spacing measured on the stream's thread"
+                                                     : ", point spacing from the file grown by the view's share");
     return st;
 }
 
@@ -1692,6 +1695,7 @@ static void takeStream(DecorateContextState *s, const Reporter &report)
         if (j.status == PNPR_OK) {
             std::swap(ls->cloud, j.cloud);
             ls->toneRadius = j.toneRadius;
+            ls->spacingMeasured = j.spacingMeasured;
             ls->view = j.view;
             s->streamGen++;
             const pnpr_lod_read_info &in = j.info;

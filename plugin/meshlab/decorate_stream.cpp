@@ -2,6 +2,10 @@
 #include "decorate_stream.h"
 
 #include <pointnpr/crq.h>
+#include <pointnpr/knn.h>
+#include <pointnpr/options.h>
+#include <pointnpr/props.h>
+#include <pointnpr/render.h>
 
 #include <chrono>
 #include <cmath>
@@ -125,12 +129,27 @@ void StreamJob::run()
         status = pnpr_lod_read_view(path.c_str(), &vs, points, &ro, &cloud, &info, &err);
     }
     if (status == PNPR_OK) toneRadius = pnpr_lod_grow_spacing(&cloud, &vs, 1); /* the disk radii of a thinned surface */
+    if (status == PNPR_OK && cancel_.load()) status = PNPR_ERR_CANCELLED; /* an older view's: not taken over */
+    if (status == PNPR_OK) status = sampleSpacing();
     if (status != PNPR_OK) {
-        message = err.message[0] ? err.message : pnpr_status_string(status);
+        if (message.empty()) message = err.message[0] ? err.message : pnpr_status_string(status);
         pnpr_cloud_free(&cloud);
     }
     elapsedMs = (long)std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0).count();
     finished_.store(true);
+}
+
+/* A file without point_spacing: the sample's own, here rather than in the upload on MeshLab's
+ * thread (the upload takes a stored spacing of its own neighbour count as its disk radii). */
+pnpr_status StreamJob::sampleSpacing()
+{
+    if (cloud.count < 2 || pnpr_cloud_find_property(&cloud, PNPR_PROP_POINT_SPACING)) return PNPR_OK;
+    pnpr_property *p = nullptr;
+    pnpr_status st = pnpr_cloud_add_property(&cloud, PNPR_PROP_POINT_SPACING, PNPR_TYPE_FLOAT32, &p);
+    if (st == PNPR_OK) st = pnpr_point_spacing(cloud.xyz, cloud.count, pnpr_upload_defaults().spacing_k, 0, (float *)p->data, nullptr);
+    spacingMeasured = st == PNPR_OK;
+    if (st != PNPR_OK) message = std::string("the sample's point spacing: ") + pnpr_status_string(st);
+    return st;
 }
 
 void StreamJob::join()

@@ -45,6 +45,7 @@ struct LayerStream {
     pnpr_cloud cloud{};        /* the sample of `view` (count 0: none yet: the layer's vertices),
                                 * its stored point spacing grown by the view's share */
     float toneRadius = 0;      /* the file's mean spacing as the sample estimates it (0: none) */
+    bool spacingMeasured = false; /* the file had no point_spacing: the sample's own was measured */
     StreamView view;           /* the view of cloud */
     StreamView wanted;         /* the view asked for last */
     LayerStream() = default;
@@ -75,10 +76,12 @@ public:
     pnpr_cloud cloud{};
     pnpr_lod_read_info info{};
     float toneRadius = 0;       /* pnpr_lod_grow_spacing's estimate (0: no stored spacing) */
+    bool spacingMeasured = false; /* no stored spacing: the sample's own measured here */
     long elapsedMs = 0;
 
 private:
     void run();
+    pnpr_status sampleSpacing();
     static int progress(void *user, const char *stage, double fraction);
     std::thread thread_;
     std::atomic<bool> cancel_{false}, finished_{false};

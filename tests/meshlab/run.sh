@@ -1316,6 +1316,9 @@ stream)
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
            PNPR_MESHLAB_TEST_STREAM_OUT="$T/stream-sample.ply")
   gui stream points "$T/box.mlp" && stream_check stream 2
+  # the file has no point_spacing: the sample's own is measured on the stream's thread, not in the
+  # upload on MeshLab's
+  expect_log stream "'box_layer.ply' streamed for the view, the sample's point spacing measured on the stream's thread"
   # the normals of the new sample are computed in the background, the first sample drawn meanwhile
   expect_log stream "computing features for the points style in the background \\(20000 points\\): MeshLab's own points meanwhile"
   expect_log stream "computing features for the points style in the background \\([0-9]+ points\\): the previous sample meanwhile"
@@ -1579,19 +1582,25 @@ streampic)
   # of a twentieth of its points (x y z red green blue, offsets from PNPR_STREAM_ORIGIN="X Y Z",
   # placed there by a project file's Tr) opened in the GUI, zoomed in by PNPR_STREAM_WHEEL notches
   # (default 8), drawn in PNPR_STREAM_STYLE (default sketchy): snapshots streampic-layer-npr.png
-  # (the layer as it is) and streampic-stream-npr.png (streamed).
+  # (the layer as it is) and streampic-stream-npr.png (streamed). PNPR_STREAM_LAYER: a layer PLY
+  # made beforehand instead (its positions offsets from that origin), for a file too large for an
+  # ascii pass.
   [[ -n "$DECORATE" && -f "${PNPR_STREAM_INPUT:-}" ]] ||
     die "usage: PNPR_STREAM_INPUT=FILE.ply PNPR_STREAM_ORIGIN='X Y Z' run.sh streampic PLUGIN CLI WORKDIR DECORATE"
   ln "$GUI_BIN" "$T/host/meshlab" 2> /dev/null || cp "$GUI_BIN" "$T/host/meshlab" || die "cannot copy $GUI_BIN"
   read -r ox oy oz <<< "${PNPR_STREAM_ORIGIN:-0 0 0}"
-  to_ascii "$PNPR_STREAM_INPUT" "$T/input_a.ply" || die "cannot read $PNPR_STREAM_INPUT"
-  awk -v ox="$ox" -v oy="$oy" -v oz="$oz" '/^element vertex/ { n = $3 } /^property/ && !b { col[$NF] = np++ }
-    /^end_header/ { b = 1; m = int(n / 20); print "ply\nformat ascii 1.0\nelement vertex " m
-      print "property float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header"; next }
-    b && (++k % 20) == 0 && k <= 20 * m { printf "%.3f %.3f %.3f %d %d %d\n", $1 - ox, $2 - oy, $3 - oz, $(col["red"] + 1), $(col["green"] + 1), $(col["blue"] + 1) }' \
-    "$T/input_a.ply" > "$T/layer.ply"
+  if [[ -f "${PNPR_STREAM_LAYER:-}" ]]; then # a layer made beforehand (a large file: no ascii pass)
+    ln -s "$PNPR_STREAM_LAYER" "$T/layer.ply"
+  else
+    to_ascii "$PNPR_STREAM_INPUT" "$T/input_a.ply" || die "cannot read $PNPR_STREAM_INPUT"
+    awk -v ox="$ox" -v oy="$oy" -v oz="$oz" '/^element vertex/ { n = $3 } /^property/ && !b { col[$NF] = np++ }
+      /^end_header/ { b = 1; m = int(n / 20); print "ply\nformat ascii 1.0\nelement vertex " m
+        print "property float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header"; next }
+      b && (++k % 20) == 0 && k <= 20 * m { printf "%.3f %.3f %.3f %d %d %d\n", $1 - ox, $2 - oy, $3 - oz, $(col["red"] + 1), $(col["green"] + 1), $(col["blue"] + 1) }' \
+      "$T/input_a.ply" > "$T/layer.ply"
+  fi
   printf '<!DOCTYPE MeshLabDocument>\n<MeshLabProject>\n <MeshGroup>\n  <MLMesh label="layer.ply" filename="layer.ply" visible="1">\n   <MLMatrix44>\n1 0 0 %s \n0 1 0 %s \n0 0 1 %s \n0 0 0 1 \n</MLMatrix44>\n  </MLMesh>\n </MeshGroup>\n <RasterGroup/>\n</MeshLabProject>\n' "$ox" "$oy" "$oz" > "$T/layer.mlp"
-  GUI_POINTS=$(awk '/^element vertex/ { print $3; exit }' "$T/layer.ply")
+  GUI_POINTS=$(grep -a -m 1 '^element vertex' "$T/layer.ply" | awk '{ print $3 }')
   GUI_ENV=(PNPR_MESHLAB_TEST_WHEEL="${PNPR_STREAM_WHEEL:-8}")
   gui streampic-layer "${PNPR_STREAM_STYLE:-sketchy}" "$T/layer.mlp"
   GUI_ENV=(PNPR_MESHLAB_TEST_WHEEL="${PNPR_STREAM_WHEEL:-8}" PNPR_MESHLAB_TEST_SAMPLE_OF="$PNPR_STREAM_INPUT"
