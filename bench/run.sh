@@ -82,6 +82,9 @@ echo "== the sample by a camera path's views: cost a point (docs/tiles.md)" >&2
 echo "== a view of a cloud larger than its limit, from the file as written and ordered for drawing (bench/lod.sh)" >&2
 bash bench/lod.sh "$build" "$out/lod" | tee "$out/lod.md"
 
+echo "== a view's sample of the ordered file against the uniform sample (bench/bench_lod_view.c)" >&2
+"$build/bench/bench_lod_view" "$out/lod/scene_20000000_lod.ply" 1000000 | tee "$out/lod_view.md"
+
 echo "== normals at growing coordinate offsets: Open3D (ours: tests/test_stability)" >&2
 /usr/bin/python3 bench/open3d_offset.py 20000 | tee "$out/open3d_offset.md"
 
