@@ -57,7 +57,20 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: bench_lod_view FILE_LOD.ply [POINTS]\n");
         return 2;
     }
-    const uint64_t points = argc > 2 ? strtoull(argv[2], NULL, 10) : 1000000;
+    char *end = NULL;
+    const long long asked = argc > 2 ? strtoll(argv[2], &end, 10) : 1000000;
+    if (asked <= 0 || (end && *end)) {
+        fprintf(stderr, "bench_lod_view: POINTS must be a positive whole number (got %s)\n", argv[2]);
+        return 2;
+    }
+    const uint64_t points = (uint64_t)asked;
+    pnpr_lod l = {0};
+    pnpr_error err = {0};
+    if (pnpr_lod_open(argv[1], &l, &err) != PNPR_OK) { /* before the table: a clean refusal */
+        fprintf(stderr, "bench_lod_view: %s\n", err.message[0] ? err.message : "not a file ordered for drawing");
+        return 1;
+    }
+    pnpr_lod_free(&l);
     static const struct { const char *name; double eye[3], target[3]; } views[] = {
         {"from a corner", {-9, -9, 1.5}, {0, 0, 0.5}},
         {"from above", {0, 0, 30}, {0, 0, 0}},

@@ -865,7 +865,8 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
     size_t meshes = 0;
     QStringList stale, oneSegment, streamed;
     double toneSum = 0; /* the streams' tone radii (in scene units), weighted by their points */
-    bool measured = false; /* some stream's spacing was measured on its sample (its file had none) */
+    int measured = 0, fromFile = 0; /* streams whose spacing was measured on the sample / grown from the file */
+    bool allTone = true;   /* every stream carries its file's mean spacing */
     for (MeshModel *mm : md.meshList) {
         if (!isDrawnLayer(mm)) continue;
         const pnpr_meshlab::LayerStream *st = nullptr;
@@ -874,7 +875,7 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
         layers.emplace_back(mm, st);
         const LayerPoints &lp = layers.back();
         if (lp.stream) streamed << QString("'%1'").arg(mm->label());
-        measured |= lp.stream && lp.stream->spacingMeasured;
+        if (lp.stream) (lp.stream->spacingMeasured ? measured : fromFile)++;
         meshes += mm->cm.fn > 0;
         total += lp.count;
         anyColour |= lp.colour;
@@ -916,6 +917,7 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
         /* lengths grow with Tr's scale (the cube root of its upper 3x3's determinant) */
         const double scale = std::cbrt(std::fabs(T[0][0] * C[0][0] + T[0][1] * C[0][1] + T[0][2] * C[0][2]));
         if (allSpacing) toneSum += (double)lp.stream->toneRadius * scale * (double)lp.count;
+        allTone = allTone && allSpacing && lp.stream->toneRadius > 0;
         const LayerAttributes &la = lp.attrs;
         if (anySeg && !la.hasSeg) oneSegment << QString("'%1'").arg(mm->label());
         uint32_t maxLabel = 0;
@@ -975,7 +977,8 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
     pnpr_property *pk = nullptr;
     if (st == PNPR_OK && allSpacing && (st = pnpr_cloud_add_property(&cloud, PNPR_PROP_POINT_SPACING, PNPR_TYPE_FLOAT32, &pk)) == PNPR_OK) {
         std::memcpy(pk->data, spacing.data(), j * sizeof(float));
-        toneRadius = j && toneSum > 0 && std::isfinite(toneSum) ? (float)(toneSum / (double)j) : 0;
+        /* the files' mean spacing when every stream has one; else 0: the renderer's mean radius */
+        toneRadius = allTone && j && toneSum > 0 && std::isfinite(toneSum) ? (float)(toneSum / (double)j) : 0;
     }
     if (st == PNPR_OK && !layerIndex.empty() && (st = pnpr_cloud_add_property(&cloud, kLayerKey, PNPR_TYPE_UINT32, &pk)) == PNPR_OK)
         std::memcpy(pk->data, layerIndex.data(), j * sizeof(uint32_t));
@@ -1015,8 +1018,10 @@ pnpr_status buildCloud(MeshDocument &md, const std::vector<std::unique_ptr<pnpr_
                                               "edited): left out").arg(stale.join(", ")));
     if (!streamed.isEmpty())
         note += QString("; %1 streamed for the view%2").arg(streamed.join(", "))
-                    .arg(!allSpacing ? "" : measured ? ", the sample's point spacing measured on the stream's thread"
-                                                     : ", point spacing from the file grown by the view's share");
+                    .arg(!allSpacing            ? ""
+                         : measured && fromFile ? ", point spacing from the files grown by the view's share or measured on the stream's thread"
+                         : measured             ? ", the sample's point spacing measured on the stream's thread"
+                                                : ", point spacing from the file grown by the view's share");
     return st;
 }
 
@@ -1755,11 +1760,14 @@ static bool streamable(pnpr_meshlab::LayerStream &ls, const QString &label, cons
         pnpr_status st = pnpr_lod_open(ls.path.c_str(), &l, &err);
         pnpr_lod_free(&l);
         ls.ordered = st == PNPR_OK;
+        const QString file = QString::fromLocal8Bit(ls.path.c_str());
+        const QString why = !QFileInfo(file).isFile()   ? QString("missing or not a regular file")
+                            : st == PNPR_ERR_UNSUPPORTED ? QString("not ordered for drawing")
+                                                         : status(st, err);
         if (st != PNPR_OK)
             report(QString("layer '%1' is a sample of %2, which is %3: the layer is drawn as it is, not streamed by the "
                            "view (pointnpr convert --lod orders a file for drawing; docs/meshlab.md)")
-                       .arg(label).arg(QString::fromLocal8Bit(ls.path.c_str()))
-                       .arg(st == PNPR_ERR_UNSUPPORTED ? QString("not ordered for drawing") : status(st, err)), false);
+                       .arg(label).arg(file).arg(why), false);
     }
     return ls.ordered == 1;
 }
@@ -1796,16 +1804,21 @@ static void planStream(MeshDocument &md, DecorateContextState *s, bool on, const
             for (int c = 0; c < 4; c++) T[r][c] = mm->cm.Tr[r][c];
         pnpr_meshlab::StreamView v;
         if (!pnpr_meshlab::streamViewOf(mv, P, vp[2], vp[3], T, ls->origin, v)) {
-            report(QString("the view of layer '%1' cannot be streamed (an orthographic view, or a transformation "
-                           "that is not a similarity): the layer is drawn as it is").arg(mm->label()), false);
+            if (!ls->unstreamable)
+                report(QString("the view of layer '%1' cannot be streamed (an orthographic view, or a transformation "
+                               "that is not a similarity): the layer is drawn as it is").arg(mm->label()), false);
+            ls->unstreamable = true;
+            if (s->streamJob && s->streamJob->meshId == ls->meshId) s->streamJob->cancel();
             dropSample(s, *ls);
             ls->view = pnpr_meshlab::StreamView();
             continue;
         }
+        ls->unstreamable = false;
         if (v == ls->view) continue;
         s->streamBusy = true;
-        if (s->streamJob) { /* one at a time: an older view's read stops, this one starts when it has */
-            if (s->streamJob->meshId != ls->meshId || s->streamJob->view != v) s->streamJob->cancel();
+        if (s->streamJob) { /* one at a time: this layer's read of an older view stops, and this one
+                             * starts when it has (another layer's read is waited for) */
+            if (s->streamJob->meshId == ls->meshId && s->streamJob->view != v) s->streamJob->cancel();
             continue;
         }
         if (s->job) continue; /* the stages on the last sample first: its frame, then the next read */
@@ -1957,21 +1970,22 @@ static void applyTestLayerHooks(MeshDocument &md, DecorateContextState *s)
             }
         }
     }
-    /* test-only: PNPR_MESHLAB_TEST_SAMPLE_OF=PATH makes the first drawn layer a sample of PATH, its
-     * vertices offsets from PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="X Y Z" (default 0 0 0; the layer's Tr
-     * from a project file places them there), as "NPR: Open a sample of a large PLY" makes its
-     * layer (tests/meshlab/run.sh 'stream') */
+    /* test-only: PNPR_MESHLAB_TEST_SAMPLE_OF=PATH[;PATH...] makes the drawn layers, in order, samples
+     * of those files, their vertices offsets from PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="X Y Z" (default
+     * 0 0 0; the layers' Tr from a project file places them there), as "NPR: Open a sample of a
+     * large PLY" makes its layer (tests/meshlab/run.sh 'stream') */
     if (const char *so = std::getenv("PNPR_MESHLAB_TEST_SAMPLE_OF")) {
         if (!s->testSampleSet) {
             s->testSampleSet = true;
+            double origin[3] = {0, 0, 0};
+            if (const char *o = std::getenv("PNPR_MESHLAB_TEST_SAMPLE_ORIGIN"))
+                std::sscanf(o, "%lf %lf %lf", &origin[0], &origin[1], &origin[2]);
+            const QStringList files = QString::fromLocal8Bit(so).split(';');
+            int i = 0;
             for (MeshModel *mm : md.meshList) {
-                if (!isDrawnLayer(mm)) continue;
-                double origin[3] = {0, 0, 0};
-                if (const char *o = std::getenv("PNPR_MESHLAB_TEST_SAMPLE_ORIGIN"))
-                    std::sscanf(o, "%lf %lf %lf", &origin[0], &origin[1], &origin[2]);
-                pnpr_meshlab::setSampleSource(mm->cm, so, origin);
+                if (!isDrawnLayer(mm) || i >= files.size()) continue;
+                pnpr_meshlab::setSampleSource(mm->cm, files[i++].toLocal8Bit().toStdString(), origin);
                 pnpr_meshlab::writeStamp(mm->cm);
-                break;
             }
         }
     }

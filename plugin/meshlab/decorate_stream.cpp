@@ -131,6 +131,7 @@ void StreamJob::run()
     if (status == PNPR_OK) toneRadius = pnpr_lod_grow_spacing(&cloud, &vs, 1); /* the disk radii of a thinned surface */
     if (status == PNPR_OK && cancel_.load()) status = PNPR_ERR_CANCELLED; /* an older view's: not taken over */
     if (status == PNPR_OK) status = sampleSpacing();
+    if (status == PNPR_OK && cancel_.load()) status = PNPR_ERR_CANCELLED; /* cancelled during the spacing */
     if (status != PNPR_OK) {
         if (message.empty()) message = err.message[0] ? err.message : pnpr_status_string(status);
         pnpr_cloud_free(&cloud);

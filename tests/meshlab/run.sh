@@ -1349,6 +1349,19 @@ stream)
       "$T/zoom-camera.txt" "$T/plate.txt.ply" "$T/plate_layer.ply" "$T/zoom-sample_a.ply" || fail "'zoom': the stream does not follow the zoomed view (above)"
     expect_log zoom "uploaded [0-9]+ points from 1 layer\\(s\\).*'plate_layer.ply' streamed for the view, point spacing from the file grown by the view's share"
   fi
+  # two sample layers, the box and the plate in one project: both streamed, one read at a time
+  # (each waits for the other's), the frame drawn from both
+  sed -n '1,/<\/MLMesh>/p' "$T/box.mlp" > "$T/two.mlp"
+  sed -n '/<MLMesh/,/<\/MLMesh>/p' "$T/plate.mlp" >> "$T/two.mlp"
+  sed -n '/<\/MeshGroup>/,$p' "$T/box.mlp" >> "$T/two.mlp"
+  GUI_POINTS=40000 GUI_LAYERS=2
+  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply;$T/plate_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100")
+  if gui two points "$T/two.mlp"; then
+    expect_log two "streamed [0-9]+ of the 400000 points of .*box_lod.ply for the view"
+    expect_log two "streamed [0-9]+ of the 400000 points of .*plate_lod.ply for the view"
+    expect_log two "uploaded [0-9]+ points from 2 layer\\(s\\).*'box_layer.ply', 'plate_layer.ply' streamed for the view"
+  fi
+  GUI_POINTS=20000 GUI_LAYERS=''
   # orthographic (MeshLab's Toggle Orthographic Camera after the first view was streamed): that
   # sample would lack what this view sees; the layer is drawn as it is, said
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100"
@@ -1360,10 +1373,15 @@ stream)
   fi
   GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/box.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100")
   gui unordered points "$T/box.mlp"
-  GUI_ENV=() GUI_POINTS=''
   expect_log unordered "layer 'box_layer.ply' is a sample of .*box.ply, which is not ordered for drawing: the layer is drawn as it is"
   expect_no_log unordered "streamed [0-9]+ of"
   [[ $(grep -c "pointnpr decorator: .*which is not ordered for drawing" "$T/unordered.log") == 1 ]] || fail "'unordered': not said once"
+  # the file gone: said, the layer drawn as it is
+  GUI_ENV=(PNPR_MESHLAB_TEST_SAMPLE_OF="$T/gone_lod.ply" PNPR_MESHLAB_TEST_SAMPLE_ORIGIN="500000 4200000 100")
+  gui gone points "$T/box.mlp"
+  expect_log gone "layer 'box_layer.ply' is a sample of .*gone_lod.ply, which is missing or not a regular file: the layer is drawn as it is"
+  grep -q "^points 20000 drawn " "$T/gone-camera.txt" || fail "'gone': not the layer's own points"
+  GUI_ENV=() GUI_POINTS=''
   ;;
 
 decorate_styles)
