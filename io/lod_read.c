@@ -95,41 +95,38 @@ static pnpr_status pass_only(const char *path, const pnpr_read_options *ro, pnpr
     return st;
 }
 
-/* The ranges and runs of a pass: 2 (cells + 1) and cells + 1 values. */
-static pnpr_status alloc_ranges(const pnpr_lod *l, const char *path, uint64_t **r_ranges, uint8_t **r_runs,
-                                pnpr_error *err)
+/* A pass's ranges (pnpr_lod_plan_ranges: by the views of v solved, or `uniform`) into ro, with
+ * each cell's runs; *r_ranges and *r_runs are the caller's to free, also on failure. *r_points
+ * (may be NULL): the points the ranges hold. */
+static pnpr_status plan_pass(const pnpr_lod *l, const pnpr_view_sample *v, double uniform, const char *path,
+                             pnpr_read_options *ro, uint64_t **r_ranges, uint8_t **r_runs, double *r_points,
+                             pnpr_error *err)
 {
     const size_t cells = (size_t)l->cells + 1;
     *r_ranges = malloc(2 * cells * sizeof **r_ranges);
     *r_runs = malloc(cells);
-    if (*r_ranges && *r_runs) return PNPR_OK;
-    free(*r_ranges);
-    free(*r_runs);
-    *r_ranges = NULL;
-    *r_runs = NULL;
-    return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory for the ranges to read", path);
+    double n = *r_ranges && *r_runs ? pnpr_lod_plan_ranges(l, v, uniform, *r_ranges, *r_runs, &ro->range_count) : -1;
+    if (n < 0) return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory for the ranges to read", path);
+    ro->ranges = *r_ranges;
+    if (r_points) *r_points = n;
+    return PNPR_OK;
 }
 
 pnpr_status pnpr_lod_view_refine(const char *path, const pnpr_lod *l, pnpr_view_sample *v, double want,
                                  double frame_want, const pnpr_progress *progress, pnpr_error *err)
 {
-    uint64_t *ranges;
-    uint8_t *runs;
-    pnpr_status st = alloc_ranges(l, path, &ranges, &runs, err);
-    if (st != PNPR_OK) return st;
+    uint64_t *ranges = NULL;
+    uint8_t *runs = NULL;
     pnpr_read_options ro = {0};
-    if (pnpr_lod_plan_ranges(l, v, 1, ranges, runs, &ro.range_count) < 0) {
-        free(ranges);
-        free(runs);
-        return pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory for the ranges to read", path);
-    }
+    pnpr_status st = plan_pass(l, v, 1, path, &ro, &ranges, &runs, NULL, err);
     refine_read r = {l, runs, 0, v};
     ro.keep = keep_refine;
     ro.keep_user = &r;
-    ro.ranges = ranges;
     if (progress) ro.progress = *progress;
-    pnpr_view_sample_clear(v);
-    st = pass_only(path, &ro, err);
+    if (st == PNPR_OK) {
+        pnpr_view_sample_clear(v);
+        st = pass_only(path, &ro, err);
+    }
     if (st == PNPR_OK) pnpr_view_sample_solve(v, want, frame_want);
     free(ranges);
     free(runs);
@@ -209,11 +206,9 @@ pnpr_status pnpr_lod_read_view(const char *path, pnpr_view_sample *v, uint64_t p
         pnpr_view_sample_solve(v, (double)points, 0);
         pnpr_progress pr = pass_of(&pp, &outer, 0, 2);
         st = pnpr_lod_view_refine(path, &l, v, (double)points, 0, &pr, err);
-        if (st == PNPR_OK) st = alloc_ranges(&l, path, &ranges, &runs, err);
-        double n = st == PNPR_OK ? pnpr_lod_plan_ranges(&l, v, 1, ranges, runs, &ro.range_count) : 0;
-        if (n < 0) st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory for the ranges to read", path);
-        info.visited = n > 0 ? (uint64_t)n : 0;
-        ro.ranges = ranges;
+        double n = 0;
+        if (st == PNPR_OK) st = plan_pass(&l, v, 1, path, &ro, &ranges, &runs, &n, err);
+        info.visited = (uint64_t)n;
     } else {
         ro.progress = pass_of(&pp, &outer, 0, 2);
         st = pass_only(path, &ro, err);
@@ -276,11 +271,7 @@ pnpr_status pnpr_lod_read_sample(const char *path, uint64_t points, const pnpr_r
     s.share = total > points ? (double)points / (double)total : 1;
     uint64_t *ranges = NULL;
     uint8_t *runs = NULL;
-    if (st == PNPR_OK && ordered && (st = alloc_ranges(&l, path, &ranges, &runs, err)) == PNPR_OK) {
-        ro.ranges = ranges;
-        if (pnpr_lod_plan_ranges(&l, NULL, s.share, ranges, runs, &ro.range_count) < 0)
-            st = pnpr_error_set(err, PNPR_ERR_OUT_OF_MEMORY, "%s: out of memory for its ranges", path);
-    }
+    if (st == PNPR_OK && ordered) st = plan_pass(&l, NULL, s.share, path, &ro, &ranges, &runs, NULL, err);
     if (st == PNPR_OK) st = pnpr_read_file(path, &ro, cloud, err);
     if (st == PNPR_OK && r_total) *r_total = total;
     if (st == PNPR_OK && r_ordered) *r_ordered = ordered;

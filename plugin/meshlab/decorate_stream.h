@@ -47,7 +47,6 @@ struct LayerStream {
     float toneRadius = 0;      /* the file's mean spacing as the sample estimates it (0: none) */
     bool spacingMeasured = false; /* the file had no point_spacing: the sample's own was measured */
     StreamView view;           /* the view of cloud */
-    StreamView wanted;         /* the view asked for last */
     bool unstreamable = false; /* the view on screen cannot be streamed (said once until it can) */
     LayerStream() = default;
     LayerStream(const LayerStream &) = delete;

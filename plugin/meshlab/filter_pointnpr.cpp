@@ -1421,7 +1421,7 @@ bool FilterPointnprPlugin::openSample(MeshDocument &md, const RichParameterList 
     vcg::tri::UpdateBounding<CMeshO>::Box(o);
     const double origin[3] = {at[0], at[1], at[2]};
     pnpr_meshlab::setSampleSource(o, path.toStdString(), origin); /* the decoration streams it by the view */
-    pnpr_meshlab::writeStamp(o);
+    if (!features) pnpr_meshlab::writeStamp(o); /* storeFeatures stamped the layer already (it vouches for the file too) */
     Log("pointnpr: new layer '%s': %zu of the %llu points of %s (%.1f%%), %s; %.2f s",
         qUtf8Printable(out->label()), c.count, static_cast<unsigned long long>(total), qUtf8Printable(file),
         total ? 100.0 * static_cast<double>(c.count) / static_cast<double>(total) : 100.0,
